@@ -1,0 +1,23 @@
+//! swarf-geom: the exact geometric core shared by planning and verification.
+//!
+//! - [`math`]: f64 points and vectors (nalgebra), axis-aligned boxes, planes, polylines.
+//! - [`tol`]: named numeric epsilons, with units, in one place.
+//! - [`patch`]: tensor-product Bezier, B-spline and NURBS patches: evaluation, exact
+//!   derivatives, differential geometry, projection, plane sections, tessellation.
+//! - [`part`]: a part as a set of patches (upper-envelope semantics for 3-axis work).
+//! - [`mesh`]: triangle meshes, their validation and an XY spatial index.
+//!
+//! Units: millimetres and radians throughout.
+
+pub mod error;
+pub mod math;
+pub mod mesh;
+pub mod part;
+pub mod patch;
+pub mod tol;
+
+pub use error::GeomError;
+pub use math::{Aabb, Plane, Point3, Polyline, Vec3};
+pub use mesh::TriMesh;
+pub use part::Part;
+pub use patch::Patch;

@@ -1,0 +1,1 @@
+//! swarf-tool.

@@ -1,0 +1,3 @@
+//! The `swarf` command-line tool.
+
+fn main() {}
