@@ -19,5 +19,6 @@ pub mod tol;
 pub use error::GeomError;
 pub use math::{Aabb, Plane, Point3, Polyline, Vec3};
 pub use mesh::TriMesh;
+pub use mesh::{MeshBuilder, MeshReport, XyIndex};
 pub use part::Part;
 pub use patch::Patch;
