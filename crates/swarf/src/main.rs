@@ -1,3 +1,50 @@
-//! The `swarf` command-line tool.
+//! The `swarf` command-line tool: a thin clap layer over the swarf crates.
+//!
+//! Every subcommand lives in its own file under `cmd/`; errors are reported with
+//! their context (file, line, field) and a non-zero exit status.
 
-fn main() {}
+mod cmd;
+mod load;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// swarf: tool paths for sculptured surfaces, checked before a part is ever cut.
+#[derive(Parser)]
+#[command(name = "swarf", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Summarise a part: patches, degrees, bounding box, principal curvatures.
+    Inspect(cmd::inspect::Args),
+    /// Evaluate a patch at (u, v): point, derivatives, normal, principal curvatures (JSON).
+    Eval(cmd::eval::Args),
+    /// Tessellate a part into a binary STL within a chordal tolerance.
+    Tessellate(cmd::tessellate::Args),
+    /// Plan a finishing tool path from a job file and write G-code, CL, CSV, summary.
+    Plan(cmd::plan::Args),
+    /// Run the main job on the built-in shared parts and write the results.
+    Demo(cmd::demo::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Inspect(a) => cmd::inspect::run(&a),
+        Command::Eval(a) => cmd::eval::run(&a),
+        Command::Tessellate(a) => cmd::tessellate::run(&a),
+        Command::Plan(a) => cmd::plan::run(&a),
+        Command::Demo(a) => cmd::demo::run(&a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("swarf: error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

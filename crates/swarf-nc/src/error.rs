@@ -1,0 +1,66 @@
+//! The error type of swarf-nc.
+
+use thiserror::Error;
+
+/// What can go wrong when writing or reading an NC program.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum NcError {
+    /// A 3-axis post was given a pose whose tool axis is not +Z.
+    #[error(
+        "move {index}: tool axis ({:.6}, {:.6}, {:.6}) is not +Z; a 3-axis program needs a \
+         vertical tool (use a machine file for five-axis output)", axis[0], axis[1], axis[2]
+    )]
+    NotThreeAxis {
+        /// Index of the offending move.
+        index: usize,
+        /// Its tool axis.
+        axis: [f64; 3],
+    },
+    /// A coordinate or feed is not finite.
+    #[error("move {index}: {what} is not a finite number")]
+    NonFinite {
+        /// Index of the offending move.
+        index: usize,
+        /// Which value.
+        what: &'static str,
+    },
+    /// An option is out of range.
+    #[error("{field}: {message}")]
+    InvalidOption {
+        /// The option's name.
+        field: &'static str,
+        /// What was expected.
+        message: String,
+    },
+    /// A program file could not be read (missing, unreadable).
+    #[error("{path}: cannot read: {message}")]
+    Io {
+        /// The file.
+        path: String,
+        /// What the operating system said.
+        message: String,
+    },
+    /// A file name whose extension names no program format swarf reads.
+    #[error(
+        "{path}: unknown program format: expected .ngc, .nc, .tap or .gcode (G-code), \
+         .cl, .apt or .cls (APT CL), or .csv (pose CSV)"
+    )]
+    UnknownFormat {
+        /// The file.
+        path: String,
+    },
+    /// A program that is not text of its format at all (binary data, a pose CSV without
+    /// its header). Errors inside a readable program do not come here: they stop the
+    /// reading and are reported in `Program::stopped`.
+    #[error("{file}:{line}:{column}: {message}")]
+    Unreadable {
+        /// The file (or the name the text was given).
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column, in characters.
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
+}

@@ -1,0 +1,360 @@
+//! Job files: what `swarf plan` and `swarf compare` read. A job names the part, the
+//! tool, the strategy with its parameters, feeds, linking and the output files.
+//!
+//! ```toml
+//! name = "wave, iso-scallop"
+//! part = "../parts/wave.toml"    # relative to the job file; "builtin:wave" for a built-in part
+//! tool = "ball:d=8"              # a spec string or a table { shape = "bull", d = 10, r = 2 }
+//!
+//! [strategy]
+//! kind = "iso-scallop"           # iso-parametric | iso-planar | iso-scallop | raster
+//! scallop = 0.15                 # scallop height limit h, mm
+//! tolerance = 0.01               # chordal tolerance along passes, mm
+//!
+//! [feeds]
+//! feed = 300                     # mm/min
+//! spindle = 1500                 # rev/min
+//!
+//! [linking]
+//! clearance = 60                 # clearance plane z, mm
+//!
+//! [output]
+//! gcode = "wave-iso-scallop.ngc" # paths relative to the job file; each optional
+//! summary = "wave-iso-scallop.json"
+//! ```
+//!
+//! Lengths in the job are mm; angles are degrees (converted to radians here, at the
+//! input edge).
+
+use crate::error::PathError;
+use crate::toolpath::{Feeds, Linking};
+
+/// Linking as a job gives it: the clearance plane may be left to swarf.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct JobLinking {
+    /// Clearance plane z, mm; default: 5 mm above the highest CL point of the path.
+    pub clearance: Option<f64>,
+    /// Distance above a pass start where the plunge feed begins, mm.
+    pub approach: f64,
+}
+
+impl Default for JobLinking {
+    fn default() -> Self {
+        JobLinking {
+            clearance: None,
+            approach: Linking::default().approach,
+        }
+    }
+}
+
+/// Height of the default clearance plane above the highest CL point, mm.
+pub const DEFAULT_CLEARANCE_MARGIN: f64 = 5.0;
+use serde::{Deserialize, Serialize};
+use swarf_tool::Cutter;
+
+/// A planning job.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Job {
+    /// Free-text name for reports.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Part file (`.toml` patches, or `.stl`/`.obj` mesh), relative to the job file,
+    /// or `builtin:NAME` for a shared part embedded in swarf.
+    pub part: String,
+    /// The cutter.
+    pub tool: Cutter,
+    /// Strategy and its parameters.
+    pub strategy: StrategyParams,
+    /// Feeds and speeds.
+    #[serde(default)]
+    pub feeds: Feeds,
+    /// Linking between passes.
+    #[serde(default)]
+    pub linking: JobLinking,
+    /// Output files.
+    #[serde(default)]
+    pub output: Output,
+}
+
+/// The finishing strategies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StrategyKind {
+    /// Passes along constant-parameter curves of each patch (paper 004).
+    IsoParametric,
+    /// Passes are sections of the part by parallel vertical drive planes (paper 004).
+    IsoPlanar,
+    /// Each pass is placed so that the scallop to the previous one equals h (paper 004).
+    IsoScallop,
+    /// Drop-cutter raster on a triangle mesh (iso-planar for meshes).
+    Raster,
+}
+
+/// Which parameter a pass follows (iso-parametric) or which boundary the first pass
+/// starts on (iso-scallop).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ParamDir {
+    /// Passes run along u (v constant on each pass).
+    #[default]
+    U,
+    /// Passes run along v (u constant on each pass).
+    V,
+}
+
+/// Which end of the side-step range the first pass is on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum StartSide {
+    /// Start at the low end (smallest v, or the lowest drive plane offset).
+    #[default]
+    Min,
+    /// Start at the high end.
+    Max,
+}
+
+/// Strategy parameters. Fields not used by a strategy are ignored by it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StrategyParams {
+    /// Which strategy.
+    pub kind: StrategyKind,
+    /// Scallop height limit h, mm (side step from it). Required unless `stepover` is given.
+    #[serde(default)]
+    pub scallop: Option<f64>,
+    /// Fixed side step instead of a scallop limit, mm (raster only).
+    #[serde(default)]
+    pub stepover: Option<f64>,
+    /// Chordal tolerance along a pass (and gouge tolerance), mm.
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    /// Feed direction along a parameter (iso-parametric, iso-scallop).
+    #[serde(default)]
+    pub direction: ParamDir,
+    /// Feed direction in the XY plane, degrees from +X (iso-planar, raster).
+    #[serde(default)]
+    pub angle: f64,
+    /// Side the first pass starts on.
+    #[serde(default)]
+    pub start: StartSide,
+    /// Alternate the cutting direction of consecutive passes.
+    #[serde(default = "default_true")]
+    pub zigzag: bool,
+    /// Raster boundary `[xmin, ymin, xmax, ymax]`, mm (default: the mesh outline).
+    #[serde(default)]
+    pub boundary: Option<[f64; 4]>,
+}
+
+fn default_tolerance() -> f64 {
+    0.01
+}
+
+fn default_true() -> bool {
+    true
+}
+
+/// Output files of a job, relative to the job file. Each is optional.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Output {
+    /// RS274/NGC G-code.
+    #[serde(default)]
+    pub gcode: Option<String>,
+    /// APT CL data.
+    #[serde(default)]
+    pub cl: Option<String>,
+    /// Pose CSV (`x,y,z,i,j,k`).
+    #[serde(default)]
+    pub csv: Option<String>,
+    /// JSON summary.
+    #[serde(default)]
+    pub summary: Option<String>,
+    /// Double contacts found by the raster strategy (CSV).
+    #[serde(default)]
+    pub double_contacts: Option<String>,
+    /// Output units: "mm" or "inch".
+    #[serde(default)]
+    pub units: OutputUnits,
+    /// G-code dialect: "linuxcnc" or "fanuc".
+    #[serde(default)]
+    pub dialect: OutputDialect,
+}
+
+/// Output length units (mirrors the NC crate's, which sits below this one).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum OutputUnits {
+    /// Millimetres.
+    #[default]
+    Mm,
+    /// Inches.
+    Inch,
+}
+
+/// G-code dialect (mirrors the NC crate's).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum OutputDialect {
+    /// LinuxCNC.
+    #[default]
+    Linuxcnc,
+    /// Fanuc-style controls.
+    Fanuc,
+}
+
+impl Job {
+    /// Parses and validates a job from TOML text; `source` names the file in errors.
+    ///
+    /// # Errors
+    /// [`PathError::Job`] with the file, line and field for malformed TOML, unknown
+    /// keys, bad tools, and out-of-range parameters.
+    pub fn parse(text: &str, source: &str) -> Result<Job, PathError> {
+        let job: Job = toml::from_str(text).map_err(|e| PathError::Job {
+            file: source.to_string(),
+            message: toml_message(text, &e),
+        })?;
+        job.validate().map_err(|message| PathError::Job {
+            file: source.to_string(),
+            message,
+        })?;
+        Ok(job)
+    }
+
+    /// Checks parameter ranges that the TOML types cannot express.
+    fn validate(&self) -> Result<(), String> {
+        let s = &self.strategy;
+        positive("strategy.tolerance", Some(s.tolerance))?;
+        positive("strategy.scallop", s.scallop)?;
+        positive("strategy.stepover", s.stepover)?;
+        if s.scallop.is_none() && s.stepover.is_none() {
+            return Err("strategy: expected `scallop` (scallop height limit, mm) or `stepover` (mm)".into());
+        }
+        if s.stepover.is_some() && s.kind != StrategyKind::Raster {
+            return Err("strategy.stepover: only the raster strategy takes a fixed stepover; use `scallop`".into());
+        }
+        if let Some(h) = s.scallop {
+            let r = self.tool.radius();
+            if h >= r {
+                return Err(format!(
+                    "strategy.scallop: {h} mm is not smaller than the tool radius {r} mm; expected 0 < scallop < tool radius"
+                ));
+            }
+        }
+        if !s.angle.is_finite() {
+            return Err("strategy.angle: expected a finite angle in degrees".into());
+        }
+        if let Some(b) = s.boundary {
+            if !(b.iter().all(|x| x.is_finite()) && b[0] < b[2] && b[1] < b[3]) {
+                return Err(format!(
+                    "strategy.boundary: expected [xmin, ymin, xmax, ymax] with xmin < xmax and ymin < ymax, found {b:?}"
+                ));
+            }
+        }
+        let f = &self.feeds;
+        for (name, v) in [
+            ("feeds.feed", f.feed),
+            ("feeds.plunge", f.plunge),
+            ("feeds.rapid", f.rapid),
+            ("feeds.spindle", f.spindle),
+        ] {
+            positive(name, Some(v))?;
+        }
+        if self.linking.clearance.is_some_and(|c| !c.is_finite()) {
+            return Err("linking.clearance: expected a finite height in mm".into());
+        }
+        positive("linking.approach", Some(self.linking.approach))?;
+        Ok(())
+    }
+
+    /// The linking for a path whose highest CL point is at `top_z`: the job's
+    /// clearance when given (raised to `top_z` if it is below), else `top_z` plus
+    /// [`DEFAULT_CLEARANCE_MARGIN`].
+    pub fn linking_for(&self, top_z: f64) -> Linking {
+        Linking {
+            clearance: self
+                .linking
+                .clearance
+                .map_or(top_z + DEFAULT_CLEARANCE_MARGIN, |c| c.max(top_z)),
+            approach: self.linking.approach,
+        }
+    }
+
+    /// The feed direction angle in radians.
+    pub fn angle_rad(&self) -> f64 {
+        self.strategy.angle.to_radians()
+    }
+}
+
+fn positive(name: &str, v: Option<f64>) -> Result<(), String> {
+    match v {
+        Some(x) if !(x.is_finite() && x > 0.0) => {
+            Err(format!("{name}: expected a finite number > 0, found {x}"))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// A TOML error as "line N: message".
+fn toml_message(text: &str, e: &toml::de::Error) -> String {
+    let msg = e.message().trim().to_string();
+    match e.span() {
+        Some(span) => {
+            let line = text[..span.start.min(text.len())].matches('\n').count() + 1;
+            format!("line {line}: {msg}")
+        }
+        None => msg,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"
+part = "builtin:wave"
+tool = "ball:d=8"
+[strategy]
+kind = "iso-scallop"
+scallop = 0.15
+tolerance = 0.01
+[feeds]
+feed = 300
+spindle = 1500
+[linking]
+clearance = 60
+[output]
+gcode = "a.ngc"
+"#;
+
+    #[test]
+    fn parses_a_good_job() {
+        let job = Job::parse(GOOD, "job.toml").unwrap();
+        assert_eq!(job.strategy.kind, StrategyKind::IsoScallop);
+        assert_eq!(job.strategy.scallop, Some(0.15));
+        assert_eq!(job.feeds.feed, 300.0);
+        assert_eq!(job.feeds.plunge, Feeds::default().plunge);
+        assert!(job.strategy.zigzag);
+        assert_eq!(job.output.gcode.as_deref(), Some("a.ngc"));
+    }
+
+    #[test]
+    fn bad_jobs_name_the_field() {
+        let cases = [
+            (GOOD.replace("scallop = 0.15", "scallop = -1"), "strategy.scallop"),
+            (GOOD.replace("scallop = 0.15", "scallop = 5"), "strategy.scallop"),
+            (GOOD.replace("tolerance = 0.01", "tolerance = 0"), "strategy.tolerance"),
+            (GOOD.replace("scallop = 0.15", ""), "strategy: expected `scallop`"),
+            (GOOD.replace("feed = 300", "feed = -3"), "feeds.feed"),
+            (GOOD.replace("kind = \"iso-scallop\"", "kind = \"spiral\""), "line 5"),
+            (GOOD.replace("feed = 300", "fed = 300"), "fed"),
+            (GOOD.replace("ball:d=8", "ball:d=-8"), "line 3"),
+        ];
+        for (text, want) in cases {
+            let e = Job::parse(&text, "job.toml").unwrap_err().to_string();
+            assert!(e.starts_with("job.toml: "), "{e}");
+            assert!(e.contains(want), "want {want:?} in {e}");
+        }
+    }
+}

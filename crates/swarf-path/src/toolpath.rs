@@ -1,0 +1,270 @@
+//! The tool path model: passes of poses, the links between them, feeds, and the
+//! motion (rapid and feed moves) that a post-processor writes.
+//!
+//! A pass is a sequence of cutting poses (CL point = tool tip on the axis, plus the
+//! unit tool axis), each remembering the cutter contact (CC) it was planned from.
+//! Passes are cut in the order stored; strategies reverse alternate passes for zigzag.
+//! Linking between passes: retract along the tool axis to the clearance plane, rapid
+//! above the next pass, rapid down to `approach` above its first pose, then feed in at
+//! the plunge rate. The first move of a program starts from the clearance plane.
+
+use serde::{Deserialize, Serialize};
+use swarf_geom::{Point3, Vec3};
+use swarf_tool::Pose;
+
+/// Where the cutter touched the design when a pose was planned.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Contact {
+    /// CC point on the design surface, mm.
+    pub point: Point3,
+    /// Unit surface normal at the CC point, pointing out of the material.
+    pub normal: Vec3,
+    /// Face the contact lies on: patch index for parametric parts, triangle index for meshes.
+    pub face: usize,
+    /// Surface parameters `(u, v)` on the patch (NaN for meshes).
+    pub uv: [f64; 2],
+}
+
+/// One planned cutting pose with its provenance.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PathPoint {
+    /// Tool tip and axis.
+    pub pose: Pose,
+    /// Contact it was planned from, if any.
+    pub contact: Option<Contact>,
+    /// How far the gouge check lifted the pose along its axis, mm (0 when untouched).
+    pub lifted: f64,
+}
+
+impl PathPoint {
+    /// A pose without contact information.
+    pub fn new(pose: Pose) -> Self {
+        PathPoint {
+            pose,
+            contact: None,
+            lifted: 0.0,
+        }
+    }
+}
+
+/// A continuous cut: the tool stays in the material from first to last pose.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Pass {
+    /// Poses in cutting order.
+    pub points: Vec<PathPoint>,
+}
+
+impl Pass {
+    /// Length of the CL polyline, mm.
+    pub fn length(&self) -> f64 {
+        self.points
+            .windows(2)
+            .map(|w| (w[1].pose.cl - w[0].pose.cl).norm())
+            .sum()
+    }
+}
+
+/// Feeds and speeds. Feeds in mm/min, spindle in rev/min.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Feeds {
+    /// Cutting feed, mm/min.
+    pub feed: f64,
+    /// Feed for the approach into the material, mm/min.
+    pub plunge: f64,
+    /// Rapid traverse rate of the machine, mm/min (for the time estimate only).
+    pub rapid: f64,
+    /// Spindle speed, rev/min (clockwise).
+    pub spindle: f64,
+}
+
+impl Default for Feeds {
+    fn default() -> Self {
+        Feeds {
+            feed: 300.0,
+            plunge: 100.0,
+            rapid: 5000.0,
+            spindle: 1500.0,
+        }
+    }
+}
+
+/// How passes are joined.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Linking {
+    /// Height of the clearance plane (absolute z, part frame), mm.
+    pub clearance: f64,
+    /// Distance above a pass start where the rapid down stops and the plunge feed begins, mm.
+    pub approach: f64,
+}
+
+impl Default for Linking {
+    fn default() -> Self {
+        Linking {
+            clearance: 10.0,
+            approach: 2.0,
+        }
+    }
+}
+
+/// A planned tool path: passes, linking and feeds.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Toolpath {
+    /// Passes in cutting order.
+    pub passes: Vec<Pass>,
+    /// Feeds and speeds.
+    pub feeds: Feeds,
+    /// Linking between passes.
+    pub linking: Linking,
+}
+
+/// Rapid or feed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum MoveKind {
+    /// Positioning at the machine's rapid rate (G0).
+    Rapid,
+    /// Linear interpolation at a feed (G1).
+    Feed,
+}
+
+/// One straight move of the program, to `to`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Move {
+    /// Rapid or feed.
+    pub kind: MoveKind,
+    /// End pose.
+    pub to: Pose,
+    /// Feed rate of a feed move, mm/min (0 for rapids).
+    pub feed: f64,
+    /// Index of the pass a cutting move belongs to (`None` for links).
+    pub pass: Option<usize>,
+}
+
+/// Lengths and times of a program's motion.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct MotionStats {
+    /// Length of feed moves inside passes, mm.
+    pub cutting_length: f64,
+    /// Length of feed moves in links (approach), mm.
+    pub approach_length: f64,
+    /// Length of rapid moves, mm.
+    pub rapid_length: f64,
+    /// Estimated machining time, s (feed moves at their feed, rapids at the rapid rate).
+    pub time_s: f64,
+}
+
+impl Toolpath {
+    /// The whole program as straight moves, starting from the clearance plane above
+    /// the first pose and ending back on it.
+    pub fn moves(&self) -> Vec<Move> {
+        let mut out = Vec::new();
+        for (k, pass) in self.passes.iter().enumerate() {
+            let Some(first) = pass.points.first() else {
+                continue;
+            };
+            self.link_in(&first.pose, out.is_empty(), &mut out);
+            out.extend(pass.points.iter().skip(1).map(|p| Move {
+                kind: MoveKind::Feed,
+                to: p.pose,
+                feed: self.feeds.feed,
+                pass: Some(k),
+            }));
+            let last = pass.points.last().map_or(first.pose, |p| p.pose);
+            out.push(rapid(self.lift_to_clearance(&last)));
+        }
+        out
+    }
+
+    /// Moves from the clearance plane down onto `start`.
+    fn link_in(&self, start: &Pose, is_first: bool, out: &mut Vec<Move>) {
+        let above = self.lift_to_clearance(start);
+        if is_first {
+            let mut high = above;
+            high.cl.z = high.cl.z.max(self.linking.clearance);
+            out.push(rapid(high));
+        }
+        out.push(rapid(above));
+        let approach = Pose {
+            cl: start.cl + start.axis * self.linking.approach,
+            axis: start.axis,
+        };
+        if approach.cl.z < above.cl.z {
+            out.push(rapid(approach));
+        }
+        out.push(Move {
+            kind: MoveKind::Feed,
+            to: *start,
+            feed: self.feeds.plunge,
+            pass: None,
+        });
+    }
+
+    /// The pose moved along its axis until its tip reaches the clearance plane (a pose
+    /// already above it stays where it is).
+    fn lift_to_clearance(&self, pose: &Pose) -> Pose {
+        let dz = self.linking.clearance - pose.cl.z;
+        if dz <= 0.0 || pose.axis.z <= 0.0 {
+            return *pose;
+        }
+        Pose {
+            cl: pose.cl + pose.axis * (dz / pose.axis.z),
+            axis: pose.axis,
+        }
+    }
+
+    /// Number of poses over all passes.
+    pub fn pose_count(&self) -> usize {
+        self.passes.iter().map(|p| p.points.len()).sum()
+    }
+
+    /// Number of poses the gouge check lifted.
+    pub fn lifted_count(&self) -> usize {
+        self.passes
+            .iter()
+            .flat_map(|p| &p.points)
+            .filter(|p| p.lifted > 0.0)
+            .count()
+    }
+}
+
+fn rapid(to: Pose) -> Move {
+    Move {
+        kind: MoveKind::Rapid,
+        to,
+        feed: 0.0,
+        pass: None,
+    }
+}
+
+/// Lengths and the time estimate of a move list; the program starts at the first
+/// move's end point. Rapids run at `rapid_rate`.
+///
+/// # Units
+/// Lengths in mm, feeds and `rapid_rate` in mm/min, time in seconds.
+pub fn motion_stats(moves: &[Move], rapid_rate: f64) -> MotionStats {
+    let mut s = MotionStats::default();
+    let Some(first) = moves.first() else {
+        return s;
+    };
+    let mut at = first.to.cl;
+    for m in moves {
+        let d = (m.to.cl - at).norm();
+        at = m.to.cl;
+        match (m.kind, m.pass) {
+            (MoveKind::Rapid, _) => {
+                s.rapid_length += d;
+                s.time_s += 60.0 * d / rapid_rate;
+            }
+            (MoveKind::Feed, pass) => {
+                if pass.is_some() {
+                    s.cutting_length += d;
+                } else {
+                    s.approach_length += d;
+                }
+                s.time_s += 60.0 * d / m.feed;
+            }
+        }
+    }
+    s
+}

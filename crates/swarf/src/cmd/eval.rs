@@ -1,0 +1,53 @@
+//! `swarf eval PART --patch N --uv U,V`: exact evaluation of one patch as JSON.
+
+use crate::load::{load_part, parse_pair};
+use anyhow::{Result, bail};
+
+/// Arguments of `swarf eval`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Part file (.toml) or built-in part name.
+    part: String,
+    /// Patch index (0-based, in file order).
+    #[arg(long, default_value_t = 0)]
+    patch: usize,
+    /// Parameters `U,V` inside the patch's knot range.
+    #[arg(long, allow_hyphen_values = true)]
+    uv: String,
+}
+
+/// Runs the subcommand.
+pub fn run(args: &Args) -> Result<()> {
+    let part = load_part(&args.part)?;
+    let Some(patch) = part.patches.get(args.patch) else {
+        bail!(
+            "--patch: part {} has {} patch(es); expected an index in 0..{}",
+            part.name,
+            part.patches.len(),
+            part.patches.len()
+        );
+    };
+    let [u, v] = parse_pair(&args.uv, "--uv")?;
+    let [[u0, u1], [v0, v1]] = patch.domain();
+    if !(u0..=u1).contains(&u) || !(v0..=v1).contains(&v) {
+        bail!("--uv: ({u}, {v}) is outside the patch's domain u in [{u0}, {u1}], v in [{v0}, {v1}]");
+    }
+    let d = patch.derivs(u, v);
+    let Some(normal) = d.normal() else {
+        bail!("--uv: the patch is degenerate at ({u}, {v}) (du x dv = 0): no normal or curvature");
+    };
+    let c = d.curvature();
+    let arr = |x: swarf_geom::Vec3| [x.x, x.y, x.z];
+    let out = serde_json::json!({
+        "point": arr(d.point.coords),
+        "du": arr(d.du),
+        "dv": arr(d.dv),
+        "normal": arr(normal),
+        "k1": c.map(|c| c.k1),
+        "k2": c.map(|c| c.k2),
+        "dir1": c.map(|c| arr(c.dir1)),
+        "dir2": c.map(|c| arr(c.dir2)),
+    });
+    println!("{}", serde_json::to_string(&out)?);
+    Ok(())
+}

@@ -1,0 +1,7 @@
+//! One file per subcommand.
+
+pub mod demo;
+pub mod eval;
+pub mod inspect;
+pub mod plan;
+pub mod tessellate;

@@ -1,0 +1,36 @@
+//! `swarf tessellate PART --tol T -o part.stl`.
+
+use crate::load::load_part;
+use anyhow::{Result, bail};
+use std::path::PathBuf;
+
+/// Arguments of `swarf tessellate`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Part file (.toml) or built-in part name.
+    part: String,
+    /// Chordal tolerance, mm: every point of the mesh is within this of the surface.
+    #[arg(long, default_value_t = 0.01)]
+    tol: f64,
+    /// Output binary STL.
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+/// Runs the subcommand.
+pub fn run(args: &Args) -> Result<()> {
+    if !(args.tol.is_finite() && args.tol > 0.0) {
+        bail!("--tol: expected a chordal tolerance > 0 mm, found {}", args.tol);
+    }
+    let part = load_part(&args.part)?;
+    let mesh = part.tessellate(args.tol)?;
+    swarf_io::write_stl(&args.output, &mesh, &part.name)?;
+    eprintln!(
+        "{}: {} triangles within {} mm -> {}",
+        part.name,
+        mesh.triangles.len(),
+        args.tol,
+        args.output.display()
+    );
+    Ok(())
+}
