@@ -14,6 +14,7 @@ pub mod math;
 pub mod mesh;
 pub mod part;
 pub mod patch;
+pub mod solve;
 pub mod tol;
 
 pub use error::GeomError;
@@ -22,3 +23,5 @@ pub use mesh::TriMesh;
 pub use mesh::{MeshBuilder, MeshReport, XyIndex};
 pub use part::Part;
 pub use patch::Patch;
+pub use patch::{Curvature, FundamentalForms, Projection, SurfaceDerivs};
+pub use solve::SolveStatus;

@@ -5,6 +5,19 @@
 //! (absent = polynomial). Control points are row-major, index `i * n_v + j`, `i` along u.
 //! The algorithms live in one file each beside this one.
 
+pub mod basis;
+mod diffgeo;
+mod eval;
+#[cfg(test)]
+pub(crate) mod fixtures;
+mod knot_insert;
+mod project;
+
+pub use basis::MAX_DEGREE;
+pub use diffgeo::{Curvature, FundamentalForms};
+pub use eval::SurfaceDerivs;
+pub use project::Projection;
+
 use crate::error::GeomError;
 use crate::math::{Aabb, Point3};
 use serde::{Deserialize, Serialize};
@@ -51,7 +64,7 @@ impl Patch {
     ///
     /// # Errors
     /// [`GeomError::InvalidPatch`] naming the field (`degree`, `knots_u`, `knots_v`,
-    /// `points`, `weights`) when a degree is 0, a knot vector is not finite,
+    /// `points`, `weights`) when a degree is 0 or above [`MAX_DEGREE`], a knot vector is not finite,
     /// decreasing, unclamped, of the wrong length or has an empty range, the number of
     /// points does not match, a point is not finite, or a weight is not finite and > 0.
     pub fn new(
@@ -194,6 +207,15 @@ fn checked_knots(dir: usize, p: usize, knots: Option<Vec<f64>>) -> Result<Vec<f6
             format!("degree_{} must be at least 1, found 0", DIR_NAMES[dir]),
         ));
     }
+    if p > MAX_DEGREE {
+        return Err(GeomError::patch(
+            "degree",
+            format!(
+                "degree_{} must be at most {MAX_DEGREE}, found {p}",
+                DIR_NAMES[dir]
+            ),
+        ));
+    }
     let Some(k) = knots else {
         let mut k = vec![0.0; p + 1];
         k.extend(std::iter::repeat_n(1.0, p + 1));
@@ -236,6 +258,15 @@ fn checked_knots(dir: usize, p: usize, knots: Option<Vec<f64>>) -> Result<Vec<f6
         return Err(GeomError::patch(
             field,
             "expected a non-empty parameter range",
+        ));
+    }
+    if k[p + 1] == k[0] || k[n - p - 2] == k[n - 1] {
+        return Err(GeomError::patch(
+            field,
+            format!(
+                "an end knot is repeated more than {} times (degree + 1)",
+                p + 1
+            ),
         ));
     }
     let mut i = p + 1;
@@ -316,6 +347,19 @@ mod tests {
         assert!(e.to_string().starts_with("points[2]"), "{e}");
         let e = Patch::bezier([0, 1], grid(1, 2)).unwrap_err();
         assert!(e.to_string().starts_with("degree"), "{e}");
+    }
+
+    #[test]
+    fn degree_cap_and_end_multiplicity_are_checked() {
+        let e = Patch::bezier([16, 1], grid(17, 2)).unwrap_err();
+        assert!(e.to_string().contains("at most 15"), "{e}");
+        assert!(Patch::bezier([15, 1], grid(16, 2)).is_ok());
+        let k = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+        let e = Patch::new([2, 1], grid(4, 2), [Some(k), None], None).unwrap_err();
+        assert!(e.to_string().contains("repeated more than 3"), "{e}");
+        let k = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+        let e = Patch::new([2, 1], grid(4, 2), [Some(k), None], None).unwrap_err();
+        assert!(e.to_string().contains("repeated more than 3"), "{e}");
     }
 
     #[test]

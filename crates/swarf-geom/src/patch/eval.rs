@@ -1,0 +1,398 @@
+//! Point and exact first and second partial derivatives of a patch.
+//!
+//! Tensor-product de Boor sum: `S(u, v) = sum_i sum_j N_i(u) M_j(v) P_ij` over the
+//! `(p+1) x (q+1)` functions non-zero on the spans holding `(u, v)`; a partial derivative
+//! replaces `N` or `M` by its derivative ([`super::basis`]). The sum runs row by row:
+//! each row is first contracted along v with `M, M', M''`, then folded into the six
+//! results with `N, N', N''`, so a bicubic costs 16 x 3 + 4 x 6 vector multiply-adds.
+//!
+//! A NURBS patch is the projection of a polynomial patch in homogeneous space,
+//! `A(u, v) = sum N M w_ij P_ij`, `w(u, v) = sum N M w_ij`, `S = A / w`. Differentiating
+//! `A = w S` (The NURBS Book eq. 4.20, the idea of A4.4) gives
+//!
+//! - `S_u = (A_u - w_u S) / w`, `S_v = (A_v - w_v S) / w`,
+//! - `S_uu = (A_uu - 2 w_u S_u - w_uu S) / w`, `S_vv = (A_vv - 2 w_v S_v - w_vv S) / w`,
+//! - `S_uv = (A_uv - w_u S_v - w_v S_u - w_uv S) / w`.
+//!
+//! Everything lives on the stack. The curvo crate evaluates rational derivatives of any
+//! order into heap-allocated tables on each call; this kernel's hot loops (projection,
+//! drop-cutter onto patches, curvature surveys) need exactly orders 0..2 many million
+//! times, so it has its own small evaluator.
+
+use super::Patch;
+use super::basis::{BasisDerivs, MAX_ORDER, basis_derivs, basis_funs, find_span};
+use crate::math::{Point3, Vec3};
+use nalgebra::{SVector, Vector4};
+
+/// A surface point with its exact first and second partial derivatives, mm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceDerivs {
+    /// `S(u, v)`.
+    pub point: Point3,
+    /// `dS/du`.
+    pub du: Vec3,
+    /// `dS/dv`.
+    pub dv: Vec3,
+    /// `d2S/du2`.
+    pub duu: Vec3,
+    /// `d2S/dudv`.
+    pub duv: Vec3,
+    /// `d2S/dv2`.
+    pub dvv: Vec3,
+}
+
+impl Patch {
+    /// `(u, v)` clamped into the patch's domain (NaN stays NaN).
+    pub fn clamp_params(&self, u: f64, v: f64) -> (f64, f64) {
+        let [[u0, u1], [v0, v1]] = self.domain();
+        (u.clamp(u0, u1), v.clamp(v0, v1))
+    }
+
+    /// The surface point at `(u, v)`; parameters outside the domain are clamped into it.
+    ///
+    /// # Units
+    /// mm.
+    ///
+    /// # Example
+    /// ```
+    /// use swarf_geom::{Patch, Point3};
+    /// let p = Patch::bezier([1, 1], vec![
+    ///     Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 2.0, 0.0),
+    ///     Point3::new(2.0, 0.0, 0.0), Point3::new(2.0, 2.0, 4.0),
+    /// ]).unwrap();
+    /// assert_eq!(p.eval(0.5, 0.5), Point3::new(1.0, 1.0, 1.0));
+    /// ```
+    pub fn eval(&self, u: f64, v: f64) -> Point3 {
+        let (u, v) = self.clamp_params(u, v);
+        let [pu, pv] = self.degree;
+        let su = find_span(&self.knots[0], pu, u);
+        let sv = find_span(&self.knots[1], pv, v);
+        let nu = basis_funs(&self.knots[0], pu, su, u);
+        let nv = basis_funs(&self.knots[1], pv, sv, v);
+        let first = (su - pu) * self.count[1] + sv - pv;
+        match &self.weights {
+            None => Point3::from(self.sum_values(&nu, &nv, first, |k| self.points[k].coords)),
+            Some(w) => {
+                let a = self.sum_values(&nu, &nv, first, |k| homogeneous(&self.points[k], w[k]));
+                let inv = 1.0 / a.w;
+                Point3::new(a.x * inv, a.y * inv, a.z * inv)
+            }
+        }
+    }
+
+    /// The point and its exact first and second partial derivatives at `(u, v)`;
+    /// parameters outside the domain are clamped into it. No allocation.
+    ///
+    /// # Units
+    /// mm (per unit parameter for the derivatives).
+    pub fn derivs(&self, u: f64, v: f64) -> SurfaceDerivs {
+        let (u, v) = self.clamp_params(u, v);
+        let [pu, pv] = self.degree;
+        let bu = basis_derivs(&self.knots[0], pu, u);
+        let bv = basis_derivs(&self.knots[1], pv, v);
+        match &self.weights {
+            None => {
+                let s = self.sum_derivs(&bu, &bv, |k| self.points[k].coords);
+                SurfaceDerivs {
+                    point: Point3::from(s[0]),
+                    du: s[1],
+                    dv: s[2],
+                    duu: s[3],
+                    duv: s[4],
+                    dvv: s[5],
+                }
+            }
+            Some(w) => {
+                let a = self.sum_derivs(&bu, &bv, |k| homogeneous(&self.points[k], w[k]));
+                rational_quotient(&a)
+            }
+        }
+    }
+
+    /// `sum N_a M_b X_k` over the non-zero functions, `first` = index of the first point.
+    #[inline(always)]
+    fn sum_values<const D: usize>(
+        &self,
+        nu: &[f64; MAX_ORDER],
+        nv: &[f64; MAX_ORDER],
+        first: usize,
+        fetch: impl Fn(usize) -> SVector<f64, D>,
+    ) -> SVector<f64, D> {
+        let [pu, pv] = self.degree;
+        let mut out = SVector::<f64, D>::zeros();
+        for (a, na) in nu[..=pu].iter().enumerate() {
+            let row = first + a * self.count[1];
+            let mut s = SVector::<f64, D>::zeros();
+            for (b, nb) in nv[..=pv].iter().enumerate() {
+                s += fetch(row + b) * *nb;
+            }
+            out += s * *na;
+        }
+        out
+    }
+
+    /// `[X, X_u, X_v, X_uu, X_uv, X_vv]` of the tensor sum of `fetch(k)`.
+    #[inline(always)]
+    fn sum_derivs<const D: usize>(
+        &self,
+        bu: &BasisDerivs,
+        bv: &BasisDerivs,
+        fetch: impl Fn(usize) -> SVector<f64, D>,
+    ) -> [SVector<f64, D>; 6] {
+        let [pu, pv] = self.degree;
+        let first = (bu.span - pu) * self.count[1] + bv.span - pv;
+        let mut out = [SVector::<f64, D>::zeros(); 6];
+        for a in 0..=pu {
+            let row = first + a * self.count[1];
+            let mut s = [SVector::<f64, D>::zeros(); 3];
+            for b in 0..=pv {
+                let c = fetch(row + b);
+                s[0] += c * bv.d[0][b];
+                s[1] += c * bv.d[1][b];
+                s[2] += c * bv.d[2][b];
+            }
+            let (n0, n1, n2) = (bu.d[0][a], bu.d[1][a], bu.d[2][a]);
+            out[0] += s[0] * n0;
+            out[1] += s[0] * n1;
+            out[2] += s[1] * n0;
+            out[3] += s[0] * n2;
+            out[4] += s[1] * n1;
+            out[5] += s[2] * n0;
+        }
+        out
+    }
+}
+
+/// `(w x, w y, w z, w)`.
+#[inline(always)]
+fn homogeneous(p: &Point3, w: f64) -> Vector4<f64> {
+    Vector4::new(p.x * w, p.y * w, p.z * w, w)
+}
+
+/// The quotient rule of the module doc on homogeneous derivatives `[A, A_u, A_v, ...]`.
+#[inline(always)]
+fn rational_quotient(a: &[Vector4<f64>; 6]) -> SurfaceDerivs {
+    let xyz = |h: &Vector4<f64>| Vec3::new(h.x, h.y, h.z);
+    let inv = 1.0 / a[0].w;
+    let (wu, wv, wuu, wuv, wvv) = (a[1].w, a[2].w, a[3].w, a[4].w, a[5].w);
+    let s = xyz(&a[0]) * inv;
+    let su = (xyz(&a[1]) - s * wu) * inv;
+    let sv = (xyz(&a[2]) - s * wv) * inv;
+    let suu = (xyz(&a[3]) - su * (2.0 * wu) - s * wuu) * inv;
+    let suv = (xyz(&a[4]) - sv * wu - su * wv - s * wuv) * inv;
+    let svv = (xyz(&a[5]) - sv * (2.0 * wv) - s * wvv) * inv;
+    SurfaceDerivs {
+        point: Point3::from(s),
+        du: su,
+        dv: sv,
+        duu: suu,
+        duv: suv,
+        dvv: svv,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::fixtures::{
+        die, die_closed_form, nurbs_spline, quarter_cylinder, shared_patches, sphere_octant,
+    };
+    use super::*;
+    use proptest::prelude::*;
+
+    fn grid(n: u32) -> impl Iterator<Item = (f64, f64)> {
+        (0..=n).flat_map(move |i| {
+            (0..=n).map(move |j| (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n)))
+        })
+    }
+
+    fn near(a: &Vec3, b: &Vec3, eps: f64) -> bool {
+        (a - b).norm() <= eps
+    }
+
+    #[test]
+    fn die_matches_its_closed_form_and_hand_derivatives() {
+        let p = die();
+        for (u, v) in grid(10) {
+            let d = p.derivs(u, v);
+            let want = Vec3::from(die_closed_form(u, v));
+            assert!(near(&d.point.coords, &want, 1e-9), "point at ({u}, {v})");
+            assert!(
+                near(&p.eval(u, v).coords, &want, 1e-9),
+                "eval at ({u}, {v})"
+            );
+            let du = Vec3::new(
+                0.0,
+                -131.3 + 56.2 * u,
+                5.9 * (2.0 * u * v * v + 2.0 * u * v) - 3.9 * v * v + 152.4 * u - 27.3 * v - 50.8,
+            );
+            let dv = Vec3::new(
+                88.9 + 11.2 * v,
+                0.0,
+                5.9 * (2.0 * u * u * v + u * u) - 7.8 * u * v + 13.4 * v - 27.3 * u + 25.0,
+            );
+            let duu = Vec3::new(0.0, 56.2, 5.9 * (2.0 * v * v + 2.0 * v) + 152.4);
+            let duv = Vec3::new(0.0, 0.0, 5.9 * (4.0 * u * v + 2.0 * u) - 7.8 * v - 27.3);
+            let dvv = Vec3::new(11.2, 0.0, 5.9 * 2.0 * u * u - 7.8 * u + 13.4);
+            assert!(
+                near(&d.du, &du, 1e-9) && near(&d.dv, &dv, 1e-9),
+                "first at ({u}, {v})"
+            );
+            assert!(near(&d.duu, &duu, 1e-9), "duu at ({u}, {v})");
+            assert!(
+                near(&d.duv, &duv, 1e-9) && near(&d.dvv, &dvv, 1e-9),
+                "({u}, {v})"
+            );
+        }
+    }
+
+    /// Central differences of `eval` for the first and of `derivs` for the second partials.
+    fn check_against_differences(p: &Patch, name: &str) {
+        let [[u0, u1], [v0, v1]] = p.domain();
+        let (hu, hv) = (1e-6 * (u1 - u0), 1e-6 * (v1 - v0));
+        let scale = p.control_box().size().norm();
+        for (fu, fv) in grid(8) {
+            let u = u0 + (u1 - u0) * (0.01 + 0.98 * fu);
+            let v = v0 + (v1 - v0) * (0.01 + 0.98 * fv);
+            let d = p.derivs(u, v);
+            let du = (p.eval(u + hu, v) - p.eval(u - hu, v)) / (2.0 * hu);
+            let dv = (p.eval(u, v + hv) - p.eval(u, v - hv)) / (2.0 * hv);
+            let eps1 = 1e-6 * scale / (u1 - u0).min(v1 - v0);
+            assert!(
+                near(&d.du, &du, eps1) && near(&d.dv, &dv, eps1),
+                "{name} first at ({u}, {v})"
+            );
+            let (a, b) = (p.derivs(u + hu, v), p.derivs(u - hu, v));
+            let (c, e) = (p.derivs(u, v + hv), p.derivs(u, v - hv));
+            let eps2 = eps1 / (u1 - u0).min(v1 - v0);
+            assert!(
+                near(&d.duu, &((a.du - b.du) / (2.0 * hu)), eps2),
+                "{name} duu at ({u}, {v})"
+            );
+            assert!(
+                near(&d.duv, &((a.dv - b.dv) / (2.0 * hu)), eps2),
+                "{name} duv at ({u}, {v})"
+            );
+            assert!(
+                near(&d.duv, &((c.du - e.du) / (2.0 * hv)), eps2),
+                "{name} dvu at ({u}, {v})"
+            );
+            assert!(
+                near(&d.dvv, &((c.dv - e.dv) / (2.0 * hv)), eps2),
+                "{name} dvv at ({u}, {v})"
+            );
+            assert_eq!(d.point, p.eval(u, v), "{name}: eval and derivs agree");
+        }
+    }
+
+    #[test]
+    fn derivatives_of_every_shared_part_match_central_differences() {
+        for (name, p) in shared_patches() {
+            check_against_differences(&p, name);
+        }
+        check_against_differences(&nurbs_spline(), "nurbs spline");
+        check_against_differences(&sphere_octant(10.0), "sphere");
+        check_against_differences(&quarter_cylinder(5.0, 3.0), "cylinder");
+    }
+
+    #[test]
+    fn parameters_are_clamped_into_the_domain() {
+        let p = nurbs_spline();
+        assert_eq!(p.eval(-3.0, 9.0), p.eval(0.0, 3.0));
+        assert_eq!(p.derivs(7.0, -2.0), p.derivs(2.5, -1.0));
+        assert!(
+            p.eval(f64::NAN, 0.5).x.is_nan(),
+            "NaN in, NaN out, no panic"
+        );
+    }
+
+    #[test]
+    fn exact_quadrics() {
+        let s = sphere_octant(7.5);
+        let c = quarter_cylinder(5.0, 2.0);
+        for (u, v) in grid(13) {
+            let u = (u * 1.37).fract();
+            assert!(
+                (s.eval(u, v).coords.norm() - 7.5).abs() < 1e-12,
+                "sphere at ({u}, {v})"
+            );
+            let q = c.eval(u, v);
+            assert!((q.x.hypot(q.y) - 5.0).abs() < 1e-12 && (q.z - 2.0 * v).abs() < 1e-12);
+        }
+    }
+
+    /// De Casteljau on homogeneous points in both directions: the Bezier oracle.
+    fn de_casteljau(deg: [usize; 2], hom: &[Vector4<f64>], u: f64, v: f64) -> Point3 {
+        let curve = |mut c: Vec<Vector4<f64>>, t: f64| {
+            for k in (1..c.len()).rev() {
+                for i in 0..k {
+                    c[i] = c[i] * (1.0 - t) + c[i + 1] * t;
+                }
+            }
+            c[0]
+        };
+        let rows: Vec<_> = (0..=deg[0])
+            .map(|i| curve(hom[i * (deg[1] + 1)..(i + 1) * (deg[1] + 1)].to_vec(), v))
+            .collect();
+        let h = curve(rows, u);
+        Point3::new(h.x / h.w, h.y / h.w, h.z / h.w)
+    }
+
+    fn random_bezier() -> impl Strategy<Value = (Patch, Vec<Vector4<f64>>)> {
+        (1usize..6, 1usize..6, any::<bool>()).prop_flat_map(|(du, dv, rational)| {
+            let n = (du + 1) * (dv + 1);
+            (
+                proptest::collection::vec((-50.0..50.0f64, -50.0..50.0f64, -50.0..50.0f64), n),
+                proptest::collection::vec(0.2..3.0f64, n),
+            )
+                .prop_map(move |(raw, w)| {
+                    let pts: Vec<Point3> = raw.iter().map(|c| Point3::new(c.0, c.1, c.2)).collect();
+                    let w = if rational { w } else { vec![1.0; n] };
+                    let hom = pts
+                        .iter()
+                        .zip(&w)
+                        .map(|(q, w)| homogeneous(q, *w))
+                        .collect();
+                    let p = Patch::new([du, dv], pts, [None, None], Some(w)).unwrap();
+                    (p, hom)
+                })
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        #[test]
+        fn basis_evaluation_agrees_with_de_casteljau(
+            (p, hom) in random_bezier(), u in 0.0..=1.0f64, v in 0.0..=1.0f64,
+        ) {
+            let want = de_casteljau(p.degree(), &hom, u, v);
+            prop_assert!((p.eval(u, v) - want).norm() < 1e-10);
+            prop_assert!((p.derivs(u, v).point - want).norm() < 1e-10);
+        }
+
+        #[test]
+        fn bezier_on_another_range_is_the_same_surface(
+            (p, _) in random_bezier(), a in -10.0..10.0f64, len in 0.1..20.0f64,
+            c in -10.0..10.0f64, len_v in 0.1..20.0f64, fu in 0.0..=1.0f64, fv in 0.0..=1.0f64,
+        ) {
+            let [du, dv] = p.degree();
+            let clamped = |lo: f64, hi: f64, deg: usize| {
+                let mut k = vec![lo; deg + 1];
+                k.extend(std::iter::repeat_n(hi, deg + 1));
+                Some(k)
+            };
+            let knots = [clamped(a, a + len, du), clamped(c, c + len_v, dv)];
+            let w = p.weights().map(<[f64]>::to_vec);
+            let q = Patch::new(p.degree(), p.points().to_vec(), knots, w).unwrap();
+            let (s, t) = (a + len * fu, c + len_v * fv);
+            let (dp, dq) = (p.derivs(fu, fv), q.derivs(s, t));
+            let eps = 1e-9 * (1.0 + dp.duu.norm() + dp.dvv.norm() + dp.duv.norm());
+            prop_assert!((dp.point - dq.point).norm() < 1e-10);
+            prop_assert!((dp.du - dq.du * len).norm() < eps);
+            prop_assert!((dp.dv - dq.dv * len_v).norm() < eps);
+            prop_assert!((dp.duu - dq.duu * len * len).norm() < eps);
+            prop_assert!((dp.duv - dq.duv * len * len_v).norm() < eps);
+            prop_assert!((dp.dvv - dq.dvv * len_v * len_v).norm() < eps);
+        }
+    }
+}
