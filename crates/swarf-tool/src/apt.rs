@@ -35,7 +35,8 @@
 //! while widening by `a = b tan beta`.
 
 use crate::error::ToolError;
-use crate::profile::{Profile, RhoZ, Segment};
+use crate::profile::Profile;
+use crate::segment::{RhoZ, Segment};
 use std::f64::consts::FRAC_PI_2;
 
 /// A given `e` or `f` must agree with the one derived from `d, r, alpha, beta` to

@@ -21,9 +21,10 @@
 //! `min(H, max(4 d, t (1 - sin b)))` and may not exceed `H` (the APT tool has no
 //! cylinder above its side line).
 
-use crate::apt::{Apt, LENGTH_SNAP};
+use crate::apt::Apt;
 use crate::error::ToolError;
-use crate::profile::{Profile, RhoZ};
+use crate::profile::Profile;
+use crate::segment::RhoZ;
 use std::f64::consts::FRAC_PI_2;
 
 /// A milling cutter: one of the APT family. Lengths mm, angles radians. Build with the
@@ -81,39 +82,6 @@ pub enum Cutter {
     },
     /// The general APT tool.
     Apt(Apt),
-}
-
-fn finite(field: &'static str, value: f64) -> Result<(), ToolError> {
-    if value.is_finite() {
-        Ok(())
-    } else {
-        Err(ToolError::NotFinite { field, value })
-    }
-}
-
-fn check_radius(radius: f64) -> Result<(), ToolError> {
-    finite("d", 2.0 * radius)?;
-    if radius > 0.0 {
-        Ok(())
-    } else {
-        Err(ToolError::NotPositive {
-            field: "d",
-            value: 2.0 * radius,
-        })
-    }
-}
-
-fn check_at_most(field: &'static str, value: f64, limit: f64) -> Result<(), ToolError> {
-    finite(field, value)?;
-    if value > limit {
-        return Err(ToolError::TooLarge {
-            field,
-            value,
-            limit,
-            why: "d/2",
-        });
-    }
-    Ok(())
 }
 
 impl Cutter {
@@ -196,176 +164,6 @@ impl Cutter {
             length: f64::NAN,
         }
         .with_length(length)
-    }
-
-    /// The same shape with flute length `length` (checked), or the default length.
-    ///
-    /// # Errors
-    /// The shape's own errors (see [`Cutter::validate`]); `length` not finite, <= 0,
-    /// shorter than the profile needs or longer than it can reach.
-    pub fn with_length(mut self, length: Option<f64>) -> Result<Cutter, ToolError> {
-        if let Cutter::Apt(a) = self {
-            let apt = Apt::from_parts(a.d, a.r, Some(a.e), Some(a.f), a.alpha, a.beta, length)?;
-            return Ok(Cutter::Apt(apt));
-        }
-        self.check_shape()?;
-        let l = match length {
-            Some(l) => self.checked_length(l)?,
-            None => self.default_length(),
-        };
-        match &mut self {
-            Cutter::Flat { length, .. }
-            | Cutter::Ball { length, .. }
-            | Cutter::Bull { length, .. }
-            | Cutter::Cone { length, .. }
-            | Cutter::TaperBall { length, .. } => *length = l,
-            Cutter::Apt(a) => a.h = l,
-        }
-        Ok(self)
-    }
-
-    /// Checks every parameter as the constructors do.
-    ///
-    /// # Errors
-    /// The first problem found, named as in the spec (see [`ToolError`]).
-    pub fn validate(&self) -> Result<(), ToolError> {
-        if let Cutter::Apt(a) = self {
-            return a.validate();
-        }
-        self.check_shape()?;
-        self.checked_length(self.length()).map(|_| ())
-    }
-
-    fn check_shape(&self) -> Result<(), ToolError> {
-        match *self {
-            Cutter::Flat { radius, .. } | Cutter::Ball { radius, .. } => check_radius(radius),
-            Cutter::Bull { radius, corner, .. } => {
-                check_radius(radius)?;
-                check_at_most("r", corner, radius)?;
-                if corner < 0.0 {
-                    return Err(ToolError::Negative {
-                        field: "r",
-                        value: corner,
-                    });
-                }
-                Ok(())
-            }
-            Cutter::Cone {
-                radius, half_angle, ..
-            } => {
-                check_radius(radius)?;
-                let degrees = 2.0 * half_angle.to_degrees();
-                finite("angle", degrees)?;
-                if half_angle > 0.0 && half_angle < FRAC_PI_2 {
-                    Ok(())
-                } else {
-                    Err(ToolError::AngleOutOfRange {
-                        field: "angle",
-                        degrees,
-                        range: "(0, 180) (included angle)",
-                    })
-                }
-            }
-            Cutter::TaperBall {
-                tip_radius,
-                half_angle,
-                radius,
-                ..
-            } => {
-                check_radius(radius)?;
-                finite("angle", half_angle)?;
-                if !(0.0..FRAC_PI_2).contains(&half_angle) {
-                    return Err(ToolError::AngleOutOfRange {
-                        field: "angle",
-                        degrees: half_angle.to_degrees(),
-                        range: "[0, 90) (taper half-angle per side)",
-                    });
-                }
-                check_at_most("tip", tip_radius, radius)?;
-                if tip_radius > 0.0 {
-                    Ok(())
-                } else {
-                    Err(ToolError::NotPositive {
-                        field: "tip",
-                        value: tip_radius,
-                    })
-                }
-            }
-            Cutter::Apt(a) => a.validate(),
-        }
-    }
-
-    /// Least and greatest flute length the shape allows, mm (shape assumed valid).
-    pub fn length_bounds(&self) -> (f64, f64) {
-        match *self {
-            Cutter::Flat { .. } => (0.0, f64::INFINITY),
-            Cutter::Ball { radius, .. } => (radius, f64::INFINITY),
-            Cutter::Bull { corner, .. } => (corner, f64::INFINITY),
-            Cutter::Cone {
-                radius, half_angle, ..
-            } => (radius / half_angle.tan(), f64::INFINITY),
-            Cutter::TaperBall {
-                tip_radius,
-                half_angle,
-                radius,
-                ..
-            } => {
-                let (s, c) = half_angle.sin_cos();
-                let needed = tip_radius * (1.0 - s);
-                let full = if half_angle > 0.0 {
-                    needed + (radius - tip_radius * c) / half_angle.tan()
-                } else {
-                    f64::INFINITY
-                };
-                (needed, full)
-            }
-            Cutter::Apt(a) => (a.needed_height(), a.axis_height()),
-        }
-    }
-
-    /// The flute length used when none is given, mm (see the module doc).
-    pub fn default_length(&self) -> f64 {
-        match *self {
-            Cutter::TaperBall { radius, .. } => {
-                let (needed, full) = self.length_bounds();
-                full.min((8.0 * radius).max(needed))
-            }
-            Cutter::Apt(a) => a.default_height(),
-            _ => {
-                let (needed, _) = self.length_bounds();
-                (8.0 * self.radius()).max(needed)
-            }
-        }
-    }
-
-    fn checked_length(&self, length: f64) -> Result<f64, ToolError> {
-        if let Cutter::Apt(a) = self {
-            return a.checked_height("length", length);
-        }
-        finite("length", length)?;
-        if length <= 0.0 {
-            return Err(ToolError::NotPositive {
-                field: "length",
-                value: length,
-            });
-        }
-        let (needed, limit) = self.length_bounds();
-        if length < needed - LENGTH_SNAP * needed.max(1.0) {
-            return Err(ToolError::LengthTooShort {
-                field: "length",
-                value: length,
-                needed,
-            });
-        }
-        if length > limit {
-            return Err(ToolError::LengthTooLong {
-                field: "length",
-                value: length,
-                limit,
-                why: "a taper ball's flutes end where the taper reaches d/2",
-            });
-        }
-        Ok(length.max(needed))
     }
 
     /// Flute length (APT `h`), mm.
@@ -514,5 +312,46 @@ impl Cutter {
             }
             Cutter::Apt(a) => a,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn apt_parameters_follow_the_table() {
+        let apt = |c: Cutter| {
+            let a = c.to_apt();
+            [a.d, a.r, a.e, a.f, a.alpha, a.beta, a.h]
+        };
+        let flat = Cutter::flat(6.0, None).unwrap();
+        assert_eq!(apt(flat), [6.0, 0.0, 3.0, 0.0, 0.0, 0.0, 24.0]);
+        let ball = Cutter::ball(8.0, None).unwrap();
+        assert_eq!(apt(ball), [8.0, 4.0, 0.0, 4.0, 0.0, 0.0, 32.0]);
+        let bull = Cutter::bull(10.0, 2.0, Some(30.0)).unwrap();
+        assert_eq!(apt(bull), [10.0, 2.0, 3.0, 2.0, 0.0, 0.0, 30.0]);
+        let [d, r, e, f, alpha, beta, _] = apt(Cutter::cone(10.0, FRAC_PI_2 / 3.0, None).unwrap());
+        assert_eq!([d, r, e, beta], [10.0, 0.0, 5.0, 0.0]);
+        assert!(
+            (f - 5.0 * 3f64.sqrt()).abs() < 1e-12 && (alpha - FRAC_PI_2 * 2.0 / 3.0).abs() < 1e-15
+        );
+        let b = 10f64.to_radians();
+        let [d, r, e, f, _, beta, _] = apt(Cutter::taper_ball(6.0, b, 1.0, None).unwrap());
+        assert!((d - 2.0 * (1.0 - b.sin()) / b.cos()).abs() < 1e-15);
+        assert_eq!([r, e, f, beta], [1.0, 0.0, 1.0, b]);
+        for c in [flat, ball, bull] {
+            assert!(Cutter::Apt(c.to_apt()).validate().is_ok());
+        }
+    }
+
+    #[test]
+    fn radius_and_length_accessors() {
+        let taper = Cutter::taper_ball(6.0, 10f64.to_radians(), 1.0, None).unwrap();
+        assert!((taper.radius() - 3.0).abs() < 1e-12);
+        assert_eq!(taper.radius_at_height(taper.length() + 1e-9), None);
+        let general = Cutter::Apt(Apt::from_corner(10.0, 1.0, 0.0, 0.1, 20.0).unwrap());
+        assert!((general.radius() - general.profile().top().rho).abs() < 1e-15);
+        assert!(general.radius() > 5.0);
     }
 }

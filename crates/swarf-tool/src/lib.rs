@@ -30,12 +30,15 @@ pub mod cutter;
 pub mod error;
 pub mod pose;
 pub mod profile;
+pub mod segment;
 pub mod spec;
 pub mod surface;
 mod table;
+pub mod validate;
 
 pub use apt::Apt;
 pub use cutter::Cutter;
 pub use error::ToolError;
 pub use pose::Pose;
-pub use profile::{Profile, ProfileContact, RhoZ, Segment};
+pub use profile::{Profile, ProfileContact};
+pub use segment::{RhoZ, Segment};

@@ -18,7 +18,8 @@
 
 use crate::cutter::Cutter;
 use crate::pose::{Pose, reference_frame, unit};
-use crate::profile::{Profile, RhoZ, Segment};
+use crate::profile::Profile;
+use crate::segment::{RhoZ, Segment};
 use swarf_geom::{Point3, Vec3};
 
 fn segment_distance(seg: &Segment, p: RhoZ) -> f64 {
