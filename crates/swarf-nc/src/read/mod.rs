@@ -2,7 +2,86 @@
 //! APT CL data and pose CSV, each turned into a [`Program`]: motions (straight,
 //! rapid, circular and helical) in mm and mm/min in the part frame, with the source
 //! line of each, and warnings for what was read but not simulated.
+//!
+//! Reading has two kinds of failure. A file that cannot be read at all (missing, not
+//! text, an unknown extension, a pose CSV without its header) is an `Err`
+//! ([`NcError`]). An error inside a program (an unknown word, an arc whose radius does
+//! not match its end point, a rotary axis word ...) stops the reading at that line:
+//! the result is `Ok`, holds the motions before the error, and sets
+//! [`Program::stopped`] to the diagnostic (line, column, message), so that a verifier
+//! can still write its partial report and then fail.
 
+pub mod arc;
+pub mod cl;
+pub mod cl_record;
+pub mod codes;
+pub mod gcode;
+pub mod lexer;
+pub mod modal;
+pub mod pose_csv;
 pub mod program;
+pub mod warnings;
 
+pub use cl::parse_cl;
+pub use gcode::{GcodeReadOptions, parse_gcode};
+pub use pose_csv::parse_pose_csv;
 pub use program::{Diagnostic, Motion, MotionKind, Program};
+
+use crate::error::NcError;
+use std::path::Path;
+
+/// The formats [`read_program`] tells apart by file extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProgramFormat {
+    /// RS274/NGC G-code: `.ngc`, `.nc`, `.tap`, `.gcode`.
+    Gcode,
+    /// APT CL data: `.cl`, `.apt`, `.cls`.
+    Cl,
+    /// Pose CSV: `.csv`.
+    PoseCsv,
+}
+
+impl ProgramFormat {
+    /// The format of `path` from its extension (any case); `None` when unknown.
+    pub fn of(path: &Path) -> Option<ProgramFormat> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "ngc" | "nc" | "tap" | "gcode" => Some(ProgramFormat::Gcode),
+            "cl" | "apt" | "cls" => Some(ProgramFormat::Cl),
+            "csv" => Some(ProgramFormat::PoseCsv),
+            _ => None,
+        }
+    }
+}
+
+/// Reads the program at `path`, choosing the reader by extension: G-code (with
+/// [`GcodeReadOptions::default`]), APT CL or pose CSV. Text that is not valid UTF-8
+/// is read with the bad bytes replaced (they can only sit in comments of a valid
+/// program; elsewhere the reader reports them with their line and column).
+///
+/// An error inside the program stops the reading and is reported in
+/// [`Program::stopped`], with the motions before it kept (see the module docs).
+///
+/// # Units
+/// Motions in mm, feeds in mm/min, whatever units the file uses.
+///
+/// # Errors
+/// [`NcError::UnknownFormat`] for an unknown extension, [`NcError::Io`] when the
+/// file cannot be read, [`NcError::Unreadable`] when it is not a program of its
+/// format at all.
+pub fn read_program(path: &Path) -> Result<Program, NcError> {
+    let source = path.display().to_string();
+    let format = ProgramFormat::of(path).ok_or_else(|| NcError::UnknownFormat {
+        path: source.clone(),
+    })?;
+    let bytes = std::fs::read(path).map_err(|e| NcError::Io {
+        path: source.clone(),
+        message: e.to_string(),
+    })?;
+    let text = String::from_utf8_lossy(&bytes);
+    match format {
+        ProgramFormat::Gcode => parse_gcode(&text, &source, &GcodeReadOptions::default()),
+        ProgramFormat::Cl => parse_cl(&text, &source),
+        ProgramFormat::PoseCsv => parse_pose_csv(&text, &source),
+    }
+}

@@ -1,0 +1,176 @@
+//! RS274/NGC G-code programs as LinuxCNC reads them, for what surface-finishing
+//! programs use: the line loop around the lexer ([`crate::read::lexer`]) and the modal
+//! state machine ([`crate::read::modal`]), program delimiters and the end of the
+//! program.
+//!
+//! - A first line `%` opens the program and the next `%` closes it; `M2`/`M30` end it.
+//!   Text after the end is not read (a warning says so, at its first line).
+//! - `/` block delete: LinuxCNC's switch is off by default and the line runs; with
+//!   [`GcodeReadOptions::block_delete`] on, the line is skipped. Either way the first
+//!   such line gets a warning.
+//! - An `O1234` line is a Fanuc program number; numbers without a decimal point then
+//!   get a warning (a Fanuc control may read `X10` as 0.010 mm).
+//! - The first motion starts at [`GcodeReadOptions::initial`] (the tip at the origin,
+//!   as `rs274` assumes).
+
+use crate::error::NcError;
+use crate::read::lexer::lex_line;
+use crate::read::modal::{Flow, Interpreter};
+use crate::read::program::{Diagnostic, Program};
+use swarf_geom::Point3;
+use swarf_tool::Pose;
+
+/// Options of the G-code reader.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GcodeReadOptions {
+    /// Where the tool is when the program starts; mm.
+    pub initial: Pose,
+    /// The block delete switch: when on, lines starting with `/` are skipped.
+    pub block_delete: bool,
+}
+
+impl Default for GcodeReadOptions {
+    /// Tip at the origin, axis +Z; block delete off (LinuxCNC's defaults).
+    fn default() -> Self {
+        GcodeReadOptions {
+            initial: Pose::vertical(Point3::origin()),
+            block_delete: false,
+        }
+    }
+}
+
+/// Reads G-code text.
+///
+/// Errors inside the program (an unknown or unsupported word, an arc whose radius does
+/// not match its end point, a feed move without feed, rotary axis words, a malformed
+/// number ...) stop the reading: the result is `Ok` with the motions before the error
+/// and [`Program::stopped`] set, so that a verifier can still report on them.
+///
+/// # Units
+/// The program's units (G20/G21) are converted: motions in mm, feeds in mm/min.
+///
+/// # Errors
+/// [`NcError::Unreadable`] when the text is not a program at all (binary data).
+///
+/// # Example
+/// ```
+/// use swarf_nc::read::{GcodeReadOptions, MotionKind, parse_gcode};
+/// let p = parse_gcode("G21 G90 F300\nG1 X10\nG2 X20 I5\nM30\n", "a.ngc", &GcodeReadOptions::default())
+///     .unwrap();
+/// assert_eq!(p.motions.len(), 2);
+/// assert!(matches!(p.motions[1].kind, MotionKind::Arc { clockwise: true, .. }));
+/// assert!(p.stopped.is_none());
+/// ```
+pub fn parse_gcode(text: &str, source: &str, opts: &GcodeReadOptions) -> Result<Program, NcError> {
+    check_text(text, source)?;
+    let mut program = Program::new(source);
+    let mut machine = Interpreter::new(opts.initial);
+    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
+    let mut opened = false;
+    let mut started = false;
+    let mut delete_warned = false;
+    let mut ended: Option<&str> = None;
+    for (line, raw) in lines.by_ref() {
+        let block = match lex_line(raw, line) {
+            Ok(block) => block,
+            Err(d) => {
+                program.stopped = Some(d);
+                break;
+            }
+        };
+        if block.percent {
+            if started {
+                ended = Some("the closing %");
+                break;
+            }
+            opened = true;
+            started = true;
+            continue;
+        }
+        if block.is_empty() {
+            continue;
+        }
+        started = true;
+        if block.block_delete {
+            if !delete_warned {
+                delete_warned = true;
+                let what = if opts.block_delete {
+                    "block delete (/) lines are skipped: the block delete switch is on"
+                } else {
+                    "block delete (/) lines run: the block delete switch is off, as LinuxCNC starts"
+                };
+                machine.warnings.push(Diagnostic::new(line, 1, what));
+            }
+            if opts.block_delete {
+                continue;
+            }
+        }
+        if block.program_number.is_some() {
+            machine.fanuc = true;
+        }
+        match machine.execute(&block, line) {
+            Ok(Flow::Continue) => {}
+            Ok(Flow::End) => {
+                ended = Some("M2/M30");
+                break;
+            }
+            Err(d) => {
+                program.stopped = Some(d);
+                break;
+            }
+        }
+    }
+    if let Some(after) = ended {
+        warn_trailing(&mut machine, lines, after);
+    } else if opened && program.stopped.is_none() {
+        let last = text.lines().count().max(1);
+        machine.warnings.push(Diagnostic::new(
+            last,
+            1,
+            "the program opens with % but has no closing % (nor M2/M30)",
+        ));
+    }
+    program.motions = machine.motions;
+    program.warnings = machine.warnings.finish();
+    Ok(program)
+}
+
+/// A warning at the first non-blank, non-comment line after the end of the program.
+fn warn_trailing<'a>(
+    machine: &mut Interpreter,
+    mut lines: impl Iterator<Item = (usize, &'a str)>,
+    after: &str,
+) {
+    let content = lines
+        .find(|(line, raw)| lex_line(raw, *line).map_or(true, |b| !(b.is_empty() || b.percent)));
+    if let Some((line, _)) = content {
+        machine.warnings.push(Diagnostic::new(
+            line,
+            1,
+            format!("text after the end of the program ({after}) is not read"),
+        ));
+    }
+}
+
+/// Refuses binary data: a NUL or other control character (tab, CR, LF and form feed
+/// excepted) in the text.
+pub(crate) fn check_text(text: &str, source: &str) -> Result<(), NcError> {
+    for (i, line) in text.lines().enumerate() {
+        if let Some((column, c)) = line
+            .chars()
+            .enumerate()
+            .find(|(_, c)| c.is_control() && !matches!(c, '\t' | '\r' | '\u{c}'))
+        {
+            return Err(NcError::Unreadable {
+                file: source.to_string(),
+                line: i + 1,
+                column: column + 1,
+                message: format!(
+                    "control character U+{:04X}: this is not a text program",
+                    u32::from(c)
+                ),
+            });
+        }
+    }
+    Ok(())
+}

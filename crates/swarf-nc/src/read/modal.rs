@@ -1,0 +1,524 @@
+//! The RS274/NGC modal state machine: executes one lexed block against the modal
+//! state (motion mode, plane, distance modes, units, feed, tool) and emits motions.
+//!
+//! Within a block the words act in RS274/NGC's order of execution (NIST RS274/NGC
+//! v3 §3.8, as LinuxCNC follows it): feed `F`, spindle `S`, tool select `T`, tool change
+//! `M6`, spindle and coolant, dwell `G4`, plane, units, cutter compensation, tool
+//! length offset, coordinate system, path control, distance modes, motion, stop. So
+//! `G20 F10` sets the feed in the units in force *before* the block (the reader warns
+//! about it), and `G91 X1` moves incrementally.
+//!
+//! Program coordinates are the tool tip in the part frame: the reader assumes the
+//! control applies the tool length (G43 H, or the tool table) so that the programmed
+//! point is the tip, and that the work offset (G54) puts the part frame where the
+//! program's zero is.
+
+use crate::read::arc::{ArcRequest, CenterWords, MM_PER_INCH, Plane, arc_center};
+use crate::read::codes::{Action, Effect, Group, g_code, m_code};
+use crate::read::lexer::{Block, Word};
+use crate::read::program::{Diagnostic, Motion, MotionKind};
+use crate::read::warnings::Warnings;
+use swarf_geom::{Point3, Vec3};
+use swarf_tool::Pose;
+
+/// What the caller does after a block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Flow {
+    /// Read the next line.
+    Continue,
+    /// The program ended (M2, M30).
+    End,
+}
+
+/// The modal state and what has been read so far.
+pub struct Interpreter {
+    /// Motions emitted so far.
+    pub motions: Vec<Motion>,
+    /// Warnings so far.
+    pub warnings: Warnings,
+    /// Tip position, mm, and tool axis.
+    pose: Pose,
+    motion: Option<Action>,
+    plane: Plane,
+    absolute: bool,
+    ijk_absolute: bool,
+    inch: bool,
+    units_seen: bool,
+    /// Feed, mm/min.
+    feed: f64,
+    selected_tool: Option<u32>,
+    active_tool: Option<u32>,
+    /// An `O` program number was read: numbers without a decimal point are suspicious.
+    pub fanuc: bool,
+    fanuc_warned: bool,
+}
+
+/// A block's words sorted out.
+#[derive(Default)]
+struct Parsed {
+    g: Vec<(u32, Group, Action, Word)>,
+    m: Vec<(Group, Action, Word)>,
+    letters: [Option<Word>; 26],
+}
+
+impl Parsed {
+    fn get(&self, letter: char) -> Option<Word> {
+        self.letters[letter_index(letter)]
+    }
+
+    fn has_g(&self, action: Action) -> Option<Word> {
+        self.g.iter().find(|g| g.2 == action).map(|g| g.3)
+    }
+
+    fn has_code(&self, code10: u32) -> bool {
+        self.g.iter().any(|g| g.0 == code10)
+    }
+}
+
+fn letter_index(letter: char) -> usize {
+    (letter as usize).saturating_sub('A' as usize).min(25)
+}
+
+fn g_name(code10: u32) -> String {
+    if code10.is_multiple_of(10) {
+        format!("G{}", code10 / 10)
+    } else {
+        format!("G{}.{}", code10 / 10, code10 % 10)
+    }
+}
+
+impl Interpreter {
+    /// A machine at `initial`, in G17 G21 G90 G91.1 G94 with no motion mode and no feed
+    /// (LinuxCNC's start-up state).
+    pub fn new(initial: Pose) -> Self {
+        Interpreter {
+            motions: Vec::new(),
+            warnings: Warnings::default(),
+            pose: initial,
+            motion: None,
+            plane: Plane::Xy,
+            absolute: true,
+            ijk_absolute: false,
+            inch: false,
+            units_seen: false,
+            feed: 0.0,
+            selected_tool: None,
+            active_tool: None,
+            fanuc: false,
+            fanuc_warned: false,
+        }
+    }
+
+    fn scale(&self) -> f64 {
+        if self.inch { MM_PER_INCH } else { 1.0 }
+    }
+
+    fn warn(&mut self, line: usize, column: usize, message: impl Into<String>) {
+        self.warnings.push(Diagnostic::new(line, column, message));
+    }
+
+    /// Executes one block.
+    ///
+    /// # Errors
+    /// A [`Diagnostic`] at the offending word; the state is then unspecified and the
+    /// caller stops reading.
+    pub fn execute(&mut self, block: &Block, line: usize) -> Result<Flow, Diagnostic> {
+        let parsed = self.sort_words(block, line)?;
+        self.check_letters(&parsed, line)?;
+        self.machine_words(&parsed, line)?;
+        self.set_modes(&parsed);
+        self.motion_words(&parsed, line)?;
+        let end = parsed.m.iter().any(|m| m.1 == Action::End);
+        Ok(if end { Flow::End } else { Flow::Continue })
+    }
+
+    /// Looks up G and M codes, refuses what cannot be simulated, and rejects repeated
+    /// words and two codes of one modal group.
+    fn sort_words(&mut self, block: &Block, line: usize) -> Result<Parsed, Diagnostic> {
+        let mut parsed = Parsed::default();
+        for &w in &block.words {
+            let err = |message: String| Diagnostic::new(line, w.column, message);
+            match w.letter {
+                'G' => {
+                    let code10 = (w.value * 10.0).round();
+                    if w.value < 0.0 || (w.value * 10.0 - code10).abs() > 1e-6 {
+                        return Err(err(format!("G{}: not a G code", w.value)));
+                    }
+                    let code10 = code10 as u32;
+                    let name = g_name(code10);
+                    let (group, action) = match g_code(code10) {
+                        None => return Err(err(format!("unknown G code {name}"))),
+                        Some((_, Effect::Refuse(why))) => {
+                            return Err(err(format!("{name}: {why}")));
+                        }
+                        Some((group, Effect::Warn(why))) => {
+                            self.warn(line, w.column, format!("{name}: {why}"));
+                            (group, Action::Nothing)
+                        }
+                        Some((group, Effect::Run(action))) => (group, action),
+                    };
+                    if let Some(other) = parsed.g.iter().find(|g| g.1 == group) {
+                        return Err(err(format!(
+                            "two G codes from the same modal group in one block: {} and {name}",
+                            g_name(other.0)
+                        )));
+                    }
+                    parsed.g.push((code10, group, action, w));
+                }
+                'M' => {
+                    if w.value < 0.0 || w.value.fract() != 0.0 {
+                        return Err(err(format!("M{}: not an M code", w.value)));
+                    }
+                    let m = w.value as u32;
+                    let (group, action) = match m_code(m) {
+                        None => {
+                            self.warn(
+                                line,
+                                w.column,
+                                format!(
+                                    "unknown M code M{m} ignored: M codes do not move the axes"
+                                ),
+                            );
+                            continue;
+                        }
+                        Some((_, Effect::Refuse(why))) => return Err(err(format!("M{m}: {why}"))),
+                        Some((_, Effect::Warn(why))) => {
+                            self.warn(line, w.column, format!("M{m}: {why}"));
+                            continue;
+                        }
+                        Some((group, Effect::Run(action))) => (group, action),
+                    };
+                    let exclusive =
+                        matches!(group, Group::Stop | Group::ToolChange | Group::Spindle);
+                    if exclusive && parsed.m.iter().any(|o| o.0 == group) {
+                        return Err(err(format!(
+                            "two M codes from the same modal group in one block (M{m})"
+                        )));
+                    }
+                    parsed.m.push((group, action, w));
+                }
+                letter => {
+                    let slot = &mut parsed.letters[letter_index(letter)];
+                    if slot.is_some() {
+                        return Err(err(format!("multiple {letter} words in one block")));
+                    }
+                    *slot = Some(w);
+                }
+            }
+        }
+        Ok(parsed)
+    }
+
+    /// The new motion mode this block runs in.
+    fn block_mode(&self, parsed: &Parsed) -> Option<Action> {
+        match parsed.g.iter().find(|g| g.1 == Group::Motion) {
+            Some(g) if g.2 == Action::CancelMotion => None,
+            Some(g) => Some(g.2),
+            None => self.motion,
+        }
+    }
+
+    /// Refuses letters swarf cannot simulate and warns about unused ones.
+    fn check_letters(&mut self, parsed: &Parsed, line: usize) -> Result<(), Diagnostic> {
+        let is_arc = matches!(
+            self.block_mode(parsed),
+            Some(Action::ArcCw | Action::ArcCcw)
+        );
+        for w in parsed.letters.iter().flatten() {
+            let err = |message: String| Err(Diagnostic::new(line, w.column, message));
+            let l = w.letter;
+            match l {
+                'A' | 'B' | 'C' => {
+                    return err(format!(
+                        "rotary axis word {l}: five-axis programs need a machine file; not supported yet"
+                    ));
+                }
+                'U' | 'V' | 'W' => {
+                    return err(format!("{l} axis word: only X, Y and Z axes are supported"));
+                }
+                'E' => return err("E word is not supported".to_string()),
+                'I' | 'J' | 'K' | 'R' if !is_arc => {
+                    return err(format!("{l} word with no G2 or G3 to use it"));
+                }
+                'P' if !(is_arc
+                    || parsed.has_g(Action::Dwell).is_some()
+                    || parsed.has_code(640)) =>
+                {
+                    self.warn(
+                        line,
+                        w.column,
+                        "P word ignored: no G2/G3, G4 or G64 uses it",
+                    );
+                }
+                'Q' | 'L' | 'D' => self.warn(line, w.column, format!("{l} word ignored")),
+                'H' if parsed.has_g(Action::LengthOffset).is_none() => {
+                    self.warn(line, w.column, "H word without G43 ignored");
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// F, S, T, M6 and G4, in that order.
+    fn machine_words(&mut self, parsed: &Parsed, line: usize) -> Result<(), Diagnostic> {
+        if let Some(f) = parsed.get('F') {
+            if f.value < 0.0 {
+                return Err(Diagnostic::new(line, f.column, "negative feed rate F"));
+            }
+            self.feed = f.value * self.scale();
+            let to_inch = parsed.has_g(Action::Inch).is_some();
+            let to_mm = parsed.has_g(Action::Mm).is_some();
+            if (to_inch && !self.inch) || (to_mm && self.inch) {
+                self.warn(
+                    line,
+                    f.column,
+                    "F in the same block as a change of units is read in the units in force \
+                     before the block (RS274/NGC order of execution)",
+                );
+            }
+        }
+        if let Some(s) = parsed.get('S').filter(|s| s.value < 0.0) {
+            return Err(Diagnostic::new(line, s.column, "negative spindle speed S"));
+        }
+        if let Some(t) = parsed.get('T') {
+            if t.value < 0.0 || t.value.fract() != 0.0 || t.value > f64::from(u32::MAX) {
+                return Err(Diagnostic::new(
+                    line,
+                    t.column,
+                    "tool number T must be a whole number >= 0",
+                ));
+            }
+            self.selected_tool = Some(t.value as u32);
+        }
+        if let Some(m6) = parsed.m.iter().find(|m| m.1 == Action::ToolChange) {
+            let tool = self.selected_tool.unwrap_or(0);
+            match self.active_tool {
+                Some(active) if active != tool && !self.motions.is_empty() => {
+                    return Err(Diagnostic::new(
+                        line,
+                        m6.2.column,
+                        format!(
+                            "tool change from T{active} to T{tool} after motions: swarf verifies \
+                             one tool per program; split the program at the tool change"
+                        ),
+                    ));
+                }
+                _ => self.active_tool = Some(tool),
+            }
+        }
+        if let Some(g4) = parsed.has_g(Action::Dwell) {
+            self.warn(
+                line,
+                g4.column,
+                "G4 dwell ignored: machining times exclude it",
+            );
+        }
+        Ok(())
+    }
+
+    /// Plane, units, distance modes.
+    fn set_modes(&mut self, parsed: &Parsed) {
+        for &(_, _, action, _) in &parsed.g {
+            match action {
+                Action::PlaneXy => self.plane = Plane::Xy,
+                Action::PlaneXz => self.plane = Plane::Xz,
+                Action::PlaneYz => self.plane = Plane::Yz,
+                Action::Inch | Action::Mm => {
+                    self.inch = action == Action::Inch;
+                    self.units_seen = true;
+                }
+                Action::Absolute => self.absolute = true,
+                Action::Incremental => self.absolute = false,
+                Action::ArcAbsolute => self.ijk_absolute = true,
+                Action::ArcIncremental => self.ijk_absolute = false,
+                _ => {}
+            }
+        }
+    }
+
+    /// The motion this block commands, if any.
+    fn motion_words(&mut self, parsed: &Parsed, line: usize) -> Result<(), Diagnostic> {
+        let mode = self.block_mode(parsed);
+        self.motion = mode;
+        let axes: Vec<Word> = ['X', 'Y', 'Z']
+            .iter()
+            .filter_map(|&l| parsed.get(l))
+            .collect();
+        let arc_words = ['I', 'J', 'K', 'R']
+            .iter()
+            .any(|&l| parsed.get(l).is_some());
+        if axes.is_empty() && !arc_words {
+            return Ok(());
+        }
+        let column = parsed
+            .g
+            .iter()
+            .find(|g| g.1 == Group::Motion)
+            .map(|g| g.3.column)
+            .or_else(|| axes.first().map(|w| w.column))
+            .unwrap_or(1);
+        let Some(mode) = mode else {
+            let why = if parsed.has_g(Action::CancelMotion).is_some() {
+                "axis words with G80 (motion cancelled)"
+            } else {
+                "axis words without a motion mode: program G0, G1, G2 or G3 first"
+            };
+            return Err(Diagnostic::new(line, column, why));
+        };
+        self.suspicious_numbers(parsed, line);
+        if !self.units_seen {
+            self.units_seen = true;
+            self.warn(
+                line,
+                column,
+                "no G20/G21 before the first motion: assuming millimetres (G21)",
+            );
+        }
+        let end = self.end_point(parsed);
+        let kind = match mode {
+            Action::Rapid => MotionKind::Rapid,
+            Action::Linear => MotionKind::Linear,
+            _ => self.arc_kind(parsed, mode == Action::ArcCw, &end, line, column)?,
+        };
+        if kind != MotionKind::Rapid && self.feed <= 0.0 {
+            return Err(Diagnostic::new(
+                line,
+                column,
+                "feed move with zero feed rate: program F before the first G1, G2 or G3",
+            ));
+        }
+        let straight = matches!(kind, MotionKind::Rapid | MotionKind::Linear);
+        if straight && end == self.pose.cl {
+            return Ok(());
+        }
+        let next = Pose {
+            cl: end,
+            axis: self.pose.axis,
+        };
+        self.motions.push(Motion {
+            kind,
+            start: self.pose,
+            end: next,
+            feed: if kind == MotionKind::Rapid {
+                0.0
+            } else {
+                self.feed
+            },
+            line,
+        });
+        self.pose = next;
+        Ok(())
+    }
+
+    /// End point of the block's motion, mm.
+    fn end_point(&self, parsed: &Parsed) -> Point3 {
+        let mut end = self.pose.cl;
+        for (k, letter) in ['X', 'Y', 'Z'].into_iter().enumerate() {
+            if let Some(w) = parsed.get(letter) {
+                let v = w.value * self.scale();
+                end[k] = if self.absolute {
+                    v
+                } else {
+                    self.pose.cl[k] + v
+                };
+            }
+        }
+        end
+    }
+
+    fn arc_kind(
+        &self,
+        parsed: &Parsed,
+        clockwise: bool,
+        end: &Point3,
+        line: usize,
+        column: usize,
+    ) -> Result<MotionKind, Diagnostic> {
+        let err = |column: usize, message: String| Err(Diagnostic::new(line, column, message));
+        let plane = self.plane;
+        let foreign = plane.foreign_offset();
+        if let Some(w) = parsed.get(foreign) {
+            return err(
+                w.column,
+                format!(
+                    "{foreign} word given for an arc in the {} plane",
+                    plane.name()
+                ),
+            );
+        }
+        let [oa, ob] = plane.offset_letters().map(|l| parsed.get(l));
+        let center = match (parsed.get('R'), oa.or(ob)) {
+            (Some(r), Some(_)) => {
+                return err(
+                    r.column,
+                    "mixed radius (R) and centre (I/J/K) format for an arc".into(),
+                );
+            }
+            (Some(r), None) => CenterWords::Radius(r.value),
+            (None, Some(_)) => CenterWords::Offsets([oa, ob].map(|w| w.map_or(0.0, |w| w.value))),
+            (None, None) => {
+                let [la, lb] = plane.offset_letters();
+                return err(column, format!("arc without R, {la} or {lb} words"));
+            }
+        };
+        let turns = match parsed.get('P') {
+            None => 1,
+            Some(p)
+                if p.value >= 1.0 && p.value.fract() == 0.0 && p.value <= f64::from(u32::MAX) =>
+            {
+                p.value as u32
+            }
+            Some(p) => {
+                return err(
+                    p.column,
+                    "P (turns) of an arc must be a whole number >= 1".into(),
+                );
+            }
+        };
+        let scale = self.scale();
+        let request = ArcRequest {
+            plane,
+            clockwise,
+            start: Point3::from(self.pose.cl.coords / scale),
+            end: Point3::from(end.coords / scale),
+            center,
+            ijk_absolute: self.ijk_absolute,
+            inch: self.inch,
+        };
+        let center = arc_center(&request).map_err(|m| Diagnostic::new(line, column, m))?;
+        let mut normal = Vec3::zeros();
+        normal[plane.indices()[2]] = 1.0;
+        Ok(MotionKind::Arc {
+            center: Point3::from(center.coords * scale),
+            normal,
+            clockwise,
+            turns,
+        })
+    }
+
+    /// Fanuc-style programs read `X10` as ten least increments; LinuxCNC as 10 units.
+    fn suspicious_numbers(&mut self, parsed: &Parsed, line: usize) {
+        if !self.fanuc || self.fanuc_warned {
+            return;
+        }
+        for l in ['X', 'Y', 'Z', 'I', 'J', 'K', 'R'] {
+            if let Some(w) = parsed.get(l).filter(|w| !w.has_point && w.value != 0.0) {
+                self.fanuc_warned = true;
+                self.warn(
+                    line,
+                    w.column,
+                    "number without a decimal point in a program with an O number: read as \
+                     whole units (as LinuxCNC does); a Fanuc control may read least increments \
+                     (only the first such number is reported)",
+                );
+                return;
+            }
+        }
+    }
+
+    /// The tool number of the last M6, if any.
+    pub fn tool_number(&self) -> Option<u32> {
+        self.active_tool
+    }
+}
