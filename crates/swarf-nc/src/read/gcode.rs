@@ -122,13 +122,14 @@ pub fn parse_gcode(text: &str, source: &str, opts: &GcodeReadOptions) -> Result<
     }
     if let Some(after) = ended {
         warn_trailing(&mut machine, lines, after);
-    } else if opened && program.stopped.is_none() {
+    } else if program.stopped.is_none() {
         let last = text.lines().count().max(1);
-        machine.warnings.push(Diagnostic::new(
-            last,
-            1,
-            "the program opens with % but has no closing % (nor M2/M30)",
-        ));
+        let what = if opened {
+            "the program opens with % but has no closing % (nor M2/M30)"
+        } else {
+            "the program ends without M2/M30 or %: LinuxCNC reports an error here"
+        };
+        machine.warnings.push(Diagnostic::new(last, 1, what));
     }
     program.motions = machine.motions;
     program.warnings = machine.warnings.finish();
