@@ -21,6 +21,7 @@ pub mod modal;
 pub mod pose_csv;
 pub mod program;
 pub mod warnings;
+pub mod words;
 
 pub use cl::parse_cl;
 pub use gcode::{GcodeReadOptions, parse_gcode};

@@ -14,10 +14,11 @@
 //! program's zero is.
 
 use crate::read::arc::{ArcRequest, CenterWords, MM_PER_INCH, Plane, arc_center};
-use crate::read::codes::{Action, Effect, Group, g_code, m_code};
+use crate::read::codes::Action;
 use crate::read::lexer::{Block, Word};
 use crate::read::program::{Diagnostic, Motion, MotionKind};
 use crate::read::warnings::Warnings;
+use crate::read::words::Words;
 use swarf_geom::{Point3, Vec3};
 use swarf_tool::Pose;
 
@@ -51,40 +52,6 @@ pub struct Interpreter {
     /// An `O` program number was read: numbers without a decimal point are suspicious.
     pub fanuc: bool,
     fanuc_warned: bool,
-}
-
-/// A block's words sorted out.
-#[derive(Default)]
-struct Parsed {
-    g: Vec<(u32, Group, Action, Word)>,
-    m: Vec<(Group, Action, Word)>,
-    letters: [Option<Word>; 26],
-}
-
-impl Parsed {
-    fn get(&self, letter: char) -> Option<Word> {
-        self.letters[letter_index(letter)]
-    }
-
-    fn has_g(&self, action: Action) -> Option<Word> {
-        self.g.iter().find(|g| g.2 == action).map(|g| g.3)
-    }
-
-    fn has_code(&self, code10: u32) -> bool {
-        self.g.iter().any(|g| g.0 == code10)
-    }
-}
-
-fn letter_index(letter: char) -> usize {
-    (letter as usize).saturating_sub('A' as usize).min(25)
-}
-
-fn g_name(code10: u32) -> String {
-    if code10.is_multiple_of(10) {
-        format!("G{}", code10 / 10)
-    } else {
-        format!("G{}.{}", code10 / 10, code10 % 10)
-    }
 }
 
 impl Interpreter {
@@ -123,145 +90,29 @@ impl Interpreter {
     /// A [`Diagnostic`] at the offending word; the state is then unspecified and the
     /// caller stops reading.
     pub fn execute(&mut self, block: &Block, line: usize) -> Result<Flow, Diagnostic> {
-        let parsed = self.sort_words(block, line)?;
-        self.check_letters(&parsed, line)?;
+        let parsed = Words::sort(block, line, &mut self.warnings)?;
+        let is_arc = matches!(
+            self.block_mode(&parsed),
+            Some(Action::ArcCw | Action::ArcCcw)
+        );
+        parsed.check_letters(is_arc, line, &mut self.warnings)?;
         self.machine_words(&parsed, line)?;
         self.set_modes(&parsed);
         self.motion_words(&parsed, line)?;
         let end = parsed.m.iter().any(|m| m.1 == Action::End);
         Ok(if end { Flow::End } else { Flow::Continue })
     }
-
-    /// Looks up G and M codes, refuses what cannot be simulated, and rejects repeated
-    /// words and two codes of one modal group.
-    fn sort_words(&mut self, block: &Block, line: usize) -> Result<Parsed, Diagnostic> {
-        let mut parsed = Parsed::default();
-        for &w in &block.words {
-            let err = |message: String| Diagnostic::new(line, w.column, message);
-            match w.letter {
-                'G' => {
-                    let code10 = (w.value * 10.0).round();
-                    if w.value < 0.0 || (w.value * 10.0 - code10).abs() > 1e-6 {
-                        return Err(err(format!("G{}: not a G code", w.value)));
-                    }
-                    let code10 = code10 as u32;
-                    let name = g_name(code10);
-                    let (group, action) = match g_code(code10) {
-                        None => return Err(err(format!("unknown G code {name}"))),
-                        Some((_, Effect::Refuse(why))) => {
-                            return Err(err(format!("{name}: {why}")));
-                        }
-                        Some((group, Effect::Warn(why))) => {
-                            self.warn(line, w.column, format!("{name}: {why}"));
-                            (group, Action::Nothing)
-                        }
-                        Some((group, Effect::Run(action))) => (group, action),
-                    };
-                    if let Some(other) = parsed.g.iter().find(|g| g.1 == group) {
-                        return Err(err(format!(
-                            "two G codes from the same modal group in one block: {} and {name}",
-                            g_name(other.0)
-                        )));
-                    }
-                    parsed.g.push((code10, group, action, w));
-                }
-                'M' => {
-                    if w.value < 0.0 || w.value.fract() != 0.0 {
-                        return Err(err(format!("M{}: not an M code", w.value)));
-                    }
-                    let m = w.value as u32;
-                    let (group, action) = match m_code(m) {
-                        None => {
-                            self.warn(
-                                line,
-                                w.column,
-                                format!(
-                                    "unknown M code M{m} ignored: M codes do not move the axes"
-                                ),
-                            );
-                            continue;
-                        }
-                        Some((_, Effect::Refuse(why))) => return Err(err(format!("M{m}: {why}"))),
-                        Some((_, Effect::Warn(why))) => {
-                            self.warn(line, w.column, format!("M{m}: {why}"));
-                            continue;
-                        }
-                        Some((group, Effect::Run(action))) => (group, action),
-                    };
-                    let exclusive =
-                        matches!(group, Group::Stop | Group::ToolChange | Group::Spindle);
-                    if exclusive && parsed.m.iter().any(|o| o.0 == group) {
-                        return Err(err(format!(
-                            "two M codes from the same modal group in one block (M{m})"
-                        )));
-                    }
-                    parsed.m.push((group, action, w));
-                }
-                letter => {
-                    let slot = &mut parsed.letters[letter_index(letter)];
-                    if slot.is_some() {
-                        return Err(err(format!("multiple {letter} words in one block")));
-                    }
-                    *slot = Some(w);
-                }
-            }
-        }
-        Ok(parsed)
-    }
-
-    /// The new motion mode this block runs in.
-    fn block_mode(&self, parsed: &Parsed) -> Option<Action> {
-        match parsed.g.iter().find(|g| g.1 == Group::Motion) {
-            Some(g) if g.2 == Action::CancelMotion => None,
-            Some(g) => Some(g.2),
+    /// The motion mode this block runs in.
+    fn block_mode(&self, parsed: &Words) -> Option<Action> {
+        match parsed.motion_code() {
+            Some((Action::CancelMotion, _)) => None,
+            Some((action, _)) => Some(action),
             None => self.motion,
         }
     }
 
-    /// Refuses letters swarf cannot simulate and warns about unused ones.
-    fn check_letters(&mut self, parsed: &Parsed, line: usize) -> Result<(), Diagnostic> {
-        let is_arc = matches!(
-            self.block_mode(parsed),
-            Some(Action::ArcCw | Action::ArcCcw)
-        );
-        for w in parsed.letters.iter().flatten() {
-            let err = |message: String| Err(Diagnostic::new(line, w.column, message));
-            let l = w.letter;
-            match l {
-                'A' | 'B' | 'C' => {
-                    return err(format!(
-                        "rotary axis word {l}: five-axis programs need a machine file; not supported yet"
-                    ));
-                }
-                'U' | 'V' | 'W' => {
-                    return err(format!("{l} axis word: only X, Y and Z axes are supported"));
-                }
-                'E' => return err("E word is not supported".to_string()),
-                'I' | 'J' | 'K' | 'R' if !is_arc => {
-                    return err(format!("{l} word with no G2 or G3 to use it"));
-                }
-                'P' if !(is_arc
-                    || parsed.has_g(Action::Dwell).is_some()
-                    || parsed.has_code(640)) =>
-                {
-                    self.warn(
-                        line,
-                        w.column,
-                        "P word ignored: no G2/G3, G4 or G64 uses it",
-                    );
-                }
-                'Q' | 'L' | 'D' => self.warn(line, w.column, format!("{l} word ignored")),
-                'H' if parsed.has_g(Action::LengthOffset).is_none() => {
-                    self.warn(line, w.column, "H word without G43 ignored");
-                }
-                _ => {}
-            }
-        }
-        Ok(())
-    }
-
     /// F, S, T, M6 and G4, in that order.
-    fn machine_words(&mut self, parsed: &Parsed, line: usize) -> Result<(), Diagnostic> {
+    fn machine_words(&mut self, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
         if let Some(f) = parsed.get('F') {
             if f.value < 0.0 {
                 return Err(Diagnostic::new(line, f.column, "negative feed rate F"));
@@ -318,7 +169,7 @@ impl Interpreter {
     }
 
     /// Plane, units, distance modes.
-    fn set_modes(&mut self, parsed: &Parsed) {
+    fn set_modes(&mut self, parsed: &Words) {
         for &(_, _, action, _) in &parsed.g {
             match action {
                 Action::PlaneXy => self.plane = Plane::Xy,
@@ -338,7 +189,7 @@ impl Interpreter {
     }
 
     /// The motion this block commands, if any.
-    fn motion_words(&mut self, parsed: &Parsed, line: usize) -> Result<(), Diagnostic> {
+    fn motion_words(&mut self, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
         let mode = self.block_mode(parsed);
         self.motion = mode;
         let axes: Vec<Word> = ['X', 'Y', 'Z']
@@ -352,10 +203,8 @@ impl Interpreter {
             return Ok(());
         }
         let column = parsed
-            .g
-            .iter()
-            .find(|g| g.1 == Group::Motion)
-            .map(|g| g.3.column)
+            .motion_code()
+            .map(|(_, w)| w.column)
             .or_else(|| axes.first().map(|w| w.column))
             .unwrap_or(1);
         let Some(mode) = mode else {
@@ -412,7 +261,7 @@ impl Interpreter {
     }
 
     /// End point of the block's motion, mm.
-    fn end_point(&self, parsed: &Parsed) -> Point3 {
+    fn end_point(&self, parsed: &Words) -> Point3 {
         let mut end = self.pose.cl;
         for (k, letter) in ['X', 'Y', 'Z'].into_iter().enumerate() {
             if let Some(w) = parsed.get(letter) {
@@ -429,7 +278,7 @@ impl Interpreter {
 
     fn arc_kind(
         &self,
-        parsed: &Parsed,
+        parsed: &Words,
         clockwise: bool,
         end: &Point3,
         line: usize,
@@ -498,7 +347,7 @@ impl Interpreter {
     }
 
     /// Fanuc-style programs read `X10` as ten least increments; LinuxCNC as 10 units.
-    fn suspicious_numbers(&mut self, parsed: &Parsed, line: usize) {
+    fn suspicious_numbers(&mut self, parsed: &Words, line: usize) {
         if !self.fanuc || self.fanuc_warned {
             return;
         }
@@ -520,5 +369,68 @@ impl Interpreter {
     /// The tool number of the last M6, if any.
     pub fn tool_number(&self) -> Option<u32> {
         self.active_tool
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::read::lexer::lex_line;
+
+    fn run(lines: &[&str]) -> (Interpreter, Option<Diagnostic>) {
+        let mut machine = Interpreter::new(Pose::vertical(Point3::origin()));
+        for (i, text) in lines.iter().enumerate() {
+            let block = lex_line(text, i + 1).unwrap();
+            match machine.execute(&block, i + 1) {
+                Ok(Flow::Continue) => {}
+                Ok(Flow::End) => break,
+                Err(d) => return (machine, Some(d)),
+            }
+        }
+        (machine, None)
+    }
+
+    #[test]
+    fn order_of_execution_within_a_block() {
+        // F before units: F10 is mm/min; G91 before the motion: X1 is incremental inches
+        let (m, err) = run(&["G21 G0 X1", "G20 G91 F10 G1 X1"]);
+        assert!(err.is_none());
+        let last = m.motions[1];
+        assert_eq!(last.feed, 10.0);
+        assert!((last.end.cl.x - 26.4).abs() < 1e-12);
+    }
+
+    #[test]
+    fn incremental_arcs_and_absolute_centres() {
+        let (m, err) = run(&[
+            "G21 G91 F100",
+            "G3 X10 Y10 I0 J10",
+            "G90 G90.1 G2 X20 Y0 I10 J0",
+        ]);
+        assert!(err.is_none(), "{err:?}");
+        let MotionKind::Arc {
+            center, clockwise, ..
+        } = m.motions[0].kind
+        else {
+            panic!("{:?}", m.motions[0]);
+        };
+        assert_eq!((center, clockwise), (Point3::new(0.0, 10.0, 0.0), false));
+        let MotionKind::Arc { center, .. } = m.motions[1].kind else {
+            panic!("{:?}", m.motions[1]);
+        };
+        assert_eq!(center, Point3::new(10.0, 0.0, 0.0));
+    }
+
+    #[test]
+    fn modes_persist_and_end_stops() {
+        let (m, err) = run(&["G21 G18 F50", "G2 X10 Z0 I5 K0", "M30", "G0 X99"]);
+        assert!(err.is_none());
+        assert_eq!(m.motions.len(), 1);
+        let MotionKind::Arc { normal, .. } = m.motions[0].kind else {
+            panic!();
+        };
+        assert_eq!(normal, Vec3::y());
+        let (_, err) = run(&["G21 G1 X1 F10", "G80", "X2"]);
+        assert_eq!(err.map(|d| (d.line, d.column)), Some((3, 1)));
     }
 }
