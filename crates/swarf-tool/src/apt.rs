@@ -229,15 +229,16 @@ impl Apt {
     /// The profile: bottom line, corner arc, side line (empty pieces dropped).
     pub fn profile(&self) -> Profile {
         let centre = RhoZ::new(self.e, self.f);
-        let b = Profile::builder();
-        let b = if self.r > 0.0 {
-            b.arc(centre, self.r, self.alpha - FRAC_PI_2, -self.beta)
+        let mut b = Profile::builder();
+        if self.r > 0.0 {
+            b.arc(centre, self.r, self.alpha - FRAC_PI_2, -self.beta);
         } else {
-            b.line_to(centre)
-        };
+            b.line_to(centre);
+        }
         let t2 = b.at();
         let top_rho = (t2.rho + (self.h - t2.z) * self.beta.tan()).max(0.0);
-        b.line_to(RhoZ::new(top_rho, self.h)).finish()
+        b.line_to(RhoZ::new(top_rho, self.h));
+        b.finish()
     }
 }
 

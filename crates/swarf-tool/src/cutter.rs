@@ -24,7 +24,7 @@
 use crate::apt::Apt;
 use crate::error::ToolError;
 use crate::profile::Profile;
-use crate::segment::RhoZ;
+use crate::segment::{RhoZ, Segment};
 use std::f64::consts::FRAC_PI_2;
 
 /// A milling cutter: one of the APT family. Lengths mm, angles radians. Build with the
@@ -211,49 +211,50 @@ impl Cutter {
     /// The profile in the meridian half-plane, from the tip up (closed forms per
     /// shape).
     pub fn profile(&self) -> Profile {
-        let b = Profile::builder();
+        let mut b = Profile::builder();
         match *self {
-            Cutter::Flat { radius, length } => b
-                .line_to(RhoZ::new(radius, 0.0))
-                .line_to(RhoZ::new(radius, length)),
-            Cutter::Ball { radius, length } => b
-                .arc(RhoZ::new(0.0, radius), radius, -FRAC_PI_2, 0.0)
-                .line_to(RhoZ::new(radius, length)),
+            Cutter::Flat { radius, length } => {
+                b.line_to(RhoZ::new(radius, 0.0))
+                    .line_to(RhoZ::new(radius, length));
+            }
+            Cutter::Ball { radius, length } => {
+                b.arc_segment(Segment::quarter_arc(RhoZ::new(0.0, radius), radius))
+                    .line_to(RhoZ::new(radius, length));
+            }
             Cutter::Bull {
                 radius,
                 corner,
                 length,
-            } => b
-                .arc(RhoZ::new(radius - corner, corner), corner, -FRAC_PI_2, 0.0)
-                .line_to(RhoZ::new(radius, length)),
+            } => {
+                let centre = RhoZ::new(radius - corner, corner);
+                b.arc_segment(Segment::quarter_arc(centre, corner))
+                    .line_to(RhoZ::new(radius, length));
+            }
             Cutter::Cone {
                 radius,
                 half_angle,
                 length,
-            } => b
-                .line_to(RhoZ::new(radius, radius / half_angle.tan()))
-                .line_to(RhoZ::new(radius, length)),
+            } => {
+                b.line_to(RhoZ::new(radius, radius / half_angle.tan()))
+                    .line_to(RhoZ::new(radius, length));
+            }
             Cutter::TaperBall {
                 tip_radius,
                 half_angle,
                 length,
                 ..
             } => {
-                let b = b.arc(
-                    RhoZ::new(0.0, tip_radius),
-                    tip_radius,
-                    -FRAC_PI_2,
-                    -half_angle,
-                );
+                let t = tip_radius;
+                b.arc(RhoZ::new(0.0, t), t, -FRAC_PI_2, -half_angle);
                 let t2 = b.at();
                 b.line_to(RhoZ::new(
                     t2.rho + (length - t2.z) * half_angle.tan(),
                     length,
-                ))
+                ));
             }
             Cutter::Apt(a) => return a.profile(),
         }
-        .finish()
+        b.finish()
     }
 
     /// The seven APT parameters of this cutter (see the module table).

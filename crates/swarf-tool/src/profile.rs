@@ -201,7 +201,7 @@ pub(crate) struct ProfileBuilder {
 
 impl ProfileBuilder {
     /// A line from the current point to `end`.
-    pub(crate) fn line_to(mut self, end: RhoZ) -> Self {
+    pub(crate) fn line_to(&mut self, end: RhoZ) -> &mut Self {
         if self.at.dist(end) > LENGTH_EPS {
             self.push(Segment::Line {
                 start: self.at,
@@ -212,15 +212,26 @@ impl ProfileBuilder {
         self
     }
 
-    /// A line from the current point to the start of the arc, then the arc.
-    pub(crate) fn arc(self, centre: RhoZ, radius: f64, start_angle: f64, end_angle: f64) -> Self {
-        let arc = Segment::arc(centre, radius, start_angle, end_angle);
-        let mut b = self.line_to(arc.start());
+    /// A line from the current point to the start of the arc about `centre` from
+    /// `start_angle` to `end_angle`, then the arc.
+    pub(crate) fn arc(
+        &mut self,
+        centre: RhoZ,
+        radius: f64,
+        start_angle: f64,
+        end_angle: f64,
+    ) -> &mut Self {
+        self.arc_segment(Segment::arc(centre, radius, start_angle, end_angle))
+    }
+
+    /// A line from the current point to the start of `arc`, then `arc`.
+    pub(crate) fn arc_segment(&mut self, arc: Segment) -> &mut Self {
+        self.line_to(arc.start());
         if arc.length() > LENGTH_EPS {
-            b.push(arc);
-            b.at = arc.end();
+            self.push(arc);
+            self.at = arc.end();
         }
-        b
+        self
     }
 
     /// The current point (the end of the last segment).
@@ -235,7 +246,7 @@ impl ProfileBuilder {
         }
     }
 
-    pub(crate) fn finish(self) -> Profile {
+    pub(crate) fn finish(&self) -> Profile {
         self.profile
     }
 }
@@ -246,10 +257,10 @@ mod tests {
     use std::f64::consts::FRAC_PI_2;
 
     fn bull(radius: f64, corner: f64, length: f64) -> Profile {
-        Profile::builder()
-            .arc(RhoZ::new(radius - corner, corner), corner, -FRAC_PI_2, 0.0)
-            .line_to(RhoZ::new(radius, length))
-            .finish()
+        let mut b = Profile::builder();
+        b.arc(RhoZ::new(radius - corner, corner), corner, -FRAC_PI_2, 0.0)
+            .line_to(RhoZ::new(radius, length));
+        b.finish()
     }
 
     #[test]
@@ -302,10 +313,9 @@ mod tests {
         assert_eq!(side.point, RhoZ::new(5.0, 2.0));
         assert!(p.contact_for_normal_angle(0.1).is_none());
         // A flat end: the rim takes the whole fan between bottom and side.
-        let flat = Profile::builder()
-            .line_to(RhoZ::new(3.0, 0.0))
-            .line_to(RhoZ::new(3.0, 10.0))
-            .finish();
+        let mut b = Profile::builder();
+        b.line_to(RhoZ::new(3.0, 0.0)).line_to(RhoZ::new(3.0, 10.0));
+        let flat = b.finish();
         let c = flat.contact_for_normal_angle(-0.3).unwrap();
         assert_eq!((c.point, c.corner), (RhoZ::new(3.0, 0.0), true));
         assert!((c.s - 3.0 / 13.0).abs() < 1e-15);
@@ -313,9 +323,10 @@ mod tests {
 
     #[test]
     fn builder_drops_empty_pieces_and_never_overflows() {
-        let mut b = Profile::builder().line_to(RhoZ::new(0.0, 0.0));
+        let mut b = Profile::builder();
+        b.line_to(RhoZ::new(0.0, 0.0));
         for k in 1..10 {
-            b = b.line_to(RhoZ::new(k as f64, k as f64));
+            b.line_to(RhoZ::new(k as f64, k as f64));
         }
         assert_eq!(b.finish().segments().len(), MAX_SEGMENTS);
         let empty = Profile::builder().finish();

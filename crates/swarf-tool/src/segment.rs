@@ -4,7 +4,6 @@
 //! counter-clockwise from the bottom up, polar angles from +rho toward +z, outward
 //! normal of a line = its direction turned clockwise.
 
-use crate::profile::ANGLE_EPS;
 use swarf_geom::tol::LENGTH_EPS;
 
 /// A point (or direction) in the cutter's meridian half-plane, mm.
@@ -23,7 +22,8 @@ impl RhoZ {
     }
 
     pub(crate) fn dist(self, o: RhoZ) -> f64 {
-        (self.rho - o.rho).hypot(self.z - o.z)
+        let (dr, dz) = (self.rho - o.rho, self.z - o.z);
+        (dr * dr + dz * dz).sqrt()
     }
 }
 
@@ -43,9 +43,9 @@ pub enum Segment {
         centre: RhoZ,
         /// Radius, > 0.
         radius: f64,
-        /// Polar angle of the lower end, radians.
+        /// Polar angle of the lower end, radians, >= -pi/2.
         start_angle: f64,
-        /// Polar angle of the upper end, radians (> `start_angle`, by less than pi).
+        /// Polar angle of the upper end, radians, in `(start_angle, pi/2]`.
         end_angle: f64,
         /// Lower end, `centre + radius (cos, sin)(start_angle)`.
         start: RhoZ,
@@ -68,6 +68,19 @@ impl Segment {
             end_angle,
             start: at(start_angle),
             end: at(end_angle),
+        }
+    }
+
+    /// The quarter circle about `centre` from straight below it (polar angle -pi/2) to
+    /// its outermost point (angle 0), with exact ends (ball and bull corners).
+    pub fn quarter_arc(centre: RhoZ, radius: f64) -> Segment {
+        Segment::Arc {
+            centre,
+            radius,
+            start_angle: -std::f64::consts::FRAC_PI_2,
+            end_angle: 0.0,
+            start: RhoZ::new(centre.rho, centre.z - radius),
+            end: RhoZ::new(centre.rho + radius, centre.z),
         }
     }
 
@@ -177,14 +190,21 @@ impl Segment {
             Segment::Arc {
                 centre,
                 radius,
-                start_angle,
-                end_angle,
+                start,
+                end,
                 ..
             } => {
-                let t = ((rho - centre.rho) / radius).clamp(-1.0, 1.0).acos();
-                let within = |a: f64| a >= start_angle - ANGLE_EPS && a <= end_angle + ANGLE_EPS;
-                let a = if within(-t) { -t } else { t };
-                Some(centre.z + radius * a.clamp(start_angle, end_angle).sin())
+                // Profile arcs lie within polar angles [-pi/2, pi/2]: the lower branch
+                // (angle -acos) holds every rho from the start outward; the upper one
+                // only the rho a rising arc (end angle > 0) comes back to.
+                let dr = rho.clamp(lo, hi) - centre.rho;
+                let h = (radius * radius - dr * dr).max(0.0).sqrt();
+                let z = if rho >= start.rho - LENGTH_EPS {
+                    centre.z - h
+                } else {
+                    centre.z + h
+                };
+                Some(z.clamp(start.z, end.z))
             }
         }
     }
@@ -204,15 +224,10 @@ impl Segment {
                 let u = ((z - start.z) / dz).clamp(0.0, 1.0);
                 Some(start.rho + u * (end.rho - start.rho))
             }
-            Segment::Arc {
-                centre,
-                radius,
-                start_angle,
-                end_angle,
-                ..
-            } => {
-                let t = ((z - centre.z) / radius).clamp(-1.0, 1.0).asin();
-                Some(centre.rho + radius * t.clamp(start_angle, end_angle).cos())
+            Segment::Arc { centre, radius, .. } => {
+                // Within polar angles [-pi/2, pi/2] the arc is the right half-circle.
+                let dz = z.clamp(a.z, b.z) - centre.z;
+                Some(centre.rho + (radius * radius - dz * dz).max(0.0).sqrt())
             }
         }
     }

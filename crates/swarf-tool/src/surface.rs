@@ -22,6 +22,11 @@ use crate::profile::Profile;
 use crate::segment::{RhoZ, Segment};
 use swarf_geom::{Point3, Vec3};
 
+/// `|(x, y)|` without `hypot`'s overflow care (mm-sized values; several times faster).
+fn norm(x: f64, y: f64) -> f64 {
+    (x * x + y * y).sqrt()
+}
+
 fn segment_distance(seg: &Segment, p: RhoZ) -> f64 {
     match *seg {
         Segment::Line { start, end } => line_distance(start, end, p),
@@ -37,10 +42,10 @@ fn segment_distance(seg: &Segment, p: RhoZ) -> f64 {
             let e1 = RhoZ::new(end.rho - centre.rho, end.z - centre.z);
             let cross = |a: RhoZ, b: RhoZ| a.rho * b.z - a.z * b.rho;
             if cross(e0, v) >= 0.0 && cross(v, e1) >= 0.0 {
-                (v.rho.hypot(v.z) - radius).abs()
+                (norm(v.rho, v.z) - radius).abs()
             } else {
-                let ds = (p.rho - start.rho).hypot(p.z - start.z);
-                let de = (p.rho - end.rho).hypot(p.z - end.z);
+                let ds = norm(p.rho - start.rho, p.z - start.z);
+                let de = norm(p.rho - end.rho, p.z - end.z);
                 ds.min(de)
             }
         }
@@ -55,7 +60,7 @@ fn line_distance(a: RhoZ, b: RhoZ, p: RhoZ) -> f64 {
     } else {
         0.0
     };
-    (p.rho - a.rho - t * dr).hypot(p.z - a.z - t * dz)
+    norm(p.rho - a.rho - t * dr, p.z - a.z - t * dz)
 }
 
 impl Profile {
