@@ -267,4 +267,17 @@ mod tests {
         assert!((rho - (3.0 + 3f64.sqrt())).abs() < 1e-14);
         assert_eq!(corner.rho_at(2.0 + 2.0 * FRAC_PI_4.sin() + 1e-6), None);
     }
+
+    #[test]
+    fn rising_arc_meets_small_radii_only_above_its_equator() {
+        // From -30 to +60 degrees: radii below the start's are met on the way back in.
+        let (a0, a1) = (-FRAC_PI_2 / 3.0, 2.0 * FRAC_PI_2 / 3.0);
+        let arc = Segment::arc(RhoZ::new(3.0, 2.0), 2.0, a0, a1);
+        assert!((arc.start().rho - (3.0 + 3f64.sqrt())).abs() < 1e-14);
+        let z = arc.lowest_z_at(4.5).unwrap();
+        assert!((z - (2.0 + 1.75f64.sqrt())).abs() < 1e-14);
+        let z = arc.lowest_z_at(4.9).unwrap();
+        assert!((z - (2.0 - (4.0f64 - 1.9 * 1.9).sqrt())).abs() < 1e-14);
+        assert_eq!(arc.lowest_z_at(3.9), None);
+    }
 }
