@@ -182,8 +182,8 @@ fn check_radii(
         let unit = if req.inch { "in" } else { "mm" };
         return Err(format!(
             "radius to end of arc differs from radius to start: {places} r1={r1:.4} r2={r2:.4} \
-             abs_err={abs_err:.4} rel_err={:.4}% (LinuxCNC accepts up to {spiral_tol:.4} {unit}, \
-             or up to 0.1% of the radius and {:.4} {unit})",
+             abs_err={abs_err:.4} rel_err={:.4}% (LinuxCNC accepts a difference up to \
+             {spiral_tol:.4} {unit}, or up to 0.1% of the radius when that is at most {:.4} {unit})",
             rel_err * 100.0,
             100.0 * spiral_tol
         ));

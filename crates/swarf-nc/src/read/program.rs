@@ -391,6 +391,51 @@ mod tests {
         assert!((m.point_at(0.5).cl - Point3::new(0.0, -2.0, 0.0)).norm() < 1e-12);
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+        /// Arcs and helices in any orientation: `point_at` stays on the helix, runs
+        /// monotonically from start to end, and `length` equals the length of a fine
+        /// polyline through `point_at` samples.
+        #[test]
+        fn helices_are_consistent(
+            cx in -50.0..50.0f64, cy in -50.0..50.0f64, cz in -50.0..50.0f64,
+            nx in -1.0..1.0f64, ny in -1.0..1.0f64, nz in -1.0..1.0f64,
+            radius in 0.1..40.0f64, sweep in 0.05..6.2f64, height in -20.0..20.0f64,
+            turns in 1u32..3, clockwise in proptest::prelude::any::<bool>(),
+        ) {
+            let Some(n) = Vec3::new(nx, ny, nz).try_normalize(1e-3) else { return Ok(()) };
+            let u = n.cross(&Vec3::x()).try_normalize(1e-3).unwrap_or_else(|| n.cross(&Vec3::y()).normalize());
+            let v = n.cross(&u);
+            let center = Point3::new(cx, cy, cz);
+            let s = if clockwise { -1.0 } else { 1.0 };
+            let total = sweep + TAU * f64::from(turns - 1);
+            let at = |phi: f64, h: f64| center + (u * phi.cos() + v * (s * phi).sin()) * radius + n * h;
+            let start = Pose { cl: at(0.0, 0.0), axis: Vec3::z() };
+            let end = Pose { cl: at(sweep, height), axis: Vec3::z() };
+            let m = Motion {
+                kind: MotionKind::Arc { center, normal: n, clockwise, turns },
+                start, end, feed: 100.0, line: 1,
+            };
+            proptest::prop_assert!((m.point_at(0.0).cl - start.cl).norm() < 1e-9);
+            proptest::prop_assert_eq!(m.point_at(1.0), end);
+            let samples = 4000;
+            let mut polyline = 0.0;
+            let mut prev = start.cl;
+            for k in 1..=samples {
+                let t = f64::from(k) / f64::from(samples);
+                let p = m.point_at(t).cl;
+                let expect = at(t * total, t * height);
+                proptest::prop_assert!((p - expect).norm() < 1e-8 * (1.0 + radius), "t {}: {:?} vs {:?}", t, p, expect);
+                polyline += (p - prev).norm();
+                prev = p;
+            }
+            let exact = (radius * total).hypot(height);
+            proptest::prop_assert!((m.length() - exact).abs() < 1e-9 * exact);
+            proptest::prop_assert!((polyline - exact).abs() < 1e-5 * exact);
+        }
+    }
+
     #[test]
     fn diagnostic_formats() {
         let d = Diagnostic::new(3, 7, "bad");
