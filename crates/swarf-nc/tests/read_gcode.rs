@@ -223,6 +223,17 @@ fn tool_changes() {
 }
 
 #[test]
+fn byte_order_mark_is_skipped() {
+    let p = read("\u{feff}G21 G90\nG0 X1\nM2\n");
+    assert!(
+        p.stopped.is_none() && p.warnings.is_empty(),
+        "{:?}",
+        p.stopped
+    );
+    assert_eq!(p.motions.len(), 1);
+}
+
+#[test]
 fn binary_data_is_refused() {
     let err = parse_gcode("G21\nG0 X1\0\n", "b.ngc", &GcodeReadOptions::default()).unwrap_err();
     assert_eq!(

@@ -52,6 +52,7 @@ use swarf_tool::{Apt, Cutter, Pose};
 /// assert_eq!(p.motions[0].feed, 300.0);
 /// ```
 pub fn parse_cl(text: &str, source: &str) -> Result<Program, NcError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     check_text(text, source)?;
     let mut reader = ClReader::default();
     let mut program = Program::new(source);

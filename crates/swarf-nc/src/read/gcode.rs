@@ -62,6 +62,7 @@ impl Default for GcodeReadOptions {
 /// assert!(p.stopped.is_none());
 /// ```
 pub fn parse_gcode(text: &str, source: &str, opts: &GcodeReadOptions) -> Result<Program, NcError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     check_text(text, source)?;
     let mut program = Program::new(source);
     let mut machine = Interpreter::new(opts.initial);

@@ -39,6 +39,7 @@ use swarf_tool::Pose;
 /// assert_eq!((p.motions[0].length(), p.motions[0].feed), (5.0, 250.0));
 /// ```
 pub fn parse_pose_csv(text: &str, source: &str) -> Result<Program, NcError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     check_text(text, source)?;
     let mut program = Program::new(source);
     let mut state = CsvState {

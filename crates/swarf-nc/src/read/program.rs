@@ -153,6 +153,26 @@ impl Motion {
         }
     }
 
+    /// The angle an arc sweeps, radians: `Θ` of the module documentation (partial
+    /// arc plus `2π (turns - 1)`); `None` for straight motions and degenerate arcs.
+    ///
+    /// ```
+    /// use swarf_geom::{Point3, Vec3};
+    /// use swarf_nc::read::{Motion, MotionKind};
+    /// use swarf_tool::Pose;
+    /// let m = Motion {
+    ///     kind: MotionKind::Arc { center: Point3::origin(), normal: Vec3::z(), clockwise: true, turns: 1 },
+    ///     start: Pose::vertical(Point3::new(1.0, 0.0, 0.0)),
+    ///     end: Pose::vertical(Point3::new(0.0, 1.0, 0.0)),
+    ///     feed: 100.0,
+    ///     line: 1,
+    /// };
+    /// assert!((m.sweep().unwrap() - 1.5 * std::f64::consts::PI).abs() < 1e-12);
+    /// ```
+    pub fn sweep(&self) -> Option<f64> {
+        self.arc_geometry().map(|g| g.sweep)
+    }
+
     /// The arc's frame and sweep; `None` for straight motions or a degenerate arc
     /// (start on the centre line, non-unit normal).
     fn arc_geometry(&self) -> Option<ArcGeometry> {
