@@ -4,7 +4,9 @@
 //! patches seen along +z (`../shared/parts/README.md`); for 5-axis work each patch is
 //! a face of the part.
 
+use crate::error::GeomError;
 use crate::math::Aabb;
+use crate::mesh::TriMesh;
 use crate::patch::Patch;
 use serde::{Deserialize, Serialize};
 
@@ -23,5 +25,66 @@ impl Part {
         self.patches
             .iter()
             .fold(Aabb::empty(), |b, p| b.union(&p.control_box()))
+    }
+
+    /// All patches tessellated within `tol` ([`Patch::tessellate`]) in one mesh; each
+    /// patch keeps its own vertices (patches of a part need not share edges).
+    ///
+    /// # Units
+    /// `tol` in mm.
+    ///
+    /// # Errors
+    /// [`GeomError::InvalidParameter`] naming `tol` when it is not finite and > 0.
+    pub fn tessellate(&self, tol: f64) -> Result<TriMesh, GeomError> {
+        GeomError::check_positive("tol", tol)?;
+        let mut out = TriMesh::default();
+        for patch in &self.patches {
+            let m = patch.tessellate(tol)?;
+            let base = out.vertices.len() as u32;
+            out.vertices.extend(m.vertices);
+            out.triangles
+                .extend(m.triangles.iter().map(|t| t.map(|i| i + base)));
+        }
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::patch::fixtures::{edge_convex, wave};
+
+    #[test]
+    fn part_mesh_concatenates_patch_meshes() {
+        let [a, b] = edge_convex();
+        let (ma, mb) = (a.tessellate(0.05).unwrap(), b.tessellate(0.05).unwrap());
+        let part = Part {
+            name: "edge-convex".into(),
+            patches: vec![a, b],
+        };
+        let m = part.tessellate(0.05).unwrap();
+        assert_eq!(m.vertices.len(), ma.vertices.len() + mb.vertices.len());
+        assert_eq!(m.triangles.len(), ma.triangles.len() + mb.triangles.len());
+        let n = ma.vertices.len() as u32;
+        assert_eq!(
+            m.triangles[ma.triangles.len()],
+            mb.triangles[0].map(|i| i + n)
+        );
+        assert_eq!(m.vertices[n as usize], mb.vertices[0]);
+    }
+
+    #[test]
+    fn bad_tolerance_is_named_even_without_patches() {
+        let empty = Part {
+            name: "empty".into(),
+            patches: vec![],
+        };
+        let e = empty.tessellate(-1.0).unwrap_err();
+        assert!(e.to_string().starts_with("tol = -1"), "{e}");
+        let one = Part {
+            name: "wave".into(),
+            patches: vec![wave()],
+        };
+        assert!(one.tessellate(f64::NAN).is_err());
     }
 }

@@ -12,6 +12,8 @@ mod eval;
 pub(crate) mod fixtures;
 mod knot_insert;
 mod project;
+mod stitch;
+mod tessellate;
 
 pub use basis::MAX_DEGREE;
 pub use diffgeo::{Curvature, FundamentalForms};
