@@ -27,6 +27,7 @@
 pub mod apt;
 pub mod contact;
 pub mod cutter;
+pub mod drop;
 pub mod error;
 pub mod pose;
 pub mod profile;

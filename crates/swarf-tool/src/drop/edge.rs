@@ -1,0 +1,247 @@
+//! The edge drop: the highest point of a concave function along a line.
+//!
+//! Put the edge's XY line at distance `d0` from the axis and measure `s` along it from
+//! the foot of the perpendicular; the edge rises by `m` per mm of `s`. A point of the
+//! line is `rho(s) = sqrt(d0^2 + s^2)` from the axis, within reach for
+//! `|s| <= w = sqrt(R^2 - d0^2)`, and the cutter touching it there has its tip at
+//! `f(s) = z(s) - h(rho(s))`. `f` is concave ([`super::envelope`]), so its maximum over
+//! the edge is the maximum over `[-w, w]` clamped to the edge: an interior `s*` is an
+//! edge contact, anything else is one of the vertex cases. `s*` is where
+//! `g(s) = f'(s) = m - h'(rho) s / rho` changes sign; `g` is non-increasing, and
+//! `s*` has the sign of `m` (mirror `s -> -s` for `m < 0`). Per envelope piece:
+//!
+//! - **line** `h' = k` (flat bottom `k = 0`, cone `k = 1/tan(half angle)`):
+//!   `m rho = k s` gives `s = d0 m / sqrt(k^2 - m^2)` (when `m < k`; else past the
+//!   piece). A flat end (`k = 0`) always climbs to the rim `s = w`;
+//! - **sphere** (`ce = 0`, a ball or a taper ball's tip): `h' s / rho = s / sqrt(r^2 -
+//!   rho^2)`, so `s = m sqrt(r^2 - d0^2) / sqrt(1 + m^2)`: the circle where the
+//!   vertical plane of the edge cuts the sphere, touched by the line;
+//! - **torus** (`ce > 0`, bull and APT corners): with `theta` the angle from the
+//!   bottom of the corner circle, `rho = ce + r sin(theta)`, `h = cz - r cos(theta)`,
+//!   `h' = tan(theta)`, and `sign(g) = sign(G)`, `G(theta) = m rho cos(theta) -
+//!   s sin(theta)`: bounded and smooth up to the equator `theta = pi/2` where
+//!   `h'` is infinite. `G` changes sign once on the piece's bracket, and a safeguarded
+//!   Newton step ([`super::bracket`]) finds the root to [`THETA_TOL`] (contact within
+//!   `r * THETA_TOL` mm), never leaving the bracket. OpenCAMLib solves the same case by
+//!   an offset-ellipse iteration that can fail to converge; this cannot.
+//!
+//! Pieces are walked outward evaluating `g` at their ends: a sign change at a joint
+//! (a convex corner of the profile, e.g. an APT `r = 0` corner) is the maximum
+//! there; if `g > 0` to the end, the maximum is the rim `s = w`. Flat, ball and cone
+//! cutters (one piece) take their closed form directly.
+
+use super::bracket::root_decreasing;
+use super::envelope::Piece;
+use super::{DropCutter, EdgeShape};
+
+/// Convergence of the torus edge solve in the corner angle, radians.
+pub const THETA_TOL: f64 = 1e-13;
+
+/// `(s*, h(rho(s*)))`: the maximiser of `f` over `[-w, w]` for an edge line at
+/// distance `d0 <= R` rising by `m` per mm, and the envelope height there.
+pub(crate) fn edge_argmax(tool: &DropCutter, d0: f64, m: f64) -> (f64, f64) {
+    let (s, h) = edge_argmax_rising(tool, d0, m.abs());
+    (s.copysign(m), h)
+}
+
+/// As [`edge_argmax`] for `m >= 0` (the maximiser is at `s >= 0`).
+fn edge_argmax_rising(tool: &DropCutter, d0: f64, m: f64) -> (f64, f64) {
+    let r = tool.radius;
+    let w = (r * r - d0 * d0).max(0.0).sqrt();
+    match tool.shape {
+        EdgeShape::Flat => {
+            if m > 0.0 {
+                (w, 0.0)
+            } else {
+                (0.0, 0.0)
+            }
+        }
+        EdgeShape::Ball => {
+            let c = (1.0 + m * m).sqrt();
+            (m * w / c, r - w / c)
+        }
+        EdgeShape::Cone { k } => match line_root(d0, m, k) {
+            Some(s) if s < w => (s, k * d0.hypot(s)),
+            _ => (w, tool.envelope.top()),
+        },
+        EdgeShape::Pieces => pieces_argmax(tool, d0, m, w),
+    }
+}
+
+/// Root of `m rho = k s` for `s >= 0`, when `m < k`.
+fn line_root(d0: f64, m: f64, k: f64) -> Option<f64> {
+    (m < k).then(|| d0 * m / ((k - m) * (k + m)).sqrt())
+}
+
+/// `g(s) = m - h'(rho) s / rho` on `piece`, taking `s / rho = 1` on the axis.
+fn g(piece: &Piece, d0: f64, m: f64, s: f64) -> f64 {
+    let rho = d0.hypot(s);
+    let ratio = if rho > 0.0 { s / rho } else { 1.0 };
+    let slope = piece.slope(rho);
+    if ratio == 0.0 { m } else { m - slope * ratio }
+}
+
+/// The walk over the envelope pieces described in the module doc.
+fn pieces_argmax(tool: &DropCutter, d0: f64, m: f64, w: f64) -> (f64, f64) {
+    let env = &tool.envelope;
+    if m == 0.0 {
+        return (0.0, env.height(d0));
+    }
+    let s_at = |rho: f64| (rho * rho - d0 * d0).max(0.0).sqrt().min(w);
+    for piece in env.pieces() {
+        if piece.rho1() <= d0 {
+            continue;
+        }
+        let rho_lo = piece.rho0().max(d0);
+        let (s_lo, s_hi) = (s_at(rho_lo), s_at(piece.rho1()));
+        if g(piece, d0, m, s_lo) <= 0.0 {
+            return (s_lo, piece.height(rho_lo));
+        }
+        if g(piece, d0, m, s_hi) > 0.0 {
+            continue;
+        }
+        let s = solve_in_piece(piece, d0, m, s_lo, s_hi);
+        return (s, piece.height(d0.hypot(s)));
+    }
+    (w, env.top())
+}
+
+/// The root of `g` inside `piece`, bracketed by `g(s_lo) > 0 >= g(s_hi)`.
+fn solve_in_piece(piece: &Piece, d0: f64, m: f64, s_lo: f64, s_hi: f64) -> f64 {
+    let s = match *piece {
+        Piece::Line { k, .. } => line_root(d0, m, k).unwrap_or(s_hi),
+        Piece::Arc { ce, r, .. } if ce <= 0.0 => {
+            m * (r * r - d0 * d0).max(0.0).sqrt() / (1.0 + m * m).sqrt()
+        }
+        Piece::Arc { ce, r, .. } => torus_root(ce, r, d0, m, s_lo, s_hi),
+    };
+    s.clamp(s_lo, s_hi)
+}
+
+/// The torus case: solve `G(theta) = 0` between the angles of `s_lo` and `s_hi`.
+fn torus_root(ce: f64, r: f64, d0: f64, m: f64, s_lo: f64, s_hi: f64) -> f64 {
+    let theta_of = |s: f64| (((d0.hypot(s) - ce) / r).clamp(0.0, 1.0)).asin();
+    let big_g = |t: f64| {
+        let (sin, cos) = t.sin_cos();
+        let rho = ce + r * sin;
+        let s = (rho * rho - d0 * d0).max(0.0).sqrt();
+        let drho = r * cos;
+        let ds = if s > 0.0 {
+            rho * drho / s
+        } else {
+            f64::INFINITY
+        };
+        let value = m * rho * cos - s * sin;
+        let slope = m * (drho * cos - rho * sin) - ds * sin - s * cos;
+        (value, if slope.is_finite() { slope } else { 0.0 })
+    };
+    let (t, _) = root_decreasing(big_g, theta_of(s_lo), theta_of(s_hi), THETA_TOL);
+    let rho = ce + r * t.sin();
+    (rho * rho - d0 * d0).max(0.0).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Cutter;
+
+    fn tool(spec: &str) -> DropCutter {
+        DropCutter::new(&spec.parse::<Cutter>().unwrap())
+    }
+
+    /// Brute force: golden-section search of the concave `f` on `[-w, w]`, then the
+    /// height there.
+    fn brute(tool: &DropCutter, d0: f64, m: f64) -> (f64, f64) {
+        let r = tool.radius;
+        let w = (r * r - d0 * d0).max(0.0).sqrt();
+        let f = |s: f64| m * s - tool.envelope.height(d0.hypot(s).min(r));
+        let (mut a, mut b) = (-w, w);
+        let phi = 0.5 * (5f64.sqrt() - 1.0);
+        for _ in 0..200 {
+            let c = b - phi * (b - a);
+            let d = a + phi * (b - a);
+            if f(c) >= f(d) {
+                b = d;
+            } else {
+                a = c;
+            }
+        }
+        let s = 0.5 * (a + b);
+        (s, f(s))
+    }
+
+    #[test]
+    fn every_shape_matches_a_brute_force_maximum() {
+        let specs = [
+            "flat:d=6",
+            "ball:d=8",
+            "bull:d=10,r=2",
+            "bull:d=10,r=0.5",
+            "cone:d=10,angle=90",
+            "cone:d=6,angle=30",
+            "taperball:d=6,angle=10,tip=1",
+            "apt:d=10,r=1.5,alpha=10,beta=5,h=30",
+            "apt:d=8,r=0,alpha=20,beta=10,h=30",
+            "apt:d=12,r=3,alpha=30,beta=-20,h=15",
+        ];
+        for spec in specs {
+            let t = tool(spec);
+            for i in 0..=20 {
+                let d0 = t.radius * f64::from(i) / 20.0;
+                for m in [
+                    -5.0, -1.3, -0.4, -0.01, 0.0, 0.02, 0.3, 0.999, 1.0, 2.5, 40.0,
+                ] {
+                    let (s, h) = edge_argmax(&t, d0, m);
+                    let f = m * s - h;
+                    let (sb, fb) = brute(&t, d0, m);
+                    assert!(
+                        f >= fb - 1e-11,
+                        "{spec} d0={d0} m={m}: {f} < brute {fb} (s {s} vs {sb})"
+                    );
+                    assert!(
+                        (h - t.envelope.height(d0.hypot(s).min(t.radius))).abs() < 1e-12,
+                        "{spec} d0={d0} m={m}: h {h} off the envelope"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn closed_forms_agree_with_the_piecewise_walk() {
+        for spec in [
+            "flat:d=6",
+            "ball:d=8",
+            "cone:d=10,angle=90",
+            "cone:d=4,angle=120",
+        ] {
+            let fast = tool(spec);
+            let mut slow = fast.clone();
+            slow.shape = EdgeShape::Pieces;
+            for i in 0..=10 {
+                let d0 = fast.radius * f64::from(i) / 10.0;
+                for m in [-3.0, -0.5, 0.0, 0.25, 0.8, 1.0, 1.5, 7.0] {
+                    let (a, b) = (edge_argmax(&fast, d0, m), edge_argmax(&slow, d0, m));
+                    assert!(
+                        (a.0 - b.0).abs() < 1e-12 && (a.1 - b.1).abs() < 1e-12,
+                        "{spec} {d0} {m}: {a:?} {b:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn torus_contact_has_the_edge_slope() {
+        // At an interior torus contact the corner's tangent slope along the edge
+        // equals the edge's: h'(rho) s / rho = m.
+        let bull = tool("bull:d=10,r=2");
+        for (d0, m) in [(0.5, 0.3), (3.5, 0.1), (2.0, 1.5), (4.9, 0.05)] {
+            let (s, _) = edge_argmax(&bull, d0, m);
+            let rho = d0.hypot(s);
+            assert!(rho > 3.0 && rho < 5.0, "{d0} {m}: rho {rho}");
+            let slope = bull.envelope.slope(rho) * s / rho;
+            assert!((slope - m).abs() < 1e-9, "{d0} {m}: {slope}");
+        }
+    }
+}

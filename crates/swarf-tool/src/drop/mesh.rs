@@ -1,0 +1,242 @@
+//! Drop-cutter on a whole mesh: the highest triangle contact under the cutter.
+//!
+//! The drop height is the maximum over the triangles within reach of their own drop
+//! ([`super::kernel`]). Most of them cannot win, and proving that is cheaper than
+//! dropping onto them: the cutter's lower surface is `tip + h(rho)` with `h`
+//! increasing, so a triangle whose XY box is `rho_min` from the axis and whose top is
+//! `z_max` puts the tip at most at `ub = z_max - h(rho_min)`. The scan of the grid
+//! ([`super::grid`]) computes `ub` for the triangles in the disc, keeps those above the
+//! best height found so far, and visits them in descending `ub` from a binary heap,
+//! stopping at the first whose bound is below the best: typically a handful of the
+//! ~100 triangles under a 4 mm tool are dropped onto.
+//!
+//! Ties: the highest contact wins; equal heights go to the lowest triangle index, so
+//! the result does not depend on the visiting order or on threads. Nothing is
+//! allocated per query: callers pass a [`DropScratch`] they reuse (one per thread).
+//!
+//! For double-contact detection, [`MeshDropper::drop_with_contacts`] keeps every
+//! triangle contact within a tolerance of the top (its bound is relaxed by the same
+//! tolerance).
+
+use super::grid::DropGrid;
+use super::kernel::triangle_drop;
+use super::{DropCutter, Feature, TriContact};
+use crate::cutter::Cutter;
+use std::collections::BinaryHeap;
+use swarf_geom::{Point3, TriMesh};
+
+/// The result of a drop: tip height and the winning contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DropResult {
+    /// Tool tip height (the CL point's z), mm.
+    pub z: f64,
+    /// Index of the touched triangle in the mesh.
+    pub tri: u32,
+    /// The feature touched.
+    pub feature: Feature,
+    /// The CC point, mm.
+    pub cc: Point3,
+}
+
+/// Reusable per-thread working memory for drops.
+#[derive(Debug, Default, Clone)]
+pub struct DropScratch {
+    heap: Vec<(u64, u32)>,
+    near: Vec<DropResult>,
+}
+
+/// The contacts of one drop within a tolerance of its height.
+pub type TopContacts = Vec<DropResult>;
+
+/// A mesh prepared for drops of one cutter.
+///
+/// # Example
+/// ```
+/// use swarf_geom::{Point3, TriMesh};
+/// use swarf_tool::drop::{MeshDropper, DropScratch};
+/// let p = |x: f64, y: f64| Point3::new(x, y, 2.0);
+/// let mesh = TriMesh::from_triangles(&[[p(-9.0, -9.0), p(9.0, -9.0), p(0.0, 9.0)]]);
+/// let dropper = MeshDropper::new(&mesh, &"bull:d=10,r=2".parse().unwrap());
+/// let mut scratch = DropScratch::default();
+/// assert_eq!(dropper.drop(0.0, 0.0, &mut scratch).unwrap().z, 2.0);
+/// assert!(dropper.drop(50.0, 0.0, &mut scratch).is_none());
+/// ```
+#[derive(Debug, Clone)]
+pub struct MeshDropper {
+    tool: DropCutter,
+    grid: DropGrid,
+}
+
+/// `f64` to a `u64` with the same order (for finite and infinite values).
+fn order_key(v: f64) -> u64 {
+    let b = v.to_bits();
+    if b >> 63 == 1 { !b } else { b | (1 << 63) }
+}
+
+fn from_order_key(k: u64) -> f64 {
+    f64::from_bits(if k >> 63 == 1 { k & !(1 << 63) } else { !k })
+}
+
+impl MeshDropper {
+    /// Prepares `mesh` for drops of `cutter`. Triangles with a non-finite corner are
+    /// ignored (see [`swarf_geom::TriMesh::validate`] to report them).
+    ///
+    /// # Panics
+    /// When the mesh has `u32::MAX` triangles or more, or a vertex index is out of
+    /// range (a `TriMesh` built with [`TriMesh::new`] has none).
+    pub fn new(mesh: &TriMesh, cutter: &Cutter) -> MeshDropper {
+        MeshDropper {
+            tool: DropCutter::new(cutter),
+            grid: DropGrid::build(mesh),
+        }
+    }
+
+    /// The prepared cutter.
+    pub fn tool(&self) -> &DropCutter {
+        &self.tool
+    }
+
+    /// Number of triangles that drops can touch (the finite ones).
+    pub fn len(&self) -> usize {
+        self.grid.len()
+    }
+
+    /// True when no triangle can be touched.
+    pub fn is_empty(&self) -> bool {
+        self.grid.len() == 0
+    }
+
+    /// Heap bytes held (grid, triangle copies), for memory reports.
+    pub fn memory_bytes(&self) -> usize {
+        self.grid.memory_bytes()
+    }
+
+    /// Drops the cutter at `(x, y)`: the tip height and contact, or `None` where no
+    /// triangle is within reach (off the mesh) or `x`, `y` is not finite.
+    ///
+    /// # Units
+    /// mm.
+    pub fn drop(&self, x: f64, y: f64, scratch: &mut DropScratch) -> Option<DropResult> {
+        self.run(x, y, 0.0, scratch, false)
+    }
+
+    /// As [`MeshDropper::drop`], and fills `contacts` with every triangle contact
+    /// within `tol` (mm) of the top, in ascending triangle order (the winner
+    /// included).
+    pub fn drop_with_contacts(
+        &self,
+        x: f64,
+        y: f64,
+        tol: f64,
+        scratch: &mut DropScratch,
+        contacts: &mut TopContacts,
+    ) -> Option<DropResult> {
+        contacts.clear();
+        let best = self.run(x, y, tol.max(0.0), scratch, true)?;
+        contacts.extend(scratch.near.iter().filter(|c| c.z >= best.z - tol));
+        contacts.sort_by_key(|c| c.tri);
+        Some(best)
+    }
+
+    fn run(
+        &self,
+        x: f64,
+        y: f64,
+        slack: f64,
+        scratch: &mut DropScratch,
+        keep: bool,
+    ) -> Option<DropResult> {
+        let xy = [x, y];
+        let env = self.tool.envelope();
+        let mut heap = BinaryHeap::from(std::mem::take(&mut scratch.heap));
+        heap.clear();
+        self.grid
+            .for_each_in_disc(xy, self.tool.radius(), |e, entry, d2| {
+                let ub = f64::from(entry.zmax) - env.height(d2.sqrt());
+                heap.push((order_key(ub), e as u32));
+            });
+        scratch.near.clear();
+        let mut best: Option<DropResult> = None;
+        while let Some((key, e)) = heap.pop() {
+            if best.is_some_and(|b| from_order_key(key) < b.z - slack) {
+                break;
+            }
+            let e = e as usize;
+            let Some(c) = triangle_drop(&self.tool, xy, &self.grid.corners[e]) else {
+                continue;
+            };
+            let r = result(c, self.grid.ids[e]);
+            if keep {
+                scratch.near.push(r);
+            }
+            if best.is_none_or(|b| r.z > b.z || (r.z == b.z && r.tri < b.tri)) {
+                best = Some(r);
+            }
+        }
+        scratch.heap = heap.into_vec();
+        best
+    }
+}
+
+fn result(c: TriContact, tri: u32) -> DropResult {
+    DropResult {
+        z: c.z,
+        tri,
+        feature: c.feature,
+        cc: c.cc,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn order_keys_sort_like_floats() {
+        let v = [
+            f64::NEG_INFINITY,
+            -1e300,
+            -2.5,
+            -0.0,
+            0.0,
+            1e-300,
+            3.0,
+            f64::INFINITY,
+        ];
+        for w in v.windows(2) {
+            assert!(order_key(w[0]) <= order_key(w[1]), "{w:?}");
+        }
+        for x in v {
+            assert_eq!(from_order_key(order_key(x)).to_bits(), x.to_bits());
+        }
+    }
+
+    #[test]
+    fn ties_go_to_the_lowest_triangle_and_contacts_are_collected() {
+        // Two flat squares side by side at the same height, a flat end over their
+        // common edge: every triangle touching gives z = 1.
+        let p = |x: f64, y: f64| Point3::new(x, y, 1.0);
+        let mesh = TriMesh::from_triangles(&[
+            [p(0.0, 0.0), p(10.0, 0.0), p(10.0, 10.0)],
+            [p(0.0, 0.0), p(10.0, 10.0), p(0.0, 10.0)],
+            [p(10.0, 0.0), p(20.0, 0.0), p(20.0, 10.0)],
+            [p(10.0, 0.0), p(20.0, 10.0), p(10.0, 10.0)],
+        ]);
+        let d = MeshDropper::new(&mesh, &"flat:d=4".parse().unwrap());
+        let mut s = DropScratch::default();
+        let r = d.drop(10.0, 5.0, &mut s).unwrap();
+        assert_eq!((r.z, r.tri), (1.0, 0));
+        let mut contacts = Vec::new();
+        let r2 = d
+            .drop_with_contacts(10.0, 5.0, 1e-6, &mut s, &mut contacts)
+            .unwrap();
+        assert_eq!(r2, r);
+        // Triangles 1 and 2 lie beyond the diagonals, more than 2 mm away.
+        assert_eq!(
+            contacts.iter().map(|c| c.tri).collect::<Vec<_>>(),
+            vec![0, 3]
+        );
+        assert!(d.drop(f64::NAN, 5.0, &mut s).is_none());
+        assert_eq!(d.len(), 4);
+    }
+}
