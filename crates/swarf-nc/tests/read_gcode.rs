@@ -172,7 +172,7 @@ fn each_bad_input_names_line_and_column() {
 
 #[test]
 fn arc_word_errors() {
-    let cases: [(&str, usize, usize, &str); 6] = [
+    let cases: [(&str, usize, usize, &str); 7] = [
         (
             "G21 F100 G0 X10\nG2 X0 I-5 K1\n",
             2,
@@ -188,6 +188,12 @@ fn arc_word_errors() {
         ("G21 F100 G0 X10\nG2 X0 R5 I-5\n", 2, 7, "mixed"),
         ("G21 F100 G0 X10\nG2 X0\n", 2, 1, "without R"),
         ("G21 F100 G0 X10\nG2 X0 I-5 P1.5\n", 2, 11, "P (turns)"),
+        (
+            "G21 F100 G0 X10\nG2 X0 I-5 P10001\n",
+            2,
+            11,
+            "from 1 to 10000",
+        ),
         ("G21 F100 G0 X10\nG2 I0 J0\n", 2, 1, "zero-radius"),
     ];
     for (text, line, column, needle) in cases {

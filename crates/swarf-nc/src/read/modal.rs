@@ -22,6 +22,10 @@ use crate::read::words::Words;
 use swarf_geom::{Point3, Vec3};
 use swarf_tool::Pose;
 
+/// Most turns one G2/G3 block may make (`P`): thread milling needs tens; more is
+/// taken for a mistake rather than handed to a simulation that samples every turn.
+pub const MAX_TURNS: u32 = 10_000;
+
 /// What the caller does after a block.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Flow {
@@ -314,14 +318,14 @@ impl Interpreter {
         let turns = match parsed.get('P') {
             None => 1,
             Some(p)
-                if p.value >= 1.0 && p.value.fract() == 0.0 && p.value <= f64::from(u32::MAX) =>
+                if p.value >= 1.0 && p.value.fract() == 0.0 && p.value <= f64::from(MAX_TURNS) =>
             {
                 p.value as u32
             }
             Some(p) => {
                 return err(
                     p.column,
-                    "P (turns) of an arc must be a whole number >= 1".into(),
+                    format!("P (turns) of an arc must be a whole number from 1 to {MAX_TURNS}"),
                 );
             }
         };
