@@ -6,19 +6,32 @@
 //! - [`sweep`]: what a motion removes (the per-shape `Sweep` interface, the sampling
 //!   bounds for arcs and five-axis motions), with [`sweep_linear`] (exact) and
 //!   [`sweep_tilted`] (one tilted tool position).
+//! - [`design`]: the design's height (and normal) at every cell centre, exact by
+//!   Newton on patches or by ray casts on meshes ([`raster`]).
+//! - [`deviation`]: gouge, excess and scallop crests against the design, by region.
+//! - [`simulate`]: a program over a stock, in parallel row bands, deterministically.
 //!
 //! Units: millimetres, radians, mm/min.
 
+pub mod design;
+pub mod deviation;
 pub mod dexel;
 pub mod envelope;
 pub mod error;
 pub mod grid;
+pub mod progress;
+pub mod raster;
+pub mod simulate;
 pub mod sweep;
 pub mod sweep_linear;
 pub mod sweep_tilted;
 
+pub use design::{Design, DesignField, DesignSurface};
+pub use deviation::{Deviation, DeviationOptions, DeviationSummary};
 pub use dexel::{Dexel, StockInit};
 pub use envelope::Envelope;
 pub use error::SimError;
 pub use grid::Grid;
+pub use progress::{Progress, Quiet};
+pub use simulate::{SimOptions, SimReport, simulate};
 pub use sweep::{Primitive, SimTool, Sweep};

@@ -1,0 +1,306 @@
+//! Running a program's motions over a dexel stock, in parallel and deterministically.
+//!
+//! Every motion becomes primitives ([`crate::sweep::sweep_motion`]). The stock is cut
+//! into bands of rows; each band, on its own thread, applies every primitive whose XY
+//! box meets it, in program order. A cell is only ever written by its band's thread,
+//! in program order, so the heights and the "last motion that lowered the cell" are
+//! the same whatever the thread count. Per-band findings (rapids that cut material)
+//! are merged in band order. Motions are taken in chunks of at most
+//! [`CHUNK_PRIMITIVES`] primitives so that a densely sampled five-axis program does
+//! not hold all its tool positions at once.
+
+use crate::dexel::Dexel;
+use crate::grid::Grid;
+use crate::progress::Progress;
+use crate::sweep::{Primitive, RowJob, SimTool, sweep_motion};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use swarf_nc::read::{Motion, MotionKind};
+
+/// Most primitives held at once.
+pub const CHUNK_PRIMITIVES: usize = 1 << 18;
+/// A rapid that lowers material by more than this is reported, mm.
+pub const RAPID_CUT_EPS: f64 = 1e-9;
+
+/// Simulation options.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SimOptions {
+    /// Distance bound for sampled motions (arcs, five-axis), mm.
+    pub sample_tol: f64,
+}
+
+impl Default for SimOptions {
+    fn default() -> Self {
+        SimOptions { sample_tol: 0.001 }
+    }
+}
+
+/// A motion worth a warning.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MotionNote {
+    /// Index of the motion in the program.
+    pub motion: usize,
+    /// Its source line.
+    pub line: usize,
+    /// For a rapid that cut: the deepest cut, mm. For a move outside the stock: how
+    /// far its swept box lies from the grid, mm.
+    pub amount: f64,
+}
+
+/// What a simulation did.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct SimReport {
+    /// Motions simulated.
+    pub motions: usize,
+    /// Primitives (exact sweeps, chords, sampled tool positions) applied.
+    pub primitives: usize,
+    /// Motions that were sampled (arcs, five-axis).
+    pub sampled_motions: usize,
+    /// Largest sampling bound of any motion, mm (0: all exact).
+    pub max_sample_bound: f64,
+    /// Cell evaluations (cells within reach of a primitive).
+    pub cells_visited: u64,
+    /// Cells lowered.
+    pub cells_lowered: u64,
+    /// Rapid motions that removed material (a crash on a machine).
+    pub rapid_cuts: Vec<MotionNote>,
+    /// Cutting motions whose swept box misses the stock grid entirely (clipped away).
+    pub outside: Vec<MotionNote>,
+}
+
+/// One band's findings.
+#[derive(Default)]
+struct BandStats {
+    visited: u64,
+    lowered: u64,
+    rapid: BTreeMap<u32, f64>,
+}
+
+/// Runs `motions` over `dexel` with `tool`.
+pub fn simulate(
+    dexel: &mut Dexel,
+    tool: &SimTool,
+    motions: &[Motion],
+    opts: &SimOptions,
+    progress: &dyn Progress,
+) -> SimReport {
+    let grid = *dexel.grid();
+    let mut report = SimReport {
+        motions: motions.len(),
+        ..SimReport::default()
+    };
+    progress.begin("simulating", motions.len() as u64);
+    let mut chunk: Vec<(Primitive, u32)> = Vec::new();
+    let mut rapid = BTreeMap::new();
+    let mut pending = 0u64;
+    for (k, m) in motions.iter().enumerate() {
+        let sw = sweep_motion(tool, m, opts.sample_tol);
+        if sw.bound > 0.0 {
+            report.sampled_motions += 1;
+            report.max_sample_bound = report.max_sample_bound.max(sw.bound);
+        }
+        if !matches!(m.kind, MotionKind::Rapid) {
+            if let Some(gap) = outside_gap(&grid, &sw.primitives) {
+                report.outside.push(MotionNote {
+                    motion: k,
+                    line: m.line,
+                    amount: gap,
+                });
+            }
+        }
+        let index = u32::try_from(k).unwrap_or(u32::MAX - 1);
+        chunk.extend(sw.primitives.into_iter().map(|p| (p, index)));
+        pending += 1;
+        if chunk.len() >= CHUNK_PRIMITIVES || k + 1 == motions.len() {
+            run_chunk(dexel, tool, motions, &chunk, opts, &mut report, &mut rapid);
+            report.primitives += chunk.len();
+            chunk.clear();
+            progress.advance(pending);
+            pending = 0;
+        }
+    }
+    progress.end();
+    report.rapid_cuts = rapid
+        .into_iter()
+        .map(|(k, depth)| MotionNote {
+            motion: k as usize,
+            line: motions.get(k as usize).map_or(0, |m| m.line),
+            amount: depth,
+        })
+        .collect();
+    report
+}
+
+/// Applies one chunk of primitives to every band in parallel.
+fn run_chunk(
+    dexel: &mut Dexel,
+    tool: &SimTool,
+    motions: &[Motion],
+    chunk: &[(Primitive, u32)],
+    opts: &SimOptions,
+    report: &mut SimReport,
+    rapid: &mut BTreeMap<u32, f64>,
+) {
+    let grid = *dexel.grid();
+    let rows = band_rows(&grid);
+    let boxes: Vec<[f64; 4]> = chunk.iter().map(|(p, _)| p.bounds()).collect();
+    let stats: Vec<BandStats> = dexel
+        .bands_mut(rows)
+        .map(|(b, (heights, last))| {
+            let j0 = b * rows;
+            let j1 = (j0 + rows).min(grid.ny) - 1;
+            let (y0, y1) = (grid.y(j0) - 0.5 * grid.cell, grid.y(j1) + 0.5 * grid.cell);
+            let mut st = BandStats::default();
+            for ((prim, motion), bx) in chunk.iter().zip(&boxes) {
+                if bx[3] < y0 || bx[1] > y1 {
+                    continue;
+                }
+                let Some((r0, r1)) = grid.rows(bx[1].max(y0), bx[3].min(y1)) else {
+                    continue;
+                };
+                let is_rapid = motions
+                    .get(*motion as usize)
+                    .is_some_and(|m| matches!(m.kind, MotionKind::Rapid));
+                for j in r0.max(j0)..=r1.min(j1) {
+                    let off = (j - j0) * grid.nx;
+                    let job = RowJob {
+                        tool,
+                        grid: &grid,
+                        row: j,
+                        motion: *motion,
+                        accept: opts.sample_tol,
+                    };
+                    let cut = prim.cut_row(
+                        &job,
+                        &mut heights[off..off + grid.nx],
+                        &mut last[off..off + grid.nx],
+                    );
+                    st.visited += cut.visited;
+                    st.lowered += cut.lowered;
+                    if is_rapid && cut.depth > RAPID_CUT_EPS {
+                        let e = st.rapid.entry(*motion).or_insert(0.0);
+                        *e = e.max(cut.depth);
+                    }
+                }
+            }
+            st
+        })
+        .collect();
+    for st in stats {
+        report.cells_visited += st.visited;
+        report.cells_lowered += st.lowered;
+        for (k, d) in st.rapid {
+            let e = rapid.entry(k).or_insert(0.0);
+            *e = e.max(d);
+        }
+    }
+}
+
+/// Rows per band: enough bands for load balance, few enough to keep the per-band
+/// scan of primitive boxes cheap.
+fn band_rows(grid: &Grid) -> usize {
+    (grid.ny / 128).clamp(2, 64)
+}
+
+/// How far the union of the primitives' boxes lies from the grid (`None` when it
+/// meets the grid or there is nothing).
+fn outside_gap(grid: &Grid, prims: &[Primitive]) -> Option<f64> {
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    for p in prims {
+        let q = p.bounds();
+        b = [
+            b[0].min(q[0]),
+            b[1].min(q[1]),
+            b[2].max(q[2]),
+            b[3].max(q[3]),
+        ];
+    }
+    let max = grid.max();
+    let dx = (grid.origin[0] - b[2]).max(b[0] - max[0]).max(0.0);
+    let dy = (grid.origin[1] - b[3]).max(b[1] - max[1]).max(0.0);
+    let gap = dx.hypot(dy);
+    (gap > 0.0 && gap.is_finite()).then_some(gap)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dexel::{NO_MOTION, StockInit};
+    use crate::progress::Quiet;
+    use swarf_geom::Point3;
+    use swarf_tool::Pose;
+
+    pub(crate) fn line(kind: MotionKind, a: [f64; 3], b: [f64; 3], line: usize) -> Motion {
+        Motion {
+            kind,
+            start: Pose::vertical(Point3::from(a)),
+            end: Pose::vertical(Point3::from(b)),
+            feed: 300.0,
+            line,
+        }
+    }
+
+    fn stock(top: f64) -> Dexel {
+        let g = Grid::covering([-10.0, -10.0], [10.0, 10.0], 0.1, 1 << 30).unwrap();
+        Dexel::new(g, StockInit::Box { top }).unwrap()
+    }
+
+    #[test]
+    fn records_lines_rapid_cuts_and_outside_moves() {
+        let tool = SimTool::new(&"ball:d=4".parse().unwrap()).unwrap();
+        let mut d = stock(0.0);
+        let moves = [
+            line(MotionKind::Rapid, [0.0, 0.0, 10.0], [-5.0, 0.0, 10.0], 1),
+            line(MotionKind::Linear, [-5.0, 0.0, 10.0], [-5.0, 0.0, -1.0], 2),
+            line(MotionKind::Linear, [-5.0, 0.0, -1.0], [5.0, 0.0, -1.0], 3),
+            line(MotionKind::Rapid, [5.0, 0.0, -1.0], [5.0, 5.0, -0.5], 4),
+            line(MotionKind::Linear, [50.0, 0.0, -1.0], [60.0, 0.0, -1.0], 5),
+        ];
+        let r = simulate(&mut d, &tool, &moves, &SimOptions::default(), &Quiet);
+        assert_eq!(r.motions, 5);
+        assert_eq!(r.rapid_cuts.len(), 1);
+        assert_eq!((r.rapid_cuts[0].motion, r.rapid_cuts[0].line), (3, 4));
+        // It climbs out of the slot the feed move cut: new material only beside it.
+        let depth = r.rapid_cuts[0].amount;
+        assert!(depth > 0.5 && depth < 1.0, "{:?}", r.rapid_cuts);
+        assert_eq!(r.outside.len(), 1);
+        assert_eq!(r.outside[0].line, 5);
+        assert!((r.outside[0].amount - 38.0).abs() < 1e-9);
+        let g = *d.grid();
+        let (i, j) = g.cell_of(0.05, 0.05).unwrap();
+        let k = j * g.nx + i;
+        assert_eq!(d.last_motion()[k], 2);
+        assert!((d.heights()[k] - (-1.0 + 2.0 - (4.0f64 - 0.0025).sqrt())).abs() < 1e-12);
+        let (i, j) = g.cell_of(-9.95, 9.95).unwrap();
+        assert_eq!(d.last_motion()[j * g.nx + i], NO_MOTION);
+    }
+
+    #[test]
+    fn deterministic_whatever_the_threads() {
+        let tool = SimTool::new(&"bull:d=6,r=1".parse().unwrap()).unwrap();
+        let moves: Vec<Motion> = (0..40)
+            .map(|k| {
+                let a = k as f64 * 0.37 - 7.0;
+                line(MotionKind::Linear, [a, -8.0, -0.3], [-a, 8.0, -1.2], k + 1)
+            })
+            .collect();
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut d = stock(0.0);
+                simulate(&mut d, &tool, &moves, &SimOptions::default(), &Quiet);
+                (d.heights().to_vec(), d.last_motion().to_vec())
+            })
+        };
+        assert!(run(1) == run(3));
+    }
+}
