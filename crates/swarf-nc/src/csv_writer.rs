@@ -1,8 +1,12 @@
 //! Pose CSV: one line `x,y,z,i,j,k` per cutting pose (tool tip and unit axis), passes
 //! in order, header `x,y,z,i,j,k`. Lengths in the requested units, 6 decimals.
+//! Comment lines after the header carry what the columns cannot: `# units=inch|mm`,
+//! `# feed=F` (output units per minute) and `# pass N` before each pass, so that the
+//! reader ([`crate::read::parse_pose_csv`]) does not join passes by cutting moves.
 
 use crate::number::Units;
 use std::fmt::Write as _;
+use crate::number::format_decimal;
 use swarf_path::Toolpath;
 
 /// The cutting poses of `toolpath` as CSV text.
@@ -12,7 +16,21 @@ use swarf_path::Toolpath;
 pub fn write_pose_csv(toolpath: &Toolpath, units: Units) -> String {
     let mut out = String::with_capacity(toolpath.pose_count() * 64 + 16);
     out.push_str("x,y,z,i,j,k\n");
-    for p in toolpath.passes.iter().flat_map(|p| &p.points) {
+    let unit = match units {
+        Units::Mm => "mm",
+        Units::Inch => "inch",
+    };
+    let feed = format_decimal(units.from_mm(toolpath.feeds.feed), units.decimals());
+    let _ = writeln!(out, "# units={unit}\n# feed={feed}");
+    for (k, pass) in toolpath.passes.iter().enumerate() {
+        let _ = writeln!(out, "# pass {k}");
+        write_pass(&mut out, pass, units);
+    }
+    out
+}
+
+fn write_pass(out: &mut String, pass: &swarf_path::Pass, units: Units) {
+    for p in &pass.points {
         let c = p.pose.cl;
         let a = p.pose.axis;
         let _ = writeln!(
@@ -26,5 +44,4 @@ pub fn write_pose_csv(toolpath: &Toolpath, units: Units) -> String {
             a.z
         );
     }
-    out
 }

@@ -111,7 +111,7 @@ pub fn write_gcode(moves: &[Move], feeds: &Feeds, opts: &GcodeOptions) -> Result
         }
         out.push('\n');
     }
-    write_footer(&mut out, opts);
+    write_footer(&mut out);
     Ok(out)
 }
 
@@ -183,7 +183,7 @@ fn write_header(out: &mut String, feeds: &Feeds, opts: &GcodeOptions) {
     let _ = writeln!(out, "S{} M3", feeds.spindle.round() as u64);
 }
 
-fn write_footer(out: &mut String, opts: &GcodeOptions) {
+fn write_footer(out: &mut String) {
     out.push_str("M5\n");
     out.push_str("M30\n");
     out.push_str("%\n");

@@ -159,17 +159,19 @@ fn pose_csv_round_trip() {
     let tp = toolpath(0.2);
     let text = write_pose_csv(&tp, Units::Mm);
     let p = parse_pose_csv(&text, "rt.csv").unwrap();
-    let poses: Vec<Pose> = tp
-        .passes
-        .iter()
-        .flat_map(|q| q.points.iter().map(|pp| pp.pose))
-        .collect();
-    assert_eq!(p.motions.len(), poses.len() - 1);
-    assert!((p.motions[0].start.cl - poses[0].cl).amax() <= 0.5e-6 + 1e-12);
-    for (m, want) in p.motions.iter().zip(&poses[1..]) {
-        assert!((m.end.cl - want.cl).amax() <= 0.5e-6 + 1e-12);
-        assert!((m.end.axis - want.axis).amax() < 1e-8);
-        assert_eq!((m.kind, m.feed), (MotionKind::Linear, 0.0));
+    // Passes are separated by `# pass` comments: no motion joins them.
+    let mut want = Vec::new();
+    for pass in &tp.passes {
+        for w in pass.points.windows(2) {
+            want.push((w[0].pose, w[1].pose));
+        }
+    }
+    assert_eq!(p.motions.len(), want.len());
+    for (m, (from, to)) in p.motions.iter().zip(&want) {
+        assert!((m.start.cl - from.cl).amax() <= 0.5e-6 + 1e-12);
+        assert!((m.end.cl - to.cl).amax() <= 0.5e-6 + 1e-12);
+        assert!((m.end.axis - to.axis).amax() < 1e-8);
+        assert_eq!((m.kind, m.feed), (MotionKind::Linear, tp.feeds.feed));
     }
 }
 

@@ -9,7 +9,10 @@
 //! Comment lines set what the format does not carry: `# feed=300` the feed in mm/min
 //! for the rows that follow (without it feeds are 0, "unknown"), and
 //! `# units=inch` (or `mm`, the default) the length unit of the rows that follow
-//! (a `feed=` after `units=inch` is in inches per minute). Other comments are ignored.
+//! (a `feed=` after `units=inch` is in inches per minute). A comment starting with
+//! `pass` (`# pass 3`) starts a new pass: the tool leaves the material between
+//! passes, so no motion joins the last pose before it to the first pose after it.
+//! Other comments are ignored.
 
 use crate::error::NcError;
 use crate::read::arc::MM_PER_INCH;
@@ -124,6 +127,10 @@ impl CsvState {
 
     /// `# key=value` settings; other comments are ignored.
     fn comment(&mut self, comment: &str, line: usize, raw: &str) -> Result<(), Diagnostic> {
+        if comment.trim().to_ascii_lowercase().starts_with("pass") {
+            self.pose = None;
+            return Ok(());
+        }
         let Some((key, value)) = comment.split_once('=') else {
             return Ok(());
         };
@@ -224,6 +231,14 @@ impl CsvState {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn pass_comments_break_the_cut() {
+        let text = "x,y,z\n# pass 0\n0,0,0\n1,0,0\n# pass 1\n1,5,0\n0,5,0\n";
+        let p = parse_pose_csv(text, "t.csv").unwrap();
+        assert_eq!(p.motions.len(), 2);
+        assert_eq!(p.motions[1].start.cl, Point3::new(1.0, 5.0, 0.0));
+    }
 
     #[test]
     fn header_rows_and_settings() {
