@@ -1,1 +1,46 @@
-//! swarf-io.
+//! swarf-io: reading and writing swarf's files.
+//!
+//! - [`part`]: part files (TOML patches, `parts/README.md`), and [`builtin`] copies of
+//!   the shared test parts embedded in the binary;
+//! - [`stl`], [`obj`], [`mesh_file`]: triangle meshes;
+//! - [`csv`]: numeric point lists;
+//! - [`atomic`]: writes that never leave a half-written file behind.
+//!
+//! Every error is an [`IoError`] whose message names the file, the line or byte
+//! offset where relevant, and what was expected.
+
+pub mod atomic;
+pub mod builtin;
+pub mod csv;
+pub mod error;
+pub mod mesh_file;
+pub mod obj;
+pub mod part;
+pub mod stl;
+
+pub use atomic::{write_atomic, write_atomic_with};
+pub use builtin::{builtin_part, builtin_parts};
+pub use csv::{parse_xy_points, read_xy_points};
+pub use error::{At, IoError};
+pub use mesh_file::read_mesh;
+pub use obj::{parse_obj, read_obj};
+pub use part::{parse_part, read_part};
+pub use stl::{parse_stl, read_stl, write_stl};
+
+/// Scratch directories for tests.
+#[cfg(test)]
+pub(crate) mod testutil {
+    use std::path::PathBuf;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// A fresh empty directory under the system temp dir, unique to this process and
+    /// call.
+    pub fn scratch_dir(name: &str) -> PathBuf {
+        static COUNT: AtomicUsize = AtomicUsize::new(0);
+        let n = COUNT.fetch_add(1, Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!("swarf-io-{}-{n}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create scratch dir");
+        dir
+    }
+}

@@ -1,0 +1,66 @@
+//! Reading a mesh file of any supported format, chosen by its extension.
+
+use crate::error::IoError;
+use crate::obj::read_obj;
+use crate::stl::read_stl;
+use std::path::Path;
+use swarf_geom::TriMesh;
+
+/// Reads a `.stl` or `.obj` mesh (extension in any case).
+///
+/// # Units
+/// Coordinates as stored (swarf assumes mm).
+///
+/// # Errors
+/// [`IoError::UnsupportedFormat`] for another extension; otherwise those of
+/// [`read_stl`] and [`read_obj`].
+///
+/// # Example
+/// ```
+/// let e = swarf_io::read_mesh(std::path::Path::new("part.ply")).unwrap_err();
+/// assert_eq!(e.to_string(), "part.ply: unsupported mesh file type \".ply\"; expected .stl or .obj");
+/// ```
+pub fn read_mesh(path: &Path) -> Result<TriMesh, IoError> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("stl") => read_stl(path),
+        Some("obj") => read_obj(path),
+        other => Err(IoError::UnsupportedFormat {
+            file: path.display().to_string(),
+            found: other.map_or("no extension".to_owned(), |e| format!(".{e}")),
+        }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testutil::scratch_dir;
+    use swarf_geom::Point3;
+
+    #[test]
+    fn dispatches_on_extension_in_any_case() {
+        let dir = scratch_dir("mesh-file");
+        let t = [
+            Point3::origin(),
+            Point3::new(1.0, 0.0, 0.0),
+            Point3::new(0.0, 1.0, 0.0),
+        ];
+        let mesh = TriMesh::from_triangles(&[t]);
+        crate::stl::write_stl(&dir.join("a.STL"), &mesh, "a").unwrap();
+        assert_eq!(read_mesh(&dir.join("a.STL")).unwrap(), mesh);
+        std::fs::write(dir.join("b.Obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        assert_eq!(read_mesh(&dir.join("b.Obj")).unwrap(), mesh);
+        let e = read_mesh(&dir.join("noext")).unwrap_err().to_string();
+        assert!(
+            e.ends_with(
+                "noext: unsupported mesh file type \"no extension\"; expected .stl or .obj"
+            ),
+            "{e}"
+        );
+        let e = read_mesh(&dir.join("missing.stl")).unwrap_err().to_string();
+        assert!(e.contains("missing.stl: cannot read"), "{e}");
+    }
+}
