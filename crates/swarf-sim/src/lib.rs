@@ -10,6 +10,7 @@
 //!   Newton on patches or by ray casts on meshes ([`raster`]).
 //! - [`deviation`]: gouge, excess and scallop crests against the design, by region.
 //! - [`simulate`]: a program over a stock, in parallel row bands, deterministically.
+//! - [`verify`]: all of it for a program, a tool and a design.
 //!
 //! Units: millimetres, radians, mm/min.
 
@@ -25,6 +26,7 @@ pub mod simulate;
 pub mod sweep;
 pub mod sweep_linear;
 pub mod sweep_tilted;
+pub mod verify;
 
 pub use design::{Design, DesignField, DesignSurface};
 pub use deviation::{Deviation, DeviationOptions, DeviationSummary};
@@ -35,3 +37,4 @@ pub use grid::Grid;
 pub use progress::{Progress, Quiet};
 pub use simulate::{SimOptions, SimReport, simulate};
 pub use sweep::{Primitive, SimTool, Sweep};
+pub use verify::{ProgramStats, StockSpec, Verification, VerifyOptions, verify};

@@ -1,0 +1,263 @@
+//! The whole verification: grid over the design, design heights, stock, simulation of
+//! the program, deviation, and the program's own figures (time, lengths, passes).
+//!
+//! Machining time follows the program: each cutting motion at its own feed, rapids at
+//! the machine's rapid rate (a parameter: programs do not state it). A cutting motion
+//! without a feed (APT CL without `FEDRAT`) adds its length to
+//! [`ProgramStats::unknown_feed_length_mm`] and nothing to the time.
+
+use crate::design::{Design, DesignField, DesignSurface};
+use crate::deviation::{Deviation, DeviationOptions, analyse, vertical_deviation};
+use crate::dexel::{Dexel, StockInit};
+use crate::error::SimError;
+use crate::grid::{DEFAULT_MAX_BYTES, Grid};
+use crate::progress::Progress;
+use crate::simulate::{SimOptions, SimReport, simulate};
+use crate::sweep::SimTool;
+use serde::Serialize;
+use std::time::Instant;
+use swarf_geom::TriMesh;
+use swarf_nc::read::{MotionKind, Program};
+use swarf_tool::Cutter;
+
+/// Default cell size as a multiple of the tolerance.
+pub const CELL_PER_TOL: f64 = 5.0;
+
+/// Where the stock comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StockSpec {
+    /// A block over the design's XY box; top at `top` (default: the design's top).
+    Box {
+        /// Top height, mm.
+        top: Option<f64>,
+    },
+    /// The design raised by an allowance, mm.
+    Offset {
+        /// Allowance, mm.
+        allowance: f64,
+    },
+    /// The upper envelope of a mesh (no material where the mesh is absent).
+    Mesh(TriMesh),
+}
+
+impl StockSpec {
+    /// Short description for reports.
+    pub fn describe(&self) -> String {
+        match self {
+            StockSpec::Box { top: Some(t) } => format!("box, top {t} mm"),
+            StockSpec::Box { top: None } => "box (the design's bounding box)".into(),
+            StockSpec::Offset { allowance } => format!("design + {allowance} mm"),
+            StockSpec::Mesh(m) => format!("mesh ({} triangles)", m.len()),
+        }
+    }
+}
+
+/// Verification options.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VerifyOptions {
+    /// Cell size, mm (default [`CELL_PER_TOL`] times the tolerance).
+    pub cell: Option<f64>,
+    /// Gouge / excess tolerance, mm.
+    pub tol: f64,
+    /// Material allowed above the design (scallop limit), mm.
+    pub allowed_excess: f64,
+    /// The stock.
+    pub stock: StockSpec,
+    /// Memory limit for the grid, bytes.
+    pub max_bytes: u64,
+    /// Sampling bound for arcs and five-axis motions, mm (default: tol / 4).
+    pub sample_tol: Option<f64>,
+    /// Machine rapid rate for the time estimate, mm/min.
+    pub rapid_rate: f64,
+    /// Regions of each kind to list.
+    pub max_regions: usize,
+}
+
+impl Default for VerifyOptions {
+    fn default() -> Self {
+        VerifyOptions {
+            cell: None,
+            tol: 0.01,
+            allowed_excess: 0.0,
+            stock: StockSpec::Offset { allowance: 0.5 },
+            max_bytes: DEFAULT_MAX_BYTES,
+            sample_tol: None,
+            rapid_rate: 5000.0,
+            max_regions: 20,
+        }
+    }
+}
+
+/// The program's own figures.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct ProgramStats {
+    /// Motions read.
+    pub motions: usize,
+    /// Rapid motions.
+    pub rapids: usize,
+    /// Arc motions.
+    pub arcs: usize,
+    /// Passes: runs of cutting motions between rapids.
+    pub passes: usize,
+    /// Length of cutting motions, mm.
+    pub cutting_length_mm: f64,
+    /// Length of rapid motions, mm.
+    pub rapid_length_mm: f64,
+    /// Cutting length without a feed rate, mm (not in the time).
+    pub unknown_feed_length_mm: f64,
+    /// Machining time estimate, s.
+    pub time_s: f64,
+}
+
+/// Wall times of the stages, s.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct Timings {
+    /// Design heights.
+    pub design_s: f64,
+    /// Material removal.
+    pub simulate_s: f64,
+    /// Deviation analysis.
+    pub deviation_s: f64,
+}
+
+/// Everything a verification found.
+#[derive(Debug, Clone)]
+pub struct Verification {
+    /// The grid.
+    pub grid: Grid,
+    /// The machined stock.
+    pub stock: Dexel,
+    /// Design heights (and normals).
+    pub design: DesignField,
+    /// Deviation per cell and its figures.
+    pub deviation: Deviation,
+    /// What the simulation did.
+    pub sim: SimReport,
+    /// The program's figures.
+    pub program: ProgramStats,
+    /// Source line of each motion.
+    pub lines: Vec<usize>,
+    /// Sampling bound used, mm.
+    pub sample_tol: f64,
+    /// Stage times.
+    pub timings: Timings,
+}
+
+/// Verifies `program`, cut with `cutter`, against `design`.
+///
+/// # Errors
+/// Invalid options (tolerance, cell size), a grid that does not fit in
+/// `opts.max_bytes`, an empty design, an unusable cutter.
+pub fn verify(
+    design: Design<'_>,
+    program: &Program,
+    cutter: &Cutter,
+    opts: &VerifyOptions,
+    progress: &dyn Progress,
+) -> Result<Verification, SimError> {
+    let tol = SimError::check_positive("tolerance", opts.tol)?;
+    SimError::check_non_negative("allowed excess", opts.allowed_excess)?;
+    SimError::check_positive("rapid rate", opts.rapid_rate)?;
+    let cell = SimError::check_positive("cell size", opts.cell.unwrap_or(CELL_PER_TOL * tol))?;
+    let sample_tol =
+        SimError::check_positive("sample tolerance", opts.sample_tol.unwrap_or(0.25 * tol))?;
+    let tool = SimTool::new(cutter)?;
+    let t0 = Instant::now();
+    let surface = DesignSurface::new(design)?;
+    let b = surface.bounds();
+    let grid = Grid::covering([b.min.x, b.min.y], [b.max.x, b.max.y], cell, opts.max_bytes)?;
+    let field = surface.heights(&grid, false, progress);
+    let stock_heights;
+    let init = match &opts.stock {
+        StockSpec::Box { top } => StockInit::Box {
+            top: top.unwrap_or(b.max.z),
+        },
+        StockSpec::Offset { allowance } => StockInit::Offset {
+            design: &field.heights,
+            allowance: *allowance,
+        },
+        StockSpec::Mesh(mesh) => {
+            let s = DesignSurface::new(Design::Mesh(mesh))?;
+            stock_heights = s.heights(&grid, false, progress).heights;
+            StockInit::Heights(&stock_heights)
+        }
+    };
+    let mut stock = Dexel::new(grid, init)?;
+    let t1 = Instant::now();
+    let sim = simulate(
+        &mut stock,
+        &tool,
+        &program.motions,
+        &SimOptions { sample_tol },
+        progress,
+    );
+    let t2 = Instant::now();
+    let lines: Vec<usize> = program.motions.iter().map(|m| m.line).collect();
+    let values = vertical_deviation(stock.heights(), &field.heights);
+    let dopts = DeviationOptions {
+        tol,
+        allowed_excess: opts.allowed_excess,
+        valley_reach: tool.radius(),
+        max_regions: opts.max_regions,
+    };
+    let deviation = analyse(
+        &grid,
+        values,
+        &field.heights,
+        stock.last_motion(),
+        &lines,
+        &dopts,
+    );
+    let t3 = Instant::now();
+    Ok(Verification {
+        grid,
+        stock,
+        design: field,
+        deviation,
+        sim,
+        program: program_stats(program, opts.rapid_rate),
+        lines,
+        sample_tol,
+        timings: Timings {
+            design_s: (t1 - t0).as_secs_f64(),
+            simulate_s: (t2 - t1).as_secs_f64(),
+            deviation_s: (t3 - t2).as_secs_f64(),
+        },
+    })
+}
+
+/// Time, lengths and passes of a program (see the module doc).
+pub fn program_stats(program: &Program, rapid_rate: f64) -> ProgramStats {
+    let mut s = ProgramStats {
+        motions: program.motions.len(),
+        ..ProgramStats::default()
+    };
+    let mut in_pass = false;
+    for m in &program.motions {
+        let len = m.length();
+        match m.kind {
+            MotionKind::Rapid => {
+                s.rapids += 1;
+                s.rapid_length_mm += len;
+                s.time_s += 60.0 * len / rapid_rate;
+                in_pass = false;
+            }
+            kind => {
+                if matches!(kind, MotionKind::Arc { .. }) {
+                    s.arcs += 1;
+                }
+                if !in_pass {
+                    s.passes += 1;
+                    in_pass = true;
+                }
+                s.cutting_length_mm += len;
+                if m.feed > 0.0 {
+                    s.time_s += 60.0 * len / m.feed;
+                } else {
+                    s.unknown_feed_length_mm += len;
+                }
+            }
+        }
+    }
+    s
+}

@@ -1,0 +1,230 @@
+//! The simulation against closed forms at cell centres (issue 5, "Prove it").
+
+use swarf_geom::{Part, Patch, Point3};
+use swarf_nc::read::{Motion, MotionKind, Program};
+use swarf_sim::sweep::SimTool;
+use swarf_sim::{
+    Design, Dexel, Grid, Quiet, SimOptions, StockInit, StockSpec, VerifyOptions, simulate, verify,
+};
+use swarf_tool::{Cutter, Pose};
+
+fn mv(kind: MotionKind, a: [f64; 3], b: [f64; 3], line: usize) -> Motion {
+    Motion {
+        kind,
+        start: Pose::vertical(Point3::from(a)),
+        end: Pose::vertical(Point3::from(b)),
+        feed: 300.0,
+        line,
+    }
+}
+
+fn feed(a: [f64; 3], b: [f64; 3], line: usize) -> Motion {
+    mv(MotionKind::Linear, a, b, line)
+}
+
+/// A grid whose cell centres sit on multiples of 1/8 mm.
+fn grid(half_x: f64, half_y: f64) -> Grid {
+    let c = 0.125;
+    Grid::covering(
+        [-half_x - c / 2.0, -half_y - c / 2.0],
+        [half_x + c / 2.0, half_y + c / 2.0],
+        c,
+        1 << 30,
+    )
+    .unwrap()
+}
+
+fn run(cutter: &str, top: f64, g: Grid, moves: &[Motion]) -> Dexel {
+    let tool = SimTool::new(&cutter.parse::<Cutter>().unwrap()).unwrap();
+    let mut d = Dexel::new(g, StockInit::Box { top }).unwrap();
+    simulate(&mut d, &tool, moves, &SimOptions::default(), &Quiet);
+    d
+}
+
+#[test]
+fn two_ball_passes_leave_the_scallop() {
+    let (r, s) = (4.0, 2.0);
+    let g = grid(10.0, 6.0);
+    let moves = [
+        feed([-12.0, -s / 2.0, 0.0], [12.0, -s / 2.0, 0.0], 1),
+        feed([12.0, s / 2.0, 0.0], [-12.0, s / 2.0, 0.0], 2),
+    ];
+    let d = run("ball:d=8", 5.0, g, &moves);
+    let h = |rho: f64| {
+        if rho <= r {
+            r - (r * r - rho * rho).sqrt()
+        } else {
+            f64::INFINITY
+        }
+    };
+    for j in 0..g.ny {
+        for i in 0..g.nx {
+            let y = g.y(j);
+            let want = h((y - s / 2.0).abs()).min(h((y + s / 2.0).abs())).min(5.0);
+            assert!((d.height(i, j) - want).abs() < 1e-9, "y {y}");
+        }
+    }
+    let (_, mid) = g.cell_of(0.0, 0.0).unwrap();
+    let scallop = r - (r * r - s * s / 4.0).sqrt();
+    assert!((d.height(g.nx / 2, mid) - scallop).abs() < 1e-9);
+}
+
+#[test]
+fn flat_plunge_leaves_a_disc() {
+    let g = grid(6.0, 6.0);
+    let moves = [feed([0.5, 0.25, 5.0], [0.5, 0.25, -1.0], 1)];
+    let d = run("flat:d=6", 0.0, g, &moves);
+    for j in 0..g.ny {
+        for i in 0..g.nx {
+            let [x, y] = g.centre(i, j);
+            let inside = (x - 0.5).hypot(y - 0.25) <= 3.0;
+            assert_eq!(d.height(i, j), if inside { -1.0 } else { 0.0 }, "{x} {y}");
+        }
+    }
+}
+
+#[test]
+fn bull_nose_pass_leaves_its_profile() {
+    let g = grid(10.0, 7.0);
+    let moves = [feed([-15.0, 0.0, -1.0], [15.0, 0.0, -1.0], 1)];
+    let d = run("bull:d=10,r=2", 0.0, g, &moves);
+    let h = |rho: f64| {
+        if rho <= 3.0 {
+            0.0
+        } else if rho <= 5.0 {
+            2.0 - (4.0 - (rho - 3.0) * (rho - 3.0)).sqrt()
+        } else {
+            f64::INFINITY
+        }
+    };
+    for j in 0..g.ny {
+        let want = (-1.0 + h(g.y(j).abs())).min(0.0);
+        for i in 0..g.nx {
+            assert!((d.height(i, j) - want).abs() < 1e-9, "y {}", g.y(j));
+        }
+    }
+}
+
+#[test]
+fn one_long_move_equals_a_thousand_small_ones() {
+    for cutter in [
+        "ball:d=6",
+        "bull:d=8,r=1.5",
+        "flat:d=4",
+        "cone:d=6,angle=90",
+    ] {
+        let g = grid(12.0, 8.0);
+        // End points off the cell lattice: no centre at exactly the radius from them,
+        // where rounding alone decides whether a tool touches.
+        let (a, b) = ([-9.01, -5.03, -0.8], [9.02, 5.47, 0.6]);
+        let long = run(cutter, 1.0, g, &[feed(a, b, 1)]);
+        let pieces: Vec<Motion> = (0..1000)
+            .map(|k| {
+                let at = |t: f64| [0, 1, 2].map(|c| a[c] + (b[c] - a[c]) * t);
+                feed(at(k as f64 / 1000.0), at((k + 1) as f64 / 1000.0), k + 1)
+            })
+            .collect();
+        let split = run(cutter, 1.0, g, &pieces);
+        let worst = long
+            .heights()
+            .iter()
+            .zip(split.heights())
+            .map(|(p, q)| (p - q).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-9, "{cutter}: {worst}");
+        // A Z-map that only places the tool at the end points (no sweep) is far off.
+        let ends = run(cutter, 1.0, g, &[feed(a, a, 1), feed(b, b, 2)]);
+        let gap = long
+            .heights()
+            .iter()
+            .zip(ends.heights())
+            .map(|(p, q)| (p - q).abs())
+            .fold(0.0, f64::max);
+        assert!(gap > 0.5, "{cutter}: {gap}");
+    }
+}
+
+/// A flat design z = 0 over [0, 40] x [0, 20], a ball raster on it, and the same with
+/// one CL point pushed 0.05 mm down.
+fn raster(plant: bool) -> (Program, usize) {
+    let mut program = Program::new("raster");
+    let mut planted_line = 0;
+    let mut at = [0.0625, 0.0625, 5.0];
+    let mut go = |to: [f64; 3], kind: MotionKind, program: &mut Program| {
+        let line = program.motions.len() + 1;
+        program.motions.push(mv(kind, at, to, line));
+        at = to;
+        line
+    };
+    for k in 0..14 {
+        let y = 0.0625 + 1.5 * k as f64;
+        go([-4.0, y, 5.0], MotionKind::Rapid, &mut program);
+        go([-4.0, y, 0.0], MotionKind::Linear, &mut program);
+        for s in 0..=22 {
+            let planted = plant && k == 6 && s == 12;
+            let x = if planted {
+                20.0625
+            } else {
+                -4.0 + 2.0 * s as f64
+            };
+            let z = if planted { -0.05 } else { 0.0 };
+            let l = go([x, y, z], MotionKind::Linear, &mut program);
+            if planted {
+                planted_line = l;
+            }
+        }
+        go([40.0, y, 5.0], MotionKind::Rapid, &mut program);
+    }
+    (program, planted_line)
+}
+
+fn flat_part() -> Part {
+    let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
+    Part {
+        name: "plane".into(),
+        patches: vec![
+            Patch::bezier(
+                [1, 1],
+                vec![p(0.0, 0.0), p(0.0, 20.0), p(40.0, 0.0), p(40.0, 20.0)],
+            )
+            .unwrap(),
+        ],
+    }
+}
+
+#[test]
+fn a_planted_gouge_is_found_where_and_as_deep_as_planted() {
+    let part = flat_part();
+    let cutter: Cutter = "ball:d=6".parse().unwrap();
+    let opts = VerifyOptions {
+        cell: Some(0.125),
+        stock: StockSpec::Offset { allowance: 0.5 },
+        ..VerifyOptions::default()
+    };
+    let (clean, _) = raster(false);
+    let v = verify(Design::Part(&part), &clean, &cutter, &opts, &Quiet).unwrap();
+    let s = &v.deviation.summary;
+    assert_eq!(s.gouge.cells, 0, "{:?}", s.gouges.first());
+    assert!(s.min.unwrap() > -1e-9);
+
+    let (dirty, line) = raster(true);
+    let v = verify(Design::Part(&part), &dirty, &cutter, &opts, &Quiet).unwrap();
+    let s = &v.deviation.summary;
+    assert_eq!(s.gouge.regions, 1);
+    let g = &s.gouges[0];
+    assert!((g.worst + 0.05).abs() < 1e-9, "{g:?}");
+    assert_eq!(g.at[0..2], [20.0625, 9.0625]);
+    assert_eq!(g.line, Some(line));
+    // The moves in and out of the planted point cut a tapered groove: depth
+    // D(t) = D0 (1 - t / L) along each (L their lengths), gouging where the ball's
+    // section D - y^2 / (2 r) is below -tol, so its area is about
+    // sum over both moves of 2 sqrt(2 r D0) L (2/3) (1 - tol / D0)^1.5.
+    let (r, d0, tol) = (3.0, 0.05, 0.01);
+    let lengths = 2.0625f64.hypot(d0) + 1.9375f64.hypot(d0);
+    let area = 2.0 * (2.0 * r * d0).sqrt() * lengths * (2.0 / 3.0) * (1.0 - tol / d0).powf(1.5);
+    assert!(
+        (g.area_mm2 - area).abs() < 0.1 * area,
+        "{} vs {area}",
+        g.area_mm2
+    );
+}
