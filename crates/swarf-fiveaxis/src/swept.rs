@@ -1,0 +1,211 @@
+//! The machined surface of a tool path as a mesh of generating curves (thesis 000
+//! §3.3.1 and §5.4.2: corresponding points of consecutive generating curves "joined
+//! with straight lines").
+//!
+//! Along a pass, each half of the tool gives one generating curve per pose
+//! ([`crate::gencurve`]). Consecutive curves have the same layout and are joined point
+//! by point into strips of triangles: the ruled surface of the lines between
+//! corresponding inserts or cards. The first and last poses add the tool's
+//! lower surface up to the wall height (the thesis adds the back half at the start and
+//! the front half at the end; the whole tool is added here because the tool also comes
+//! down and leaves along its axis there).
+//!
+//! The machined surface at `(x, y)` is the lowest point of the mesh above it (a
+//! vertical ray through the union of the swept volumes' lower boundaries), found with
+//! the XY index of swarf-geom; sampling it along a line on a section plane gives the
+//! section profiles that the thesis compares with measurements and with the Z-map.
+
+use crate::gencurve::{CurveOptions, Half, PoseCurve};
+use crate::profile_point::full_radius_height;
+use swarf_geom::mesh::XyIndex;
+use swarf_geom::{GeomError, MeshBuilder, Point3, TriMesh};
+use swarf_tool::{Pose, Profile, Segment};
+
+/// Twice a triangle's area below which it is dropped from the mesh (mm^2).
+const MIN_DOUBLE_AREA: f64 = 1e-12;
+/// Chords per profile arc in the end caps.
+const CAP_ARC_PIECES: usize = 24;
+/// Meridians around the axis in the end caps.
+const CAP_MERIDIANS: usize = 96;
+
+/// The machined surface of one or more passes.
+#[derive(Debug, Clone)]
+pub struct SweptSurface {
+    /// The surface as triangles (mm).
+    pub mesh: TriMesh,
+    index: XyIndex,
+}
+
+impl SweptSurface {
+    /// The swept surface of the passes (each a list of poses with unit axes).
+    ///
+    /// # Errors
+    /// [`GeomError::InvalidMesh`] when a pose is not finite.
+    pub fn new(
+        profile: &Profile,
+        passes: &[Vec<Pose>],
+        opts: &CurveOptions,
+    ) -> Result<SweptSurface, GeomError> {
+        let mut b = MeshBuilder::new();
+        for poses in passes {
+            add_pass(&mut b, profile, poses, opts)?;
+        }
+        let mesh = b.finish();
+        let index = XyIndex::build(&mesh);
+        Ok(SweptSurface { mesh, index })
+    }
+
+    /// The lowest point of the swept surface above `(x, y)`: the machined height there;
+    /// `None` where the tool never passed.
+    ///
+    /// # Units
+    /// mm.
+    pub fn height(&self, x: f64, y: f64) -> Option<f64> {
+        let e = 1e-9;
+        let mut ids = Vec::new();
+        self.index
+            .query_rect([x - e, y - e], [x + e, y + e], &mut ids);
+        ids.iter()
+            .filter_map(|&t| vertical_hit(&self.mesh.triangle(t as usize), x, y))
+            .reduce(f64::min)
+    }
+
+    /// The machined surface sampled at `points` (their z is ignored): one height per
+    /// point, `None` where the tool never passed.
+    pub fn heights(&self, points: &[Point3]) -> Vec<Option<f64>> {
+        points.iter().map(|p| self.height(p.x, p.y)).collect()
+    }
+}
+
+/// Height of the triangle above `(x, y)`, when the point lies in its XY projection.
+fn vertical_hit(t: &[Point3; 3], x: f64, y: f64) -> Option<f64> {
+    let (ax, ay) = (t[1].x - t[0].x, t[1].y - t[0].y);
+    let (bx, by) = (t[2].x - t[0].x, t[2].y - t[0].y);
+    let det = ax * by - ay * bx;
+    if det.abs() < 1e-18 {
+        return None;
+    }
+    let (px, py) = (x - t[0].x, y - t[0].y);
+    let s = (px * by - py * bx) / det;
+    let r = (ax * py - ay * px) / det;
+    let e = 1e-12;
+    (s >= -e && r >= -e && s + r <= 1.0 + e)
+        .then(|| t[0].z + s * (t[1].z - t[0].z) + r * (t[2].z - t[0].z))
+}
+
+fn add_pass(
+    b: &mut MeshBuilder,
+    profile: &Profile,
+    poses: &[Pose],
+    opts: &CurveOptions,
+) -> Result<(), GeomError> {
+    let top = opts
+        .wall_height
+        .unwrap_or_else(|| full_radius_height(profile))
+        .min(profile.top().z);
+    if let Some(first) = poses.first() {
+        add_cap(b, profile, first, top)?;
+    }
+    if poses.len() > 1
+        && let Some(last) = poses.last()
+    {
+        add_cap(b, profile, last, top)?;
+    }
+    for half in [Half::Front, Half::Back] {
+        let mut prev: Option<Vec<Point3>> = None;
+        for i in 0..poses.len() {
+            let curve = PoseCurve::new(profile, poses, i, half, *opts).curve();
+            if let Some(p) = &prev {
+                add_strip(b, p, &curve)?;
+            }
+            prev = Some(curve);
+        }
+    }
+    Ok(())
+}
+
+fn add_strip(b: &mut MeshBuilder, c0: &[Point3], c1: &[Point3]) -> Result<(), GeomError> {
+    for j in 0..c0.len().min(c1.len()).saturating_sub(1) {
+        add_triangle(b, [c0[j], c0[j + 1], c1[j + 1]])?;
+        add_triangle(b, [c0[j], c1[j + 1], c1[j]])?;
+    }
+    Ok(())
+}
+
+fn add_triangle(b: &mut MeshBuilder, t: [Point3; 3]) -> Result<(), GeomError> {
+    if (t[1] - t[0]).cross(&(t[2] - t[0])).norm() > MIN_DOUBLE_AREA {
+        b.push_triangle(t)?;
+    }
+    Ok(())
+}
+
+/// The tool's surface at `pose` from the tip up to height `top`, revolved.
+fn add_cap(b: &mut MeshBuilder, profile: &Profile, pose: &Pose, top: f64) -> Result<(), GeomError> {
+    let mut meridian = vec![(0.0, 0.0)];
+    for seg in profile.segments() {
+        let pieces = match seg {
+            Segment::Line { .. } => 1,
+            Segment::Arc { .. } => CAP_ARC_PIECES,
+        };
+        for i in 1..=pieces {
+            let (q, _) = seg.point_at(seg.length() * i as f64 / pieces as f64);
+            if q.z > top + 1e-12 {
+                break;
+            }
+            meridian.push((q.rho, q.z));
+        }
+    }
+    let (b1, b2) = pose.frame();
+    let ring = |m: usize| -> Vec<Point3> {
+        let (s, c) = (std::f64::consts::TAU * m as f64 / CAP_MERIDIANS as f64).sin_cos();
+        let u = c * b1 + s * b2;
+        meridian
+            .iter()
+            .map(|q| pose.cl + q.0 * u + q.1 * pose.axis)
+            .collect()
+    };
+    let mut prev = ring(0);
+    for m in 1..=CAP_MERIDIANS {
+        let next = ring(m % CAP_MERIDIANS);
+        add_strip(b, &prev, &next)?;
+        prev = next;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarf_geom::Vec3;
+    use swarf_tool::Cutter;
+
+    #[test]
+    fn straight_bull_pass_leaves_its_profile() {
+        // A vertical bull (d 10, r 2) moving along +y at z = 0: across the pass the
+        // machined surface is the tool's profile, flat for |x| <= 3, then the corner.
+        let profile = Cutter::bull(10.0, 2.0, Some(20.0)).unwrap().profile();
+        let poses: Vec<Pose> = (0..=10)
+            .map(|i| Pose::vertical(Point3::new(0.0, i as f64, 0.0)))
+            .collect();
+        let opts = CurveOptions {
+            wall_cards: 16,
+            ..CurveOptions::default()
+        };
+        let s = SweptSurface::new(&profile, &[poses], &opts).unwrap();
+        for x in [-2.9, -1.0, 0.0, 0.7, 2.5] {
+            let z = s.height(x, 5.3).unwrap();
+            assert!(z.abs() < 1e-9, "x {x}: {z}");
+        }
+        for x in [3.5f64, 4.0, 4.6, -4.2] {
+            let expected = 2.0 - (4.0 - (x.abs() - 3.0).powi(2)).sqrt();
+            let z = s.height(x, 5.3).unwrap();
+            // Chords of 16 cards over the quarter arc of radius 2: sagitta 2 (1 -
+            // cos(pi / 64)) = 2.4 um, more in z where the arc is steep.
+            assert!((z - expected).abs() < 0.006, "x {x}: {z} vs {expected}");
+        }
+        assert!(s.height(0.0, 20.0).is_none());
+        assert!(s.height(6.0, 5.0).is_none());
+        assert!(!s.mesh.is_empty());
+        let _ = Vec3::z();
+    }
+}
