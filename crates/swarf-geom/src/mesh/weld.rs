@@ -126,11 +126,22 @@ impl MeshBuilder {
         self.triangles.len()
     }
 
-    /// The mesh built so far (the welding table is dropped).
+    /// The mesh built so far. The welding table is dropped first, then the lists are
+    /// shrunk to their lengths (large blocks shrink in place with the system
+    /// allocator, so this does not copy).
     pub fn finish(self) -> TriMesh {
+        let MeshBuilder {
+            mut vertices,
+            mut triangles,
+            table,
+            ..
+        } = self;
+        drop(table);
+        vertices.shrink_to_fit();
+        triangles.shrink_to_fit();
         TriMesh {
-            vertices: self.vertices,
-            triangles: self.triangles,
+            vertices,
+            triangles,
         }
     }
 

@@ -175,11 +175,12 @@ pub fn write_stl(path: &Path, mesh: &TriMesh, name: &str) -> Result<(), IoError>
     write_atomic_with(path, |w| binary::write(w, mesh, name, count))
 }
 
-/// Builder sized for a mesh of `triangles` triangles sharing vertices (about half as
-/// many vertices as triangles in a closed mesh); it grows when that is too few.
+/// Builder sized for a mesh of `triangles` triangles sharing vertices (a closed mesh
+/// has about half as many vertices as triangles, an open one a few more); it grows
+/// when that is too few.
 fn builder_for(triangles: u64) -> MeshBuilder {
     let t = usize::try_from(triangles).unwrap_or(usize::MAX);
-    MeshBuilder::with_capacity(t / 2 + 16, t)
+    MeshBuilder::with_capacity(t / 2 + t / 32 + 16, t)
 }
 
 #[cfg(test)]
