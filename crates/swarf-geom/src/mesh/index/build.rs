@@ -254,4 +254,38 @@ mod tests {
             assert!(f64::from(round_up(v)) > v, "{v}");
         }
     }
+
+    /// Same index on one thread and on four, for a mesh spanning many rayon chunks.
+    #[test]
+    fn build_is_deterministic_across_thread_counts() {
+        use crate::math::Point3;
+        let p = |i: usize, j: usize| {
+            let (x, y) = (i as f64 * 0.37, j as f64 * 0.41);
+            Point3::new(x + (y * 3.0).sin(), y, x.cos())
+        };
+        let soup: Vec<[Point3; 3]> = (0..120 * 120)
+            .flat_map(|k| {
+                let (i, j) = (k % 120, k / 120);
+                [
+                    [p(i, j), p(i + 1, j), p(i, j + 1)],
+                    [p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)],
+                ]
+            })
+            .collect();
+        let mesh = TriMesh::from_triangles(&soup);
+        let on = |n: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap();
+            pool.install(|| XyIndex::build(&mesh))
+        };
+        let (a, b) = (on(1), on(4));
+        assert_eq!(a.ids.len(), mesh.len());
+        assert_eq!(
+            (a.offsets, a.ids, a.boxes, a.bounds),
+            (b.offsets, b.ids, b.boxes, b.bounds)
+        );
+        assert_eq!(a.levels.len(), b.levels.len());
+    }
 }
