@@ -245,12 +245,12 @@ impl Job {
         if !s.angle.is_finite() {
             return Err("strategy.angle: expected a finite angle in degrees".into());
         }
-        if let Some(b) = s.boundary {
-            if !(b.iter().all(|x| x.is_finite()) && b[0] < b[2] && b[1] < b[3]) {
-                return Err(format!(
-                    "strategy.boundary: expected [xmin, ymin, xmax, ymax] with xmin < xmax and ymin < ymax, found {b:?}"
-                ));
-            }
+        if let Some(b) = s.boundary
+            && !(b.iter().all(|x| x.is_finite()) && b[0] < b[2] && b[1] < b[3])
+        {
+            return Err(format!(
+                "strategy.boundary: expected [xmin, ymin, xmax, ymax] with xmin < xmax and ymin < ymax, found {b:?}"
+            ));
         }
         let f = &self.feeds;
         for (name, v) in [

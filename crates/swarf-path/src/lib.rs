@@ -1,14 +1,23 @@
 //! swarf-path: the tool path model (poses, passes, links, feeds), job files, and the
 //! 3-axis finishing strategies that produce tool paths.
 
+pub mod cl_curve;
+pub mod envelope;
 pub mod error;
+pub mod forward_step;
+pub mod gouge;
+pub mod gouge_ball;
 pub mod iso_parametric;
 pub mod iso_planar;
 pub mod iso_scallop;
+mod iso_setup;
 pub mod job;
+mod ordering;
 pub mod plan;
 pub mod raster;
+pub mod side_step;
 pub mod toolpath;
+mod uncovered;
 
 pub use error::PathError;
 pub use job::{Job, StrategyKind, StrategyParams};

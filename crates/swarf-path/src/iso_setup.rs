@@ -1,0 +1,208 @@
+//! What the three iso strategies share: validated parameters, the side-step model,
+//! the forward-step options, the side geometry at a CC point, and the end of planning
+//! (whole-part gouge check, joining and ordering rows, the report).
+//!
+//! Side geometry (paper 004, iso-parametric section): at a CC point with unit normal
+//! `N` (toward the tool) and unit path tangent `T`, the side direction is
+//! `B = N x T`; the side step follows from the normal curvature along `B`
+//! ([`crate::side_step`]) and the tilt of `N` from the tool axis seen in the section
+//! normal to `T`, `atan2(|B.z|, N.z)`.
+
+use crate::cl_curve::{ClMap, tool_side_curvature, tool_side_normal};
+use crate::envelope::Envelope;
+use crate::error::PathError;
+use crate::forward_step::StepOptions;
+use crate::gouge::GougeCheck;
+use crate::job::Job;
+use crate::ordering::{Joining, Row, order_rows};
+use crate::plan::{Plan, PlanReport};
+use crate::side_step::SideStep;
+use crate::toolpath::{PathPoint, Toolpath};
+use crate::uncovered::{Marked, regions};
+use swarf_geom::{Part, SurfaceDerivs, Vec3};
+use swarf_tool::drop::DropScratch;
+
+/// A CC point is hidden under another patch when the envelope (tessellated within the
+/// tolerance) is above it by more than this many tolerances...
+const ENVELOPE_MARGIN_TOLS: f64 = 4.0;
+/// ... and at least this much, mm (steep slopes magnify the mesh's vertical error).
+const ENVELOPE_MARGIN_MIN: f64 = 0.05;
+
+/// Side geometry at a CC point (module doc).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SideGeom {
+    /// Unit normal toward the tool.
+    pub normal: Vec3,
+    /// Unit side direction `N x T`.
+    pub side: Vec3,
+    /// Normal curvature along `side`, 1/mm, positive concave as the tool sees it.
+    pub kappa: f64,
+    /// Tilt of the normal from the axis in the section normal to `T`, radians.
+    pub tilt: f64,
+    /// The side step allowed by the scallop limit, mm.
+    pub step: f64,
+}
+
+/// The shared planning context of one iso job on one part.
+pub struct IsoSetup<'a> {
+    /// The part.
+    pub part: &'a Part,
+    /// The job.
+    pub job: &'a Job,
+    /// The side-step model.
+    pub side: SideStep,
+    /// Forward-step options.
+    pub step: StepOptions,
+    /// Whole-part gouge check.
+    pub gouge: GougeCheck,
+    /// The upper envelope, for parts of several patches.
+    pub envelope: Option<Envelope>,
+}
+
+impl<'a> IsoSetup<'a> {
+    /// Validates the job's parameters for `part` and prepares the whole-part queries.
+    ///
+    /// # Errors
+    /// [`PathError::InvalidParameter`] naming `strategy.scallop` or
+    /// `strategy.tolerance`; [`PathError::NoPath`] for a part without patches;
+    /// [`PathError::Geom`] when the part cannot be tessellated.
+    pub fn new(part: &'a Part, job: &'a Job) -> Result<IsoSetup<'a>, PathError> {
+        let h = job
+            .strategy
+            .scallop
+            .ok_or_else(|| PathError::InvalidParameter {
+                field: "strategy.scallop".into(),
+                message: "required by the iso strategies (scallop height limit, mm)".into(),
+            })?;
+        let side = SideStep::new(&job.tool, h)?;
+        if part.patches.is_empty() {
+            return Err(PathError::NoPath(format!(
+                "part {:?} has no patches",
+                part.name
+            )));
+        }
+        let tolerance = job.strategy.tolerance;
+        let gouge = GougeCheck::new(part, &job.tool, tolerance)?;
+        let envelope = if part.patches.len() > 1 {
+            let mesh = part.tessellate(tolerance)?;
+            Some(Envelope::new(
+                mesh,
+                (ENVELOPE_MARGIN_TOLS * tolerance).max(ENVELOPE_MARGIN_MIN),
+            ))
+        } else {
+            None
+        };
+        Ok(IsoSetup {
+            part,
+            job,
+            side,
+            step: StepOptions {
+                tolerance,
+                max_step: job.tool.radius(),
+            },
+            gouge,
+            envelope,
+        })
+    }
+
+    /// The CC -> CL map of patch `face`.
+    pub fn cl_map(&self, face: usize) -> ClMap<'a> {
+        ClMap::new(&self.part.patches[face], face, &self.job.tool)
+    }
+
+    /// The CL point at `(u, v)` of `map`'s patch, `None` where undefined or hidden
+    /// under another patch.
+    pub fn reachable(&self, map: &ClMap<'_>, u: f64, v: f64) -> Option<PathPoint> {
+        let p = map.at(u, v)?;
+        match (&self.envelope, &p.contact) {
+            (Some(env), Some(c)) if env.hides(&c.point) => None,
+            _ => Some(p),
+        }
+    }
+
+    /// Side geometry at `d` for the path tangent `tangent` (module doc); `None` at a
+    /// degenerate point.
+    pub fn side_at(&self, d: &SurfaceDerivs, tangent: &Vec3) -> Option<SideGeom> {
+        let normal = tool_side_normal(d)?;
+        let t = (tangent - normal * normal.dot(tangent)).try_normalize(1e-300)?;
+        let side = normal.cross(&t);
+        let kappa = tool_side_curvature(d, &side)?;
+        let tilt = side.z.abs().atan2(normal.z);
+        Some(SideGeom {
+            normal,
+            side,
+            kappa,
+            tilt,
+            step: self.side.step(kappa, tilt),
+        })
+    }
+
+    /// Gouge-checks, joins and orders `rows` (in side order from the start side) and
+    /// completes `report` with the lifts and the regions the cutter could not reach.
+    ///
+    /// # Errors
+    /// [`PathError::NoPath`] when there is no pass, or when every CL point had to be
+    /// lifted (the tool is too large for any valid position on this part).
+    pub fn finish(&self, mut rows: Vec<Row>, mut report: PlanReport) -> Result<Plan, PathError> {
+        let total: usize = rows.iter().flatten().map(|p| p.points.len()).sum();
+        if total == 0 {
+            return Err(PathError::NoPath(format!(
+                "{:?}: no CC point of part {:?} can be reached by the tool",
+                self.job.strategy.kind, self.part.name
+            )));
+        }
+        let stats = self.gouge.apply(&mut rows);
+        if stats.lifted == total {
+            return Err(PathError::NoPath(format!(
+                "tool {} is too large for any valid position on part {:?}: every CL point had to be lifted off its contact",
+                self.job.tool, self.part.name
+            )));
+        }
+        report.lifted_points = stats.lifted;
+        report.max_lift = stats.max_lift;
+        report.uncovered.extend(self.lifted_regions(&rows));
+        let scratch = std::cell::RefCell::new(DropScratch::default());
+        let join = Joining {
+            max_gap: 2.0 * self.job.tool.radius(),
+            step: self.step.max_step,
+            drop: |x: f64, y: f64| self.gouge.drop_z(x, y, &mut scratch.borrow_mut()),
+        };
+        let passes = order_rows(rows, self.job.strategy.zigzag, &join);
+        let top = passes
+            .iter()
+            .flat_map(|p| &p.points)
+            .map(|p| p.pose.cl.z)
+            .fold(f64::NEG_INFINITY, f64::max);
+        Ok(Plan {
+            toolpath: Toolpath {
+                passes,
+                feeds: self.job.feeds,
+                linking: self.job.linking_for(top),
+            },
+            report,
+            double_contacts: Vec::new(),
+        })
+    }
+
+    fn lifted_regions(&self, rows: &[Row]) -> Vec<crate::plan::Uncovered> {
+        let marked: Vec<Marked> = rows
+            .iter()
+            .flatten()
+            .flat_map(|p| &p.points)
+            .filter(|p| p.lifted > 0.0)
+            .filter_map(|p| {
+                let c = p.contact?;
+                Some(Marked {
+                    face: c.face,
+                    uv: c.uv,
+                    value: p.lifted,
+                })
+            })
+            .collect();
+        regions(self.part, &marked, |n, worst| {
+            format!(
+                "concave or crowded region the cutter cannot enter at its CC points: {n} CL points lifted to avoid gouging, by up to {worst:.4} mm"
+            )
+        })
+    }
+}
