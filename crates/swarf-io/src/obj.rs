@@ -2,7 +2,7 @@
 //! lines, normals, texture coordinates and materials ignored; all objects and groups
 //! merged into one mesh, vertices not welded).
 //!
-//! The input reaches `tobj` through [`PositionsOnly`], which blanks `vt` and `vn`
+//! The input reaches `tobj` through a filter (`PositionsOnly`) that blanks `vt` and `vn`
 //! lines and cuts face references `v/vt/vn` down to `v`, keeping one output line per
 //! input line. That saves memory, and it keeps `tobj` away from its texture and
 //! normal index arithmetic, which overflows (a panic in debug builds) on indices such

@@ -7,19 +7,24 @@
 //! exactly `84 + 50 * count`, `count` being the little-endian `u32` at byte 80.
 //! Otherwise a file that begins with `solid` is read as ASCII; when that fails and
 //! the start of the file holds control bytes (binary data), the error reports the
-//! binary size mismatch instead, with byte offsets, and adds the ASCII failure.
+//! binary size mismatch instead, with byte offsets, and adds the ASCII failure. A
+//! file of any other size that does not begin with `solid` is a binary STL of the
+//! wrong size: the error says where it ends too early or runs on.
 //!
 //! # Why a hand-written reader
 //!
-//! `stl_io` reads the whole mesh into its own vertex/face structures and reports
-//! errors without positions. This reader streams (binary: 50-byte records through a
+//! `stl_io` (0.11) reports plain `std::io::Error`s, without byte offsets or line
+//! numbers, and builds its own `IndexedMesh` of `f32` vertices, which would then be
+//! copied into a [`TriMesh`]: two full meshes in memory at the peak. This reader
+//! streams (binary: 50-byte records through a
 //! 64 KiB buffer; ASCII: one line at a time), welds vertices as it goes (exact `f32`
-//! bit equality, through [`MeshBuilder`]: converting `f32` to `f64` is exact, so equal
-//! `f64` bits mean equal `f32` bits), and reports byte offsets (binary) or line
-//! numbers (ASCII). A 10-million-triangle binary STL (500 MB) is read with only the
-//! output mesh (about 240 MB for 5 million vertices), the welding table (4 bytes a
-//! slot, about 64 MB) and the buffer in memory; see the `stl_10m` example for the
-//! measured peak.
+//! bit equality, `-0.0` merged with `0.0`, through [`MeshBuilder`]: converting `f32`
+//! to `f64` is exact, so equal `f64` bits mean equal `f32` bits), and reports byte offsets (binary) or line
+//! numbers (ASCII). Measured with `/usr/bin/time -v` on the `stl_10m` example: a
+//! 10-million-triangle binary STL (500 MB, 5 million distinct vertices) reads in
+//! 2.6 to 3 s on a busy 2-core machine with a peak resident set of 302 MB: the output
+//! mesh (240 MB), the welding table (64 MB) and a 64 KiB buffer. Welding dominates
+//! the time (one cache miss per corner in the table).
 //!
 //! NaN or infinite coordinates are read as they are; [`TriMesh::validate`] reports
 //! them.

@@ -3,10 +3,10 @@
 //!
 //! Steps over triangles run in parallel with rayon and collect in order; the sort is
 //! a sequential stable counting sort. The result is therefore the same on any number
-//! of threads. Peak memory while building is about 24 bytes a triangle (keys, ids,
-//! boxes) plus the offsets.
+//! of threads. Peak memory while building is about 24 bytes a triangle (keys and
+//! entries) plus the offsets.
 
-use super::{Level, XyIndex};
+use super::{Entry, Level, XyIndex};
 use crate::math::Aabb;
 use crate::mesh::TriMesh;
 use rayon::prelude::*;
@@ -61,20 +61,18 @@ impl XyIndex {
             .unwrap_or_else(|| CELL_PER_MEDIAN * median_extent(mesh, origin, extent));
         let c0 = capped_cell(c0, extent, indexed);
         let (keys, levels, cells) = anchor_keys(mesh, origin, extent, c0);
-        let (offsets, ids) = counting_sort(&keys, cells);
+        let (offsets, mut entries) = counting_sort(&keys, cells);
         drop(keys);
-        let boxes = ids
-            .par_iter()
+        entries
+            .par_iter_mut()
             .with_min_len(PAR_CHUNK)
-            .map(|&t| stored_box(mesh, origin, t as usize).unwrap_or([0.0; 4]))
-            .collect();
+            .for_each(|e| e.bbox = stored_box(mesh, origin, e.id as usize).unwrap_or([0.0; 4]));
         XyIndex {
             origin,
             bounds,
             levels,
             offsets,
-            ids,
-            boxes,
+            entries,
         }
     }
 }
@@ -222,9 +220,9 @@ fn anchor_keys(
     (keys, levels, cells)
 }
 
-/// Stable counting sort of triangle ids by key: CSR offsets and ids, ascending in
-/// each cell; keys `u32::MAX` are dropped.
-fn counting_sort(keys: &[u32], cells: usize) -> (Vec<u32>, Vec<u32>) {
+/// Stable counting sort of triangle ids by key: CSR offsets and entries holding the
+/// ids, ascending in each cell (boxes left zero); keys `u32::MAX` are dropped.
+fn counting_sort(keys: &[u32], cells: usize) -> (Vec<u32>, Vec<Entry>) {
     let mut offsets = vec![0u32; cells + 1];
     for &k in keys.iter().filter(|&&k| k != u32::MAX) {
         offsets[k as usize + 1] += 1;
@@ -233,14 +231,18 @@ fn counting_sort(keys: &[u32], cells: usize) -> (Vec<u32>, Vec<u32>) {
         offsets[g + 1] += offsets[g];
     }
     let mut cursor = offsets.clone();
-    let mut ids = vec![0u32; offsets[cells] as usize];
+    let blank = Entry {
+        bbox: [0.0; 4],
+        id: 0,
+    };
+    let mut entries = vec![blank; offsets[cells] as usize];
     for (t, &k) in keys.iter().enumerate() {
         if k != u32::MAX {
-            ids[cursor[k as usize] as usize] = t as u32;
+            entries[cursor[k as usize] as usize].id = t as u32;
             cursor[k as usize] += 1;
         }
     }
-    (offsets, ids)
+    (offsets, entries)
 }
 
 #[cfg(test)]
@@ -281,10 +283,10 @@ mod tests {
             pool.install(|| XyIndex::build(&mesh))
         };
         let (a, b) = (on(1), on(4));
-        assert_eq!(a.ids.len(), mesh.len());
+        assert_eq!(a.len(), mesh.len());
         assert_eq!(
-            (a.offsets, a.ids, a.boxes, a.bounds),
-            (b.offsets, b.ids, b.boxes, b.bounds)
+            (a.offsets, a.entries, a.bounds),
+            (b.offsets, b.entries, b.bounds)
         );
         assert_eq!(a.levels.len(), b.levels.len());
     }

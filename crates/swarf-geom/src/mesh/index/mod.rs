@@ -48,12 +48,16 @@
 //! # Measurements and the choice of a grid
 //!
 //! Bench `mesh_index` (100k triangles of a 0.7 mm heightfield, disc radius 4.5 mm,
-//! about 306 hits a query, 2-core machine shared with builds, so +-15 %):
-//! build 12 ms (8 M triangles/s; the BVH peer 28 ms); [`XyIndex::for_each_in_disc`]
-//! 1.75 us a query (570 k queries/s), [`XyIndex::query_disc`] with its sort 4.5 us
-//! (220 k/s); with the triangle order shuffled 2.5 and 5.1 us; the BVH peer 3.9 us
-//! unsorted and 7.3 us sorted. Level-0 cell of 1x, 2x and 4x the median extent:
-//! 2.1, 1.6 and 1.8 us (2x is the default). Memory 20.5 bytes a triangle.
+//! about 306 hits a query), one run on a 2-core machine busy with other builds, so
+//! absolute times are pessimistic and only ratios within the run are firm:
+//! build 9.7 ms (10 M triangles/s) against 35 ms for the BVH peer;
+//! [`XyIndex::for_each_in_disc`] 2.2 us a query (460 k queries/s) against 7.1 us for
+//! the BVH (3.2x); [`XyIndex::query_disc`], sorted, 5.3 us (190 k/s) against 9.4 us
+//! (1.8x); with the triangle order shuffled 3.7 and 7.7 us. Level-0 cell of 1x, 2x
+//! and 4x the median extent: 2.7, 2.1 and 3.0 us (2x is the default). Memory 20.5
+//! bytes a triangle. On 10 million triangles (0.3 mm heightfield, swarf-io example
+//! `stl_10m`): 205 MB, built in 1.1 s on 2 threads, 37 us a `query_disc` of 1526
+//! hits.
 //!
 //! A BVH descends ~log2(n) levels with a poorly predicted branch per node and gathers
 //! boxes from scattered leaves, where the grid reaches its rows with two
@@ -150,11 +154,19 @@ pub struct XyIndex {
     levels: Vec<Level>,
     /// Entry range of global cell `g`: `offsets[g]..offsets[g + 1]`.
     offsets: Vec<u32>,
-    /// Triangle ids in entry order.
-    ids: Vec<u32>,
-    /// `[min_x, min_y, max_x, max_y]` relative to `origin`, rounded outward, in entry
-    /// order.
-    boxes: Vec<[f32; 4]>,
+    /// The triangles in cell order.
+    entries: Vec<Entry>,
+}
+
+/// One indexed triangle: its box and id side by side, so that a scan reads one
+/// stream of memory (20 bytes an entry).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
+struct Entry {
+    /// `[min_x, min_y, max_x, max_y]` relative to the index origin, rounded outward.
+    bbox: [f32; 4],
+    /// Triangle id.
+    id: u32,
 }
 impl XyIndex {
     /// Box around the indexed triangles (all of them but those with a non-finite
@@ -165,19 +177,18 @@ impl XyIndex {
 
     /// Number of indexed triangles.
     pub fn len(&self) -> usize {
-        self.ids.len()
+        self.entries.len()
     }
 
     /// True when no triangle is indexed.
     pub fn is_empty(&self) -> bool {
-        self.ids.is_empty()
+        self.entries.is_empty()
     }
 
     /// Heap bytes held by the index.
     pub fn memory_bytes(&self) -> usize {
         self.offsets.capacity() * 4
-            + self.ids.capacity() * 4
-            + self.boxes.capacity() * 16
+            + self.entries.capacity() * std::mem::size_of::<Entry>()
             + self.levels.capacity() * std::mem::size_of::<Level>()
     }
 
@@ -273,9 +284,9 @@ impl XyIndex {
     ) {
         let row = level.base + j * level.dims[0];
         let run = self.offsets[row + cx[0]] as usize..self.offsets[row + cx[1] + 1] as usize;
-        for (id, b) in self.ids[run.clone()].iter().zip(&self.boxes[run]) {
-            if hit(b) {
-                f(*id);
+        for e in &self.entries[run] {
+            if hit(&e.bbox) {
+                f(e.id);
             }
         }
     }
