@@ -2,14 +2,14 @@
 //! lines, normals, texture coordinates and materials ignored; all objects and groups
 //! merged into one mesh, vertices not welded).
 //!
-//! The input reaches `tobj` through a filter (`PositionsOnly`) that blanks `vt` and `vn`
-//! lines and cuts face references `v/vt/vn` down to `v`, keeping one output line per
-//! input line. That saves memory, and it keeps `tobj` away from its texture and
-//! normal index arithmetic, which overflows (a panic in debug builds) on indices such
-//! as `f 1/-5 ...`. `tobj` reports errors without positions; most are raised while the
-//! offending line is parsed, so the line just handed over is the one at fault. Index
-//! errors are only found when an object is closed; for those the input is scanned
-//! again for the first face that refers to a vertex not defined before it.
+//! The input reaches `tobj` through a filter (`PositionsOnly`) that blanks `vt` and
+//! `vn` lines and cuts face references `v/vt/vn` down to `v`, keeping one output
+//! line per input line. That saves memory, and it keeps `tobj` away from its texture
+//! and normal index arithmetic, which overflows (a panic in debug builds) on indices
+//! such as `f 1/-5 ...`. `tobj` reports errors without positions; most are raised
+//! while the offending line is parsed, so the line just handed over is the one at
+//! fault. Index errors are only found when an object is closed; for those the input
+//! is scanned again for the first face that refers to a vertex not defined before it.
 
 use crate::error::{At, IoError};
 use std::collections::HashMap;
