@@ -81,8 +81,7 @@ fn read(path: &Path, index: bool) -> Result<(), Box<dyn std::error::Error>> {
         let xy = XyIndex::build(&mesh);
         let secs = t.elapsed().as_secs_f64();
         println!(
-            "XyIndex built in {secs:.2} s on {} threads: {:.0} MB, {:.1} bytes a triangle",
-            rayon_threads(),
+            "XyIndex built in {secs:.2} s: {:.0} MB, {:.1} bytes a triangle",
             xy.memory_bytes() as f64 / 1e6,
             xy.memory_bytes() as f64 / mesh.len() as f64
         );
@@ -109,8 +108,4 @@ fn read(path: &Path, index: bool) -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     Ok(())
-}
-
-fn rayon_threads() -> usize {
-    std::thread::available_parallelism().map_or(1, |n| n.get())
 }
