@@ -9,7 +9,8 @@
 //!   sample per [`SAMPLE_SPACING`] of control-net length, between [`MIN_SAMPLES`] and
 //!   [`MAX_SAMPLES`] a direction) and the sample triangles are cast as above, carrying
 //!   `(u, v)`; that gives, per cell, a starting point on the two highest patches there.
-//!   Newton's method on `S_xy(u, v) = (x, y)` (`J = [S_u S_v]_xy`) then solves the
+//!   Newton's method on `S_xy(u, v) = (x, y)` (`J = [S_u S_v]_xy`, the patch in power
+//!   form, [`crate::power`]) then solves the
 //!   vertical ray against each exactly, to [`NEWTON_XY`] in XY (so the height to that
 //!   times the surface slope), and the higher is kept. Cells whose ray leaves a patch
 //!   (Newton pushed against the domain boundary with a residual left) get no height
@@ -19,6 +20,7 @@
 
 use crate::error::SimError;
 use crate::grid::Grid;
+use crate::power::PowerPatch;
 use crate::progress::Progress;
 use crate::raster::cover;
 use rayon::prelude::*;
@@ -67,6 +69,8 @@ pub struct DesignSurface<'a> {
     uv: Vec<[f64; 2]>,
     /// Per triangle, its patch (parametric parts only).
     patch_of: Vec<u32>,
+    /// The patches in power form (parametric parts only).
+    power: Vec<PowerPatch>,
     index: XyIndex,
 }
 
@@ -90,6 +94,7 @@ impl<'a> DesignSurface<'a> {
     /// # Errors
     /// [`SimError::Empty`] for a part without patches or a mesh without triangles.
     pub fn new(design: Design<'a>) -> Result<DesignSurface<'a>, SimError> {
+        let mut power = Vec::new();
         let (mesh, uv, patch_of) = match design {
             Design::Mesh(m) => {
                 if m.is_empty() {
@@ -102,6 +107,11 @@ impl<'a> DesignSurface<'a> {
                     return Err(SimError::Empty(format!("part {}: no patch", part.name)));
                 }
                 let (m, uv, patch_of) = sample_part(part);
+                power = part
+                    .patches
+                    .iter()
+                    .map(PowerPatch::new)
+                    .collect::<Result<_, _>>()?;
                 (Cow::Owned(m), uv, patch_of)
             }
         };
@@ -111,6 +121,7 @@ impl<'a> DesignSurface<'a> {
             mesh,
             uv,
             patch_of,
+            power,
             index,
         })
     }
@@ -180,7 +191,7 @@ impl<'a> DesignSurface<'a> {
                 });
                 0
             }
-            Design::Part(part) => self.part_band(part, grid, j0, j1, heights, normals),
+            Design::Part(_) => self.part_band(grid, j0, j1, heights, normals),
         };
         progress.advance((j1 - j0 + 1) as u64);
         approx
@@ -189,7 +200,6 @@ impl<'a> DesignSurface<'a> {
     /// Fills one band of a parametric part: sampled guesses, then Newton per cell.
     fn part_band(
         &self,
-        part: &Part,
         grid: &Grid,
         j0: usize,
         j1: usize,
@@ -223,8 +233,7 @@ impl<'a> DesignSurface<'a> {
             let [x, y] = grid.centre(i, j);
             let mut top: Option<(f64, Vec3)> = None;
             for g in pair.iter().filter(|g| g.patch != u32::MAX) {
-                let patch = &part.patches[g.patch as usize];
-                let hit = match newton(patch, x, y, g.uv) {
+                let hit = match newton(&self.power[g.patch as usize], x, y, g.uv) {
                     Ray::Hit(z, n) => Some((z, n)),
                     Ray::Off => None,
                     Ray::Singular => {
@@ -281,34 +290,35 @@ enum Ray {
 }
 
 /// Solves `S_xy(u, v) = (x, y)` from `uv`.
-fn newton(patch: &Patch, x: f64, y: f64, uv: [f64; 2]) -> Ray {
+fn newton(patch: &PowerPatch, x: f64, y: f64, uv: [f64; 2]) -> Ray {
+    let [[u0, u1], [v0, v1]] = patch.domain();
     let (mut u, mut v) = (uv[0], uv[1]);
+    let up = |du: Vec3, dv: Vec3| {
+        let n = du.cross(&dv);
+        let n = if n.z < 0.0 { -n } else { n };
+        n.try_normalize(0.0).unwrap_or(Vec3::z())
+    };
     for _ in 0..NEWTON_STEPS {
-        let d = patch.derivs(u, v);
-        let (rx, ry) = (x - d.point.x, y - d.point.y);
-        let n = d.du.cross(&d.dv);
+        let (p, du, dv) = patch.eval1(u, v);
+        let (rx, ry) = (x - p.x, y - p.y);
         if rx.hypot(ry) <= NEWTON_XY {
-            let n = if n.z < 0.0 { -n } else { n };
-            return Ray::Hit(d.point.z, n.try_normalize(0.0).unwrap_or(Vec3::z()));
+            return Ray::Hit(p.z, up(du, dv));
         }
-        let det = n.z;
+        let det = du.x * dv.y - du.y * dv.x;
         if !(det.abs() > 1e-300) {
             return Ray::Singular;
         }
-        let du = (rx * d.dv.y - ry * d.dv.x) / det;
-        let dv = (d.du.x * ry - d.du.y * rx) / det;
-        let (cu, cv) = patch.clamp_params(u + du, v + dv);
+        let su = (rx * dv.y - ry * dv.x) / det;
+        let sv = (du.x * ry - du.y * rx) / det;
+        let (cu, cv) = ((u + su).clamp(u0, u1), (v + sv).clamp(v0, v1));
         if cu == u && cv == v {
             return Ray::Off;
         }
         (u, v) = (cu, cv);
     }
-    let p = patch.eval(u, v);
+    let (p, du, dv) = patch.eval1(u, v);
     if (x - p.x).hypot(y - p.y) <= 1e3 * NEWTON_XY {
-        let d = patch.derivs(u, v);
-        let n = d.du.cross(&d.dv);
-        let n = if n.z < 0.0 { -n } else { n };
-        Ray::Hit(p.z, n.try_normalize(0.0).unwrap_or(Vec3::z()))
+        Ray::Hit(p.z, up(du, dv))
     } else {
         Ray::Off
     }

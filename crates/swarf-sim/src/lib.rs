@@ -11,17 +11,23 @@
 //! - [`deviation`]: gouge, excess and scallop crests against the design, by region.
 //! - [`simulate`]: a program over a stock, in parallel row bands, deterministically.
 //! - [`verify`]: all of it for a program, a tool and a design.
+//! - [`report`] (JSON, CSV, text) and [`picture`] (heat map, tool path; drawn on a
+//!   small [`canvas`]).
 //!
 //! Units: millimetres, radians, mm/min.
 
+pub mod canvas;
 pub mod design;
 pub mod deviation;
 pub mod dexel;
 pub mod envelope;
 pub mod error;
 pub mod grid;
+pub mod picture;
+pub mod power;
 pub mod progress;
 pub mod raster;
+pub mod report;
 pub mod simulate;
 pub mod sweep;
 pub mod sweep_linear;

@@ -1,0 +1,194 @@
+//! Reports of a verification: the JSON with every figure (worst gouges with their
+//! program lines), and the CSV of flagged cells.
+
+use crate::dexel::NO_MOTION;
+use crate::verify::Verification;
+use serde_json::{Value, json};
+use std::fmt::Write;
+
+/// Most rows of the flagged-cell CSV (the JSON keeps the full counts).
+pub const CSV_MAX_ROWS: usize = 1_000_000;
+/// Most warnings listed one by one in the JSON.
+pub const JSON_MAX_WARNINGS: usize = 100;
+
+/// What the report says about the inputs (the verifier does not know file names).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ReportContext {
+    /// The design part (file or name).
+    pub part: String,
+    /// The program file.
+    pub program: String,
+    /// The tool as a spec string.
+    pub tool: String,
+    /// The stock, described.
+    pub stock: String,
+    /// Reader warnings, located (`file:line:column: message`).
+    pub warnings: Vec<String>,
+    /// Where reading stopped, if it did.
+    pub stopped: Option<String>,
+}
+
+/// The full JSON report.
+pub fn json_report(v: &Verification, ctx: &ReportContext) -> Value {
+    let g = &v.grid;
+    let warnings: Vec<&String> = ctx.warnings.iter().take(JSON_MAX_WARNINGS).collect();
+    json!({
+        "swarf": env!("CARGO_PKG_VERSION"),
+        "part": ctx.part,
+        "program": ctx.program,
+        "tool": ctx.tool,
+        "stock": ctx.stock,
+        "complete": ctx.stopped.is_none(),
+        "stopped": ctx.stopped,
+        "reader_warnings": ctx.warnings.len(),
+        "reader_warning_list": warnings,
+        "grid": {
+            "origin_mm": g.origin,
+            "cell_mm": g.cell,
+            "nx": g.nx,
+            "ny": g.ny,
+            "cells": g.len(),
+        },
+        "sample_tolerance_mm": v.sample_tol,
+        "design_approximate_cells": v.design.approximate,
+        "program_stats": v.program,
+        "simulation": v.sim,
+        "deviation": v.deviation.summary,
+        "timings_s": v.timings,
+    })
+}
+
+/// The flagged cells as CSV: `x,y,design_z,machined_z,deviation,kind,motion,line`,
+/// gouges then excess, in row-major order, at most [`CSV_MAX_ROWS`] rows.
+pub fn flagged_csv(v: &Verification) -> String {
+    let s = &v.deviation.summary;
+    let mut out = String::from("x,y,design_z,machined_z,deviation,kind,motion,line\n");
+    let mut rows = 0;
+    for (kind, keep) in [("gouge", -1.0), ("excess", 1.0)] {
+        for (k, &d) in v.deviation.values.iter().enumerate() {
+            let flagged = if keep < 0.0 {
+                d < -s.tol
+            } else {
+                d > s.allowed_excess + s.tol
+            };
+            if !flagged {
+                continue;
+            }
+            if rows == CSV_MAX_ROWS {
+                return out;
+            }
+            rows += 1;
+            let [x, y] = v.grid.centre(k % v.grid.nx, k / v.grid.nx);
+            let m = v.stock.last_motion()[k];
+            let (motion, line) = if m == NO_MOTION {
+                (String::new(), String::new())
+            } else {
+                let line = v
+                    .lines
+                    .get(m as usize)
+                    .map_or(String::new(), |l| l.to_string());
+                (m.to_string(), line)
+            };
+            let _ = writeln!(
+                out,
+                "{x:.4},{y:.4},{:.6},{:.6},{d:.6},{kind},{motion},{line}",
+                v.design.heights[k],
+                v.stock.heights()[k]
+            );
+        }
+    }
+    out
+}
+
+/// A few lines for a terminal.
+pub fn text_summary(v: &Verification, ctx: &ReportContext) -> String {
+    let s = &v.deviation.summary;
+    let p = &v.program;
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "{}: {} motions ({} passes), cutting {:.1} mm, rapid {:.1} mm, time {}",
+        ctx.program,
+        p.motions,
+        p.passes,
+        p.cutting_length_mm,
+        p.rapid_length_mm,
+        clock(p.time_s)
+    );
+    let _ = writeln!(
+        t,
+        "grid {} x {} cells of {} mm; {} cells measured",
+        v.grid.nx, v.grid.ny, v.grid.cell, s.measured_cells
+    );
+    let worst = s
+        .gouges
+        .first()
+        .map(|g| {
+            let line = g.line.map_or(String::new(), |l| format!(" (line {l})"));
+            format!(
+                ", deepest {:.4} mm at ({:.3}, {:.3}){line}",
+                g.worst, g.at[0], g.at[1]
+            )
+        })
+        .unwrap_or_default();
+    let _ = writeln!(
+        t,
+        "gouge: {} cells in {} regions{worst}",
+        s.gouge.cells, s.gouge.regions
+    );
+    let _ = writeln!(
+        t,
+        "excess (> {:.4} mm): {} cells in {} regions, worst {:.4} mm",
+        s.allowed_excess + s.tol,
+        s.excess.cells,
+        s.excess.regions,
+        s.excess.worst
+    );
+    if let (Some(lo), Some(hi), Some(max)) = (s.scallop.p05, s.scallop.p95, s.scallop.max) {
+        let _ = writeln!(
+            t,
+            "scallop crests: {lo:.4} - {hi:.4} mm (p5 - p95), highest {max:.4} mm"
+        );
+    }
+    for r in &v.sim.rapid_cuts {
+        let _ = writeln!(
+            t,
+            "warning: rapid at line {} cuts material ({:.4} mm deep)",
+            r.line, r.amount
+        );
+    }
+    for o in &v.sim.outside {
+        let _ = writeln!(
+            t,
+            "warning: move at line {} lies {:.1} mm outside the stock",
+            o.line, o.amount
+        );
+    }
+    if let Some(stop) = &ctx.stopped {
+        let _ = writeln!(t, "error: the program stopped early: {stop}");
+    }
+    t
+}
+
+/// Seconds as `1h02'03"` or `12'34"`.
+pub fn clock(seconds: f64) -> String {
+    let s = seconds.max(0.0).round() as u64;
+    let (h, m, s) = (s / 3600, (s / 60) % 60, s % 60);
+    if h > 0 {
+        format!("{h}h{m:02}'{s:02}\"")
+    } else {
+        format!("{m}'{s:02}\"")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clock_formats() {
+        assert_eq!(clock(1520.0), "25'20\"");
+        assert_eq!(clock(3723.4), "1h02'03\"");
+        assert_eq!(clock(-3.0), "0'00\"");
+    }
+}
