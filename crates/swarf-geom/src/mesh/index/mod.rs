@@ -85,8 +85,10 @@ struct Level {
 
 impl Level {
     /// Cell column (`axis` 0) or row (1) holding relative coordinate `v` (clamped).
+    /// The cast truncates, which is the floor for the values >= 1 it sees; NaN and
+    /// everything below 1 give cell 0. Monotone in `v`, as the module doc requires.
     fn cell(&self, axis: usize, v: f64) -> usize {
-        let c = (v * self.inv_cell).floor();
+        let c = v * self.inv_cell;
         if c >= 1.0 {
             (c as usize).min(self.dims[axis] - 1)
         } else {
