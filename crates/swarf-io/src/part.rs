@@ -73,7 +73,11 @@ pub fn parse_part(text: &str, source: &str) -> Result<Part, IoError> {
         let at = e
             .span()
             .map_or(At::File, |s| At::Line(line_of(text, s.start)));
-        IoError::format(source, at, format!("invalid TOML: {}", e.message().trim()))
+        IoError::format(
+            source,
+            at,
+            format!("invalid TOML: {}", e.message().trim().replace('\n', "; ")),
+        )
     })?;
     let top = root.get_ref();
     doc.check_keys(top, "", &TOP_KEYS)?;
@@ -411,6 +415,9 @@ mod tests {
     fn malformed_toml_names_line() {
         let e = err("name = \"t\"\nunits = \"mm\"\npatch = [\n  {degree = [1, 1],,}\n]\n");
         assert!(e.starts_with("t.toml: line 4: invalid TOML: "), "{e}");
+        assert!(!e.contains('\n'), "{e}");
+        let e = err("name = \"t\"\nname = \"u\"\n");
+        assert!(e.starts_with("t.toml: line 2: invalid TOML: "), "{e}");
     }
 
     #[test]
