@@ -23,5 +23,7 @@ pub use mesh::TriMesh;
 pub use mesh::{MeshBuilder, MeshReport, XyIndex};
 pub use part::Part;
 pub use patch::Patch;
-pub use patch::{Curvature, FundamentalForms, Projection, SurfaceDerivs};
+pub use patch::{
+    Curvature, FundamentalForms, Projection, SectionCurve, SurfaceDerivs, SurfaceSample,
+};
 pub use solve::SolveStatus;

@@ -12,6 +12,9 @@ mod eval;
 pub(crate) mod fixtures;
 mod knot_insert;
 mod project;
+mod section;
+mod section_seed;
+mod section_trace;
 mod stitch;
 mod tessellate;
 
@@ -19,6 +22,7 @@ pub use basis::MAX_DEGREE;
 pub use diffgeo::{Curvature, FundamentalForms};
 pub use eval::SurfaceDerivs;
 pub use project::Projection;
+pub use section::{SectionCurve, SurfaceSample};
 
 use crate::error::GeomError;
 use crate::math::{Aabb, Point3};
