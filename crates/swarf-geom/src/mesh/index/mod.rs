@@ -47,18 +47,17 @@
 //!
 //! # Measurements and the choice of a grid
 //!
-//! Bench `mesh_index` (100k triangles of a 0.7 mm heightfield, disc radius 4.5 mm,
-//! about 306 hits a query), on a 2-core machine busy with other builds: absolute
-//! times moved by up to 2x between runs, so only ratios within a run are firm. Best
-//! run: build 9.7 ms (10 M triangles/s) against 35 ms for the BVH peer;
-//! [`XyIndex::for_each_in_disc`] 2.2 us a query (460 k queries/s) against 7.1 us for
-//! the BVH; [`XyIndex::query_disc`], sorted, 5.3 us (190 k/s) against 9.4 us; with
-//! the triangle order shuffled 3.7 and 7.7 us. Over four runs the grid was 1.4x to
-//! 3.2x faster than the BVH unsorted, 1.1x to 1.8x sorted, and built 3x to 4x faster.
-//! Level-0 cell of 1x, 2x and 4x the median extent: 2x was fastest in three of four
-//! runs (2x is the default). Memory 20.5 bytes a triangle. On 10 million triangles
-//! (0.3 mm heightfield, swarf-io example `stl_10m`): 205 MB, built in 1.1 to 1.6 s,
-//! 37 to 60 us a `query_disc` of 1526 hits.
+//! Bench `mesh_index`: 100k triangles of a 0.7 mm heightfield, disc radius 4.5 mm,
+//! about 306 hits a query. The 2-core machine was busy with other builds, so wall
+//! times (criterion's) moved by up to 2x between runs; user CPU time over 300k
+//! queries of the bench's code (two runs each) is steadier: [`XyIndex::for_each_in_disc`]
+//! 1.6 us a query (about 600 k queries/s a core) against 4.0 us for the BVH peer
+//! (2.5x); [`XyIndex::query_disc`], sorted, 3.5 us against 7.3 us (2.1x). Level-0
+//! cell of 1x, 2x and 4x the median extent: 1.7, 1.6 and 2.3 us (2x is the default).
+//! Build (criterion, best run) 9.7 ms against 35 ms for the BVH. Memory 20.5 bytes a
+//! triangle. On 10 million triangles (0.3 mm heightfield, swarf-io example
+//! `stl_10m`): 205 MB, built in 1.1 to 1.6 s, 37 to 60 us a `query_disc` of 1526
+//! hits (wall time, busy machine).
 //!
 //! A BVH descends ~log2(n) levels with a poorly predicted branch per node and gathers
 //! boxes from scattered leaves, where the grid reaches its rows with two
