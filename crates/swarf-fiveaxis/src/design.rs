@@ -56,20 +56,44 @@ impl DesignSurface {
     /// # Units
     /// mm.
     pub fn height(&self, x: f64, y: f64) -> Option<(f64, usize)> {
-        let mut best: Option<(f64, usize)> = None;
+        self.locate(x, y).map(|l| (l.z, l.patch))
+    }
+
+    /// The highest patch point above `(x, y)` with its patch and parameters; `None`
+    /// outside every patch's XY shadow.
+    pub fn locate(&self, x: f64, y: f64) -> Option<Located> {
+        let mut best: Option<Located> = None;
         for (k, ip) in self.patches.iter().enumerate() {
-            if let Some(z) = ip.height(x, y)
-                && best.is_none_or(|b| z > b.0)
+            if let Some((z, [u, v])) = ip.height(x, y)
+                && best.is_none_or(|b| z > b.z)
             {
-                best = Some((z, k));
+                best = Some(Located { z, patch: k, u, v });
             }
         }
         best
     }
+
+    /// The patches, in part order.
+    pub fn patch(&self, k: usize) -> Option<&Patch> {
+        self.patches.get(k).map(|ip| &ip.patch)
+    }
+}
+
+/// A design point found above an XY position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Located {
+    /// Height, mm.
+    pub z: f64,
+    /// Patch index.
+    pub patch: usize,
+    /// Parameter u.
+    pub u: f64,
+    /// Parameter v.
+    pub v: f64,
 }
 
 impl Indexed {
-    fn height(&self, x: f64, y: f64) -> Option<f64> {
+    fn height(&self, x: f64, y: f64) -> Option<(f64, [f64; 2])> {
         let i = ((x - self.min[0]) / self.cell[0]).floor();
         let j = ((y - self.min[1]) / self.cell[1]).floor();
         let n = LOOKUP as f64;
@@ -87,7 +111,7 @@ impl Indexed {
             let d = self.patch.derivs(u, v);
             let (rx, ry) = (x - d.point.x, y - d.point.y);
             z = d.point.z;
-            miss = rx.hypot(ry);
+            miss = (rx * rx + ry * ry).sqrt();
             if miss <= XY_MATCH * 1e-3 {
                 break;
             }
@@ -104,7 +128,7 @@ impl Indexed {
             z = p.z;
             miss = (x - p.x).hypot(y - p.y);
         }
-        (miss <= XY_MATCH && z.is_finite()).then_some(z)
+        (miss <= XY_MATCH && z.is_finite()).then_some((z, [u, v]))
     }
 }
 

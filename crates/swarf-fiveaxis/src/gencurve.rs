@@ -47,7 +47,7 @@
 //! generating curve has the same number of points").
 
 use crate::motion::{Twist, pose_twist};
-use crate::profile_point::{arc_position_at_height, full_radius_height, locate_angle};
+use crate::profile_point::{ProfileTable, arc_position_at_height, full_radius_height};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use swarf_geom::tol::LENGTH_EPS;
@@ -103,7 +103,7 @@ impl Default for CurveOptions {
             meridians: 25,
             wall_cards: 6,
             wall_height: None,
-            velocity_iterations: 2,
+            velocity_iterations: 1,
         }
     }
 }
@@ -149,12 +149,17 @@ impl Frame {
 /// The generating curve of one half of the tool at one pose of a path.
 #[derive(Debug, Clone)]
 pub struct PoseCurve<'a> {
+    table: &'a ProfileTable<'a>,
     profile: &'a Profile,
     frame: Frame,
     twist: Twist,
+    /// `twist.linear . a` and `twist.angular x a`.
+    lin_a: f64,
+    ang_x_a: Vec3,
+    /// Sine of the profile's normal angle at the wall top: generating points stop there.
+    top_nz: f64,
     opts: CurveOptions,
     centre: RhoZ,
-    psi_range: (f64, f64),
     total: f64,
     wall_top: f64,
 }
@@ -163,7 +168,7 @@ impl<'a> PoseCurve<'a> {
     /// The `half` of the tool at pose `i` of `poses` (unit axes), moving as the path
     /// does there ([`pose_twist`]).
     pub fn new(
-        profile: &'a Profile,
+        table: &'a ProfileTable<'a>,
         poses: &[Pose],
         i: usize,
         half: Half,
@@ -174,16 +179,17 @@ impl<'a> PoseCurve<'a> {
             Half::Front => twist,
             Half::Back => twist.reversed(),
         };
-        PoseCurve::with_twist(profile, &poses[i], twist, opts)
+        PoseCurve::with_twist(table, &poses[i], twist, opts)
     }
 
     /// The front half of the tool at `pose` for the velocity field `twist`.
     pub fn with_twist(
-        profile: &'a Profile,
+        table: &'a ProfileTable<'a>,
         pose: &Pose,
         twist: Twist,
         opts: CurveOptions,
     ) -> PoseCurve<'a> {
+        let profile = table.profile();
         let a = pose.axis;
         let c = twist.linear.cross(&a);
         let x = c
@@ -202,7 +208,9 @@ impl<'a> PoseCurve<'a> {
             .wall_height
             .unwrap_or_else(|| full_radius_height(profile))
             .min(profile.top().z);
+        let wall_top = arc_position_at_height(profile, top_height);
         PoseCurve {
+            table,
             profile,
             frame: Frame {
                 cl: pose.cl,
@@ -211,14 +219,17 @@ impl<'a> PoseCurve<'a> {
                 a,
             },
             twist,
+            lin_a: twist.linear.dot(&a),
+            ang_x_a: twist.angular.cross(&a),
+            top_nz: {
+                let total = profile.arc_length();
+                let frac = if total > 0.0 { wall_top / total } else { 0.0 };
+                profile.point_at(frac).1.sin()
+            },
             opts,
             centre,
-            psi_range: (
-                segs.first().map_or(-FRAC_PI_2, |s| s.normal_angles().0),
-                segs.last().map_or(0.0, |s| s.normal_angles().1),
-            ),
             total: profile.arc_length(),
-            wall_top: arc_position_at_height(profile, top_height),
+            wall_top,
         }
     }
 
@@ -227,37 +238,64 @@ impl<'a> PoseCurve<'a> {
         &self.frame
     }
 
-    /// The generating-curve point of the meridian `phi` (module doc, inserts), with the
-    /// arc-length position of its profile point.
-    pub fn meridian_point(&self, phi: f64) -> (Point3, f64) {
+    /// The generating-curve point of the meridian `phi` (module doc, inserts), with its
+    /// profile point. No trigonometry besides `phi`'s sine and cosine: the normal is
+    /// found as a vector ([`ProfileTable::point_for_normal`]).
+    pub fn meridian_point(&self, phi: f64) -> (Point3, RhoZ) {
         let u = self.frame.radial(phi);
-        let mut q = (self.centre, 0.0);
+        let mut q = self.centre;
         for _ in 0..=self.opts.velocity_iterations {
-            let psi = self.psi_at(phi, q.0);
-            q = locate_angle(self.profile, psi);
+            let (n_rho, n_z) = self.normal_at(phi, &u, q);
+            q = self.table.point_for_normal(n_rho, n_z);
         }
-        (self.frame.at(&u, q.0), q.1)
+        (self.frame.at(&u, q), q)
     }
 
-    /// `psi*` of the meridian `phi` for the velocity of the profile point `q`, clamped
-    /// to the profile; a degenerate meridian takes the limit from inside the half.
-    fn psi_at(&self, phi: f64, q: RhoZ) -> f64 {
-        let in_plane = |phi: f64| {
-            let u = self.frame.radial(phi);
-            let v = self.twist.velocity(&self.frame.cl, &self.frame.at(&u, q));
-            (v.dot(&u), v.dot(&self.frame.a), v.norm())
-        };
-        let (mut wu, mut wa, speed) = in_plane(phi);
-        if wu.hypot(wa) <= DEGENERATE_REL * speed {
+    /// In-plane velocity `(w_u, w_a)` of the profile point `q` of the meridian with
+    /// radial vector `u`, and the point's speed.
+    fn in_plane(&self, u: &Vec3, q: RhoZ) -> (f64, f64, f64) {
+        // v = lin + w x (rho u + z a): (w x u).u = 0 and (w x a).a = 0.
+        let w_x_u = self.twist.angular.cross(u);
+        let v = self.twist.linear + q.rho * w_x_u + q.z * self.ang_x_a;
+        let wu = self.twist.linear.dot(u) + q.z * self.ang_x_a.dot(u);
+        let wa = self.lin_a + q.rho * w_x_u.dot(&self.frame.a);
+        (wu, wa, v.norm_squared().sqrt())
+    }
+
+    /// The outward unit normal `(n_rho, n_z)` perpendicular to the in-plane velocity
+    /// of `q` (the `psi*` of the module doc); a degenerate meridian takes the limit
+    /// from inside the half.
+    fn normal_at(&self, phi: f64, u: &Vec3, q: RhoZ) -> (f64, f64) {
+        let (mut wu, mut wa, speed) = self.in_plane(u, q);
+        if (wu * wu + wa * wa).sqrt() <= DEGENERATE_REL * speed {
             let inside = phi
                 + if phi < FRAC_PI_2 {
                     LIMIT_STEP
                 } else {
                     -LIMIT_STEP
                 };
-            (wu, wa, _) = in_plane(inside);
+            (wu, wa, _) = self.in_plane(&self.frame.radial(inside), q);
         }
-        psi_star(wu, wa).clamp(self.psi_range.0, self.psi_range.1)
+        let (nr, nz) = if wa > 0.0 {
+            (wa, -wu)
+        } else if wa < 0.0 {
+            (-wa, wu)
+        } else {
+            (0.0, -1.0)
+        };
+        let len = (nr * nr + nz * nz).sqrt();
+        if len <= 0.0 {
+            return (0.0, -1.0);
+        }
+        let nz = nz / len;
+        if nz > self.top_nz {
+            (
+                (1.0 - self.top_nz * self.top_nz).max(0.0).sqrt(),
+                self.top_nz,
+            )
+        } else {
+            (nr / len, nz)
+        }
     }
 
     /// The generating point of the card through the profile point `q` (normal angle
@@ -309,8 +347,12 @@ impl<'a> PoseCurve<'a> {
         let mut out = Vec::with_capacity(m + 2 * k);
         let first = self.meridian_point(0.0);
         let last = self.meridian_point(PI);
+        let (b0, b1) = (
+            self.table.arc_position(first.1),
+            self.table.arc_position(last.1),
+        );
         for j in 0..k {
-            out.push(self.wall_point(j as f64 / k as f64, first.1, false));
+            out.push(self.wall_point(j as f64 / k as f64, b0, false));
         }
         out.push(first.0);
         for j in 1..m - 1 {
@@ -318,7 +360,7 @@ impl<'a> PoseCurve<'a> {
         }
         out.push(last.0);
         for j in (0..k).rev() {
-            out.push(self.wall_point(j as f64 / k as f64, last.1, true));
+            out.push(self.wall_point(j as f64 / k as f64, b1, true));
         }
         out
     }
@@ -337,11 +379,12 @@ impl<'a> PoseCurve<'a> {
         let left = t > kf + last;
         let s = if left { 2.0 * kf + last - t } else { t };
         let end = self.meridian_point(if left { PI } else { 0.0 });
+        let bottom = self.table.arc_position(end.1);
         if s >= kf - 1.0 {
-            let wall = self.wall_point((kf - 1.0) / kf, end.1, left);
+            let wall = self.wall_point((kf - 1.0) / kf, bottom, left);
             return wall + (end.0 - wall) * (s - (kf - 1.0));
         }
-        self.wall_point(s / kf, end.1, left)
+        self.wall_point(s / kf, bottom, left)
     }
 }
 
@@ -349,18 +392,6 @@ impl<'a> PoseCurve<'a> {
 fn angle_gap(a: f64, b: f64) -> f64 {
     let d = (a - b).rem_euclid(TAU);
     d.min(TAU - d)
-}
-
-/// The normal angle in `[-pi/2, pi/2]` perpendicular to the in-plane motion
-/// `(w_u, w_a)` (module doc).
-fn psi_star(w_u: f64, w_a: f64) -> f64 {
-    if w_a > 0.0 {
-        (-w_u).atan2(w_a)
-    } else if w_a < 0.0 {
-        w_u.atan2(-w_a)
-    } else {
-        -FRAC_PI_2
-    }
 }
 
 #[cfg(test)]
@@ -373,7 +404,7 @@ mod tests {
     }
 
     fn all_curves<'a>(
-        p: &'a Profile,
+        p: &'a ProfileTable<'a>,
         poses: &[Pose],
         opts: CurveOptions,
     ) -> Vec<(Vec<Point3>, PoseCurve<'a>, Pose)> {
@@ -393,12 +424,13 @@ mod tests {
         // the front half of the bottom circle of radius R (thesis §3.3, R_gen = R),
         // and the side walls are the side inserts' quarter arcs.
         let p = bull();
+        let t = ProfileTable::new(&p);
         let poses = [
             Pose::vertical(Point3::new(0.0, 0.0, 0.0)),
             Pose::vertical(Point3::new(0.0, 1.0, 0.0)),
         ];
         let opts = CurveOptions::default();
-        let front = PoseCurve::new(&p, &poses, 0, Half::Front, opts);
+        let front = PoseCurve::new(&t, &poses, 0, Half::Front, opts);
         for j in 0..=20 {
             let phi = PI * j as f64 / 20.0;
             let (q, _) = front.meridian_point(phi);
@@ -418,7 +450,7 @@ mod tests {
         for q in &curve[..opts.wall_cards] {
             assert!(q.y.abs() < 1e-9 && q.x > 3.0);
         }
-        let back = PoseCurve::new(&p, &poses, 1, Half::Back, opts);
+        let back = PoseCurve::new(&t, &poses, 1, Half::Back, opts);
         let (q, _) = back.meridian_point(FRAC_PI_2);
         assert!((q - Point3::new(0.0, -2.0, 0.0)).norm() < 1e-12, "{q:?}");
     }
@@ -426,18 +458,19 @@ mod tests {
     #[test]
     fn continuous_parameter_hits_the_samples_on_the_tool() {
         let p = bull();
+        let t = ProfileTable::new(&p);
         let poses = [
             Pose::new(Point3::new(0.0, 0.0, 0.0), Vec3::new(0.1, 0.05, 1.0)).unwrap(),
             Pose::new(Point3::new(0.3, 1.0, 0.2), Vec3::new(0.12, 0.02, 1.0)).unwrap(),
             Pose::new(Point3::new(0.5, 2.1, 0.3), Vec3::new(0.15, 0.0, 1.0)).unwrap(),
         ];
-        for (curve, pc, pose) in all_curves(&p, &poses, CurveOptions::default()) {
+        for (curve, pc, pose) in all_curves(&t, &poses, CurveOptions::default()) {
             for (j, q) in curve.iter().enumerate() {
                 assert!((pc.curve_at(j as f64) - q).norm() < 1e-9, "{j}");
                 assert!(p.signed_distance(&pose, q).abs() < 1e-9);
             }
-            for t in [0.3, 7.5, 20.2, 33.6] {
-                assert!(p.signed_distance(&pose, &pc.curve_at(t)).abs() < 1e-9);
+            for s in [0.3, 7.5, 20.2, 33.6] {
+                assert!(p.signed_distance(&pose, &pc.curve_at(s)).abs() < 1e-9);
             }
         }
     }
@@ -462,16 +495,17 @@ mod tests {
         // Thesis §3.2 (Warkentin et al.): the bottom circle generates the sphere of
         // radius sqrt(L^2 + R^2) about the centre of rotation.
         let p = Cutter::flat(12.0, Some(30.0)).unwrap().profile();
+        let t = ProfileTable::new(&p);
         let o = Point3::new(1.0, 2.0, 40.0);
         let l = 25.0;
         let radius = (l * l + 36.0f64).sqrt();
         let poses = rotating(o, l, 0.4, 0.05, 16);
-        for (curve, pc, _) in all_curves(&p, &poses, CurveOptions::default()) {
+        for (curve, pc, _) in all_curves(&t, &poses, CurveOptions::default()) {
             for q in &curve {
                 assert!(((q - o).norm() - radius).abs() < 1e-9);
             }
-            for t in [0.5, 3.25, 9.0, 14.7, 28.3, 33.9] {
-                assert!(((pc.curve_at(t) - o).norm() - radius).abs() < 1e-9);
+            for s in [0.5, 3.25, 9.0, 14.7, 28.3, 33.9] {
+                assert!(((pc.curve_at(s) - o).norm() - radius).abs() < 1e-9);
             }
         }
     }
@@ -486,6 +520,7 @@ mod tests {
         let p = Cutter::bull(2.0 * (big_r + r), r, Some(30.0))
             .unwrap()
             .profile();
+        let t = ProfileTable::new(&p);
         let o = Point3::new(0.0, 0.0, 50.0);
         let l = 30.0;
         let dc = (big_r * big_r + (l - r) * (l - r)).sqrt();
@@ -502,7 +537,7 @@ mod tests {
         for i in 1..poses.len() - 1 {
             for half in [Half::Front, Half::Back] {
                 let pose = poses[i];
-                for q in PoseCurve::new(&p, &poses, i, half, opts).curve() {
+                for q in PoseCurve::new(&t, &poses, i, half, opts).curve() {
                     let e = (q - o).norm() - sphere;
                     assert!(e.abs() < 1e-9, "{e}");
                     let w = q - pose.cl;

@@ -19,6 +19,7 @@
 
 use crate::design::DesignSurface;
 use crate::gencurve::{CurveOptions, Half, PoseCurve};
+use crate::profile_point::ProfileTable;
 use crate::sections::Sections;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
@@ -206,17 +207,18 @@ fn meridian_polyline(profile: &Profile, top: f64) -> Vec<(f64, f64)> {
 /// The sectioning check of pose `i` of a pass (module doc). Poses must have unit axes.
 pub fn pose_gouge(
     design: &DesignSurface,
-    profile: &Profile,
+    table: &ProfileTable<'_>,
     poses: &[Pose],
     i: usize,
     opts: &GougeOptions,
 ) -> PoseGouge {
     let mut out = PoseGouge::none();
     for half in [Half::Front, Half::Back] {
-        let pc = PoseCurve::new(profile, poses, i, half, opts.curve);
+        let pc = PoseCurve::new(table, poses, i, half, opts.curve);
         check_curve(design, &pc, &opts.sections, half, &mut out);
     }
     if opts.cap_meridians > 0 && (i == 0 || i + 1 == poses.len()) {
+        let profile = table.profile();
         let top = wall_top(profile, &opts.curve);
         check_cap(
             design,
@@ -242,12 +244,12 @@ pub fn wall_top(profile: &Profile, curve: &CurveOptions) -> f64 {
 /// The sectioning check of every pose of a pass.
 pub fn check_pass(
     design: &DesignSurface,
-    profile: &Profile,
+    table: &ProfileTable<'_>,
     poses: &[Pose],
     opts: &GougeOptions,
 ) -> Vec<PoseGouge> {
     (0..poses.len())
-        .map(|i| pose_gouge(design, profile, poses, i, opts))
+        .map(|i| pose_gouge(design, table, poses, i, opts))
         .collect()
 }
 
@@ -295,7 +297,8 @@ mod tests {
             .map(|i| Pose::vertical(Point3::new(0.0, i as f64, 0.0)))
             .collect();
         let o = opts();
-        for g in check_pass(&design, &profile, &poses, &o) {
+        let table = ProfileTable::new(&profile);
+        for g in check_pass(&design, &table, &poses, &o) {
             assert!(g.points > 0);
             assert!(g.depth.abs() < 1e-9, "{g:?}");
             assert!(!g.gouges(o.tolerance));
@@ -304,7 +307,7 @@ mod tests {
             .iter()
             .map(|p| Pose::vertical(p.cl - 0.05 * Vec3::z()))
             .collect();
-        for g in check_pass(&design, &profile, &low, &o) {
+        for g in check_pass(&design, &table, &low, &o) {
             assert!((g.depth - 0.05).abs() < 1e-9, "{g:?}");
         }
     }
@@ -317,7 +320,8 @@ mod tests {
         let to = Pose::new(Point3::new(0.3, 1.0, 0.2), Vec3::new(0.12, 0.02, 1.0)).unwrap();
         let s = Sections::along(1.0, 0.7).unwrap();
         let poses = [from, to];
-        let mh = PoseCurve::new(&profile, &poses, 0, Half::Front, CurveOptions::default());
+        let table = ProfileTable::new(&profile);
+        let mh = PoseCurve::new(&table, &poses, 0, Half::Front, CurveOptions::default());
         let curve = mh.curve();
         let mut found = 0;
         for j in 0..curve.len() - 1 {

@@ -5,7 +5,9 @@
 //!
 //! Units: millimetres and radians inside; degrees only in files and reports.
 
+pub mod autotilt;
 pub mod design;
+pub mod drive;
 pub mod error;
 pub mod gencurve;
 pub mod gouge;

@@ -9,57 +9,138 @@
 //! is taken: the outer end of the bottom line (the rim of a flat bottom, where the
 //! generating circle of a flat cut runs, thesis §3.3), the lower end of a side line.
 
+use std::f64::consts::FRAC_PI_2;
 use swarf_geom::tol::LENGTH_EPS;
 use swarf_tool::{Profile, RhoZ, Segment};
 
-/// Normal angles closer than this are equal (radians).
-const ANGLE_EPS: f64 = 1e-12;
+/// Sines of normal angles closer than this are equal (dimensionless).
+const SINE_EPS: f64 = 1e-12;
+
+/// The profile prepared for lookups by normal direction, without trigonometry in the
+/// hot path: since the normal angle `psi` is in `[-pi/2, pi/2]` and never decreases
+/// along the profile, its sine `n_z` does neither, so ranges are compared by sines.
+#[derive(Debug, Clone)]
+pub struct ProfileTable<'a> {
+    profile: &'a Profile,
+    segs: Vec<SegInfo>,
+}
+
+/// One segment with the sines of its end normal angles and its arc-length start.
+#[derive(Debug, Clone, Copy)]
+struct SegInfo {
+    seg: Segment,
+    n0: f64,
+    s0: f64,
+    s1: f64,
+    acc: f64,
+}
+
+impl<'a> ProfileTable<'a> {
+    /// The table of `profile`.
+    pub fn new(profile: &'a Profile) -> ProfileTable<'a> {
+        let mut acc = 0.0;
+        let segs = profile
+            .segments()
+            .iter()
+            .map(|seg| {
+                let (n0, n1) = seg.normal_angles();
+                let info = SegInfo {
+                    seg: *seg,
+                    n0,
+                    s0: n0.sin(),
+                    s1: n1.sin(),
+                    acc,
+                };
+                acc += seg.length();
+                info
+            })
+            .collect();
+        ProfileTable { profile, segs }
+    }
+
+    /// The profile.
+    pub fn profile(&self) -> &'a Profile {
+        self.profile
+    }
+
+    /// The profile point whose outward unit normal is `(n_rho, n_z)` (`n_rho >= 0`), by
+    /// the rules of the module doc; the tip below the range, the top above it.
+    pub fn point_for_normal(&self, n_rho: f64, n_z: f64) -> RhoZ {
+        for (k, info) in self.segs.iter().enumerate() {
+            if k == 0 && n_z < info.s0 - SINE_EPS {
+                return info.seg.start();
+            }
+            match info.seg {
+                Segment::Arc {
+                    centre,
+                    radius,
+                    start,
+                    end,
+                    ..
+                } if n_z >= info.s0 - SINE_EPS && n_z <= info.s1 + SINE_EPS => {
+                    if n_z <= info.s0 {
+                        return start;
+                    }
+                    if n_z >= info.s1 {
+                        return end;
+                    }
+                    return RhoZ::new(centre.rho + radius * n_rho, centre.z + radius * n_z);
+                }
+                Segment::Line { start, end } if (n_z - info.s0).abs() <= SINE_EPS => {
+                    return if k == 0 { end } else { start };
+                }
+                _ => {}
+            }
+            if n_z > info.s1 && self.segs.get(k + 1).is_none_or(|next| n_z < next.s0) {
+                return info.seg.end();
+            }
+        }
+        self.profile.top()
+    }
+
+    /// Arc-length position (mm from the tip) of the profile point `q` (one of those
+    /// [`ProfileTable::point_for_normal`] returns).
+    pub fn arc_position(&self, q: RhoZ) -> f64 {
+        let mut best = (f64::INFINITY, 0.0);
+        for info in &self.segs {
+            let (d, at) = match info.seg {
+                Segment::Line { start, end } => {
+                    let (dr, dz) = (end.rho - start.rho, end.z - start.z);
+                    let len2 = dr * dr + dz * dz;
+                    let t = if len2 > 0.0 {
+                        (((q.rho - start.rho) * dr + (q.z - start.z) * dz) / len2).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    let d = (q.rho - start.rho - t * dr).hypot(q.z - start.z - t * dz);
+                    (d, t * len2.sqrt())
+                }
+                Segment::Arc {
+                    centre,
+                    radius,
+                    end_angle,
+                    ..
+                } => {
+                    let ang = (q.z - centre.z)
+                        .atan2(q.rho - centre.rho)
+                        .clamp(info.n0, end_angle);
+                    let d = ((q.rho - centre.rho).hypot(q.z - centre.z) - radius).abs();
+                    (d, radius * (ang - info.n0))
+                }
+            };
+            if d < best.0 - 1e-12 {
+                best = (d, info.acc + at);
+            }
+        }
+        best.1
+    }
+}
 
 /// The profile point with outward normal angle `psi` (module doc for the choices at
 /// straight pieces and corners); the tip below the range, the top above it.
 pub fn point_for_angle(profile: &Profile, psi: f64) -> RhoZ {
-    locate_angle(profile, psi).0
-}
-
-/// [`point_for_angle`] with the point's arc-length position along the profile (mm
-/// from the tip).
-pub fn locate_angle(profile: &Profile, psi: f64) -> (RhoZ, f64) {
-    let segs = profile.segments();
-    let mut acc = 0.0;
-    for (k, seg) in segs.iter().enumerate() {
-        let (n0, n1) = seg.normal_angles();
-        let len = seg.length();
-        if k == 0 && psi < n0 - ANGLE_EPS {
-            return (seg.start(), 0.0);
-        }
-        match *seg {
-            Segment::Arc { centre, radius, .. }
-                if psi >= n0 - ANGLE_EPS && psi <= n1 + ANGLE_EPS =>
-            {
-                let a = psi.clamp(n0, n1);
-                let (s, c) = a.sin_cos();
-                let q = RhoZ::new(centre.rho + radius * c, centre.z + radius * s);
-                return (q, acc + radius * (a - n0));
-            }
-            Segment::Line { start, end } if (psi - n0).abs() <= ANGLE_EPS => {
-                return if k == 0 {
-                    (end, acc + len)
-                } else {
-                    (start, acc)
-                };
-            }
-            _ => {}
-        }
-        acc += len;
-        if psi > n1
-            && segs
-                .get(k + 1)
-                .is_none_or(|next| psi < next.normal_angles().0)
-        {
-            return (seg.end(), acc);
-        }
-    }
-    (profile.top(), acc)
+    let (s, c) = psi.clamp(-FRAC_PI_2, FRAC_PI_2).sin_cos();
+    ProfileTable::new(profile).point_for_normal(c.max(0.0), s)
 }
 
 /// Arc-length position (mm from the tip) of the lowest profile point at height `h`;
@@ -117,6 +198,73 @@ mod tests {
         Cutter::bull(10.0, 2.0, Some(20.0)).unwrap().profile()
     }
 
+    /// The straightforward lookup by angle, as an oracle for the table.
+    fn locate_angle(profile: &Profile, psi: f64) -> (RhoZ, f64) {
+        const ANGLE_EPS: f64 = 1e-12;
+        let segs = profile.segments();
+        let mut acc = 0.0;
+        for (k, seg) in segs.iter().enumerate() {
+            let (n0, n1) = seg.normal_angles();
+            let len = seg.length();
+            if k == 0 && psi < n0 - ANGLE_EPS {
+                return (seg.start(), 0.0);
+            }
+            match *seg {
+                Segment::Arc { centre, radius, .. }
+                    if psi >= n0 - ANGLE_EPS && psi <= n1 + ANGLE_EPS =>
+                {
+                    let a = psi.clamp(n0, n1);
+                    let (s, c) = a.sin_cos();
+                    let q = RhoZ::new(centre.rho + radius * c, centre.z + radius * s);
+                    return (q, acc + radius * (a - n0));
+                }
+                Segment::Line { start, end } if (psi - n0).abs() <= ANGLE_EPS => {
+                    return if k == 0 {
+                        (end, acc + len)
+                    } else {
+                        (start, acc)
+                    };
+                }
+                _ => {}
+            }
+            acc += len;
+            if psi > n1
+                && segs
+                    .get(k + 1)
+                    .is_none_or(|next| psi < next.normal_angles().0)
+            {
+                return (seg.end(), acc);
+            }
+        }
+        (profile.top(), acc)
+    }
+
+    #[test]
+    fn table_agrees_with_the_angle_lookup() {
+        let tools = [
+            "bull:d=10,r=2",
+            "ball:d=8",
+            "flat:d=6",
+            "cone:d=10,angle=60",
+            "apt:d=10,r=1.5,alpha=10,beta=5",
+        ];
+        for spec in tools {
+            let cutter: Cutter = spec.parse().unwrap();
+            let p = cutter.profile();
+            let table = ProfileTable::new(&p);
+            for k in 0..=400 {
+                let psi = -FRAC_PI_2 + PI * k as f64 / 400.0;
+                let (q, s) = locate_angle(&p, psi);
+                let t = table.point_for_normal(psi.cos().max(0.0), psi.sin());
+                assert!(
+                    (q.rho - t.rho).abs() < 1e-9 && (q.z - t.z).abs() < 1e-9,
+                    "{spec} {psi}: {q:?} {t:?}"
+                );
+                assert!((table.arc_position(t) - s).abs() < 1e-6, "{spec} {psi}");
+            }
+        }
+    }
+
     #[test]
     fn profile_lookups() {
         let p = bull();
@@ -125,7 +273,7 @@ mod tests {
         assert_eq!(point_for_angle(&p, 1.0), RhoZ::new(5.0, 20.0));
         let q = point_for_angle(&p, -FRAC_PI_2 / 3.0);
         assert!((q.rho - (3.0 + 3f64.sqrt())).abs() < 1e-12 && (q.z - 1.0).abs() < 1e-12);
-        let (_, s) = locate_angle(&p, -FRAC_PI_2 / 3.0);
+        let s = ProfileTable::new(&p).arc_position(q);
         assert!((s - (3.0 + 2.0 * FRAC_PI_2 * 2.0 / 3.0)).abs() < 1e-12);
         assert!((arc_position_at_height(&p, 1.0) - s).abs() < 1e-12);
         assert_eq!(arc_position_at_height(&p, 0.0), 3.0);

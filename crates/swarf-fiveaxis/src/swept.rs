@@ -16,7 +16,7 @@
 //! section profiles that the thesis compares with measurements and with the Z-map.
 
 use crate::gencurve::{CurveOptions, Half, PoseCurve};
-use crate::profile_point::full_radius_height;
+use crate::profile_point::{ProfileTable, full_radius_height};
 use swarf_geom::mesh::XyIndex;
 use swarf_geom::{GeomError, MeshBuilder, Point3, TriMesh};
 use swarf_tool::{Pose, Profile, Segment};
@@ -47,8 +47,9 @@ impl SweptSurface {
         opts: &CurveOptions,
     ) -> Result<SweptSurface, GeomError> {
         let mut b = MeshBuilder::new();
+        let table = ProfileTable::new(profile);
         for poses in passes {
-            add_pass(&mut b, profile, poses, opts)?;
+            add_pass(&mut b, &table, poses, opts)?;
         }
         let mesh = b.finish();
         let index = XyIndex::build(&mesh);
@@ -95,10 +96,11 @@ fn vertical_hit(t: &[Point3; 3], x: f64, y: f64) -> Option<f64> {
 
 fn add_pass(
     b: &mut MeshBuilder,
-    profile: &Profile,
+    table: &ProfileTable<'_>,
     poses: &[Pose],
     opts: &CurveOptions,
 ) -> Result<(), GeomError> {
+    let profile = table.profile();
     let top = opts
         .wall_height
         .unwrap_or_else(|| full_radius_height(profile))
@@ -114,7 +116,7 @@ fn add_pass(
     for half in [Half::Front, Half::Back] {
         let mut prev: Option<Vec<Point3>> = None;
         for i in 0..poses.len() {
-            let curve = PoseCurve::new(profile, poses, i, half, *opts).curve();
+            let curve = PoseCurve::new(table, poses, i, half, *opts).curve();
             if let Some(p) = &prev {
                 add_strip(b, p, &curve)?;
             }
