@@ -27,6 +27,8 @@ enum Command {
     Tessellate(cmd::tessellate::Args),
     /// Plan a finishing tool path from a job file and write G-code, CL, CSV, summary.
     Plan(cmd::plan::Args),
+    /// Drop a cutter onto a triangle mesh at many XY points (CSV in, CSV out).
+    Drop(cmd::drop::Args),
     /// Run the main job on the built-in shared parts and write the results.
     Demo(cmd::demo::Args),
 }
@@ -39,6 +41,7 @@ fn main() -> ExitCode {
         Command::Tessellate(a) => cmd::tessellate::run(&a),
         Command::Plan(a) => cmd::plan::run(&a),
         Command::Demo(a) => cmd::demo::run(&a),
+        Command::Drop(a) => cmd::drop::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

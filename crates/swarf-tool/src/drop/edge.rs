@@ -37,18 +37,35 @@ use super::{DropCutter, EdgeShape};
 /// Convergence of the torus edge solve in the corner angle, radians.
 pub const THETA_TOL: f64 = 1e-13;
 
-/// `(s*, h(rho(s*)))`: the maximiser of `f` over `[-w, w]` for an edge line at
-/// distance `d0 <= R` rising by `m` per mm, and the envelope height there.
-pub(crate) fn edge_argmax(tool: &DropCutter, d0: f64, m: f64) -> (f64, f64) {
-    let (s, h) = edge_argmax_rising(tool, d0, m.abs());
-    (s.copysign(m), h)
+/// The maximiser `(s*, h(rho(s*)))` of `f` over `[-w, w]` for an edge line at
+/// distance `d0 <= R` rising by `m` per mm, when it lies strictly inside the edge's
+/// range `(lo, hi)`; `None` when the edge's maximum is at one of its ends (a vertex
+/// case). Envelopes of several pieces first test the sign of `g` at the ends of the
+/// range, so that only edges holding their maximum get solved.
+pub(crate) fn edge_argmax(
+    tool: &DropCutter,
+    d0: f64,
+    m: f64,
+    lo: f64,
+    hi: f64,
+) -> Option<(f64, f64)> {
+    let (s, h) = if m >= 0.0 {
+        edge_argmax_rising(tool, d0, m, lo, hi)?
+    } else {
+        let (s, h) = edge_argmax_rising(tool, d0, -m, -hi, -lo)?;
+        (-s, h)
+    };
+    (s > lo && s < hi).then_some((s, h))
 }
 
 /// As [`edge_argmax`] for `m >= 0` (the maximiser is at `s >= 0`).
-fn edge_argmax_rising(tool: &DropCutter, d0: f64, m: f64) -> (f64, f64) {
+fn edge_argmax_rising(tool: &DropCutter, d0: f64, m: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
     let r = tool.radius;
     let w = (r * r - d0 * d0).max(0.0).sqrt();
-    match tool.shape {
+    if hi <= 0.0 || lo >= w {
+        return None;
+    }
+    Some(match tool.shape {
         EdgeShape::Flat => {
             if m > 0.0 {
                 (w, 0.0)
@@ -61,11 +78,17 @@ fn edge_argmax_rising(tool: &DropCutter, d0: f64, m: f64) -> (f64, f64) {
             (m * w / c, r - w / c)
         }
         EdgeShape::Cone { k } => match line_root(d0, m, k) {
-            Some(s) if s < w => (s, k * d0.hypot(s)),
+            Some(s) if s < w => (s, k * dist(d0, s)),
             _ => (w, tool.envelope.top()),
         },
-        EdgeShape::Pieces => pieces_argmax(tool, d0, m, w),
-    }
+        EdgeShape::Pieces => pieces_argmax(tool, d0, m, w, [lo.max(0.0), hi.min(w)])?,
+    })
+}
+
+/// `sqrt(a^2 + b^2)` (no overflow care needed at tool sizes; faster than `hypot`).
+#[inline]
+fn dist(a: f64, b: f64) -> f64 {
+    (a * a + b * b).sqrt()
 }
 
 /// Root of `m rho = k s` for `s >= 0`, when `m < k`.
@@ -75,35 +98,59 @@ fn line_root(d0: f64, m: f64, k: f64) -> Option<f64> {
 
 /// `g(s) = m - h'(rho) s / rho` on `piece`, taking `s / rho = 1` on the axis.
 fn g(piece: &Piece, d0: f64, m: f64, s: f64) -> f64 {
-    let rho = d0.hypot(s);
+    let rho = dist(d0, s);
     let ratio = if rho > 0.0 { s / rho } else { 1.0 };
     let slope = piece.slope(rho);
     if ratio == 0.0 { m } else { m - slope * ratio }
 }
 
-/// The walk over the envelope pieces described in the module doc.
-fn pieces_argmax(tool: &DropCutter, d0: f64, m: f64, w: f64) -> (f64, f64) {
+/// `g` at `s` on the piece holding `rho(s)` (the inner one at a joint).
+fn g_at(tool: &DropCutter, d0: f64, m: f64, s: f64) -> f64 {
+    let rho = dist(d0, s);
+    let pieces = tool.envelope.pieces();
+    match pieces.iter().find(|p| rho <= p.rho1()).or(pieces.last()) {
+        Some(p) => g(p, d0, m, s),
+        None => m,
+    }
+}
+
+/// The walk over the envelope pieces described in the module doc, within the range
+/// `[a, b]` of `s` (`0 <= a <= b <= w`); `None` when `g` says the maximum of `f` over
+/// `[0, w]` is outside `(a, b)`.
+fn pieces_argmax(
+    tool: &DropCutter,
+    d0: f64,
+    m: f64,
+    w: f64,
+    [a, b]: [f64; 2],
+) -> Option<(f64, f64)> {
     let env = &tool.envelope;
     if m == 0.0 {
-        return (0.0, env.height(d0));
+        return Some((0.0, env.height(d0)));
     }
-    let s_at = |rho: f64| (rho * rho - d0 * d0).max(0.0).sqrt().min(w);
+    if (b < w && g_at(tool, d0, m, b) >= 0.0) || (a > 0.0 && g_at(tool, d0, m, a) <= 0.0) {
+        return None;
+    }
+    let s_at = |rho: f64| (rho * rho - d0 * d0).max(0.0).sqrt().clamp(a, b);
     for piece in env.pieces() {
         if piece.rho1() <= d0 {
             continue;
         }
         let rho_lo = piece.rho0().max(d0);
         let (s_lo, s_hi) = (s_at(rho_lo), s_at(piece.rho1()));
+        if s_hi <= a {
+            continue;
+        }
         if g(piece, d0, m, s_lo) <= 0.0 {
-            return (s_lo, piece.height(rho_lo));
+            return Some((s_lo, piece.height(dist(d0, s_lo))));
         }
         if g(piece, d0, m, s_hi) > 0.0 {
             continue;
         }
         let s = solve_in_piece(piece, d0, m, s_lo, s_hi);
-        return (s, piece.height(d0.hypot(s)));
+        return Some((s, piece.height(dist(d0, s))));
     }
-    (w, env.top())
+    Some((w, env.top()))
 }
 
 /// The root of `g` inside `piece`, bracketed by `g(s_lo) > 0 >= g(s_hi)`.
@@ -120,7 +167,7 @@ fn solve_in_piece(piece: &Piece, d0: f64, m: f64, s_lo: f64, s_hi: f64) -> f64 {
 
 /// The torus case: solve `G(theta) = 0` between the angles of `s_lo` and `s_hi`.
 fn torus_root(ce: f64, r: f64, d0: f64, m: f64, s_lo: f64, s_hi: f64) -> f64 {
-    let theta_of = |s: f64| (((d0.hypot(s) - ce) / r).clamp(0.0, 1.0)).asin();
+    let theta_of = |s: f64| (((dist(d0, s) - ce) / r).clamp(0.0, 1.0)).asin();
     let big_g = |t: f64| {
         let (sin, cos) = t.sin_cos();
         let rho = ce + r * sin;
@@ -191,7 +238,7 @@ mod tests {
                 for m in [
                     -5.0, -1.3, -0.4, -0.01, 0.0, 0.02, 0.3, 0.999, 1.0, 2.5, 40.0,
                 ] {
-                    let (s, h) = edge_argmax(&t, d0, m);
+                    let (s, h) = edge_argmax(&t, d0, m, f64::NEG_INFINITY, f64::INFINITY).unwrap();
                     let f = m * s - h;
                     let (sb, fb) = brute(&t, d0, m);
                     assert!(
@@ -221,7 +268,10 @@ mod tests {
             for i in 0..=10 {
                 let d0 = fast.radius * f64::from(i) / 10.0;
                 for m in [-3.0, -0.5, 0.0, 0.25, 0.8, 1.0, 1.5, 7.0] {
-                    let (a, b) = (edge_argmax(&fast, d0, m), edge_argmax(&slow, d0, m));
+                    let full = |t: &DropCutter| {
+                        edge_argmax(t, d0, m, f64::NEG_INFINITY, f64::INFINITY).unwrap()
+                    };
+                    let (a, b) = (full(&fast), full(&slow));
                     assert!(
                         (a.0 - b.0).abs() < 1e-12 && (a.1 - b.1).abs() < 1e-12,
                         "{spec} {d0} {m}: {a:?} {b:?}"
@@ -237,7 +287,7 @@ mod tests {
         // equals the edge's: h'(rho) s / rho = m.
         let bull = tool("bull:d=10,r=2");
         for (d0, m) in [(0.5, 0.3), (3.5, 0.1), (2.0, 1.5), (4.9, 0.05)] {
-            let (s, _) = edge_argmax(&bull, d0, m);
+            let (s, _) = edge_argmax(&bull, d0, m, f64::NEG_INFINITY, f64::INFINITY).unwrap();
             let rho = d0.hypot(s);
             assert!(rho > 3.0 && rho < 5.0, "{d0} {m}: rho {rho}");
             let slope = bull.envelope.slope(rho) * s / rho;

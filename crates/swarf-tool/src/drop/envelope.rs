@@ -77,6 +77,15 @@ impl Piece {
         }
     }
 
+    /// Sine of the tilt of the surface normal at the outer end (0 for a flat bottom, 1
+    /// at an arc's equator): the largest tilt of a plane this piece touches.
+    pub fn max_tilt_sine(&self) -> f64 {
+        match *self {
+            Piece::Line { k, .. } => k / (1.0 + k * k).sqrt(),
+            Piece::Arc { rho1, ce, r, .. } => ((rho1 - ce) / r).min(1.0),
+        }
+    }
+
     /// Slope `dh/drho` at `rho` (infinite at an arc's equator).
     #[inline]
     pub fn slope(&self, rho: f64) -> f64 {
@@ -157,6 +166,28 @@ impl Envelope {
             }
         }
         pieces.last().map_or(0.0, |p| p.height(rho.min(p.rho1())))
+    }
+
+    /// The point `(rho, h)` of the lower surface that touches a plane whose upward unit
+    /// normal has horizontal length `a` and vertical component `nz` (`a^2 + nz^2 = 1`,
+    /// `nz > 0`): where the surface's own normal is the plane's. A line piece of that
+    /// tilt touches along its length and gives its inner end (the lowest point); a
+    /// joint between pieces takes the tilts between theirs; tilts past the last piece
+    /// touch at the rim `(R, h(R))`. This is [`Profile::contact_for_normal`] for
+    /// vertical axes and upward normals, without trigonometry (tests pin the two
+    /// together).
+    pub fn contact_for_tilt(&self, a: f64, nz: f64) -> (f64, f64) {
+        for p in self.pieces() {
+            if a <= p.max_tilt_sine() {
+                return match *p {
+                    Piece::Arc {
+                        rho0, ce, cz, r, ..
+                    } if a * r + ce > rho0 => (ce + r * a, cz - r * nz),
+                    _ => (p.rho0(), p.height(p.rho0())),
+                };
+            }
+        }
+        (self.radius, self.top)
     }
 
     /// Slope `h'(rho)` from the piece holding `rho` (at a joint, the inner piece's).
@@ -264,6 +295,36 @@ mod tests {
                 assert!(s0 >= slope - 1e-9, "{c}: slope falls from {slope} to {s0}");
                 slope = p.slope(p.rho1());
                 at = p.rho1();
+            }
+        }
+    }
+
+    #[test]
+    fn tilt_contacts_equal_the_profiles_contact_for_normal() {
+        use swarf_geom::Vec3;
+        for c in cutters() {
+            let p = c.profile();
+            let env = Envelope::new(&p);
+            for i in 0..=400 {
+                let tilt = 0.9999 * std::f64::consts::FRAC_PI_2 * f64::from(i) / 400.0;
+                let (a, nz) = tilt.sin_cos();
+                let (rho, h) = env.contact_for_tilt(a, nz);
+                let n = Vec3::new(a, 0.0, nz);
+                // Where the profile has a point with this normal on the lower surface,
+                // it is the same point; past the flank, ours is the rim.
+                if let Some((pc, _)) = p.contact_for_normal(&n, &Vec3::z()) {
+                    let on_lower =
+                        (p.height_at_radius(pc.point.rho).unwrap() - pc.point.z).abs() < 1e-9;
+                    if on_lower && pc.point.rho <= env.radius() + 1e-12 {
+                        assert!(
+                            (rho - pc.point.rho).abs() < 1e-9 && (h - pc.point.z).abs() < 1e-9,
+                            "{c} tilt {tilt}: ({rho}, {h}) vs {:?}",
+                            pc.point
+                        );
+                        continue;
+                    }
+                }
+                assert_eq!((rho, h), (env.radius(), env.top()), "{c} tilt {tilt}");
             }
         }
     }

@@ -9,23 +9,22 @@
 //! facet, and each case has a closed form or a guaranteed 1-D solve:
 //!
 //! - **vertex** `p`: `tip = p.z - h(|p.xy - (x, y)|)`, written once over the profile;
-//! - **facet** with upward unit normal `n`: the profile point whose outward normal is
-//!   `-n` ([`Profile::contact_for_normal`], the tool crate's contact API) touches
-//!   the plane; with `(rho_c, z_c)` that point and `u` its radial direction, the CC
-//!   point is `(x, y) + rho_c u` in XY, valid when it lies in the triangle's XY
-//!   projection; its height comes from barycentric interpolation (bounded by the
-//!   corner heights however steep the facet), and `tip = cc.z - z_c`. Normals steeper
-//!   than the side line (a taper's flank) touch at the rim `(R, h(R))`;
+//! - **facet** with upward unit normal `n`: the profile point whose normal is `n`
+//!   touches the plane ([`super::facet`], written once over the profile's lower
+//!   envelope, pinned to [`crate::Profile::contact_for_normal`] by tests); when that
+//!   point is inside the triangle it is the triangle's drop, and otherwise the plane's
+//!   drop bounds the triangle's from above;
 //! - **edge**: a 1-D concave maximisation along the edge ([`super::edge`]).
 //!
 //! A vertical facet (`n.z = 0`) has no interior maximum that its edges miss: the
-//! cutter touches it along a vertical line ending on an edge. Inside the triangle the
-//! candidates are compared with `>` in the order vertices, edges, facet, so ties keep
-//! the first (deterministic).
+//! cutter touches it along a vertical line ending on an edge. Order and ties: the
+//! facet is tried first (an inside contact ends the search); then vertices and edges
+//! are compared with `>` in that order, so ties keep the first (deterministic).
 
 use super::edge::edge_argmax;
+use super::facet::{PlaneDrop, plane_drop};
 use super::{DropCutter, Feature, TriContact};
-use swarf_geom::{Point3, Vec3};
+use swarf_geom::Point3;
 
 /// Drop onto vertex `k` of `tri`: the tip height at which the cutter at `xy` touches
 /// it, and the contact; `None` when the vertex is beyond the cutter's reach.
@@ -63,26 +62,35 @@ pub fn edge_drop(
     tri: &[Point3; 3],
     k: usize,
 ) -> Option<TriContact> {
+    edge_above(tool, xy, tri, k, f64::NEG_INFINITY)
+}
+
+/// [`edge_drop`] when it can reach `floor`: `None` early when even the edge's highest
+/// end minus `h` at the edge line's distance is below it.
+fn edge_above(
+    tool: &DropCutter,
+    xy: [f64; 2],
+    tri: &[Point3; 3],
+    k: usize,
+    floor: f64,
+) -> Option<TriContact> {
     let a = tri.get(k)?;
     let b = tri[(k + 1) % 3];
     let (ax, ay) = (a.x - xy[0], a.y - xy[1]);
     let (dx, dy) = (b.x - a.x, b.y - a.y);
-    let len = dx.hypot(dy);
+    let len = (dx * dx + dy * dy).sqrt();
     if len.is_nan() || len <= 0.0 {
         return None;
     }
     let (tx, ty) = (dx / len, dy / len);
     let d0 = (ax * ty - ay * tx).abs();
-    if d0.is_nan() || d0 > tool.radius {
+    if d0.is_nan() || d0 > tool.radius || a.z.max(b.z) - tool.envelope.height(d0) < floor {
         return None;
     }
     let sa = ax * tx + ay * ty;
     let m = (b.z - a.z) / len;
-    let (s, h) = edge_argmax(tool, d0, m);
-    let u = (s - sa) / len;
-    if !(u > 0.0 && u < 1.0) {
-        return None;
-    }
+    let (s, h) = edge_argmax(tool, d0, m, sa, sa + len)?;
+    let u = ((s - sa) / len).clamp(0.0, 1.0);
     let cc = Point3::new(a.x + u * dx, a.y + u * dy, a.z + u * (b.z - a.z));
     Some(TriContact {
         z: cc.z - h,
@@ -98,49 +106,10 @@ pub fn edge_drop(
 /// # Units
 /// mm.
 pub fn facet_drop(tool: &DropCutter, xy: [f64; 2], tri: &[Point3; 3]) -> Option<TriContact> {
-    let [p0, p1, p2] = tri;
-    let mut n = (p1 - p0).cross(&(p2 - p0));
-    if n.z < 0.0 {
-        n = -n;
+    match plane_drop(tool, xy, tri) {
+        PlaneDrop::Inside(c) => Some(c),
+        PlaneDrop::Bound(_) | PlaneDrop::Unknown => None,
     }
-    let norm = n.norm();
-    if !(n.z > 0.0 && norm.is_finite()) {
-        return None;
-    }
-    let n = n / norm;
-    let (rho, zc, u) = facet_contact(tool, &n);
-    let q = [xy[0] + rho * u.x, xy[1] + rho * u.y];
-    let lam = barycentric_xy(tri, q)?;
-    let z = lam[0] * p0.z + lam[1] * p1.z + lam[2] * p2.z;
-    Some(TriContact {
-        z: z - zc,
-        cc: Point3::new(q[0], q[1], z),
-        feature: Feature::Facet,
-    })
-}
-
-/// The profile point touching a plane of upward unit normal `n`: `(rho, z, u)`.
-fn facet_contact(tool: &DropCutter, n: &Vec3) -> (f64, f64, Vec3) {
-    if let Some((c, u)) = tool.profile.contact_for_normal(n, &Vec3::z()) {
-        return (c.point.rho, c.point.z, u);
-    }
-    let across = n.x.hypot(n.y);
-    let u = Vec3::new(-n.x / across, -n.y / across, 0.0);
-    (tool.radius, tool.envelope.top(), u)
-}
-
-/// Barycentric coordinates of `q` in the XY projection of `tri`, when `q` lies in it
-/// (closed), from edge functions relative to `q`.
-fn barycentric_xy(tri: &[Point3; 3], q: [f64; 2]) -> Option<[f64; 3]> {
-    let r = tri.map(|p| [p.x - q[0], p.y - q[1]]);
-    let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
-    let e = [cross(r[1], r[2]), cross(r[2], r[0]), cross(r[0], r[1])];
-    let total = e[0] + e[1] + e[2];
-    if total == 0.0 || !total.is_finite() {
-        return None;
-    }
-    let lam = e.map(|v| v / total);
-    lam.iter().all(|&l| l >= 0.0).then_some(lam)
 }
 
 /// Drop onto the whole triangle: the highest of its vertex, edge and facet contacts
@@ -159,21 +128,40 @@ fn barycentric_xy(tri: &[Point3; 3], q: [f64; 2]) -> Option<[f64; 3]> {
 /// assert_eq!((c.z, c.feature), (1.0, Feature::Facet));
 /// ```
 pub fn triangle_drop(tool: &DropCutter, xy: [f64; 2], tri: &[Point3; 3]) -> Option<TriContact> {
+    triangle_drop_above(tool, xy, tri, f64::NEG_INFINITY)
+}
+
+/// [`triangle_drop`] restricted to contacts at or above `floor` (mm): the same result
+/// when the triangle reaches `floor`, else `None`. Edges and the facet that provably
+/// stay below `floor` are not solved, which is what makes the mesh drop fast: there
+/// `floor` is the best height found on other triangles.
+pub fn triangle_drop_above(
+    tool: &DropCutter,
+    xy: [f64; 2],
+    tri: &[Point3; 3],
+    floor: f64,
+) -> Option<TriContact> {
+    match plane_drop(tool, xy, tri) {
+        PlaneDrop::Inside(c) => return (c.z >= floor).then_some(c),
+        PlaneDrop::Bound(b) if b < floor => return None,
+        PlaneDrop::Bound(_) | PlaneDrop::Unknown => {}
+    }
     let mut best: Option<TriContact> = None;
-    let mut take = |c: Option<TriContact>| {
+    let take = |best: &mut Option<TriContact>, c: Option<TriContact>| {
         if let Some(c) = c
+            && c.z >= floor
             && best.is_none_or(|b| c.z > b.z)
         {
-            best = Some(c);
+            *best = Some(c);
         }
     };
     for k in 0..3 {
-        take(vertex_drop(tool, xy, tri, k));
+        take(&mut best, vertex_drop(tool, xy, tri, k));
     }
     for k in 0..3 {
-        take(edge_drop(tool, xy, tri, k));
+        let f = best.map_or(floor, |b| b.z.max(floor));
+        take(&mut best, edge_above(tool, xy, tri, k, f));
     }
-    take(facet_drop(tool, xy, tri));
     best
 }
 
@@ -268,15 +256,13 @@ mod tests {
 
     #[test]
     fn steep_facet_beyond_a_taper_touches_at_the_rim() {
-        // Taper ball, 10-degree flank: a facet steeper than 80 degrees meets the
-        // rim at the top of the flutes.
+        // Taper ball, 10-degree flank: a facet steeper than 80 degrees (rising toward
+        // +x) meets the rim at the top of the flutes, on the +x side.
         let taper = tool("taperball:d=6,angle=10,tip=1,length=10");
-        let dc = &taper;
-        let top = dc.envelope.top();
-        let r = dc.radius;
-        let n = Vec3::new(-0.99, 0.0, (1.0f64 - 0.99 * 0.99).sqrt());
-        let (rho, z, u) = facet_contact(dc, &n);
-        assert_eq!((rho, z), (r, top));
-        assert!((u - Vec3::x()).norm() < 1e-15);
+        let (r, top) = (taper.radius, taper.envelope.top());
+        let facet = [p(2.0, -9.0, 0.0), p(2.0, 9.0, 0.0), p(3.5, 0.0, 12.0)];
+        let c = facet_drop(&taper, [0.0, 0.0], &facet).unwrap();
+        assert!((c.cc.x - r).abs() < 1e-12 && c.cc.y.abs() < 1e-12, "{c:?}");
+        assert!((c.z - (8.0 * (r - 2.0) - top)).abs() < 1e-12, "{c:?}");
     }
 }

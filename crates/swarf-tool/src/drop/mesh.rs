@@ -18,9 +18,10 @@
 //! triangle contact within a tolerance of the top (its bound is relaxed by the same
 //! tolerance).
 
+use super::facet::barycentric_xy;
 use super::grid::DropGrid;
-use super::kernel::triangle_drop;
-use super::{DropCutter, Feature, TriContact};
+use super::kernel::triangle_drop_above;
+use super::{DropCutter, Feature};
 use crate::cutter::Cutter;
 use std::collections::BinaryHeap;
 use swarf_geom::{Point3, TriMesh};
@@ -38,12 +39,20 @@ pub struct DropResult {
     pub cc: Point3,
 }
 
-/// Reusable per-thread working memory for drops.
+/// Reusable per-thread working memory for drops. It also remembers the triangle of
+/// the last drop, tried first on the next one: neighbouring points (a raster, a grid
+/// row) usually touch the same or a nearby triangle, so the search starts with a
+/// height close to the answer and prunes almost everything else. Results never
+/// depend on it (module doc).
 #[derive(Debug, Default, Clone)]
 pub struct DropScratch {
     heap: Vec<(u64, u32)>,
     near: Vec<DropResult>,
+    hint: Option<u32>,
 }
+
+/// The best contact so far and the grid entry it came from.
+type Best = Option<(DropResult, usize)>;
 
 /// The contacts of one drop within a tolerance of its height.
 pub type TopContacts = Vec<DropResult>;
@@ -138,6 +147,28 @@ impl MeshDropper {
         Some(best)
     }
 
+    /// Height of the mesh itself at `(x, y)`: the highest triangle whose XY projection
+    /// holds the point (a drop of a needle); `None` off the mesh.
+    ///
+    /// # Units
+    /// mm.
+    pub fn surface_z(&self, x: f64, y: f64) -> Option<f64> {
+        let mut best: Option<f64> = None;
+        self.grid.for_each_in_disc([x, y], 0.0, |e, entry, _| {
+            if best.is_some_and(|b| f64::from(entry.zmax) < b) {
+                return;
+            }
+            let t = &self.grid.corners[e];
+            if let Some(l) = barycentric_xy(t, [x, y]) {
+                let z = l[0] * t[0].z + l[1] * t[1].z + l[2] * t[2].z;
+                if best.is_none_or(|b| z > b) {
+                    best = Some(z);
+                }
+            }
+        });
+        best
+    }
+
     fn run(
         &self,
         x: f64,
@@ -147,43 +178,76 @@ impl MeshDropper {
         keep: bool,
     ) -> Option<DropResult> {
         let xy = [x, y];
+        scratch.near.clear();
+        let near = &mut scratch.near;
+        let mut best: Best = None;
+        let floor = |b: &Best| b.map_or(f64::NEG_INFINITY, |b| b.0.z - slack);
+        let hint = scratch
+            .hint
+            .take()
+            .map(|e| e as usize)
+            .filter(|&e| e < self.grid.len());
+        if let Some(e) = hint {
+            self.consider(
+                xy,
+                e,
+                f64::NEG_INFINITY,
+                &mut best,
+                keep.then_some(&mut *near),
+            );
+        }
+        let seed = floor(&best);
         let env = self.tool.envelope();
         let mut heap = BinaryHeap::from(std::mem::take(&mut scratch.heap));
         heap.clear();
         self.grid
             .for_each_in_disc(xy, self.tool.radius(), |e, entry, d2| {
-                let ub = f64::from(entry.zmax) - env.height(d2.sqrt());
-                heap.push((order_key(ub), e as u32));
+                let top = f64::from(entry.zmax);
+                if top < seed || Some(e) == hint {
+                    return;
+                }
+                let ub = top - env.height(d2.sqrt());
+                if ub >= seed {
+                    heap.push((order_key(ub), e as u32));
+                }
             });
-        scratch.near.clear();
-        let mut best: Option<DropResult> = None;
         while let Some((key, e)) = heap.pop() {
-            if best.is_some_and(|b| from_order_key(key) < b.z - slack) {
+            let f = floor(&best);
+            if from_order_key(key) < f {
                 break;
             }
-            let e = e as usize;
-            let Some(c) = triangle_drop(&self.tool, xy, &self.grid.corners[e]) else {
-                continue;
-            };
-            let r = result(c, self.grid.ids[e]);
-            if keep {
-                scratch.near.push(r);
-            }
-            if best.is_none_or(|b| r.z > b.z || (r.z == b.z && r.tri < b.tri)) {
-                best = Some(r);
-            }
+            self.consider(xy, e as usize, f, &mut best, keep.then_some(&mut *near));
         }
         scratch.heap = heap.into_vec();
-        best
+        scratch.hint = best.map(|b| b.1 as u32);
+        best.map(|b| b.0)
     }
-}
 
-fn result(c: TriContact, tri: u32) -> DropResult {
-    DropResult {
-        z: c.z,
-        tri,
-        feature: c.feature,
-        cc: c.cc,
+    /// Drops onto the triangle of grid entry `e` at or above `floor`; keeps the better
+    /// of it and `best` (ties to the lower triangle index) and records it in `near`.
+    fn consider(
+        &self,
+        xy: [f64; 2],
+        e: usize,
+        floor: f64,
+        best: &mut Best,
+        near: Option<&mut Vec<DropResult>>,
+    ) {
+        let Some(c) = triangle_drop_above(&self.tool, xy, &self.grid.corners[e], floor) else {
+            return;
+        };
+        let r = DropResult {
+            z: c.z,
+            tri: self.grid.ids[e],
+            feature: c.feature,
+            cc: c.cc,
+        };
+        if let Some(near) = near {
+            near.push(r);
+        }
+        if best.is_none_or(|(b, _)| r.z > b.z || (r.z == b.z && r.tri < b.tri)) {
+            *best = Some((r, e));
+        }
     }
 }
 
@@ -238,5 +302,7 @@ mod tests {
         );
         assert!(d.drop(f64::NAN, 5.0, &mut s).is_none());
         assert_eq!(d.len(), 4);
+        assert_eq!(d.surface_z(10.0, 5.0), Some(1.0));
+        assert_eq!(d.surface_z(-1.0, 5.0), None);
     }
 }

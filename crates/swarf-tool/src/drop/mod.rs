@@ -23,13 +23,14 @@ pub mod batch;
 mod bracket;
 pub mod edge;
 pub mod envelope;
+mod facet;
 pub mod grid;
 pub mod kernel;
 pub mod mesh;
 
-pub use batch::drop_points;
+pub use batch::{drop_points, drop_points_threads};
 pub use envelope::Envelope;
-pub use kernel::{edge_drop, facet_drop, triangle_drop, vertex_drop};
+pub use kernel::{edge_drop, facet_drop, triangle_drop, triangle_drop_above, vertex_drop};
 pub use mesh::{DropResult, DropScratch, MeshDropper, TopContacts};
 
 use crate::cutter::Cutter;

@@ -1,6 +1,7 @@
 //! One file per subcommand.
 
 pub mod demo;
+pub mod drop;
 pub mod eval;
 pub mod inspect;
 pub mod plan;

@@ -1,0 +1,147 @@
+//! Drop-cutter benchmarks on the shared parts.
+//!
+//! - `mesh/*`: one thread, drops over a 0.5 mm grid of points in input order (as a
+//!   raster or `swarf drop` runs them): ball d=8 on die.toml tessellated to ~78,000
+//!   triangles, bull d=10 r=2 on wave.toml tessellated to ~180,000 triangles. The
+//!   `xyindex_peer` variant does the same drop over `swarf_geom::XyIndex` (the shared
+//!   index: visit the disc's triangles, skip those whose top is below the best
+//!   height, drop onto the rest through the mesh's vertex list), to measure what the
+//!   drop grid's layout buys (see `drop/grid.rs`).
+//! - `kernel/*`: `triangle_drop` alone over (point, triangle) pairs within reach taken
+//!   from the same meshes: the time of one triangle-cutter test, the floor a drop
+//!   approaches.
+//!
+//! The comparison with OpenCAMLib (same mesh, same points, 2 threads) is
+//! `tools/ocl/bench_drop.py`.
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use std::hint::black_box;
+use swarf_geom::{TriMesh, XyIndex};
+use swarf_tool::Cutter;
+use swarf_tool::drop::{DropCutter, DropScratch, MeshDropper, triangle_drop};
+
+/// Points per measured batch.
+const BATCH: usize = 4000;
+
+fn tessellated(name: &str, tol: f64) -> TriMesh {
+    swarf_io::builtin_part(name)
+        .expect("built-in part")
+        .tessellate(tol)
+        .expect("tessellation")
+}
+
+/// A 0.5 mm grid over the middle of the mesh's XY box, `BATCH` points row by row.
+fn grid(mesh: &TriMesh) -> Vec<[f64; 2]> {
+    let b = mesh.aabb();
+    let c = b.center();
+    let n = (BATCH as f64).sqrt() as usize;
+    let half = 0.25 * n as f64;
+    (0..n * n)
+        .map(|k| {
+            let (i, j) = ((k % n) as f64, (k / n) as f64);
+            [c.x - half + 0.5 * i, c.y - half + 0.5 * j]
+        })
+        .collect()
+}
+
+/// The same drop over `XyIndex`: the peer of `MeshDropper`.
+struct IndexPeer<'a> {
+    mesh: &'a TriMesh,
+    index: XyIndex,
+    zmax: Vec<f64>,
+    tool: DropCutter,
+}
+
+impl IndexPeer<'_> {
+    fn drop(&self, xy: [f64; 2]) -> Option<f64> {
+        let mut best: Option<f64> = None;
+        self.index.for_each_in_disc(xy, self.tool.radius(), |t| {
+            if best.is_some_and(|b| self.zmax[t as usize] < b) {
+                return;
+            }
+            if let Some(c) = triangle_drop(&self.tool, xy, &self.mesh.triangle(t as usize))
+                && best.is_none_or(|b| c.z > b)
+            {
+                best = Some(c.z);
+            }
+        });
+        best
+    }
+}
+
+fn mesh_case(c: &mut Criterion, name: &str, mesh: &TriMesh, spec: &str) {
+    let cutter: Cutter = spec.parse().expect("spec");
+    let dropper = MeshDropper::new(mesh, &cutter);
+    let pts = grid(mesh);
+    let mut group = c.benchmark_group(format!("mesh/{name}"));
+    group.throughput(Throughput::Elements(pts.len() as u64));
+    group.sample_size(20);
+    group.bench_function("drop_grid", |b| {
+        let mut s = DropScratch::default();
+        b.iter(|| {
+            for p in &pts {
+                black_box(dropper.drop(p[0], p[1], &mut s));
+            }
+        });
+    });
+    let peer = IndexPeer {
+        mesh,
+        index: XyIndex::build(mesh),
+        zmax: (0..mesh.len())
+            .map(|t| {
+                mesh.triangle(t)
+                    .iter()
+                    .map(|p| p.z)
+                    .fold(f64::MIN, f64::max)
+            })
+            .collect(),
+        tool: DropCutter::new(&cutter),
+    };
+    let mut s = DropScratch::default();
+    for p in pts.iter().step_by(37) {
+        let ours = dropper.drop(p[0], p[1], &mut s).map(|d| d.z);
+        assert_eq!(ours, peer.drop(*p), "peer disagrees at {p:?}");
+    }
+    group.bench_function("xyindex_peer", |b| {
+        b.iter(|| {
+            for p in &pts {
+                black_box(peer.drop(*p));
+            }
+        });
+    });
+    group.finish();
+    kernel_case(c, name, mesh, &cutter, &pts);
+}
+
+/// `triangle_drop` over the (point, triangle) pairs within reach.
+fn kernel_case(c: &mut Criterion, name: &str, mesh: &TriMesh, cutter: &Cutter, pts: &[[f64; 2]]) {
+    let tool = DropCutter::new(cutter);
+    let index = XyIndex::build(mesh);
+    let mut pairs = Vec::new();
+    for p in pts.iter().step_by(40) {
+        index.for_each_in_disc(*p, tool.radius(), |t| {
+            pairs.push((*p, mesh.triangle(t as usize)))
+        });
+    }
+    let mut group = c.benchmark_group(format!("kernel/{name}"));
+    group.throughput(Throughput::Elements(pairs.len() as u64));
+    group.sample_size(20);
+    group.bench_function("triangle_drop", |b| {
+        b.iter(|| {
+            for (p, t) in &pairs {
+                black_box(triangle_drop(&tool, *p, t));
+            }
+        });
+    });
+    group.finish();
+}
+
+fn benches(c: &mut Criterion) {
+    let die = tessellated("die", 0.0008);
+    mesh_case(c, "die78k_ball8", &die, "ball:d=8");
+    let wave = tessellated("wave", 0.001);
+    mesh_case(c, "wave180k_bull10r2", &wave, "bull:d=10,r=2");
+}
+
+criterion_group!(drop_benches, benches);
+criterion_main!(drop_benches);
