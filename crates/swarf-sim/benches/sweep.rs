@@ -17,7 +17,11 @@ fn raster() -> Vec<Motion> {
     for k in 0..20 {
         let y = -2.0 + 2.2 * k as f64;
         for s in 0..=50 {
-            let x = if k % 2 == 0 { -2.0 + 0.88 * s as f64 } else { 42.0 - 0.88 * s as f64 };
+            let x = if k % 2 == 0 {
+                -2.0 + 0.88 * s as f64
+            } else {
+                42.0 - 0.88 * s as f64
+            };
             let z = -0.5 + 0.3 * (0.2 * x).sin() * (0.15 * y).cos();
             let to = Point3::new(x, y, z);
             out.push(Motion {

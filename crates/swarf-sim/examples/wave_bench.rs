@@ -23,7 +23,11 @@ fn generated(part: &swarf_geom::Part, r: f64) -> Program {
             kind,
             start: Pose::vertical(*at),
             end: Pose::vertical(to),
-            feed: if kind == MotionKind::Rapid { 0.0 } else { 300.0 },
+            feed: if kind == MotionKind::Rapid {
+                0.0
+            } else {
+                300.0
+            },
             line,
         });
         *at = to;
@@ -40,7 +44,12 @@ fn generated(part: &swarf_geom::Part, r: f64) -> Program {
             d.point + n * r - Vec3::z() * r
         };
         let first = cl(0);
-        push(&mut at, Point3::new(first.x, first.y, 60.0), MotionKind::Rapid, &mut program);
+        push(
+            &mut at,
+            Point3::new(first.x, first.y, 60.0),
+            MotionKind::Rapid,
+            &mut program,
+        );
         push(&mut at, first, MotionKind::Linear, &mut program);
         for i in 1..=samples {
             push(&mut at, cl(i), MotionKind::Linear, &mut program);
@@ -49,6 +58,16 @@ fn generated(part: &swarf_geom::Part, r: f64) -> Program {
         push(&mut at, up, MotionKind::Rapid, &mut program);
     }
     program
+}
+
+/// CPU time of this process (user + system), s: with other work on the machine the
+/// wall clock overstates the cost, CPU time does not.
+fn cpu_s() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let after = stat.rsplit(')').next().unwrap_or("");
+    let f: Vec<&str> = after.split_whitespace().collect();
+    let tick = |k: usize| f.get(k).and_then(|v| v.parse::<f64>().ok()).unwrap_or(0.0);
+    (tick(11) + tick(12)) / 100.0
 }
 
 fn peak_rss_mib() -> Option<f64> {
@@ -72,12 +91,22 @@ fn main() {
         stock: StockSpec::Offset { allowance: 0.5 },
         ..VerifyOptions::default()
     };
-    let t = Instant::now();
+    let (t, c) = (Instant::now(), cpu_s());
     let v = verify(Design::Part(&part), &program, &cutter, &opts, &Quiet).expect("verifies");
-    let total = t.elapsed().as_secs_f64();
+    let (total, cpu) = (t.elapsed().as_secs_f64(), cpu_s() - c);
     let s = &v.deviation.summary;
-    println!("program: {} ({} motions)", program.source, program.motions.len());
-    println!("grid: {} x {} = {} cells of {} mm", v.grid.nx, v.grid.ny, v.grid.len(), v.grid.cell);
+    println!(
+        "program: {} ({} motions)",
+        program.source,
+        program.motions.len()
+    );
+    println!(
+        "grid: {} x {} = {} cells of {} mm",
+        v.grid.nx,
+        v.grid.ny,
+        v.grid.len(),
+        v.grid.cell
+    );
     println!(
         "design {:.2} s, simulate {:.2} s, deviation {:.2} s, total {:.2} s (threads: {})",
         v.timings.design_s,
@@ -95,6 +124,11 @@ fn main() {
     println!(
         "gouge cells {}, excess cells {}, scallop p5-p95 {:?}-{:?} max {:?}",
         s.gouge.cells, s.excess.cells, s.scallop.p05, s.scallop.p95, s.scallop.max
+    );
+    println!(
+        "CPU time {cpu:.2} s over {total:.2} s wall ({:.2} CPUs busy; 2 idle cores would take about {:.2} s)",
+        cpu / total,
+        cpu / 2.0
     );
     if let Some(mib) = peak_rss_mib() {
         println!("peak memory {mib:.0} MiB");

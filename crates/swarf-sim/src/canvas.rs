@@ -82,10 +82,10 @@ impl Canvas {
         let ri = r.ceil() as i64;
         for k in 0..=n {
             let t = k as f64 / n as f64;
-            if let Some((on, off)) = dash {
-                if (t * len) % (on + off) > on {
-                    continue;
-                }
+            if let Some((on, off)) = dash
+                && (t * len) % (on + off) > on
+            {
+                continue;
             }
             let (x, y) = (a[0] + t * dx, a[1] + t * dy);
             for oy in -ri..=ri {

@@ -35,6 +35,10 @@ pub const MIN_SAMPLES: usize = 8;
 pub const MAX_SAMPLES: usize = 1024;
 /// Newton stops when the ray's XY residual is below this, mm.
 pub const NEWTON_XY: f64 = 1e-10;
+/// A Newton step shorter than this fraction of the parameter range is the last one:
+/// the next would change the point by about `|S''| step^2 / 2`, below 1e-10 mm for
+/// second derivatives up to 1e4 mm per unit parameter squared.
+pub const NEWTON_ACCEPT: f64 = 1e-7;
 /// Most Newton steps per cell and patch.
 const NEWTON_STEPS: usize = 16;
 /// Rows per parallel band.
@@ -181,7 +185,7 @@ impl<'a> DesignSurface<'a> {
                     let up = upward(&tri);
                     cover(grid, j0, j1, &p, |k, w| {
                         let z = w[0] * p[0][2] + w[1] * p[1][2] + w[2] * p[2][2];
-                        if !(z <= heights[k]) {
+                        if heights[k].is_nan() || z > heights[k] {
                             heights[k] = z;
                             if let Some(nb) = normals.as_deref_mut() {
                                 nb[k] = up;
@@ -241,10 +245,10 @@ impl<'a> DesignSurface<'a> {
                         Some((g.z, Vec3::z()))
                     }
                 };
-                if let Some(h) = hit {
-                    if top.is_none_or(|t| h.0 > t.0) {
-                        top = Some(h);
-                    }
+                if let Some(h) = hit
+                    && top.is_none_or(|t| h.0 > t.0)
+                {
+                    top = Some(h);
                 }
             }
             if let Some((z, n)) = top {
@@ -298,14 +302,15 @@ fn newton(patch: &PowerPatch, x: f64, y: f64, uv: [f64; 2]) -> Ray {
         let n = if n.z < 0.0 { -n } else { n };
         n.try_normalize(0.0).unwrap_or(Vec3::z())
     };
+    let small = [NEWTON_ACCEPT * (u1 - u0), NEWTON_ACCEPT * (v1 - v0)];
     for _ in 0..NEWTON_STEPS {
         let (p, du, dv) = patch.eval1(u, v);
         let (rx, ry) = (x - p.x, y - p.y);
-        if rx.hypot(ry) <= NEWTON_XY {
+        if rx * rx + ry * ry <= NEWTON_XY * NEWTON_XY {
             return Ray::Hit(p.z, up(du, dv));
         }
         let det = du.x * dv.y - du.y * dv.x;
-        if !(det.abs() > 1e-300) {
+        if det.is_nan() || det.abs() <= 1e-300 {
             return Ray::Singular;
         }
         let su = (rx * dv.y - ry * dv.x) / det;
@@ -313,6 +318,11 @@ fn newton(patch: &PowerPatch, x: f64, y: f64, uv: [f64; 2]) -> Ray {
         let (cu, cv) = ((u + su).clamp(u0, u1), (v + sv).clamp(v0, v1));
         if cu == u && cv == v {
             return Ray::Off;
+        }
+        if cu == u + su && cv == v + sv && su.abs() <= small[0] && sv.abs() <= small[1] {
+            // The last step is so short that the step after it would be below
+            // rounding (quadratic convergence): take the tangent plane's height.
+            return Ray::Hit(p.z + du.z * su + dv.z * sv, up(du, dv));
         }
         (u, v) = (cu, cv);
     }
@@ -418,9 +428,9 @@ mod tests {
         let f = move |x: f64, y: f64| {
             let (bu, bv) = (bern(x / 20.0), bern(y / 10.0));
             let mut z = 0.0;
-            for i in 0..4 {
-                for j in 0..4 {
-                    z += bu[i] * bv[j] * zc(i, j);
+            for (i, bi) in bu.iter().enumerate() {
+                for (j, bj) in bv.iter().enumerate() {
+                    z += bi * bj * zc(i, j);
                 }
             }
             z

@@ -342,7 +342,7 @@ fn scallops(grid: &Grid, values: &[f64], tol: f64, reach: f64) -> ScallopSummary
     };
     let crest = |k: usize| -> Option<f64> {
         let v = values[k];
-        if !(v > tol) {
+        if v.is_nan() || v <= tol {
             return None;
         }
         let (i, j) = ((k % grid.nx) as isize, (k / grid.nx) as isize);

@@ -146,11 +146,11 @@ impl Envelope {
         };
         let mut reach = 0.0_f64;
         for seg in profile.segments() {
-            if let Some(p) = lower_piece(seg, reach) {
-                if env.len < env.pieces.len() {
-                    env.pieces[env.len] = p;
-                    env.len += 1;
-                }
+            if let Some(p) = lower_piece(seg, reach)
+                && env.len < env.pieces.len()
+            {
+                env.pieces[env.len] = p;
+                env.len += 1;
             }
             reach = reach.max(seg.start().rho).max(seg.end().rho);
         }
@@ -234,8 +234,18 @@ fn lower_piece(seg: &Segment, reach: f64) -> Option<Piece> {
             if a1 <= a0 {
                 return None;
             }
-            let rho1 = centre.rho + radius * a1.cos();
-            let rho0 = (centre.rho + radius * a0.cos()).max(reach);
+            // cos(-pi/2) and cos(0) exactly, so that a ball's piece starts at 0
+            let cos = |a: f64| {
+                if a <= -FRAC_PI_2 {
+                    0.0
+                } else if a >= 0.0 {
+                    1.0
+                } else {
+                    a.cos()
+                }
+            };
+            let rho1 = centre.rho + radius * cos(a1);
+            let rho0 = (centre.rho + radius * cos(a0)).max(reach);
             (rho1 > rho0 + LENGTH_EPS).then_some(Piece::Arc {
                 rho0,
                 rho1,
@@ -269,7 +279,7 @@ fn dg(p: &Piece, w: f64, d: f64, m: f64) -> (f64, f64) {
 /// Minimum of the convex `g` over `[lo, hi]` (`+inf` when empty).
 #[inline]
 fn interval_min(p: &Piece, lo: f64, hi: f64, d: f64, m: f64) -> f64 {
-    if !(lo <= hi) {
+    if lo.is_nan() || hi.is_nan() || lo > hi {
         return f64::INFINITY;
     }
     if hi - lo <= 0.0 {

@@ -150,14 +150,14 @@ impl Grid {
         let i = ((x - self.origin[0]) / self.cell).floor();
         let j = ((y - self.origin[1]) / self.cell).floor();
         (i >= 0.0 && j >= 0.0 && (i as usize) < self.nx && (j as usize) < self.ny)
-            .then(|| (i as usize, j as usize))
+            .then_some((i as usize, j as usize))
     }
 }
 
 /// Indices `k` in `0..n` with `origin + (k + 1/2) c` in `[lo, hi]`.
 #[inline]
 fn span(lo: f64, hi: f64, origin: f64, c: f64, n: usize) -> Option<(usize, usize)> {
-    if !(lo <= hi) || n == 0 {
+    if lo.is_nan() || hi.is_nan() || lo > hi || n == 0 {
         return None;
     }
     let a = ((lo - origin) / c - 0.5).ceil();

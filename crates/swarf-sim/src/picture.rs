@@ -188,7 +188,7 @@ pub fn deviation_png(v: &Verification, title: &str) -> Result<Vec<u8>, SimError>
                 for i in i0..i1 {
                     let d = dev[j * nx + i];
                     any_design |= design[j * nx + i].is_finite();
-                    if d.is_finite() && !(d.abs() <= pick.abs()) {
+                    if d.is_finite() && (pick.is_nan() || d.abs() > pick.abs()) {
                         pick = d;
                     }
                 }

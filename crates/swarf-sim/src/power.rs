@@ -118,12 +118,16 @@ impl PowerPatch {
 
     /// Span index and local parameter of `t` in direction `d` (clamped), with the
     /// span's width.
-    #[inline]
+    #[inline(always)]
     fn locate(&self, d: usize, t: f64) -> (usize, f64, f64) {
         let b = &self.breaks[d];
         let n = b.len() - 1;
         let t = t.clamp(b[0], b[n]);
-        let k = b.partition_point(|&x| x <= t).clamp(1, n) - 1;
+        let k = if n == 1 {
+            0
+        } else {
+            b.partition_point(|&x| x <= t).clamp(1, n) - 1
+        };
         let w = b[k + 1] - b[k];
         (k, (t - b[k]) / w, w)
     }
@@ -135,6 +139,29 @@ impl PowerPatch {
     /// mm, and mm per unit parameter.
     #[inline]
     pub fn eval1(&self, u: f64, v: f64) -> (Point3, Vec3, Vec3) {
+        match self.degree {
+            [3, 3] => self.eval1_n::<3, 3>(u, v),
+            [2, 2] => self.eval1_n::<2, 2>(u, v),
+            [1, 1] => self.eval1_n::<1, 1>(u, v),
+            [3, 2] => self.eval1_n::<3, 2>(u, v),
+            [2, 3] => self.eval1_n::<2, 3>(u, v),
+            _ => self.eval1_any(u, v),
+        }
+    }
+
+    /// [`PowerPatch::eval1`] for degrees known at compile time (loops unrolled).
+    #[inline(always)]
+    fn eval1_n<const P: usize, const Q: usize>(&self, u: f64, v: f64) -> (Point3, Vec3, Vec3) {
+        let (su, s, wu) = self.locate(0, u);
+        let (sv, t, wv) = self.locate(1, v);
+        let spans_v = self.breaks[1].len() - 1;
+        let base = (su * spans_v + sv) * (P + 1) * (Q + 1);
+        let c = &self.coef[base..base + (P + 1) * (Q + 1)];
+        horner::<P, Q>(c, s, t, wu, wv)
+    }
+
+    /// [`PowerPatch::eval1`] for any degrees.
+    fn eval1_any(&self, u: f64, v: f64) -> (Point3, Vec3, Vec3) {
         let [p, q] = self.degree;
         let (su, s, wu) = self.locate(0, u);
         let (sv, t, wv) = self.locate(1, v);
@@ -160,17 +187,54 @@ impl PowerPatch {
                 hs[d] = hs[d] * t + da[d];
             }
         }
-        let inv = 1.0 / h[3];
-        let pt = Vec3::new(h[0], h[1], h[2]) * inv;
-        let du = (Vec3::new(hs[0], hs[1], hs[2]) - pt * hs[3]) * (inv / wu);
-        let dv = (Vec3::new(ht[0], ht[1], ht[2]) - pt * ht[3]) * (inv / wv);
-        (Point3::from(pt), du, dv)
+        finish(h, hs, ht, wu, wv)
     }
 
     /// The parameter domain `[[u0, u1], [v0, v1]]`.
     pub fn domain(&self) -> [[f64; 2]; 2] {
         [0, 1].map(|d| [self.breaks[d][0], self.breaks[d][self.breaks[d].len() - 1]])
     }
+}
+
+/// Horner's rule over a span's coefficients, degrees `P`, `Q`.
+#[inline(always)]
+fn horner<const P: usize, const Q: usize>(
+    c: &[[f64; 4]],
+    s: f64,
+    t: f64,
+    wu: f64,
+    wv: f64,
+) -> (Point3, Vec3, Vec3) {
+    let mut h = [0.0; 4];
+    let mut hs = [0.0; 4];
+    let mut ht = [0.0; 4];
+    for l in (0..=Q).rev() {
+        let mut a = [0.0; 4];
+        let mut da = [0.0; 4];
+        for k in (0..=P).rev() {
+            let ck = c[k * (Q + 1) + l];
+            for d in 0..4 {
+                da[d] = da[d] * s + a[d];
+                a[d] = a[d] * s + ck[d];
+            }
+        }
+        for d in 0..4 {
+            ht[d] = ht[d] * t + h[d];
+            h[d] = h[d] * t + a[d];
+            hs[d] = hs[d] * t + da[d];
+        }
+    }
+    finish(h, hs, ht, wu, wv)
+}
+
+/// Point and derivatives from the homogeneous value and its local derivatives.
+#[inline(always)]
+fn finish(h: [f64; 4], hs: [f64; 4], ht: [f64; 4], wu: f64, wv: f64) -> (Point3, Vec3, Vec3) {
+    let inv = 1.0 / h[3];
+    let pt = Vec3::new(h[0], h[1], h[2]) * inv;
+    let du = (Vec3::new(hs[0], hs[1], hs[2]) - pt * hs[3]) * (inv / wu);
+    let dv = (Vec3::new(ht[0], ht[1], ht[2]) - pt * ht[3]) * (inv / wv);
+    (Point3::from(pt), du, dv)
 }
 
 #[cfg(test)]

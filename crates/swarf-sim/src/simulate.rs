@@ -100,14 +100,14 @@ pub fn simulate(
             report.sampled_motions += 1;
             report.max_sample_bound = report.max_sample_bound.max(sw.bound);
         }
-        if !matches!(m.kind, MotionKind::Rapid) {
-            if let Some(gap) = outside_gap(&grid, &sw.primitives) {
-                report.outside.push(MotionNote {
-                    motion: k,
-                    line: m.line,
-                    amount: gap,
-                });
-            }
+        if !matches!(m.kind, MotionKind::Rapid)
+            && let Some(gap) = outside_gap(&grid, &sw.primitives)
+        {
+            report.outside.push(MotionNote {
+                motion: k,
+                line: m.line,
+                amount: gap,
+            });
         }
         let index = u32::try_from(k).unwrap_or(u32::MAX - 1);
         chunk.extend(sw.primitives.into_iter().map(|p| (p, index)));

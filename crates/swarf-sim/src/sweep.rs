@@ -303,7 +303,7 @@ pub fn sweep_motion(tool: &SimTool, m: &Motion, sample_tol: f64) -> MotionSweep 
 
 /// Least `n >= 1` with `err / n^2 <= tol` (`quadratic`) or `err / n <= tol`.
 fn steps(err: f64, tol: f64, quadratic: bool) -> usize {
-    if !(err > tol) || !err.is_finite() {
+    if err.is_nan() || err <= tol || !err.is_finite() {
         return 1;
     }
     let ratio = err / tol;

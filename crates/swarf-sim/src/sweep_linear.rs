@@ -107,11 +107,11 @@ impl LinearSweep {
                 hi = hi.max(p[0] + h);
             }
         }
-        if self.len > 0.0 {
-            if let Some((l, h)) = self.band_span(y) {
-                lo = lo.min(l);
-                hi = hi.max(h);
-            }
+        if self.len > 0.0
+            && let Some((l, h)) = self.band_span(y)
+        {
+            lo = lo.min(l);
+            hi = hi.max(h);
         }
         (lo <= hi).then_some((lo, hi))
     }
@@ -214,12 +214,18 @@ impl LinearSweep {
         let ty = y - self.a[1];
         let k = -self.m / (1.0 + self.m * self.m).sqrt();
         let (r2, len, m, top) = (r * r, self.len, self.m, self.a[2] + r);
-        let mut z = [0.0f64; LANES];
         let mut i = i0;
         while i <= i1 {
             let n = (i1 + 1 - i).min(LANES);
+            let mut h = [f64::NEG_INFINITY; LANES];
+            h[..n].copy_from_slice(&heights[i..i + n]);
             let tx0 = grid.x(i) - self.a[0];
-            for (lane, zl) in z.iter_mut().enumerate() {
+            // Per lane: the capsule's lowest point is t - sqrt(rem); whether it lies
+            // below the cell is decided without that second square root.
+            let mut t = [0.0f64; LANES];
+            let mut rem = [0.0f64; LANES];
+            let mut low = [false; LANES];
+            for lane in 0..LANES {
                 let tx = tx0 + (lane as i32) as f64 * grid.cell;
                 let s = tx * ex + ty * ey;
                 let d = ty * ex - tx * ey;
@@ -228,20 +234,22 @@ impl LinearSweep {
                 let lo = (-s).max(-wr);
                 let hi = (len - s).min(wr);
                 let w = (k * wr).min(hi).max(lo);
-                let v = top + m * (s + w) - (q - w * w).max(0.0).sqrt();
-                *zl = if q >= 0.0 && lo <= hi {
-                    v
-                } else {
-                    f64::INFINITY
-                };
+                let tl = top + m * (s + w);
+                let rl = (q - w * w).max(0.0);
+                let b = tl - h[lane];
+                t[lane] = tl;
+                rem[lane] = rl;
+                low[lane] = q >= 0.0 && lo <= hi && (b < 0.0 || b * b < rl);
             }
-            for (lane, &zl) in z.iter().enumerate().take(n) {
-                let h = heights[i + lane];
-                if zl < h {
-                    heights[i + lane] = zl;
-                    last[i + lane] = motion;
-                    out.lowered += 1;
-                    out.depth = out.depth.max(h - zl);
+            if low.iter().any(|&l| l) {
+                for lane in 0..n {
+                    let z = t[lane] - rem[lane].sqrt();
+                    if low[lane] && z < h[lane] {
+                        heights[i + lane] = z;
+                        last[i + lane] = motion;
+                        out.lowered += 1;
+                        out.depth = out.depth.max(h[lane] - z);
+                    }
                 }
             }
             i += n;
@@ -317,6 +325,13 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn ball_and_only_ball_takes_the_fast_path() {
+        assert_eq!(ball_radius(&env("ball:d=8")), Some(4.0));
+        assert_eq!(ball_radius(&env("bull:d=8,r=2")), None);
+        assert_eq!(ball_radius(&env("flat:d=8")), None);
     }
 
     #[test]
