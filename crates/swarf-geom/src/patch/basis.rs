@@ -49,62 +49,92 @@ pub fn find_span(knots: &[f64], p: usize, t: f64) -> usize {
 
 /// The `p + 1` non-zero basis functions on a span and their first two derivatives.
 #[derive(Debug, Clone, Copy)]
-pub struct BasisDerivs {
+pub struct BasisDerivs<const ORD: usize = MAX_ORDER> {
     /// The knot span index `k`; entry `r` belongs to function `N_{k-p+r, p}`.
     pub span: usize,
     /// `d[order][r]`: value (order 0), first and second derivatives of `N_{k-p+r, p}`.
-    pub d: [[f64; MAX_ORDER]; 3],
+    pub d: [[f64; ORD]; 3],
 }
 
 /// The `p + 1` non-zero basis functions of degree `p` at `t` on `span` (NURBS Book A2.2).
 /// Entry `r` belongs to `N_{span-p+r, p}`.
 pub fn basis_funs(knots: &[f64], p: usize, span: usize, t: f64) -> [f64; MAX_ORDER] {
-    let mut n = [0.0; MAX_ORDER];
-    triangle(knots, p, span, t, &mut n, |_, _| {});
-    n
+    basis_funs_n::<MAX_ORDER>(knots, p, span, t)
 }
 
 /// Basis functions of degree `p` at `t` with their first and second derivatives.
 pub fn basis_derivs(knots: &[f64], p: usize, t: f64) -> BasisDerivs {
+    basis_derivs_n::<MAX_ORDER>(knots, p, t)
+}
+
+/// The degree for arrays of `ORD` entries: `ORD - 1` (a compile-time constant, so that
+/// the loops unroll) when `ORD` is below [`MAX_ORDER`], else `p`.
+#[inline(always)]
+fn degree<const ORD: usize>(p: usize) -> usize {
+    if ORD < MAX_ORDER { ORD - 1 } else { p }
+}
+
+/// [`basis_funs`] into `ORD` entries (see [`degree`]).
+#[inline(always)]
+pub(crate) fn basis_funs_n<const ORD: usize>(
+    knots: &[f64],
+    p: usize,
+    span: usize,
+    t: f64,
+) -> [f64; ORD] {
+    let p = degree::<ORD>(p);
+    let mut n = [0.0; ORD];
+    triangle(&knots[span + 1 - p..=span + p], p, t, &mut n, |_, _| {});
+    n
+}
+
+/// [`basis_derivs`] into `ORD` entries (see [`degree`]).
+#[inline(always)]
+pub(crate) fn basis_derivs_n<const ORD: usize>(
+    knots: &[f64],
+    p: usize,
+    t: f64,
+) -> BasisDerivs<ORD> {
+    let p = degree::<ORD>(p);
     let span = find_span(knots, p, t);
-    let mut d = [[0.0; MAX_ORDER]; 3];
-    let mut lower1 = [0.0; MAX_ORDER];
-    let mut lower2 = [0.0; MAX_ORDER];
+    let window = &knots[span + 1 - p..=span + p];
+    let mut d = [[0.0; ORD]; 3];
+    let mut lower1 = [0.0; ORD];
+    let mut lower2 = [0.0; ORD];
     let [d0, d1, d2] = &mut d;
-    triangle(knots, p, span, t, d0, |j, row| {
+    triangle(window, p, t, d0, |j, row| {
         if j + 1 == p {
             lower1 = *row;
         } else if j + 2 == p {
             lower2 = *row;
         }
     });
-    derive(knots, span, p, &lower1, d1);
+    *d1 = derive(window, p, p, &lower1);
     if p >= 2 {
-        let mut first_lower = [0.0; MAX_ORDER];
-        derive(knots, span, p - 1, &lower2, &mut first_lower);
-        derive(knots, span, p, &first_lower, d2);
+        let first_lower = derive(window, p, p - 1, &lower2);
+        *d2 = derive(window, p, p, &first_lower);
     }
     BasisDerivs { span, d }
 }
 
 /// The Cox-de Boor triangle (A2.2) into `n`, calling `at_degree(j, row)` with the row
-/// of degree `j` for `j = 0 .. p-1` before it is raised.
+/// of degree `j` for `j = 0 .. p-1` before it is raised. `window` holds the knots
+/// `U_{span+1-p} ..= U_{span+p}`.
 #[inline(always)]
-fn triangle(
-    knots: &[f64],
+fn triangle<const ORD: usize>(
+    window: &[f64],
     p: usize,
-    span: usize,
     t: f64,
-    n: &mut [f64; MAX_ORDER],
-    mut at_degree: impl FnMut(usize, &[f64; MAX_ORDER]),
+    n: &mut [f64; ORD],
+    mut at_degree: impl FnMut(usize, &[f64; ORD]),
 ) {
-    let mut left = [0.0; MAX_ORDER];
-    let mut right = [0.0; MAX_ORDER];
+    let mut left = [0.0; ORD];
+    let mut right = [0.0; ORD];
     n[0] = 1.0;
     for j in 1..=p {
         at_degree(j - 1, n);
-        left[j] = t - knots[span + 1 - j];
-        right[j] = knots[span + j] - t;
+        left[j] = t - window[p - j];
+        right[j] = window[p - 1 + j] - t;
         let mut saved = 0.0;
         for r in 0..j {
             let temp = n[r] / (right[r + 1] + left[j - r]);
@@ -117,23 +147,20 @@ fn triangle(
 
 /// Derivatives of the `q + 1` functions `N_{span-q+r, q}` from `lower[r]`, the values (or
 /// derivatives of any order) of `N_{span-q+1+r, q-1}`, by the recurrence of eq. 2.7.
+/// `window` holds `U_{span+1-p} ..= U_{span+p}` (`q <= p`), so `U_i` for
+/// `i = span + r + 1 - q` is `window[r + p - q]`.
 #[inline(always)]
-fn derive(
-    knots: &[f64],
-    span: usize,
-    q: usize,
-    lower: &[f64; MAX_ORDER],
-    out: &mut [f64; MAX_ORDER],
-) {
+fn derive<const ORD: usize>(window: &[f64], p: usize, q: usize, lower: &[f64; ORD]) -> [f64; ORD] {
+    let mut out = [0.0; ORD];
     let qf = q as f64;
     let mut saved = 0.0;
     for r in 0..q {
-        let i = span + r + 1 - q;
-        let b = lower[r] / (knots[i + q] - knots[i]);
+        let b = lower[r] / (window[r + p] - window[r + p - q]);
         out[r] = qf * (saved - b);
         saved = b;
     }
     out[q] = qf * saved;
+    out
 }
 
 #[cfg(test)]

@@ -5,6 +5,8 @@
 //! replaces `N` or `M` by its derivative ([`super::basis`]). The sum runs row by row:
 //! each row is first contracted along v with `M, M', M''`, then folded into the six
 //! results with `N, N', N''`, so a bicubic costs 16 x 3 + 4 x 6 vector multiply-adds.
+//! The common degree pairs are compiled with the degrees as constants, so that the short
+//! loops unroll.
 //!
 //! A NURBS patch is the projection of a polynomial patch in homogeneous space,
 //! `A(u, v) = sum N M w_ij P_ij`, `w(u, v) = sum N M w_ij`, `S = A / w`. Differentiating
@@ -20,7 +22,7 @@
 //! times, so it has its own small evaluator.
 
 use super::Patch;
-use super::basis::{BasisDerivs, MAX_ORDER, basis_derivs, basis_funs, find_span};
+use super::basis::{BasisDerivs, MAX_ORDER, basis_derivs_n, basis_funs_n, find_span};
 use crate::math::{Point3, Vec3};
 use nalgebra::{SVector, Vector4};
 
@@ -63,17 +65,59 @@ impl Patch {
     /// assert_eq!(p.eval(0.5, 0.5), Point3::new(1.0, 1.0, 1.0));
     /// ```
     pub fn eval(&self, u: f64, v: f64) -> Point3 {
+        match self.degree {
+            [3, 3] => self.eval_of::<4, 4>(u, v),
+            [2, 2] => self.eval_of::<3, 3>(u, v),
+            [1, 1] => self.eval_of::<2, 2>(u, v),
+            [2, 1] => self.eval_of::<3, 2>(u, v),
+            [1, 2] => self.eval_of::<2, 3>(u, v),
+            _ => self.eval_of::<MAX_ORDER, MAX_ORDER>(u, v),
+        }
+    }
+
+    /// [`Patch::eval`] with `OU`, `OV` basis functions per direction: the orders
+    /// (degree + 1) as compile-time constants, or [`MAX_ORDER`] to read the degrees.
+    #[inline(always)]
+    fn eval_of<const OU: usize, const OV: usize>(&self, u: f64, v: f64) -> Point3 {
         let (u, v) = self.clamp_params(u, v);
-        let [pu, pv] = self.degree;
+        let pu = if OU < MAX_ORDER {
+            OU - 1
+        } else {
+            self.degree[0]
+        };
+        let pv = if OV < MAX_ORDER {
+            OV - 1
+        } else {
+            self.degree[1]
+        };
         let su = find_span(&self.knots[0], pu, u);
         let sv = find_span(&self.knots[1], pv, v);
-        let nu = basis_funs(&self.knots[0], pu, su, u);
-        let nv = basis_funs(&self.knots[1], pv, sv, v);
+        let nu = basis_funs_n::<OU>(&self.knots[0], pu, su, u);
+        let nv = basis_funs_n::<OV>(&self.knots[1], pv, sv, v);
         let first = (su - pu) * self.count[1] + sv - pv;
+        let nv_count = self.count[1];
         match &self.weights {
-            None => Point3::from(self.sum_values(&nu, &nv, first, |k| self.points[k].coords)),
+            None => Point3::from(sum_values(
+                [pu, pv],
+                nv_count,
+                &nu,
+                &nv,
+                first,
+                &self.points,
+                None,
+                |p, _| p.coords,
+            )),
             Some(w) => {
-                let a = self.sum_values(&nu, &nv, first, |k| homogeneous(&self.points[k], w[k]));
+                let a = sum_values(
+                    [pu, pv],
+                    nv_count,
+                    &nu,
+                    &nv,
+                    first,
+                    &self.points,
+                    Some(w),
+                    homogeneous,
+                );
                 let inv = 1.0 / a.w;
                 Point3::new(a.x * inv, a.y * inv, a.z * inv)
             }
@@ -86,13 +130,36 @@ impl Patch {
     /// # Units
     /// mm (per unit parameter for the derivatives).
     pub fn derivs(&self, u: f64, v: f64) -> SurfaceDerivs {
+        match self.degree {
+            [3, 3] => self.derivs_of::<4, 4>(u, v),
+            [2, 2] => self.derivs_of::<3, 3>(u, v),
+            [1, 1] => self.derivs_of::<2, 2>(u, v),
+            [2, 1] => self.derivs_of::<3, 2>(u, v),
+            [1, 2] => self.derivs_of::<2, 3>(u, v),
+            _ => self.derivs_of::<MAX_ORDER, MAX_ORDER>(u, v),
+        }
+    }
+
+    /// [`Patch::derivs`] with the orders as in [`Patch::eval_of`].
+    #[inline(always)]
+    fn derivs_of<const OU: usize, const OV: usize>(&self, u: f64, v: f64) -> SurfaceDerivs {
         let (u, v) = self.clamp_params(u, v);
-        let [pu, pv] = self.degree;
-        let bu = basis_derivs(&self.knots[0], pu, u);
-        let bv = basis_derivs(&self.knots[1], pv, v);
+        let pu = if OU < MAX_ORDER {
+            OU - 1
+        } else {
+            self.degree[0]
+        };
+        let pv = if OV < MAX_ORDER {
+            OV - 1
+        } else {
+            self.degree[1]
+        };
+        let bu = basis_derivs_n::<OU>(&self.knots[0], pu, u);
+        let bv = basis_derivs_n::<OV>(&self.knots[1], pv, v);
+        let nv = self.count[1];
         match &self.weights {
             None => {
-                let s = self.sum_derivs(&bu, &bv, |k| self.points[k].coords);
+                let s = sum_derivs([pu, pv], nv, &bu, &bv, &self.points, None, |p, _| p.coords);
                 SurfaceDerivs {
                     point: Point3::from(s[0]),
                     du: s[1],
@@ -103,64 +170,87 @@ impl Patch {
                 }
             }
             Some(w) => {
-                let a = self.sum_derivs(&bu, &bv, |k| homogeneous(&self.points[k], w[k]));
+                let a = sum_derivs([pu, pv], nv, &bu, &bv, &self.points, Some(w), homogeneous);
                 rational_quotient(&a)
             }
         }
     }
+}
 
-    /// `sum N_a M_b X_k` over the non-zero functions, `first` = index of the first point.
-    #[inline(always)]
-    fn sum_values<const D: usize>(
-        &self,
-        nu: &[f64; MAX_ORDER],
-        nv: &[f64; MAX_ORDER],
-        first: usize,
-        fetch: impl Fn(usize) -> SVector<f64, D>,
-    ) -> SVector<f64, D> {
-        let [pu, pv] = self.degree;
-        let mut out = SVector::<f64, D>::zeros();
-        for (a, na) in nu[..=pu].iter().enumerate() {
-            let row = first + a * self.count[1];
-            let mut s = SVector::<f64, D>::zeros();
-            for (b, nb) in nv[..=pv].iter().enumerate() {
-                s += fetch(row + b) * *nb;
-            }
-            out += s * *na;
-        }
-        out
-    }
+/// Weights of a polynomial row.
+const ONES: [f64; MAX_ORDER] = [1.0; MAX_ORDER];
 
-    /// `[X, X_u, X_v, X_uu, X_uv, X_vv]` of the tensor sum of `fetch(k)`.
-    #[inline(always)]
-    fn sum_derivs<const D: usize>(
-        &self,
-        bu: &BasisDerivs,
-        bv: &BasisDerivs,
-        fetch: impl Fn(usize) -> SVector<f64, D>,
-    ) -> [SVector<f64, D>; 6] {
-        let [pu, pv] = self.degree;
-        let first = (bu.span - pu) * self.count[1] + bv.span - pv;
-        let mut out = [SVector::<f64, D>::zeros(); 6];
-        for a in 0..=pu {
-            let row = first + a * self.count[1];
-            let mut s = [SVector::<f64, D>::zeros(); 3];
-            for b in 0..=pv {
-                let c = fetch(row + b);
-                s[0] += c * bv.d[0][b];
-                s[1] += c * bv.d[1][b];
-                s[2] += c * bv.d[2][b];
-            }
-            let (n0, n1, n2) = (bu.d[0][a], bu.d[1][a], bu.d[2][a]);
-            out[0] += s[0] * n0;
-            out[1] += s[0] * n1;
-            out[2] += s[1] * n0;
-            out[3] += s[0] * n2;
-            out[4] += s[1] * n1;
-            out[5] += s[2] * n0;
+/// The control points `first + a nv .. + p_v` of row `a` with their weights (1 when
+/// polynomial): one bounds check per row.
+#[inline(always)]
+fn net_row<'a>(
+    points: &'a [Point3],
+    weights: Option<&'a [f64]>,
+    start: usize,
+    len: usize,
+) -> impl Iterator<Item = (&'a Point3, &'a f64)> {
+    let w = weights.map_or(&ONES[..len], |w| &w[start..start + len]);
+    points[start..start + len].iter().zip(w)
+}
+
+/// `sum N_a M_b lift(P_ab, w_ab)` over the non-zero functions of degrees `deg`, on a net
+/// `nv` points wide, `first` = index of the first point.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn sum_values<const D: usize, const OU: usize, const OV: usize>(
+    deg: [usize; 2],
+    nv: usize,
+    nu_funs: &[f64; OU],
+    nv_funs: &[f64; OV],
+    first: usize,
+    points: &[Point3],
+    weights: Option<&[f64]>,
+    lift: impl Fn(&Point3, f64) -> SVector<f64, D>,
+) -> SVector<f64, D> {
+    let mut out = SVector::<f64, D>::zeros();
+    for (a, na) in nu_funs[..deg[0] + 1].iter().enumerate() {
+        let mut s = SVector::<f64, D>::zeros();
+        let row = net_row(points, weights, first + a * nv, deg[1] + 1);
+        for ((c, w), nb) in row.zip(nv_funs) {
+            s += lift(c, *w) * *nb;
         }
-        out
+        out += s * *na;
     }
+    out
+}
+
+/// `[X, X_u, X_v, X_uu, X_uv, X_vv]` of the tensor sum of `lift(P_ab, w_ab)`.
+#[inline(always)]
+fn sum_derivs<const D: usize, const OU: usize, const OV: usize>(
+    deg: [usize; 2],
+    nv: usize,
+    bu: &BasisDerivs<OU>,
+    bv: &BasisDerivs<OV>,
+    points: &[Point3],
+    weights: Option<&[f64]>,
+    lift: impl Fn(&Point3, f64) -> SVector<f64, D>,
+) -> [SVector<f64, D>; 6] {
+    let [pu, pv] = deg;
+    let first = (bu.span - pu) * nv + bv.span - pv;
+    let mut out = [SVector::<f64, D>::zeros(); 6];
+    for a in 0..pu + 1 {
+        let mut s = [SVector::<f64, D>::zeros(); 3];
+        let row = net_row(points, weights, first + a * nv, pv + 1);
+        for (b, (c, w)) in row.enumerate() {
+            let c = lift(c, *w);
+            s[0] += c * bv.d[0][b];
+            s[1] += c * bv.d[1][b];
+            s[2] += c * bv.d[2][b];
+        }
+        let (n0, n1, n2) = (bu.d[0][a], bu.d[1][a], bu.d[2][a]);
+        out[0] += s[0] * n0;
+        out[1] += s[0] * n1;
+        out[2] += s[1] * n0;
+        out[3] += s[0] * n2;
+        out[4] += s[1] * n1;
+        out[5] += s[2] * n0;
+    }
+    out
 }
 
 /// `(w x, w y, w z, w)`.
