@@ -1,13 +1,370 @@
-//! Placeholder until the strategy lands (being written now).
+//! Iso-scallop finishing: each path placed so that the scallop to the previous one
+//! equals `h` (Feng & Li 2002; paper 004, iso-scallop section).
+//!
+//! On each patch the first CC path is a boundary curve (`v = v_min` for
+//! `direction = "u"`, `v_max` with `start = "max"`; `u` curves for `direction = "v"`).
+//! Every path is sampled by the forward stepper at the chordal tolerance; between its
+//! samples further *stations* are added so that they are at most [`STATION_SPACING`]
+//! apart, and from every station the next CC point is solved so that the scallop
+//! between the two tools is `h` ([`crate::scallop_step`]). The next path is the
+//! polyline through those points in the parameter plane (straight in `(u, v)`
+//! between stations, which moves the path across by at most `k L^2 / 8` for a
+//! station spacing `L` and a curvature `k` of the path in the parameter plane,
+//! well below the side steps for the spacing used), sampled again by the forward
+//! stepper.
+//!
+//! What a path can do on the way:
+//! - **shrink or grow**: stations follow the path; the forward stepper resamples it;
+//! - **leave the patch**: a point whose cross-section leaves the patch before the
+//!   scallop reaches `h` sits on the far edge, so the path runs along that edge there;
+//!   from such points the next cross-section leaves at once and they are dropped;
+//! - **split**: the points that are dropped cut the next path into pieces, each
+//!   followed on its own;
+//! - **fold**: on the concave side of a bend the offset curve loops back (the classic
+//!   swallowtail); points that do not advance along the path are removed (at a path's
+//!   end on a side edge, the interior points beyond the end point instead, so that
+//!   the path keeps reaching the edge).
+//!
+//! Planning ends when no point is left: the surface is covered up to its boundary.
+//! Paths keep the direction of travel of the first one; zigzag reverses every other
+//! row when the passes are ordered. On parts of several patches each patch is planned
+//! on its own; CC points under another patch are left out of the passes but still
+//! carry the paths across ([`crate::envelope`]).
 
+use crate::cl_curve::{ClMap, tool_side_curvature, tool_side_normal};
 use crate::error::PathError;
-use crate::job::Job;
-use crate::plan::Plan;
+use crate::forward_step::{Sample, sample_curve};
+use crate::iso_parametric::Figures;
+use crate::iso_setup::IsoSetup;
+use crate::job::{Job, ParamDir, StartSide};
+use crate::ordering::Row;
+use crate::plan::{Plan, PlanReport, Uncovered};
+use crate::scallop_step::{Next, NextPoint, Station, next_point};
+use crate::toolpath::Pass;
+use rayon::prelude::*;
+use swarf_geom::Part;
 
-/// Plans the strategy.
+/// Largest distance between stations, mm.
+pub const STATION_SPACING: f64 = 1.0;
+/// Most rows planned on one patch (a guard against a path that stops advancing).
+const MAX_ROWS: usize = 100_000;
+/// A next point must advance along the path by this much over the last one kept, mm.
+const MIN_ADVANCE: f64 = 1e-6;
+
+/// Plans iso-scallop finishing of every patch of `part`.
 ///
 /// # Errors
-/// Always, for now.
-pub fn plan(_part: &swarf_geom::Part, _job: &Job) -> Result<Plan, PathError> {
-    Err(PathError::NoPath("iso_scallop: not available yet".into()))
+/// [`PathError::InvalidParameter`] naming `strategy.scallop` or `strategy.tolerance`
+/// when out of range; [`PathError::NoPath`] when no CC point can be reached;
+/// [`PathError::Geom`] when the part cannot be prepared for the gouge check.
+pub fn plan(part: &Part, job: &Job) -> Result<Plan, PathError> {
+    let setup = IsoSetup::new(part, job)?;
+    let mut rows = Vec::new();
+    let mut report = PlanReport::default();
+    let mut figures = Figures::default();
+    for face in 0..part.patches.len() {
+        IsoScallop::new(&setup, face).plan(&mut rows, &mut figures, &mut report);
+    }
+    figures.write(&mut report);
+    setup.finish(rows, report)
+}
+
+/// A CC path: a polyline in the parameter plane and its forward-stepped samples
+/// (`Sample::t` runs along the polyline: vertex `k` at `t = k`).
+struct Path {
+    curve: Vec<[f64; 2]>,
+    samples: Vec<Sample>,
+}
+
+/// Iso-scallop paths on one patch.
+struct IsoScallop<'s, 'a> {
+    setup: &'s IsoSetup<'a>,
+    map: ClMap<'a>,
+    first: Vec<[f64; 2]>,
+    inward: [f64; 2],
+}
+
+impl<'s, 'a> IsoScallop<'s, 'a> {
+    fn new(setup: &'s IsoSetup<'a>, face: usize) -> Self {
+        let map = setup.cl_map(face);
+        let [[u0, u1], [v0, v1]] = map.patch().domain();
+        let min = setup.job.strategy.start == StartSide::Min;
+        let (first, inward) = match setup.job.strategy.direction {
+            ParamDir::U => {
+                let v = if min { v0 } else { v1 };
+                (vec![[u0, v], [u1, v]], [0.0, if min { 1.0 } else { -1.0 }])
+            }
+            ParamDir::V => {
+                let u = if min { u0 } else { u1 };
+                (vec![[u, v0], [u, v1]], [if min { 1.0 } else { -1.0 }, 0.0])
+            }
+        };
+        IsoScallop {
+            setup,
+            map,
+            first,
+            inward,
+        }
+    }
+
+    fn plan(&self, rows: &mut Vec<Row>, figures: &mut Figures, report: &mut PlanReport) {
+        let mut paths = self.paths_on(self.first.clone());
+        let Some(sign) = self.orientation(&paths) else {
+            return;
+        };
+        for _ in 0..MAX_ROWS {
+            if paths.is_empty() {
+                return;
+            }
+            rows.push(paths.iter().flat_map(|p| self.emit(p)).collect());
+            let next: Vec<Vec<[f64; 2]>> = paths
+                .iter()
+                .flat_map(|p| self.next_curves(p, sign, figures))
+                .collect();
+            paths = next.into_iter().flat_map(|c| self.paths_on(c)).collect();
+        }
+        report.uncovered.push(Uncovered {
+            region: format!("patch {}", self.map.face()),
+            reason: format!(
+                "iso-scallop stopped after {MAX_ROWS} paths without covering the patch"
+            ),
+        });
+    }
+
+    fn uv_at(curve: &[[f64; 2]], t: f64) -> [f64; 2] {
+        let k = (t.floor().max(0.0) as usize).min(curve.len().saturating_sub(2));
+        let f = t - k as f64;
+        if curve.len() < 2 {
+            return curve[0];
+        }
+        let (a, b) = (curve[k], curve[k + 1]);
+        [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])]
+    }
+
+    /// The forward-stepped paths along `curve` (one per run where CL points exist).
+    fn paths_on(&self, curve: Vec<[f64; 2]>) -> Vec<Path> {
+        if curve.is_empty() {
+            return Vec::new();
+        }
+        let f = |t: f64| {
+            let uv = Self::uv_at(&curve, t);
+            self.map.at(uv[0], uv[1])
+        };
+        let end = (curve.len() - 1) as f64;
+        sample_curve(&f, 0.0, end, &self.setup.step)
+            .into_iter()
+            .map(|samples| Path {
+                curve: curve.clone(),
+                samples,
+            })
+            .collect()
+    }
+
+    /// The passes a path contributes: its samples, less points under other patches.
+    fn emit(&self, path: &Path) -> Vec<Pass> {
+        if self.setup.envelope.is_none() {
+            return vec![Pass {
+                points: path.samples.iter().map(|s| s.point).collect(),
+            }];
+        }
+        let (Some(a), Some(b)) = (path.samples.first(), path.samples.last()) else {
+            return Vec::new();
+        };
+        let f = |t: f64| {
+            let uv = Self::uv_at(&path.curve, t);
+            self.setup.reachable(&self.map, uv[0], uv[1])
+        };
+        sample_curve(&f, a.t, b.t, &self.setup.step)
+            .into_iter()
+            .map(|run| Pass {
+                points: run.iter().map(|s| s.point).collect(),
+            })
+            .collect()
+    }
+
+    /// `+1` or `-1`: the sign that turns `N x T` of the first path into the patch.
+    fn orientation(&self, paths: &[Path]) -> Option<f64> {
+        let path = paths.iter().max_by_key(|p| p.samples.len())?;
+        let st = self.stations(path, 1.0);
+        let mid = st.get(st.len() / 2)?;
+        let inward = mid.d.du * self.inward[0] + mid.d.dv * self.inward[1];
+        Some(if mid.side.dot(&inward) < 0.0 {
+            -1.0
+        } else {
+            1.0
+        })
+    }
+
+    /// Stations along `path` (module doc), side direction `sign N x T`.
+    fn stations(&self, path: &Path, sign: f64) -> Vec<Station> {
+        let mut ts = Vec::new();
+        for w in path.samples.windows(2) {
+            let chord = (w[1].point.pose.cl - w[0].point.pose.cl).norm();
+            let n = (chord / STATION_SPACING).ceil().max(1.0) as usize;
+            ts.extend((0..n).map(|k| w[0].t + (w[1].t - w[0].t) * k as f64 / n as f64));
+        }
+        ts.extend(path.samples.last().map(|s| s.t));
+        let patch = self.map.patch();
+        let frames: Vec<_> = ts
+            .iter()
+            .filter_map(|&t| {
+                let uv = Self::uv_at(&path.curve, t);
+                let d = patch.derivs(uv[0], uv[1]);
+                Some((uv, d, tool_side_normal(&d)?))
+            })
+            .collect();
+        (0..frames.len())
+            .filter_map(|i| {
+                let (uv, d, normal) = frames[i];
+                let a = frames[i.saturating_sub(1)].1.point;
+                let b = frames[(i + 1).min(frames.len() - 1)].1.point;
+                let chord = b - a;
+                let tangent = (chord - normal * normal.dot(&chord)).try_normalize(0.0)?;
+                let side = sign * normal.cross(&tangent);
+                let kappa = tool_side_curvature(&d, &side)?;
+                let tilt = side.z.abs().atan2(normal.z);
+                Some(Station {
+                    uv,
+                    d,
+                    normal,
+                    tangent,
+                    side,
+                    step: self.setup.side.step(kappa, tilt),
+                    radius: self.setup.side.effective_radius(tilt),
+                })
+            })
+            .collect()
+    }
+
+    /// The next CC curves from `path`: one per run of points that were not dropped.
+    fn next_curves(&self, path: &Path, sign: f64, figures: &mut Figures) -> Vec<Vec<[f64; 2]>> {
+        let stations = self.stations(path, sign);
+        let patch = self.map.patch();
+        let side = &self.setup.side;
+        let next: Vec<Next> = stations
+            .par_iter()
+            .map(|st| next_point(patch, side, st))
+            .collect();
+        let mut curves = Vec::new();
+        let mut current: Vec<NextPoint> = Vec::new();
+        for (st, q) in stations.iter().zip(&next) {
+            match q {
+                Next::Skip => {}
+                Next::Point(q) => {
+                    figures.add_step(q.across, Some(q.scallop));
+                    let advances =
+                        |l: &NextPoint| (q.point - l.point).dot(&st.tangent) > MIN_ADVANCE;
+                    if q.slid {
+                        while current.last().is_some_and(|l| !advances(l)) {
+                            current.pop();
+                        }
+                    }
+                    if current.last().is_none_or(advances) {
+                        current.push(*q);
+                    }
+                }
+                Next::Covered => {
+                    if !current.is_empty() {
+                        curves.push(std::mem::take(&mut current));
+                    }
+                }
+            }
+        }
+        if !current.is_empty() {
+            curves.push(current);
+        }
+        curves
+            .into_iter()
+            .map(|c| c.iter().map(|q| q.uv).collect())
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::side_step::ball_step;
+    use swarf_geom::{Patch, Point3};
+
+    /// A cylinder z = sqrt(R^2 - y^2) (R = 60) over x in [0, 40], y in [-30, 30].
+    fn cylinder() -> Part {
+        let r = 60.0;
+        let half = 30f64.to_radians();
+        let w = half.cos();
+        let mut pts = Vec::new();
+        for x in [0.0, 40.0] {
+            pts.push(Point3::new(x, -r * half.sin(), r * half.cos()));
+            pts.push(Point3::new(x, 0.0, r / w));
+            pts.push(Point3::new(x, r * half.sin(), r * half.cos()));
+        }
+        let patch = Patch::new(
+            [1, 2],
+            pts,
+            [None, None],
+            Some(vec![1.0, w, 1.0, 1.0, w, 1.0]),
+        )
+        .unwrap();
+        Part {
+            name: "cylinder".into(),
+            patches: vec![patch],
+        }
+    }
+
+    fn job(tool: &str, h: f64) -> Job {
+        Job::parse(
+            &format!(
+                "part = \"x\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-scallop\"\nscallop = {h}\ntolerance = 0.01\n"
+            ),
+            "job.toml",
+        )
+        .unwrap()
+    }
+
+    /// Angle (degrees) of the CC points of a pass around the cylinder axis.
+    fn angle(p: &Pass) -> f64 {
+        let c = p.points[p.points.len() / 2].contact.unwrap().point;
+        c.y.atan2(c.z).to_degrees()
+    }
+
+    #[test]
+    fn cylinder_paths_keep_the_exact_step_and_reach_the_far_edge() {
+        let h = 0.1;
+        let plan = plan(&cylinder(), &job("ball:d=8", h)).unwrap();
+        let passes = &plan.toolpath.passes;
+        let step = ball_step(4.0, -1.0 / 60.0, h).unwrap();
+        let deg = (step / 60.0).to_degrees();
+        for w in passes.windows(2).take(passes.len() - 2) {
+            let d = angle(&w[1]) - angle(&w[0]);
+            assert!((d - deg).abs() < 2e-3 * deg, "{d} vs {deg}");
+        }
+        // The last path is within one step of the far edge (30 degrees).
+        let last = angle(passes.last().unwrap());
+        assert!(last > 30.0 - deg && last <= 30.0 + 1e-9, "{last}");
+        // Each path spans the patch from x = 0 to x = 40.
+        for p in passes {
+            let xs: Vec<f64> = p
+                .points
+                .iter()
+                .map(|q| q.contact.unwrap().point.x)
+                .collect();
+            let near = |x: f64| xs.iter().any(|v| (v - x).abs() < 1e-9);
+            assert!(near(0.0) && near(40.0), "{xs:?}");
+        }
+        let pred = plan.report.predicted_max_scallop.unwrap();
+        assert!(pred <= h && pred > 0.99 * h, "{pred}");
+    }
+
+    #[test]
+    fn bull_cutter_plans_with_its_effective_radius() {
+        let h = 0.1;
+        let ball = plan(&cylinder(), &job("ball:d=8", h)).unwrap();
+        let bull = plan(&cylinder(), &job("bull:d=10,r=2", h)).unwrap();
+        // The flat bottom widens the step near the crest (level) and narrows it on
+        // the flanks (tilted across the feed): the side steps spread more.
+        let [b0, b1] = ball.report.side_step_range.unwrap();
+        let [t0, t1] = bull.report.side_step_range.unwrap();
+        assert!(t1 > 1.5 * b1 && t0 < b0, "ball {b0}..{b1}, bull {t0}..{t1}");
+        assert!(bull.report.predicted_max_scallop.unwrap() <= h);
+        assert_eq!(bull.report.lifted_points, 0);
+    }
 }

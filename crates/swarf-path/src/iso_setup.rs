@@ -19,7 +19,7 @@ use crate::plan::{Plan, PlanReport};
 use crate::side_step::SideStep;
 use crate::toolpath::{PathPoint, Toolpath};
 use crate::uncovered::{Marked, regions};
-use swarf_geom::{Part, SurfaceDerivs, Vec3};
+use swarf_geom::{Part, Point3, SurfaceDerivs, Vec3};
 use swarf_tool::drop::DropScratch;
 
 /// A CC point is hidden under another patch when the envelope (tessellated within the
@@ -137,6 +137,33 @@ impl<'a> IsoSetup<'a> {
         })
     }
 
+    /// True when the tools of `current` leave at most `h` at every CC point of `last`
+    /// (so the boundary row `last` need not be cut): each tool is taken as the ball of
+    /// the least effective radius touching its CC point, and the material at a point
+    /// is where the ray along its normal first enters one of them.
+    pub fn covers(&self, current: &Row, last: &Row) -> bool {
+        let r = self.side.min_effective_radius();
+        let h = self.side.h();
+        let centres: Vec<_> = current
+            .iter()
+            .flat_map(|p| &p.points)
+            .filter_map(|p| p.contact.map(|c| c.point + r * c.normal))
+            .collect();
+        let targets: Vec<_> = last
+            .iter()
+            .flat_map(|p| &p.points)
+            .filter_map(|p| p.contact)
+            .collect();
+        !centres.is_empty()
+            && targets.iter().all(|c| {
+                centres
+                    .iter()
+                    .map(|centre| ray_sphere(&c.point, &c.normal, centre, r))
+                    .fold(f64::INFINITY, f64::min)
+                    <= h
+            })
+    }
+
     /// Gouge-checks, joins and orders `rows` (in side order from the start side) and
     /// completes `report` with the lifts and the regions the cutter could not reach.
     ///
@@ -205,4 +232,20 @@ impl<'a> IsoSetup<'a> {
             )
         })
     }
+}
+
+/// First `t >= 0` where `p + t n` (unit `n`) is inside the sphere; 0 when `p` is.
+fn ray_sphere(p: &Point3, n: &Vec3, centre: &Point3, r: f64) -> f64 {
+    let m = p - centre;
+    let c = m.norm_squared() - r * r;
+    if c <= 0.0 {
+        return 0.0;
+    }
+    let b = m.dot(n);
+    let disc = b * b - c;
+    if disc < 0.0 {
+        return f64::INFINITY;
+    }
+    let t = -b - disc.sqrt();
+    if t >= 0.0 { t } else { f64::INFINITY }
 }

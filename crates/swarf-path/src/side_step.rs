@@ -196,6 +196,12 @@ impl SideStep {
         self.table[k].min(self.table[next])
     }
 
+    /// The least effective cutting radius over all tilts, mm.
+    pub fn min_effective_radius(&self) -> f64 {
+        self.ball
+            .unwrap_or_else(|| self.table.iter().copied().fold(f64::INFINITY, f64::min))
+    }
+
     /// Side step (surface distance, mm) at signed side curvature `kappa` (1/mm,
     /// positive concave) and `tilt` (radians).
     pub fn step(&self, kappa: f64, tilt: f64) -> f64 {
