@@ -174,19 +174,20 @@ fn rs274_reads_back_the_poses_on_every_machine() {
                 }
                 assert!(k < moves.len(), "{name}: a canonical move matches no pose");
                 assert!((moves[k].to.axis - p.axis).norm() < 1e-5, "{name}: axis");
-                if *feed && mode == FeedMode::InverseTime {
-                    if let Some((q, qj)) = prev {
-                        // rs274 turns F (1/min) into F times the X Y Z length of the
-                        // block; we wrote F = feed / length of the tip's path on the part.
-                        let part = (p.cl - q.cl).norm();
-                        let machine = (j.linear - qj.linear).norm();
-                        if part > 0.5 && machine > 0.5 {
-                            let expected = moves[k].feed * machine / part;
-                            assert!(
-                                (rate - expected).abs() < 1e-3 * expected,
-                                "{name}: feed rate {rate} vs {expected}"
-                            );
-                        }
+                if *feed
+                    && mode == FeedMode::InverseTime
+                    && let Some((q, qj)) = prev
+                {
+                    // rs274 turns F (1/min) into F times the X Y Z length of the block;
+                    // we wrote F = feed / length of the tip's path over the part.
+                    let part = (p.cl - q.cl).norm();
+                    let machine = (j.linear - qj.linear).norm();
+                    if part > 0.5 && machine > 0.5 {
+                        let expected = moves[k].feed * machine / part;
+                        assert!(
+                            (rate - expected).abs() < 1e-3 * expected,
+                            "{name}: feed rate {rate} vs {expected}"
+                        );
                     }
                 }
                 prev = Some((p, *j));
