@@ -1,13 +1,518 @@
-//! Placeholder until the strategy lands (being written now).
+//! Raster finishing on a triangle mesh: parallel drop-cutter passes.
+//!
+//! The iso-planar strategy for meshes (thesis 002 §6.2: parallel planes through the
+//! tool offset surface, "the point that has the maximum Z value is used as the final
+//! tool location point"). Passes run along the feed direction `d = (cos a, sin a)`
+//! (`a` = `strategy.angle`, degrees) on lines `p . n = c` with side direction
+//! `n = (-sin a, cos a)`; each is sampled by exact drop-cutter
+//! ([`swarf_tool::drop::MeshDropper`]) adaptively to the tolerance
+//! ([`crate::raster_pass`]).
+//!
+//! - **Side step**: `stepover` when given, else from `scallop`
+//!   ([`crate::raster_step`]: exact for a ball on a horizontal plane, a conservative
+//!   effective radius for the other shapes). The side range is divided evenly so that
+//!   no step exceeds it.
+//! - **Region**: with `boundary = [xmin, ymin, xmax, ymax]` the tool centre stays in
+//!   that rectangle; without it the side range is the mesh's extent across the passes
+//!   and each pass runs over the mesh's extent along them plus the tool radius, kept
+//!   where the cutter touches the mesh: passes are clipped to the contact and split
+//!   where the cutter leaves the mesh (holes, separate islands). Both are clipped by
+//!   contact.
+//! - **Order**: passes from the `start` side; with `zigzag` every other row is cut
+//!   backwards, else all run along `+d`. Rows are planned in parallel and collected in
+//!   order, so the result does not depend on the thread count.
+//! - **Contacts**: each pose records its CC point and triangle (face = triangle index,
+//!   normal = the triangle's upward normal, `uv` NaN). Double contacts found at any
+//!   sample go to [`Plan::double_contacts`] ([`crate::raster_double`]).
+//!
+//! Report: `side_step_range` is the even spacing used (both ends), and
+//! `predicted_max_scallop` the exact scallop it leaves on a horizontal plane.
 
 use crate::error::PathError;
-use crate::job::Job;
-use crate::plan::Plan;
+use crate::job::{Job, StartSide};
+use crate::plan::{Plan, PlanReport};
+use crate::raster_pass::{Line, PassOut, Sampler};
+use crate::raster_step::{flat_scallop, stepover_for_scallop};
+use crate::toolpath::{Pass, Toolpath};
+use rayon::prelude::*;
+use swarf_geom::TriMesh;
+use swarf_tool::drop::{DropScratch, MeshDropper};
 
-/// Plans the strategy.
+/// First sampling step along a pass, as a fraction of the tool radius.
+pub const INIT_STEP_RADII: f64 = 0.25;
+/// Smallest refinement step, mm (the tolerance, but not below this).
+pub const MIN_STEP_FLOOR: f64 = 1e-3;
+/// Contacts this many tool radii apart can make a double contact.
+pub const DOUBLE_SEPARATION_RADII: f64 = 0.05;
+/// A given boundary is widened by this (relative to its largest coordinate) so that
+/// passes on its edges survive rounding.
+pub const BOUNDARY_SLACK: f64 = 1e-12;
+
+/// Plans raster passes over `mesh` for `job` (module doc).
+///
+/// # Units
+/// mm; `strategy.angle` in degrees.
 ///
 /// # Errors
-/// Always, for now.
-pub fn plan(_mesh: &swarf_geom::TriMesh, _job: &Job) -> Result<Plan, PathError> {
-    Err(PathError::NoPath("raster: not available yet".into()))
+/// [`PathError::NoPath`] for an empty mesh, one without finite triangles, or when the
+/// cutter touches the mesh nowhere in the region; [`PathError::InvalidParameter`] for
+/// a stepover wider than the tool or a scallop the tool cannot leave.
+pub fn plan(mesh: &TriMesh, job: &Job) -> Result<Plan, PathError> {
+    if mesh.is_empty() {
+        return Err(PathError::NoPath(
+            "raster: the mesh has no triangles".into(),
+        ));
+    }
+    let dropper = MeshDropper::new(mesh, &job.tool);
+    if dropper.is_empty() {
+        return Err(PathError::NoPath(
+            "raster: no triangle of the mesh has finite corners".into(),
+        ));
+    }
+    let frame = Frame::new(mesh, job, &dropper)?;
+    let radius = dropper.tool().radius();
+    let tolerance = job.strategy.tolerance;
+    let init_step = INIT_STEP_RADII * radius;
+    let sampler = Sampler {
+        mesh,
+        dropper: &dropper,
+        tolerance,
+        init_step,
+        min_step: tolerance.max(MIN_STEP_FLOOR).min(0.5 * init_step),
+        min_sep: DOUBLE_SEPARATION_RADII * radius,
+    };
+    let rows: Vec<PassOut> = frame
+        .offsets
+        .par_iter()
+        .map_init(DropScratch::default, |s, &c| match frame.line(c) {
+            Some(line) => sampler.run(&line, s),
+            None => PassOut::default(),
+        })
+        .collect();
+    let mut passes = Vec::new();
+    let mut double_contacts = Vec::new();
+    let mut backwards = false;
+    for row in rows {
+        double_contacts.extend(row.doubles);
+        if row.pieces.is_empty() {
+            continue;
+        }
+        let mut pieces: Vec<Pass> = row
+            .pieces
+            .into_iter()
+            .map(|points| Pass { points })
+            .collect();
+        if backwards {
+            pieces.reverse();
+            pieces.iter_mut().for_each(|p| p.points.reverse());
+        }
+        backwards = job.strategy.zigzag && !backwards;
+        passes.extend(pieces);
+    }
+    if passes.is_empty() {
+        return Err(PathError::NoPath(format!(
+            "raster: the cutter {} touches the mesh nowhere inside the {}",
+            job.tool,
+            if job.strategy.boundary.is_some() {
+                "boundary"
+            } else {
+                "mesh outline"
+            }
+        )));
+    }
+    let report = PlanReport {
+        predicted_max_scallop: flat_scallop(&job.tool, frame.spacing),
+        side_step_range: Some([frame.spacing, frame.spacing]),
+        ..PlanReport::default()
+    };
+    Ok(Plan {
+        toolpath: Toolpath {
+            passes,
+            feeds: job.feeds,
+            linking: job.linking_for(0.0),
+        },
+        report,
+        double_contacts,
+    })
+}
+
+/// Pass geometry: directions, side offsets in cutting order, extents along the feed.
+struct Frame {
+    d: [f64; 2],
+    n: [f64; 2],
+    offsets: Vec<f64>,
+    spacing: f64,
+    /// Range of `p . d` the passes may cover (before the boundary).
+    along: [f64; 2],
+    boundary: Option<[f64; 4]>,
+}
+
+impl Frame {
+    fn new(mesh: &TriMesh, job: &Job, dropper: &MeshDropper) -> Result<Frame, PathError> {
+        let (sa, ca) = job.angle_rad().sin_cos();
+        let (d, n) = ([ca, sa], [-sa, ca]);
+        let radius = dropper.tool().radius();
+        let stepover = match (job.strategy.stepover, job.strategy.scallop) {
+            (Some(s), _) => s,
+            (None, Some(h)) => stepover_for_scallop(&job.tool, h)?,
+            (None, None) => {
+                return Err(PathError::InvalidParameter {
+                    field: "strategy".into(),
+                    message: "expected `scallop` (mm) or `stepover` (mm)".into(),
+                });
+            }
+        };
+        if !(stepover.is_finite() && stepover > 0.0 && stepover <= 2.0 * radius) {
+            return Err(PathError::InvalidParameter {
+                field: "strategy.stepover".into(),
+                message: format!(
+                    "{stepover} mm: expected a stepover > 0 and at most the tool diameter {} mm",
+                    2.0 * radius
+                ),
+            });
+        }
+        let dot = |v: [f64; 2], x: f64, y: f64| v[0] * x + v[1] * y;
+        let range = |v: [f64; 2]| -> [f64; 2] {
+            let pts: Vec<[f64; 2]> = match job.strategy.boundary {
+                Some(b) => vec![[b[0], b[1]], [b[2], b[1]], [b[2], b[3]], [b[0], b[3]]],
+                None => finite_xy(mesh),
+            };
+            pts.iter().fold([f64::INFINITY, f64::NEG_INFINITY], |r, p| {
+                let x = dot(v, p[0], p[1]);
+                [r[0].min(x), r[1].max(x)]
+            })
+        };
+        let side = range(n);
+        let mesh_along = {
+            let pts = finite_xy(mesh);
+            pts.iter().fold([f64::INFINITY, f64::NEG_INFINITY], |r, p| {
+                let x = dot(d, p[0], p[1]);
+                [r[0].min(x), r[1].max(x)]
+            })
+        };
+        let width = (side[1] - side[0]).max(0.0);
+        let k = (width / stepover).ceil().max(1.0) as usize;
+        let spacing = if width > 0.0 {
+            width / k as f64
+        } else {
+            stepover
+        };
+        let mut offsets: Vec<f64> = (0..=k)
+            .map(|i| side[0] + width * i as f64 / k as f64)
+            .collect();
+        if job.strategy.start == StartSide::Max {
+            offsets.reverse();
+        }
+        Ok(Frame {
+            d,
+            n,
+            offsets,
+            spacing,
+            along: [mesh_along[0] - radius, mesh_along[1] + radius],
+            boundary: job.strategy.boundary,
+        })
+    }
+
+    /// The pass line at side offset `c`, clipped to the boundary (`None` when the
+    /// line misses it). The boundary is widened by [`BOUNDARY_SLACK`] (relative) so
+    /// that a pass on its edge survives the rounding of `c`.
+    fn line(&self, c: f64) -> Option<Line> {
+        let origin = [c * self.n[0], c * self.n[1]];
+        let [mut t0, mut t1] = self.along;
+        if let Some(b) = self.boundary {
+            let slack = BOUNDARY_SLACK * (1.0 + b.iter().fold(0.0f64, |m, v| m.max(v.abs())));
+            for axis in 0..2 {
+                let (lo, hi) = (b[axis] - slack, b[axis + 2] + slack);
+                let (o, v) = (origin[axis], self.d[axis]);
+                if v.abs() < 1e-12 {
+                    if o < lo || o > hi {
+                        return None;
+                    }
+                } else {
+                    let (a, e) = ((lo - o) / v, (hi - o) / v);
+                    t0 = t0.max(a.min(e));
+                    t1 = t1.min(a.max(e));
+                }
+            }
+        }
+        (t0 <= t1).then_some(Line {
+            origin,
+            dir: self.d,
+            t0,
+            t1,
+        })
+    }
+}
+
+/// XY of the vertices of the finite triangles.
+fn finite_xy(mesh: &TriMesh) -> Vec<[f64; 2]> {
+    mesh.triangles
+        .iter()
+        .map(|t| t.map(|k| mesh.vertices[k as usize]))
+        .filter(|c| c.iter().all(|p| p.coords.iter().all(|v| v.is_finite())))
+        .flat_map(|c| c.map(|p| [p.x, p.y]))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarf_geom::Point3;
+    use swarf_tool::drop::triangle_drop;
+
+    fn job(tool: &str, strategy: &str) -> Job {
+        let text = format!(
+            "part = \"x.stl\"\ntool = \"{tool}\"\n[strategy]\nkind = \"raster\"\n{strategy}\n"
+        );
+        Job::parse(&text, "job.toml").unwrap()
+    }
+
+    fn grid(nx: usize, ny: usize, step: f64, z: impl Fn(f64, f64) -> f64) -> TriMesh {
+        let p = |i: usize, j: usize| {
+            let (x, y) = (step * i as f64, step * j as f64);
+            Point3::new(x, y, z(x, y))
+        };
+        let mut soup = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                soup.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
+                soup.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
+            }
+        }
+        TriMesh::from_triangles(&soup)
+    }
+
+    /// Every CL point (drops and staircase corners) against every triangle, without
+    /// the index: no triangle reaches above it by more than 1e-9.
+    fn assert_gouge_free(mesh: &TriMesh, job: &Job, plan: &Plan) {
+        let tool = swarf_tool::drop::DropCutter::new(&job.tool);
+        let r = tool.radius();
+        for p in plan.toolpath.passes.iter().flat_map(|p| &p.points) {
+            let cl = p.pose.cl;
+            for t in 0..mesh.len() {
+                let tri = mesh.triangle(t);
+                let near = tri
+                    .iter()
+                    .any(|q| (q.x - cl.x).abs() <= r + 1.0 && (q.y - cl.y).abs() <= r + 1.0);
+                if near && let Some(c) = triangle_drop(&tool, [cl.x, cl.y], &tri) {
+                    assert!(
+                        c.z <= cl.z + 1e-9,
+                        "{cl:?} gouges triangle {t} by {}",
+                        c.z - cl.z
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn ball_on_a_plane_steps_evenly_in_zigzag() {
+        let mesh = grid(20, 10, 1.0, |x, y| 0.1 * x + 0.05 * y);
+        let j = job("ball:d=4", "scallop = 0.05\ntolerance = 0.01");
+        let plan = plan(&mesh, &j).unwrap();
+        let s = 2.0 * (0.05f64 * (4.0 - 0.05)).sqrt();
+        let [lo, hi] = plan.report.side_step_range.unwrap();
+        assert!(lo == hi && lo <= s && lo > 0.9 * s, "{lo} vs {s}");
+        assert!((plan.report.predicted_max_scallop.unwrap() - 0.05).abs() < 0.01);
+        // Passes along +x at y = 0, lo, 2 lo, ...; zigzag alternates the direction.
+        let passes = &plan.toolpath.passes;
+        assert_eq!(passes.len(), (10.0 / lo).round() as usize + 1);
+        for (k, p) in passes.iter().enumerate() {
+            let (a, b) = (p.points[0].pose.cl, p.points.last().unwrap().pose.cl);
+            assert!((a.y - k as f64 * lo).abs() < 1e-9 && (b.y - a.y).abs() < 1e-12);
+            assert_eq!(b.x > a.x, k % 2 == 0, "pass {k}");
+            // On a plane the drop is exact: the ball sits R (1/cos - 1) above it.
+            let q = p.points[p.points.len() / 2];
+            let n = Vec3::new(-0.1, -0.05, 1.0).normalize();
+            let want = 0.1 * q.pose.cl.x + 0.05 * q.pose.cl.y + 2.0 * (1.0 / n.z - 1.0);
+            let (x, y) = (q.pose.cl.x, q.pose.cl.y);
+            if (2.0..18.0).contains(&x) && (2.0..8.0).contains(&y) {
+                assert!(
+                    (q.pose.cl.z - want).abs() < 1e-9,
+                    "{:?} vs {want}",
+                    q.pose.cl
+                );
+            }
+            let c = q.contact.unwrap();
+            assert!(c.uv[0].is_nan() && (c.normal - n).norm() < 1e-9);
+        }
+        assert_gouge_free(&mesh, &j, &plan);
+    }
+
+    use swarf_geom::Vec3;
+
+    #[test]
+    fn boundary_angle_start_and_one_way() {
+        let mesh = grid(20, 20, 1.0, |x, y| (0.3 * x).sin() + 0.2 * y);
+        let j = job(
+            "bull:d=6,r=1",
+            "stepover = 1.5\nangle = 90\nstart = \"max\"\nzigzag = false\nboundary = [5, 4, 12, 15]",
+        );
+        let plan = plan(&mesh, &j).unwrap();
+        let passes = &plan.toolpath.passes;
+        assert_eq!(passes.len(), 6);
+        let mut last_x = f64::NEG_INFINITY;
+        for p in passes {
+            let (a, b) = (p.points[0].pose.cl, p.points.last().unwrap().pose.cl);
+            // Along +y (angle 90: the side direction n is -x, so the high side of the
+            // offsets is x = 5), from x = 5 to x = 12, inside the boundary.
+            assert!((a.x - b.x).abs() < 1e-9 && b.y > a.y && a.x > last_x);
+            last_x = a.x;
+            for q in &p.points {
+                let c = q.pose.cl;
+                assert!(
+                    c.x >= 5.0 - 1e-9
+                        && c.x <= 12.0 + 1e-9
+                        && c.y >= 4.0 - 1e-9
+                        && c.y <= 15.0 + 1e-9
+                );
+            }
+        }
+        assert_gouge_free(&mesh, &j, &plan);
+    }
+
+    #[test]
+    fn passes_split_between_islands_and_refine_at_walls() {
+        // Two plateaus 4 mm high with a 6 mm gap: a flat end leaves one, drops off
+        // the edge (the contact ends R beyond it) and comes back on the other.
+        let mut mesh = grid(5, 4, 2.0, |_, _| 4.0);
+        let other = grid(5, 4, 2.0, |_, _| 4.0);
+        let shifted = TriMesh::new(
+            other
+                .vertices
+                .iter()
+                .map(|p| p + Vec3::new(26.0, 0.0, 0.0))
+                .collect(),
+            other.triangles.clone(),
+        )
+        .unwrap();
+        mesh.append(&shifted);
+        let j = job("flat:d=4", "stepover = 2\ntolerance = 0.01");
+        let plan = plan(&mesh, &j).unwrap();
+        let rows = plan.toolpath.passes.len();
+        assert!(rows >= 8 && rows % 2 == 0, "{rows}");
+        for p in &plan.toolpath.passes {
+            let xs: Vec<f64> = p.points.iter().map(|q| q.pose.cl.x).collect();
+            let (lo, hi) = (
+                xs.iter().cloned().fold(f64::MAX, f64::min),
+                xs.iter().cloned().fold(f64::MIN, f64::max),
+            );
+            // Each piece covers one plateau plus up to the radius beyond.
+            assert!(hi - lo <= 10.0 + 4.0 + 0.01, "{lo}..{hi}");
+            assert!(p.points.iter().all(|q| (q.pose.cl.z - 4.0).abs() < 1e-12));
+        }
+        assert_gouge_free(&mesh, &j, &plan);
+    }
+
+    #[test]
+    fn a_wall_gets_a_staircase_and_stays_gouge_free() {
+        // Two plates joined by a vertical wall at x = 10, 5 mm high: a flat end of
+        // radius 2 jumps from 0 to 5 at x = 8 and climbs it vertically.
+        let p = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
+        let quad = |a: Point3, b: Point3, c: Point3, d: Point3| [[a, b, c], [a, c, d]];
+        let mut soup = Vec::new();
+        soup.extend(quad(
+            p(0.0, 0.0, 0.0),
+            p(10.0, 0.0, 0.0),
+            p(10.0, 4.0, 0.0),
+            p(0.0, 4.0, 0.0),
+        ));
+        soup.extend(quad(
+            p(10.0, 0.0, 0.0),
+            p(10.0, 4.0, 0.0),
+            p(10.0, 4.0, 5.0),
+            p(10.0, 0.0, 5.0),
+        ));
+        soup.extend(quad(
+            p(10.0, 0.0, 5.0),
+            p(20.0, 0.0, 5.0),
+            p(20.0, 4.0, 5.0),
+            p(10.0, 4.0, 5.0),
+        ));
+        let mesh = TriMesh::from_triangles(&soup);
+        for start in [0.0, 0.013, 0.31] {
+            let j = job(
+                "flat:d=4",
+                &format!(
+                    "stepover = 1.3
+tolerance = 0.01
+boundary = [{start}, 0, 20, 4]"
+                ),
+            );
+            let plan = plan(&mesh, &j).unwrap();
+            for pass in &plan.toolpath.passes {
+                for w in pass.points.windows(2) {
+                    let (a, b) = (w[0].pose.cl, w[1].pose.cl);
+                    // Every move is level or vertical: the path climbs the jump.
+                    let level = (a.z - b.z).abs() < 1e-9;
+                    let vertical = (a.x - b.x).abs() < 1e-12 && (a.y - b.y).abs() < 1e-12;
+                    assert!(level || vertical, "{a:?} -> {b:?}");
+                }
+            }
+            assert_gouge_free(&mesh, &j, &plan);
+        }
+    }
+
+    #[test]
+    fn a_ball_in_a_v_groove_records_double_contacts() {
+        let mesh = grid(20, 20, 1.0, |_, y| (y - 10.0).abs());
+        let j = job("ball:d=6", "stepover = 1\ntolerance = 0.01");
+        let plan = plan(&mesh, &j).unwrap();
+        assert!(!plan.double_contacts.is_empty());
+        for d in &plan.double_contacts {
+            assert!((d.cl.y - 10.0).abs() < 1e-9, "{:?}", d.cl);
+            assert!(d.contacts.len() >= 2);
+        }
+        assert!(
+            plan.double_contacts_csv()
+                .unwrap()
+                .starts_with("x,y,z,cx,cy,cz\n")
+        );
+    }
+
+    #[test]
+    fn bad_inputs_are_errors() {
+        let j = job("ball:d=8", "scallop = 0.1");
+        let e = plan(&TriMesh::default(), &j).unwrap_err();
+        assert!(e.to_string().contains("no triangles"), "{e}");
+        let nan = TriMesh::from_triangles(&[[
+            Point3::new(f64::NAN, 0.0, 0.0),
+            Point3::new(1.0, 0.0, 0.0),
+            Point3::new(0.0, 1.0, 0.0),
+        ]]);
+        assert!(plan(&nan, &j).unwrap_err().to_string().contains("finite"));
+        let mesh = grid(4, 4, 1.0, |_, _| 0.0);
+        let e = plan(&mesh, &job("ball:d=8", "stepover = 9")).unwrap_err();
+        assert!(e.to_string().contains("strategy.stepover"), "{e}");
+        let e = plan(
+            &mesh,
+            &job("ball:d=8", "stepover = 1\nboundary = [100, 100, 110, 110]"),
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("nowhere"), "{e}");
+        // A tool much larger than the mesh still plans.
+        let big = plan(&mesh, &job("flat:d=40", "stepover = 2")).unwrap();
+        assert!(
+            big.toolpath
+                .passes
+                .iter()
+                .all(|p| p.points.iter().all(|q| q.pose.cl.z == 0.0))
+        );
+    }
+
+    #[test]
+    fn plans_are_identical_for_any_thread_count() {
+        let mesh = grid(30, 20, 0.7, |x, y| (0.2 * x).sin() * (0.3 * y).cos() * 3.0);
+        let j = job("bull:d=6,r=1.5", "scallop = 0.05\nangle = 30");
+        let run = |n: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap();
+            pool.install(|| plan(&mesh, &j).unwrap())
+        };
+        // Debug text compares NaN uv equal, as it should here.
+        let text = |p: &Plan| format!("{:?} {:?}", p.toolpath, p.double_contacts);
+        assert_eq!(text(&run(1)), text(&run(3)));
+    }
 }

@@ -1,0 +1,161 @@
+//! Double contacts: the cutter touching the mesh at separated points at once.
+//!
+//! Thesis 002 §3.1.1 and §5.1.1: where the tool touches two surfaces of a concave edge
+//! at the same time, the material between the contacts and the edge is left uncut (a
+//! valley); the cleanup tool paths start from these points. A drop whose contacts
+//! within [`TOP_TOL`] of the top include two points more than `min_sep` apart is a
+//! candidate. Two contacts on one plane are not a valley (a flat end resting on a
+//! flat floor touches a whole disc of it): the cutter is convex, so between two points
+//! of one supporting plane it lies on that plane. The test that separates the cases
+//! is the gap at the XY midpoint `M` of the two contacts: the height of the cutter's
+//! lower surface there above the mesh. Zero on a plane, positive over a valley; a gap
+//! above `gap_tol` (the machining tolerance: thinner rest material is within
+//! tolerance anyway) makes the pair a double contact. Contacts all on one plane are
+//! settled without a mesh query.
+
+use crate::plan::DoubleContact;
+use swarf_geom::{Point3, TriMesh, Vec3};
+use swarf_tool::drop::{DropResult, MeshDropper};
+
+/// Contacts within this of the top height count as simultaneous (mm).
+pub const TOP_TOL: f64 = 1e-6;
+
+/// Planes whose unit normals and offsets agree to this are the same (mm, and
+/// dimensionless for normals).
+const SAME_PLANE: f64 = 1e-9;
+
+/// The double contact at `cl` among `contacts` (all within [`TOP_TOL`] of the top),
+/// or `None`.
+pub(crate) fn double_contact(
+    dropper: &MeshDropper,
+    mesh: &TriMesh,
+    cl: &Point3,
+    contacts: &[DropResult],
+    min_sep: f64,
+    gap_tol: f64,
+) -> Option<DoubleContact> {
+    if contacts.len() < 2 || one_plane(mesh, contacts) {
+        return None;
+    }
+    let env = dropper.tool().envelope();
+    let gap = |a: &Point3, b: &Point3| {
+        let (mx, my) = (0.5 * (a.x + b.x), 0.5 * (a.y + b.y));
+        let rho = (mx - cl.x).hypot(my - cl.y);
+        let cutter = cl.z + env.height(rho.min(env.radius()));
+        dropper
+            .surface_z(mx, my)
+            .map_or(f64::INFINITY, |z| cutter - z)
+    };
+    let mut chosen: Vec<Point3> = Vec::new();
+    for (i, a) in contacts.iter().enumerate() {
+        for b in &contacts[i + 1..] {
+            if (a.cc - b.cc).norm() > min_sep && gap(&a.cc, &b.cc) > gap_tol {
+                for p in [a.cc, b.cc] {
+                    if chosen.iter().all(|q| (q - p).norm() > min_sep) {
+                        chosen.push(p);
+                    }
+                }
+            }
+        }
+    }
+    (chosen.len() >= 2).then_some(DoubleContact {
+        cl: *cl,
+        contacts: chosen,
+    })
+}
+
+/// True when every contact's triangle lies in the first one's plane (or has no
+/// normal, being degenerate and so on the others' edges).
+fn one_plane(mesh: &TriMesh, contacts: &[DropResult]) -> bool {
+    let plane = |c: &DropResult| {
+        mesh.normal(c.tri as usize).map(|n| {
+            let n: Vec3 = if n.z < 0.0 { -n } else { n };
+            (n, n.dot(&c.cc.coords))
+        })
+    };
+    let Some((n0, d0)) = contacts.iter().find_map(plane) else {
+        return true;
+    };
+    contacts
+        .iter()
+        .filter_map(plane)
+        .all(|(n, d)| (n - n0).norm() < SAME_PLANE && (d - d0).abs() < SAME_PLANE)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarf_tool::drop::DropScratch;
+
+    fn p(x: f64, y: f64, z: f64) -> Point3 {
+        Point3::new(x, y, z)
+    }
+
+    /// A V-groove along x: two planes rising at 45 degrees from the line y = 0.
+    fn groove() -> TriMesh {
+        let s = |y: f64| y.abs();
+        let mut soup = Vec::new();
+        for (y0, y1) in [(-10.0, 0.0), (0.0, 10.0)] {
+            soup.push([p(-20.0, y0, s(y0)), p(20.0, y0, s(y0)), p(20.0, y1, s(y1))]);
+            soup.push([p(-20.0, y0, s(y0)), p(20.0, y1, s(y1)), p(-20.0, y1, s(y1))]);
+        }
+        TriMesh::from_triangles(&soup)
+    }
+
+    fn contacts(d: &MeshDropper, x: f64, y: f64) -> (Point3, Vec<DropResult>) {
+        let mut c = Vec::new();
+        let r = d
+            .drop_with_contacts(x, y, TOP_TOL, &mut DropScratch::default(), &mut c)
+            .unwrap();
+        (p(x, y, r.z), c)
+    }
+
+    #[test]
+    fn a_ball_in_a_v_groove_touches_both_flanks() {
+        let mesh = groove();
+        let d = MeshDropper::new(&mesh, &"ball:d=8".parse().unwrap());
+        let (cl, c) = contacts(&d, 3.0, 0.0);
+        let dc = double_contact(&d, &mesh, &cl, &c, 0.2, 0.01).unwrap();
+        assert_eq!(dc.contacts.len(), 2);
+        // The ball centre sits R / cos 45 above the groove bottom; the contacts are at
+        // y = +-R sin 45.
+        let r = 4.0;
+        assert!((cl.z - (r * 2f64.sqrt() - r)).abs() < 1e-12);
+        for q in &dc.contacts {
+            assert!((q.y.abs() - r / 2f64.sqrt()).abs() < 1e-9, "{q:?}");
+        }
+        // Off the groove's axis the ball touches one flank only.
+        let (cl, c) = contacts(&d, 3.0, 2.0);
+        assert!(double_contact(&d, &mesh, &cl, &c, 0.2, 0.01).is_none());
+    }
+
+    #[test]
+    fn a_flat_end_on_a_floor_is_not_a_double_contact() {
+        let s = [
+            p(0.0, 0.0, 1.0),
+            p(10.0, 0.0, 1.0),
+            p(10.0, 10.0, 1.0),
+            p(0.0, 10.0, 1.0),
+        ];
+        let mesh = TriMesh::from_triangles(&[[s[0], s[1], s[2]], [s[0], s[2], s[3]]]);
+        let d = MeshDropper::new(&mesh, &"flat:d=6".parse().unwrap());
+        let (cl, c) = contacts(&d, 5.0, 5.0);
+        assert_eq!(c.len(), 2);
+        assert!(double_contact(&d, &mesh, &cl, &c, 0.15, 0.01).is_none());
+        // A shallow V (slope 0.001): the rim touches both flanks at x = +-3, 0.003 mm
+        // above the crease. Within a tolerance of 0.01 that is no valley; with 0.001
+        // it is.
+        let v = |x: f64, y: f64| p(x, y, 0.001 * x.abs());
+        let crease = TriMesh::from_triangles(&[
+            [v(0.0, -10.0), v(10.0, -10.0), v(10.0, 10.0)],
+            [v(0.0, -10.0), v(10.0, 10.0), v(0.0, 10.0)],
+            [v(-10.0, -10.0), v(0.0, -10.0), v(0.0, 10.0)],
+            [v(-10.0, -10.0), v(0.0, 10.0), v(-10.0, 10.0)],
+        ]);
+        let d = MeshDropper::new(&crease, &"flat:d=6".parse().unwrap());
+        let (cl, c) = contacts(&d, 0.0, 0.0);
+        assert!((cl.z - 0.003).abs() < 1e-12);
+        assert!(double_contact(&d, &crease, &cl, &c, 0.15, 0.01).is_none());
+        assert!(double_contact(&d, &crease, &cl, &c, 0.15, 0.001).is_some());
+    }
+}

@@ -1,0 +1,228 @@
+//! One raster pass: drop-cutter along a line, sampled adaptively.
+//!
+//! The CL curve over a line is the drop height along it. It is sampled every
+//! `init_step` (a quarter of the tool radius: a bump of the CL curve is at least as
+//! wide as the cutter, the inverted tool shape over a spike, so none falls between
+//! samples), then refined: between two samples with contact the midpoint is dropped,
+//! and where it is further than the tolerance from their chord it is inserted and both
+//! halves are refined, down to `min_step`. Where contact begins or ends between two
+//! samples the boundary is bisected to `min_step` the same way, and the pass is split
+//! there (the cutter leaves the mesh). This is OpenCAMLib's AdaptivePathDropCutter
+//! idea with the test on the actual deviation from the chord rather than on angles.
+//!
+//! At `min_step` the midpoint may still be off the chord: the CL curve jumps (a flat
+//! end over a wall) somewhere in the interval, on either side of the midpoint, or dips
+//! into a valley narrower than `min_step`. There the pass climbs vertically at one
+//! end to the highest of the three samples, crosses at that height and comes down
+//! vertically at the other end (a staircase), so its moves stay above every sample
+//! and above a single jump wherever it lies; the CL curve is not followed closer than
+//! `min_step` there.
+
+use crate::plan::DoubleContact;
+use crate::raster_double::{TOP_TOL, double_contact};
+use crate::toolpath::{Contact, PathPoint};
+use swarf_geom::{Point3, TriMesh, Vec3};
+use swarf_tool::Pose;
+use swarf_tool::drop::{DropResult, DropScratch, MeshDropper};
+
+/// Sampling parameters of a pass.
+pub(crate) struct Sampler<'a> {
+    /// The mesh, for contact normals.
+    pub mesh: &'a TriMesh,
+    /// The prepared mesh and cutter.
+    pub dropper: &'a MeshDropper,
+    /// Largest deviation of the CL polyline from the CL curve at a midpoint, mm.
+    pub tolerance: f64,
+    /// First sampling step, mm.
+    pub init_step: f64,
+    /// Smallest step of the refinement, mm.
+    pub min_step: f64,
+    /// Contacts further apart than this can make a double contact, mm.
+    pub min_sep: f64,
+}
+
+/// A sample of the line: parameter, drop height (`None` off the mesh), contact.
+#[derive(Debug, Clone, Copy)]
+struct Sample {
+    t: f64,
+    hit: Option<DropResult>,
+    /// A staircase corner: the height of a move, not a drop.
+    corner: Option<f64>,
+}
+
+/// What a pass produced: its pieces (split where contact ends) and double contacts.
+#[derive(Debug, Default)]
+pub(crate) struct PassOut {
+    /// Pieces in travel order (+t).
+    pub pieces: Vec<Vec<PathPoint>>,
+    /// Double contacts found at the samples.
+    pub doubles: Vec<DoubleContact>,
+}
+
+/// A line `origin + t dir`, `t` in `[t0, t1]`.
+pub(crate) struct Line {
+    pub origin: [f64; 2],
+    pub dir: [f64; 2],
+    pub t0: f64,
+    pub t1: f64,
+}
+
+impl Line {
+    fn at(&self, t: f64) -> [f64; 2] {
+        [
+            self.origin[0] + t * self.dir[0],
+            self.origin[1] + t * self.dir[1],
+        ]
+    }
+}
+
+impl Sampler<'_> {
+    /// Samples `line` (module doc).
+    pub(crate) fn run(&self, line: &Line, scratch: &mut DropScratch) -> PassOut {
+        let mut out = PassOut::default();
+        let span = line.t1 - line.t0;
+        if span.is_nan() || span < 0.0 {
+            return out;
+        }
+        let n = (span / self.init_step).ceil().max(1.0) as usize;
+        let mut contacts = Vec::new();
+        let mut drop = |t: f64| self.sample(line, t, scratch, &mut contacts, &mut out.doubles);
+        let first: Vec<Sample> = (0..=n)
+            .map(|i| drop(line.t0 + span * i as f64 / n as f64))
+            .collect();
+        let mut samples = vec![first[0]];
+        for w in first.windows(2) {
+            self.refine(w[0], w[1], &mut drop, &mut samples);
+            samples.push(w[1]);
+        }
+        out.pieces = self.pieces(line, &samples);
+        out
+    }
+
+    /// Drops at `t`, records a double contact there if any.
+    fn sample(
+        &self,
+        line: &Line,
+        t: f64,
+        scratch: &mut DropScratch,
+        contacts: &mut Vec<DropResult>,
+        doubles: &mut Vec<DoubleContact>,
+    ) -> Sample {
+        let [x, y] = line.at(t);
+        let hit = self
+            .dropper
+            .drop_with_contacts(x, y, TOP_TOL, scratch, contacts);
+        if let Some(h) = hit
+            && contacts.len() > 1
+        {
+            let cl = Point3::new(x, y, h.z);
+            let tol = self.tolerance;
+            doubles.extend(double_contact(
+                self.dropper,
+                self.mesh,
+                &cl,
+                contacts,
+                self.min_sep,
+                tol,
+            ));
+        }
+        Sample {
+            t,
+            hit,
+            corner: None,
+        }
+    }
+
+    /// Pushes the samples strictly between `a` and `b` that the refinement inserts.
+    fn refine(
+        &self,
+        a: Sample,
+        b: Sample,
+        drop: &mut impl FnMut(f64) -> Sample,
+        out: &mut Vec<Sample>,
+    ) {
+        if a.hit.is_none() && b.hit.is_none() {
+            return;
+        }
+        let m = drop(0.5 * (a.t + b.t));
+        let coarse = 0.5 * (b.t - a.t) >= self.min_step;
+        match (a.hit, m.hit, b.hit) {
+            (Some(ha), Some(hm), Some(hb)) => {
+                let dev = hm.z - 0.5 * (ha.z + hb.z);
+                if dev.abs() <= self.tolerance {
+                    return;
+                }
+                if coarse {
+                    self.refine(a, m, drop, out);
+                    out.push(m);
+                    self.refine(m, b, drop, out);
+                } else {
+                    staircase(a.t, ha.z, hm.z, b.t, hb.z, out);
+                }
+            }
+            _ if coarse => {
+                self.refine(a, m, drop, out);
+                out.push(m);
+                self.refine(m, b, drop, out);
+            }
+            _ => {}
+        }
+    }
+
+    /// The runs of samples with contact as pieces of path points.
+    fn pieces(&self, line: &Line, samples: &[Sample]) -> Vec<Vec<PathPoint>> {
+        let mut pieces = Vec::new();
+        let mut cur: Vec<PathPoint> = Vec::new();
+        for s in samples {
+            let [x, y] = line.at(s.t);
+            match (s.corner, s.hit) {
+                (Some(z), _) => cur.push(PathPoint::new(Pose::vertical(Point3::new(x, y, z)))),
+                (None, Some(h)) => cur.push(self.point(x, y, &h)),
+                (None, None) => {
+                    if cur.len() > 1 {
+                        pieces.push(std::mem::take(&mut cur));
+                    }
+                    cur.clear();
+                }
+            }
+        }
+        if cur.len() > 1 {
+            pieces.push(cur);
+        }
+        pieces
+    }
+
+    /// The path point of a drop: CL on the axis, contact on the touched triangle
+    /// (its upward normal; uv NaN on a mesh).
+    fn point(&self, x: f64, y: f64, h: &DropResult) -> PathPoint {
+        let normal = self
+            .mesh
+            .normal(h.tri as usize)
+            .map_or(Vec3::z(), |n| if n.z < 0.0 { -n } else { n });
+        PathPoint {
+            pose: Pose::vertical(Point3::new(x, y, h.z)),
+            contact: Some(Contact {
+                point: h.cc,
+                normal,
+                face: h.tri as usize,
+                uv: [f64::NAN, f64::NAN],
+            }),
+            lifted: 0.0,
+        }
+    }
+}
+
+/// Corners taking the path from `(ta, za)` up to the highest of the three heights,
+/// across, and down to `(tb, zb)`.
+fn staircase(ta: f64, za: f64, zm: f64, tb: f64, zb: f64, out: &mut Vec<Sample>) {
+    let top = za.max(zm).max(zb);
+    for (t, z) in [(ta, za), (tb, zb)] {
+        if top > z {
+            out.push(Sample {
+                t,
+                hit: None,
+                corner: Some(top),
+            });
+        }
+    }
+}

@@ -1,0 +1,107 @@
+//! Raster finishing on the tessellated wave (the shipped example's settings, on part
+//! of the part to stay fast): every CL point is gouge-free against every triangle
+//! (brute force, no index), and LinuxCNC's interpreter `rs274 -g` reads the G-code
+//! to the end with every feed move. Without `rs274` the second check is skipped,
+//! unless `SWARF_REQUIRE_REFERENCES=1`.
+
+use swarf_path::job::Job;
+use swarf_path::plan::{Plan, PlanInput, plan};
+use swarf_path::toolpath::MoveKind;
+use swarf_tool::drop::{DropCutter, triangle_drop};
+
+fn wave_plan() -> (swarf_geom::TriMesh, Job, Plan) {
+    let part = swarf_io::builtin_part("wave").unwrap();
+    let mesh = part.tessellate(0.01).unwrap();
+    let text = r#"
+part = "builtin:wave"
+tool = "ball:d=8"
+[strategy]
+kind = "raster"
+scallop = 0.15
+tolerance = 0.01
+boundary = [70, 20, 110, 55]
+[feeds]
+feed = 300
+spindle = 1500
+"#;
+    let job = Job::parse(text, "wave-raster.toml").unwrap();
+    let p = plan(&job, PlanInput::Mesh(&mesh)).unwrap();
+    (mesh, job, p)
+}
+
+#[test]
+fn wave_raster_is_gouge_free_and_rs274_reads_it() {
+    let (mesh, job, p) = wave_plan();
+    let tool = DropCutter::new(&job.tool);
+    let r = tool.radius();
+    let mut points = 0;
+    for q in p.toolpath.passes.iter().flat_map(|p| &p.points) {
+        points += 1;
+        let cl = q.pose.cl;
+        for t in 0..mesh.len() {
+            let tri = mesh.triangle(t);
+            let far = tri
+                .iter()
+                .all(|v| (v.x - cl.x).abs() > r + 2.0 || (v.y - cl.y).abs() > r + 2.0);
+            if far {
+                continue;
+            }
+            if let Some(c) = triangle_drop(&tool, [cl.x, cl.y], &tri) {
+                assert!(
+                    c.z <= cl.z + 1e-9,
+                    "{cl:?} gouges triangle {t} by {}",
+                    c.z - cl.z
+                );
+            }
+        }
+    }
+    assert!(points > 500, "{points}");
+    let moves = p.toolpath.moves();
+    let gcode =
+        swarf_nc::write_gcode(&moves, &job.feeds, &swarf_nc::GcodeOptions::default()).unwrap();
+    let Some(canon) = run_rs274(&gcode) else {
+        return;
+    };
+    let feeds = canon
+        .lines()
+        .filter(|l| l.contains("STRAIGHT_FEED"))
+        .count();
+    let feed_moves = moves.iter().filter(|m| m.kind == MoveKind::Feed).count();
+    assert_eq!(
+        feeds, feed_moves,
+        "rs274 read {feeds} feeds of {feed_moves}"
+    );
+}
+
+/// `rs274 -g` on the program: its canonical output, `None` when rs274 is not
+/// installed (a failure instead with `SWARF_REQUIRE_REFERENCES=1`).
+fn run_rs274(gcode: &str) -> Option<String> {
+    let dir = std::env::temp_dir().join(format!("swarf-raster-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("wave-raster.ngc");
+    std::fs::write(&file, gcode).unwrap();
+    let out = match std::process::Command::new("rs274")
+        .arg("-g")
+        .arg(&file)
+        .output()
+    {
+        Ok(o) => o,
+        Err(e) => {
+            let required = std::env::var("SWARF_REQUIRE_REFERENCES").is_ok_and(|v| v == "1");
+            assert!(
+                !required,
+                "rs274 not runnable ({e}) and SWARF_REQUIRE_REFERENCES=1"
+            );
+            return None;
+        }
+    };
+    std::fs::remove_dir_all(&dir).ok();
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "rs274 refused the program: {stderr}\n{stdout}"
+    );
+    assert!(stdout.contains("PROGRAM_END"), "{stdout}");
+    Some(stdout)
+}
