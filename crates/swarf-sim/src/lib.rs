@@ -9,8 +9,9 @@
 //! - [`design`]: the design's height (and normal) at every cell centre, exact by
 //!   Newton on patches or by ray casts on meshes ([`raster`]).
 //! - [`deviation`]: gouge, excess and scallop crests against the design, by region.
-//! - [`simulate`]: a program over a stock, in parallel row bands, deterministically.
-//! - [`verify`]: all of it for a program, a tool and a design.
+//! - [`mow`]: deviation along the design normals ("mow the grass").
+//! - [`simulate`](mod@simulate): a program over a stock, in parallel row bands, deterministically.
+//! - [`verify`](mod@verify): all of it for a program, a tool and a design.
 //! - [`report`] (JSON, CSV, text) and [`picture`] (heat map, tool path; drawn on a
 //!   small [`canvas`]).
 //!
@@ -23,6 +24,7 @@ pub mod dexel;
 pub mod envelope;
 pub mod error;
 pub mod grid;
+pub mod mow;
 pub mod picture;
 pub mod power;
 pub mod progress;

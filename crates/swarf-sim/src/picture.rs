@@ -24,28 +24,38 @@ const NO_MATERIAL: Rgb = [120, 120, 120];
 /// Labelled gouge rings.
 const LABELLED: usize = 8;
 
-/// Where the map sits in the picture.
+/// Where the map sits in the picture: the world rectangle `rect` (mm) drawn at
+/// `ppmm` pixels per mm from `(left, top)`.
 struct Layout {
     grid: Grid,
+    rect: [f64; 4],
     left: i64,
     top: i64,
-    /// Pixels per cell.
-    ppc: f64,
+    ppmm: f64,
     w: i64,
     h: i64,
 }
 
 impl Layout {
-    fn new(grid: &Grid) -> Layout {
-        let ppc = (MAP_MAX[0] / grid.nx as f64).min(MAP_MAX[1] / grid.ny as f64);
+    /// The layout showing `rect` (`[xmin, ymin, xmax, ymax]`, mm).
+    fn new(grid: &Grid, rect: [f64; 4]) -> Layout {
+        let (sx, sy) = ((rect[2] - rect[0]).max(1e-9), (rect[3] - rect[1]).max(1e-9));
+        let ppmm = (MAP_MAX[0] / sx).min(MAP_MAX[1] / sy);
         Layout {
             grid: *grid,
+            rect,
             left: MARGIN[0],
             top: MARGIN[1],
-            ppc,
-            w: (grid.nx as f64 * ppc).round().max(1.0) as i64,
-            h: (grid.ny as f64 * ppc).round().max(1.0) as i64,
+            ppmm,
+            w: (sx * ppmm).round().max(1.0) as i64,
+            h: (sy * ppmm).round().max(1.0) as i64,
         }
+    }
+
+    /// The layout showing the grid.
+    fn of_grid(grid: &Grid) -> Layout {
+        let max = grid.max();
+        Layout::new(grid, [grid.origin[0], grid.origin[1], max[0], max[1]])
     }
 
     fn canvas(&self) -> Canvas {
@@ -56,29 +66,35 @@ impl Layout {
 
     /// Picture coordinates of a point of the XY plane.
     fn px(&self, x: f64, y: f64) -> [f64; 2] {
-        let g = &self.grid;
         [
-            self.left as f64 + (x - g.origin[0]) / g.cell * self.ppc,
-            (self.top + self.h) as f64 - (y - g.origin[1]) / g.cell * self.ppc,
+            self.left as f64 + (x - self.rect[0]) * self.ppmm,
+            (self.top + self.h) as f64 - (y - self.rect[1]) * self.ppmm,
         ]
     }
 
     /// Cells under map pixel `(u, v)` (from the map's top-left): column and row
-    /// ranges.
-    fn cells(&self, u: i64, v: i64) -> ([usize; 2], [usize; 2]) {
+    /// ranges, `None` off the grid.
+    fn cells(&self, u: i64, v: i64) -> Option<([usize; 2], [usize; 2])> {
         let g = &self.grid;
-        let span = |a: i64, n: usize| {
-            let lo = ((a as f64 / self.ppc).floor() as usize).min(n - 1);
-            let hi = (((a + 1) as f64 / self.ppc).ceil() as usize).clamp(lo + 1, n);
-            [lo, hi]
+        let span = |a0: f64, a1: f64, origin: f64, n: usize| {
+            let lo = ((a0 - origin) / g.cell).floor();
+            let hi = ((a1 - origin) / g.cell).ceil();
+            if hi <= 0.0 || lo >= n as f64 {
+                return None;
+            }
+            let lo = lo.max(0.0) as usize;
+            Some([lo, (hi as usize).clamp(lo + 1, n)])
         };
-        (span(u, g.nx), span(self.h - 1 - v, g.ny))
+        let x0 = self.rect[0] + u as f64 / self.ppmm;
+        let y0 = self.rect[1] + (self.h - 1 - v) as f64 / self.ppmm;
+        let i = span(x0, x0 + 1.0 / self.ppmm, g.origin[0], g.nx)?;
+        let j = span(y0, y0 + 1.0 / self.ppmm, g.origin[1], g.ny)?;
+        Some((i, j))
     }
 
     /// Axes with ticks in mm, and the frame.
     fn axes(&self, c: &mut Canvas) {
-        let g = &self.grid;
-        let max = g.max();
+        let r = self.rect;
         c.frame(
             self.left - 1,
             self.top - 1,
@@ -86,18 +102,18 @@ impl Layout {
             self.top + self.h,
             BLACK,
         );
-        for (axis, lo, hi) in [(0, g.origin[0], max[0]), (1, g.origin[1], max[1])] {
+        for (axis, lo, hi) in [(0, r[0], r[2]), (1, r[1], r[3])] {
             let step = nice_step((hi - lo) / 6.0);
             let mut t = (lo / step).ceil() * step;
             while t <= hi + 1e-9 {
                 let label = trim(t);
                 if axis == 0 {
-                    let [x, y] = self.px(t, lo);
+                    let [x, y] = self.px(t, r[1]);
                     c.fill(x as i64, y as i64, x as i64 + 1, y as i64 + 6, BLACK);
                     let tw = Canvas::text_width(&label, 2);
                     c.text(x as i64 - tw / 2, y as i64 + 10, &label, 2, BLACK);
                 } else {
-                    let [x, y] = self.px(g.origin[0], t);
+                    let [x, y] = self.px(r[0], t);
                     c.fill(x as i64 - 6, y as i64, x as i64, y as i64 + 1, BLACK);
                     let tw = Canvas::text_width(&label, 2);
                     c.text(x as i64 - 10 - tw, y as i64 - 8, &label, 2, BLACK);
@@ -175,14 +191,16 @@ fn limits(v: &Verification) -> (f64, f64) {
 /// # Errors
 /// [`SimError::Write`] when PNG encoding fails.
 pub fn deviation_png(v: &Verification, title: &str) -> Result<Vec<u8>, SimError> {
-    let lay = Layout::new(&v.grid);
+    let lay = Layout::of_grid(&v.grid);
     let mut c = lay.canvas();
     let (below, above) = limits(v);
     let nx = v.grid.nx;
     let (dev, design) = (&v.deviation.values, &v.design.heights);
     for vpx in 0..lay.h {
         for upx in 0..lay.w {
-            let ([i0, i1], [j0, j1]) = lay.cells(upx, vpx);
+            let Some(([i0, i1], [j0, j1])) = lay.cells(upx, vpx) else {
+                continue;
+            };
             let (mut pick, mut any_design) = (f64::NAN, false);
             for j in j0..j1 {
                 for i in i0..i1 {
@@ -246,9 +264,14 @@ fn legend(c: &mut Canvas, lay: &Layout, below: f64, above: f64, tol: f64) {
         }
     };
     for value in [above, 0.5 * above, 0.0, -0.5 * below, -below] {
+        let label = if value == 0.0 {
+            "0".to_string()
+        } else {
+            format!("{value:+.3}")
+        };
         let y = at(value);
         c.fill(x + 28, y, x + 36, y + 1, BLACK);
-        c.text(x + 40, y - 7, &format!("{value:+.3}"), 2, BLACK);
+        c.text(x + 40, y - 7, &label, 2, BLACK);
     }
     for value in [tol, -tol] {
         let y = at(value);
@@ -315,7 +338,21 @@ pub fn toolpath_png(
     motions: &[Motion],
     title: &str,
 ) -> Result<Vec<u8>, SimError> {
-    let lay = Layout::new(&v.grid);
+    let max = v.grid.max();
+    let mut rect = [v.grid.origin[0], v.grid.origin[1], max[0], max[1]];
+    for m in motions {
+        for p in polyline(m) {
+            rect = [
+                rect[0].min(p[0]),
+                rect[1].min(p[1]),
+                rect[2].max(p[0]),
+                rect[3].max(p[1]),
+            ];
+        }
+    }
+    let pad = 0.02 * (rect[2] - rect[0]).max(rect[3] - rect[1]);
+    let rect = [rect[0] - pad, rect[1] - pad, rect[2] + pad, rect[3] + pad];
+    let lay = Layout::new(&v.grid, rect);
     let mut c = lay.canvas();
     let design = &v.design.heights;
     let (lo, hi) = design
@@ -327,8 +364,9 @@ pub fn toolpath_png(
     let span = (hi - lo).max(1e-9);
     for vpx in 0..lay.h {
         for upx in 0..lay.w {
-            let ([i0, _], [j0, _]) = lay.cells(upx, vpx);
-            let z = design[j0 * v.grid.nx + i0];
+            let z = lay
+                .cells(upx, vpx)
+                .map_or(f64::NAN, |([i0, _], [j0, _])| design[j0 * v.grid.nx + i0]);
             let col = if z.is_finite() {
                 let g = (175.0 + 70.0 * (z - lo) / span).round() as u8;
                 [g, g, g]
@@ -353,7 +391,7 @@ pub fn toolpath_png(
     }
     if let (Some(first), Some(last)) = (motions.first(), motions.last()) {
         c.ring(
-            lay.px(first.start.cl.x, first.start.cl.y),
+            lay.px(first.end.cl.x, first.end.cl.y),
             6.0,
             3.0,
             [0, 160, 0],

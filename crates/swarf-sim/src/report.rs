@@ -50,6 +50,8 @@ pub fn json_report(v: &Verification, ctx: &ReportContext) -> Value {
             "cells": g.len(),
         },
         "sample_tolerance_mm": v.sample_tol,
+        "deviation_mode": if v.along_normals { "normal" } else { "vertical" },
+        "normal_fallback_cells": v.normal_fallback,
         "design_approximate_cells": v.design.approximate,
         "program_stats": v.program,
         "simulation": v.sim,

@@ -5,7 +5,9 @@
 //! box meets it, in program order. A cell is only ever written by its band's thread,
 //! in program order, so the heights and the "last motion that lowered the cell" are
 //! the same whatever the thread count. Per-band findings (rapids that cut material)
-//! are merged in band order. Motions are taken in chunks of at most
+//! are merged in band order. A program read from a file does not say where the
+//! machine stood before its first motion; with [`SimOptions::known_start`] false
+//! that motion only places the tool at its end. Motions are taken in chunks of at most
 //! [`CHUNK_PRIMITIVES`] primitives so that a densely sampled five-axis program does
 //! not hold all its tool positions at once.
 
@@ -20,6 +22,9 @@ use swarf_nc::read::{Motion, MotionKind};
 
 /// Most primitives held at once.
 pub const CHUNK_PRIMITIVES: usize = 1 << 18;
+/// A cutting motion whose swept box lies further than this many tool radii from
+/// the grid is reported as outside the stock (closer ones are approaches).
+pub const OUTSIDE_MARGIN: f64 = 2.0;
 /// A rapid that lowers material by more than this is reported, mm.
 pub const RAPID_CUT_EPS: f64 = 1e-9;
 
@@ -28,11 +33,18 @@ pub const RAPID_CUT_EPS: f64 = 1e-9;
 pub struct SimOptions {
     /// Distance bound for sampled motions (arcs, five-axis), mm.
     pub sample_tol: f64,
+    /// The first motion's start is where the tool really was. When false (a program
+    /// read from a file does not say where the machine stands before it), the first
+    /// motion only places the tool at its end.
+    pub known_start: bool,
 }
 
 impl Default for SimOptions {
     fn default() -> Self {
-        SimOptions { sample_tol: 0.001 }
+        SimOptions {
+            sample_tol: 0.001,
+            known_start: true,
+        }
     }
 }
 
@@ -95,13 +107,25 @@ pub fn simulate(
     let mut rapid = BTreeMap::new();
     let mut pending = 0u64;
     for (k, m) in motions.iter().enumerate() {
-        let sw = sweep_motion(tool, m, opts.sample_tol);
+        let sw = if k == 0 && !opts.known_start {
+            // Where the machine stands before the program is unknown: the first
+            // motion places the tool at its end.
+            let mut first = *m;
+            first.start = m.end;
+            first.kind = MotionKind::Linear;
+            let mut sw = sweep_motion(tool, &first, opts.sample_tol);
+            sw.bound = 0.0;
+            sw
+        } else {
+            sweep_motion(tool, m, opts.sample_tol)
+        };
         if sw.bound > 0.0 {
             report.sampled_motions += 1;
             report.max_sample_bound = report.max_sample_bound.max(sw.bound);
         }
         if !matches!(m.kind, MotionKind::Rapid)
             && let Some(gap) = outside_gap(&grid, &sw.primitives)
+            && gap > OUTSIDE_MARGIN * tool.radius()
         {
             report.outside.push(MotionNote {
                 motion: k,
@@ -261,9 +285,14 @@ mod tests {
             line(MotionKind::Linear, [-5.0, 0.0, -1.0], [5.0, 0.0, -1.0], 3),
             line(MotionKind::Rapid, [5.0, 0.0, -1.0], [5.0, 5.0, -0.5], 4),
             line(MotionKind::Linear, [50.0, 0.0, -1.0], [60.0, 0.0, -1.0], 5),
+            line(MotionKind::Linear, [60.0, 0.0, -1.0], [13.0, 0.0, -1.0], 6),
         ];
-        let r = simulate(&mut d, &tool, &moves, &SimOptions::default(), &Quiet);
-        assert_eq!(r.motions, 5);
+        let opts = SimOptions {
+            known_start: false,
+            ..SimOptions::default()
+        };
+        let r = simulate(&mut d, &tool, &moves, &opts, &Quiet);
+        assert_eq!(r.motions, 6);
         assert_eq!(r.rapid_cuts.len(), 1);
         assert_eq!((r.rapid_cuts[0].motion, r.rapid_cuts[0].line), (3, 4));
         // It climbs out of the slot the feed move cut: new material only beside it.

@@ -11,6 +11,7 @@ use crate::deviation::{Deviation, DeviationOptions, analyse, vertical_deviation}
 use crate::dexel::{Dexel, StockInit};
 use crate::error::SimError;
 use crate::grid::{DEFAULT_MAX_BYTES, Grid};
+use crate::mow::normal_deviation;
 use crate::progress::Progress;
 use crate::simulate::{SimOptions, SimReport, simulate};
 use crate::sweep::SimTool;
@@ -71,6 +72,9 @@ pub struct VerifyOptions {
     pub rapid_rate: f64,
     /// Regions of each kind to list.
     pub max_regions: usize,
+    /// Measure along the design normals ("mow the grass", [`crate::mow`]) instead
+    /// of vertically.
+    pub along_normals: bool,
 }
 
 impl Default for VerifyOptions {
@@ -84,6 +88,7 @@ impl Default for VerifyOptions {
             sample_tol: None,
             rapid_rate: 5000.0,
             max_regions: 20,
+            along_normals: false,
         }
     }
 }
@@ -139,6 +144,10 @@ pub struct Verification {
     pub lines: Vec<usize>,
     /// Sampling bound used, mm.
     pub sample_tol: f64,
+    /// Along the design normals (true) or vertical (false).
+    pub along_normals: bool,
+    /// Cells whose normal deviation kept its first-order value (see [`crate::mow`]).
+    pub normal_fallback: usize,
     /// Stage times.
     pub timings: Timings,
 }
@@ -166,7 +175,7 @@ pub fn verify(
     let surface = DesignSurface::new(design)?;
     let b = surface.bounds();
     let grid = Grid::covering([b.min.x, b.min.y], [b.max.x, b.max.y], cell, opts.max_bytes)?;
-    let field = surface.heights(&grid, false, progress);
+    let field = surface.heights(&grid, opts.along_normals, progress);
     let stock_heights;
     let init = match &opts.stock {
         StockSpec::Box { top } => StockInit::Box {
@@ -188,12 +197,20 @@ pub fn verify(
         &mut stock,
         &tool,
         &program.motions,
-        &SimOptions { sample_tol },
+        &SimOptions {
+            sample_tol,
+            known_start: false,
+        },
         progress,
     );
     let t2 = Instant::now();
     let lines: Vec<usize> = program.motions.iter().map(|m| m.line).collect();
-    let values = vertical_deviation(stock.heights(), &field.heights);
+    let mut values = vertical_deviation(stock.heights(), &field.heights);
+    let mut normal_fallback = 0;
+    if let (true, Some(normals)) = (opts.along_normals, &field.normals) {
+        let (v, n) = normal_deviation(&grid, stock.heights(), &field.heights, normals, &values);
+        (values, normal_fallback) = (v, n);
+    }
     let dopts = DeviationOptions {
         tol,
         allowed_excess: opts.allowed_excess,
@@ -218,6 +235,8 @@ pub fn verify(
         program: program_stats(program, opts.rapid_rate),
         lines,
         sample_tol,
+        along_normals: opts.along_normals,
+        normal_fallback,
         timings: Timings {
             design_s: (t1 - t0).as_secs_f64(),
             simulate_s: (t2 - t1).as_secs_f64(),

@@ -27,6 +27,11 @@ enum Command {
     Tessellate(cmd::tessellate::Args),
     /// Plan a finishing tool path from a job file and write G-code, CL, CSV, summary.
     Plan(cmd::plan::Args),
+    /// Simulate an NC program on a dexel stock and measure gouge, excess and scallops
+    /// against the design; writes a JSON report, a CSV of flagged cells and pictures.
+    Verify(cmd::verify::Args),
+    /// Plan jobs, verify their programs and print paper 004's Table 1 for them.
+    Compare(cmd::compare::Args),
     /// Drop a cutter onto a triangle mesh at many XY points (CSV in, CSV out).
     Drop(cmd::drop::Args),
     /// Run the main job on the built-in shared parts and write the results.
@@ -42,6 +47,8 @@ fn main() -> ExitCode {
         Command::Plan(a) => cmd::plan::run(&a),
         Command::Demo(a) => cmd::demo::run(&a),
         Command::Drop(a) => cmd::drop::run(&a),
+        Command::Verify(a) => cmd::verify::run(&a),
+        Command::Compare(a) => cmd::compare::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

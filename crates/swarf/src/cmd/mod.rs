@@ -1,8 +1,10 @@
 //! One file per subcommand.
 
+pub mod compare;
 pub mod demo;
 pub mod drop;
 pub mod eval;
 pub mod inspect;
 pub mod plan;
 pub mod tessellate;
+pub mod verify;

@@ -1,0 +1,287 @@
+//! `swarf verify --part P --program PROG -o DIR`: simulate a program on a dexel stock
+//! and measure it against the design; writes `report.json`, `flagged.csv`,
+//! `deviation.png` and `toolpath.png`. A program that stops mid-way still gets its
+//! partial report, then the command fails.
+
+use crate::load::{Model, load_model};
+use anyhow::{Context, Result, bail};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use swarf_nc::read::{Program, read_program};
+use swarf_sim::report::{ReportContext, flagged_csv, json_report, text_summary};
+use swarf_sim::{Design, Progress, StockSpec, Verification, VerifyOptions};
+use swarf_tool::Cutter;
+
+/// Arguments of `swarf verify`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Design part: a part file (.toml), a mesh (.stl, .obj) or a built-in part name.
+    #[arg(long)]
+    part: String,
+    /// NC program: G-code (.ngc, .nc, .tap, .gcode), APT CL (.cl, .apt, .cls) or pose CSV.
+    #[arg(long)]
+    program: PathBuf,
+    /// Tool spec, e.g. ball:d=8 (default: the program's CUTTER record).
+    #[arg(long)]
+    tool: Option<String>,
+    #[command(flatten)]
+    sim: SimArgs,
+    /// Output directory.
+    #[arg(short = 'o', long = "out")]
+    out: PathBuf,
+}
+
+/// Options shared by `verify` and `compare`.
+#[derive(clap::Args, Clone)]
+pub struct SimArgs {
+    /// Stock: box, box:TOP, offset:ALLOWANCE (mm above the design) or a mesh file.
+    #[arg(long, default_value = "offset:0.5")]
+    stock: String,
+    /// Cell size, mm (default: 5 x the tolerance).
+    #[arg(long)]
+    cell: Option<f64>,
+    /// Gouge / excess tolerance, mm (compare: default from each job).
+    #[arg(long)]
+    tol: Option<f64>,
+    /// Material allowed above the design before it counts as excess (the scallop
+    /// limit), mm (compare: default from each job).
+    #[arg(long)]
+    scallop: Option<f64>,
+    /// Machine rapid rate for the time estimate, mm/min (compare: default from each job).
+    #[arg(long)]
+    rapid: Option<f64>,
+    /// Distance bound for sampled motions (arcs, five-axis), mm (default: tol / 4).
+    #[arg(long)]
+    sample_tol: Option<f64>,
+    /// Memory limit for the grid, MiB.
+    #[arg(long, default_value_t = 4096)]
+    max_memory: u64,
+    /// Measure the deviation along the design normals ("mow the grass") instead of
+    /// vertically.
+    #[arg(long)]
+    normal: bool,
+}
+
+impl SimArgs {
+    /// Defaults with cell size `cell` (for tests).
+    #[cfg(test)]
+    pub fn for_tests(cell: f64) -> SimArgs {
+        SimArgs {
+            stock: "offset:0.5".into(),
+            cell: Some(cell),
+            tol: None,
+            scallop: None,
+            rapid: None,
+            sample_tol: None,
+            max_memory: 4096,
+            normal: false,
+        }
+    }
+
+    /// Verification options, with the given defaults where an option is absent.
+    pub fn options(&self, tol: f64, scallop: f64, rapid: f64) -> Result<VerifyOptions> {
+        Ok(VerifyOptions {
+            cell: self.cell,
+            tol: self.tol.unwrap_or(tol),
+            allowed_excess: self.scallop.unwrap_or(scallop),
+            stock: parse_stock(&self.stock)?,
+            max_bytes: self.max_memory.saturating_mul(1 << 20),
+            sample_tol: self.sample_tol,
+            rapid_rate: self.rapid.unwrap_or(rapid),
+            along_normals: self.normal,
+            ..VerifyOptions::default()
+        })
+    }
+}
+
+/// Parses `--stock`.
+fn parse_stock(text: &str) -> Result<StockSpec> {
+    let number = |s: &str, what: &str| -> Result<f64> {
+        s.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .with_context(|| format!("--stock {text}: {what} {s:?} is not a finite number"))
+    };
+    if text == "box" {
+        return Ok(StockSpec::Box { top: None });
+    }
+    if let Some(top) = text.strip_prefix("box:") {
+        return Ok(StockSpec::Box {
+            top: Some(number(top, "top")?),
+        });
+    }
+    if let Some(a) = text.strip_prefix("offset:") {
+        let allowance = number(a, "allowance")?;
+        if allowance < 0.0 {
+            bail!("--stock {text}: the allowance must be >= 0 mm");
+        }
+        return Ok(StockSpec::Offset { allowance });
+    }
+    let path = Path::new(text);
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+    {
+        Some(e) if e == "stl" || e == "obj" => Ok(StockSpec::Mesh(swarf_io::read_mesh(path)?)),
+        _ => bail!("--stock {text}: expected box, box:TOP, offset:ALLOWANCE or a .stl / .obj mesh"),
+    }
+}
+
+/// Progress bars on stderr, hidden when stderr is not a terminal.
+pub struct Bars {
+    bar: Mutex<Option<ProgressBar>>,
+}
+
+impl Default for Bars {
+    fn default() -> Self {
+        Bars {
+            bar: Mutex::new(None),
+        }
+    }
+}
+
+impl Progress for Bars {
+    fn begin(&self, stage: &str, total: u64) {
+        let target = if std::io::stderr().is_terminal() {
+            ProgressDrawTarget::stderr()
+        } else {
+            ProgressDrawTarget::hidden()
+        };
+        let bar = ProgressBar::with_draw_target(Some(total), target);
+        if let Ok(style) = ProgressStyle::with_template("{msg:>16} [{bar:40}] {percent:>3}% {eta}")
+        {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar.set_message(stage.to_string());
+        if let Ok(mut b) = self.bar.lock() {
+            *b = Some(bar);
+        }
+    }
+
+    fn advance(&self, n: u64) {
+        if let Ok(b) = self.bar.lock()
+            && let Some(bar) = b.as_ref()
+        {
+            bar.inc(n);
+        }
+    }
+
+    fn end(&self) {
+        if let Ok(mut b) = self.bar.lock()
+            && let Some(bar) = b.take()
+        {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+/// Runs the subcommand.
+pub fn run(args: &Args) -> Result<()> {
+    let model = load_model(&args.part)?;
+    let program = read_program(&args.program)?;
+    let cutter = match (&args.tool, &program.tool) {
+        (Some(spec), _) => spec
+            .parse::<Cutter>()
+            .map_err(|e| anyhow::anyhow!("--tool {spec}: {e}"))?,
+        (None, Some(t)) => *t,
+        (None, None) => bail!(
+            "{}: the program names no cutter (no APT CUTTER record): give the tool with --tool, e.g. --tool ball:d=8",
+            program.source
+        ),
+    };
+    let opts = args.sim.options(0.01, 0.0, 5000.0)?;
+    let ctx = context(&args.part, &program, &cutter, &opts);
+    let v = verify_and_write(&model, &program, &cutter, &opts, &args.out, "", &ctx)?;
+    print!("{}", text_summary(&v, &ctx));
+    println!("reports in {}", args.out.display());
+    if let Some(stop) = &ctx.stopped {
+        bail!("the program stopped at {stop}; the report covers the motions before it");
+    }
+    Ok(())
+}
+
+/// What the report says about the inputs.
+pub fn context(
+    part: &str,
+    program: &Program,
+    cutter: &Cutter,
+    opts: &VerifyOptions,
+) -> ReportContext {
+    ReportContext {
+        part: part.to_string(),
+        program: program.source.clone(),
+        tool: cutter.to_string(),
+        stock: opts.stock.describe(),
+        warnings: program
+            .warnings
+            .iter()
+            .map(|w| program.located(w))
+            .collect(),
+        stopped: program.stopped.as_ref().map(|d| program.located(d)),
+    }
+}
+
+/// Verifies and writes `{prefix}report.json`, `{prefix}flagged.csv`,
+/// `{prefix}deviation.png` and `{prefix}toolpath.png` under `out`.
+pub fn verify_and_write(
+    model: &Model,
+    program: &Program,
+    cutter: &Cutter,
+    opts: &VerifyOptions,
+    out: &Path,
+    prefix: &str,
+    ctx: &ReportContext,
+) -> Result<Verification> {
+    let design = match model {
+        Model::Patches(p) => Design::Part(p),
+        Model::Mesh { mesh, .. } => Design::Mesh(mesh),
+    };
+    let bars = Bars::default();
+    let v = swarf_sim::verify(design, program, cutter, opts, &bars)?;
+    std::fs::create_dir_all(out)
+        .with_context(|| format!("{}: cannot create the output directory", out.display()))?;
+    let file = |name: &str| out.join(format!("{prefix}{name}"));
+    let json = serde_json::to_string_pretty(&json_report(&v, ctx))? + "\n";
+    swarf_io::write_atomic(&file("report.json"), json.as_bytes())?;
+    swarf_io::write_atomic(&file("flagged.csv"), flagged_csv(&v).as_bytes())?;
+    let name = Path::new(&ctx.program)
+        .file_name()
+        .map_or(ctx.program.clone(), |n| n.to_string_lossy().into_owned());
+    let title = format!(
+        "deviation: {name}, {}, tol {} mm",
+        ctx.tool, v.deviation.summary.tol
+    );
+    swarf_io::write_atomic(
+        &file("deviation.png"),
+        &swarf_sim::picture::deviation_png(&v, &title)?,
+    )?;
+    let title = format!("tool path: {name}, {}", ctx.tool);
+    let png = swarf_sim::picture::toolpath_png(&v, &program.motions, &title)?;
+    swarf_io::write_atomic(&file("toolpath.png"), &png)?;
+    Ok(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stock_specs() {
+        assert_eq!(parse_stock("box").unwrap(), StockSpec::Box { top: None });
+        assert_eq!(
+            parse_stock("box:12.5").unwrap(),
+            StockSpec::Box { top: Some(12.5) }
+        );
+        assert_eq!(
+            parse_stock("offset:0.5").unwrap(),
+            StockSpec::Offset { allowance: 0.5 }
+        );
+        for bad in ["offset:-1", "offset:x", "box:nan", "cylinder", "stock.step"] {
+            assert!(parse_stock(bad).is_err(), "{bad}");
+        }
+    }
+}
