@@ -1,0 +1,38 @@
+//! Planning time of the three iso strategies on wave.toml (ball d = 8), gouge checks
+//! included: paper 004's experiment (h = 0.15 mm, tolerance 0.01 mm) and a fine one
+//! (h = 0.01 mm, tolerance 0.001 mm; target under 3 s each on a 2-core machine).
+//!
+//! `cargo bench -p swarf-path --bench iso` (criterion; 10 samples each).
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use std::hint::black_box;
+use std::time::Duration;
+use swarf_path::{Job, PlanInput};
+
+fn job(kind: &str, h: f64, tol: f64) -> Job {
+    let text = format!(
+        "part = \"builtin:wave\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"{kind}\"\nscallop = {h}\ntolerance = {tol}\n"
+    );
+    Job::parse(&text, "bench job").expect("valid job")
+}
+
+fn bench(c: &mut Criterion) {
+    let part = swarf_io::builtin_part("wave").expect("built-in wave");
+    let mut group = c.benchmark_group("wave");
+    group.sample_size(10).warm_up_time(Duration::from_secs(1));
+    for (h, tol) in [(0.15, 0.01), (0.01, 0.001)] {
+        for kind in ["iso-parametric", "iso-planar", "iso-scallop"] {
+            let job = job(kind, h, tol);
+            group.bench_function(format!("{kind} h={h} tol={tol}"), |b| {
+                b.iter(|| {
+                    let plan = swarf_path::plan(&job, PlanInput::Part(&part)).expect("plans");
+                    black_box(plan.toolpath.pose_count())
+                })
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,397 @@
+//! Independent oracles for the iso strategies' tests: the true scallop left by a ball
+//! tool path, and a brute-force gouge check. Nothing here uses the planners' models:
+//! the machined surface is the union of the swept balls (capsules around the polyline
+//! of ball centres), intersected exactly with rays along the surface normal.
+
+#![allow(dead_code)]
+
+use swarf_geom::{Part, Patch, Point3, Vec3};
+use swarf_path::{Pass, Plan};
+use swarf_tool::Cutter;
+
+/// The built-in wave part (paper 004's experiment).
+pub fn wave() -> Part {
+    swarf_io::builtin_part("wave").expect("built-in wave")
+}
+
+/// A job on wave for `kind` with scallop `h` and tolerance `tol`, ball d = 8.
+pub fn wave_job(kind: &str, h: f64, tol: f64) -> swarf_path::Job {
+    let text = format!(
+        "part = \"builtin:wave\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"{kind}\"\nscallop = {h}\ntolerance = {tol}\n[feeds]\nfeed = 300\nspindle = 1500\n"
+    );
+    swarf_path::Job::parse(&text, "test job").expect("valid job")
+}
+
+/// Segments of ball centres, bucketed on an XY grid.
+pub struct Envelope {
+    r: f64,
+    segs: Vec<(Point3, Point3)>,
+    origin: [f64; 2],
+    cell: f64,
+    dims: [usize; 2],
+    cells: Vec<Vec<u32>>,
+}
+
+impl Envelope {
+    /// The swept envelope of the cutting moves of `plan` for a ball of radius `r`.
+    pub fn new(plan: &Plan, r: f64) -> Envelope {
+        let mut segs = Vec::new();
+        for pass in &plan.toolpath.passes {
+            let c: Vec<Point3> = pass
+                .points
+                .iter()
+                .map(|p| p.pose.cl + r * Vec3::z())
+                .collect();
+            if c.len() == 1 {
+                segs.push((c[0], c[0]));
+            }
+            segs.extend(c.windows(2).map(|w| (w[0], w[1])));
+        }
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for (a, b) in &segs {
+            for p in [a, b] {
+                lo = [lo[0].min(p.x), lo[1].min(p.y)];
+                hi = [hi[0].max(p.x), hi[1].max(p.y)];
+            }
+        }
+        let cell = 2.0 * r;
+        let origin = [lo[0] - r, lo[1] - r];
+        let dims = [0, 1].map(|k| ((hi[k] - lo[k] + 2.0 * r) / cell).ceil() as usize + 1);
+        let mut cells = vec![Vec::new(); dims[0] * dims[1]];
+        for (k, (a, b)) in segs.iter().enumerate() {
+            let ix = |v: f64, ax: usize| {
+                (((v - origin[ax]) / cell).floor().max(0.0) as usize).min(dims[ax] - 1)
+            };
+            let (x0, x1) = (ix(a.x.min(b.x) - r, 0), ix(a.x.max(b.x) + r, 0));
+            let (y0, y1) = (ix(a.y.min(b.y) - r, 1), ix(a.y.max(b.y) + r, 1));
+            for j in y0..=y1 {
+                for i in x0..=x1 {
+                    cells[j * dims[0] + i].push(k as u32);
+                }
+            }
+        }
+        Envelope {
+            r,
+            segs,
+            origin,
+            cell,
+            dims,
+            cells,
+        }
+    }
+
+    /// Material left above surface point `p` along its unit normal `n`: the distance
+    /// to the first swept ball the ray `p + t n` enters (0 when `p` is inside one;
+    /// `f64::INFINITY` when no tool passes over it).
+    pub fn residual(&self, p: &Point3, n: &Vec3) -> f64 {
+        let i =
+            (((p.x - self.origin[0]) / self.cell).floor().max(0.0) as usize).min(self.dims[0] - 1);
+        let j =
+            (((p.y - self.origin[1]) / self.cell).floor().max(0.0) as usize).min(self.dims[1] - 1);
+        let mut best = f64::INFINITY;
+        for &k in &self.cells[j * self.dims[0] + i] {
+            let (a, b) = self.segs[k as usize];
+            best = best.min(ray_capsule(p, n, &a, &b, self.r));
+        }
+        best.max(0.0)
+    }
+}
+
+/// First `t >= 0` where `p + t n` (unit `n`) is within `r` of segment `ab`; 0 when `p`
+/// already is, infinity when never.
+fn ray_capsule(p: &Point3, n: &Vec3, a: &Point3, b: &Point3, r: f64) -> f64 {
+    if segment_distance(p, a, b) <= r {
+        return 0.0;
+    }
+    let mut best = f64::INFINITY;
+    for c in [a, b] {
+        let m = p - c;
+        let bb = m.dot(n);
+        let disc = bb * bb - (m.norm_squared() - r * r);
+        if disc >= 0.0 {
+            let t = -bb - disc.sqrt();
+            if t >= 0.0 {
+                best = best.min(t);
+            }
+        }
+    }
+    let d = b - a;
+    let dd = d.norm_squared();
+    if dd > 0.0 {
+        let m = p - a;
+        let (nd, md) = (n.dot(&d), m.dot(&d));
+        let qa = 1.0 - nd * nd / dd;
+        let qb = m.dot(n) - md * nd / dd;
+        let qc = m.norm_squared() - md * md / dd - r * r;
+        let disc = qb * qb - qa * qc;
+        if qa > 0.0 && disc >= 0.0 {
+            let t = (-qb - disc.sqrt()) / qa;
+            let s = (md + t * nd) / dd;
+            if t >= 0.0 && (0.0..=1.0).contains(&s) {
+                best = best.min(t);
+            }
+        }
+    }
+    best
+}
+
+/// Distance from `p` to segment `ab`.
+pub fn segment_distance(p: &Point3, a: &Point3, b: &Point3) -> f64 {
+    let d = b - a;
+    let dd = d.norm_squared();
+    let t = if dd > 0.0 {
+        ((p - a).dot(&d) / dd).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p - (a + t * d)).norm()
+}
+
+/// Scallop crests between adjacent passes: for each station (every `spacing` mm
+/// along the CC polyline of pass `k`), the nearest point of pass `k + 1` (skipped when
+/// it is an end of that pass or farther than `max_gap`), and the largest residual on
+/// the surface between them (`samples` points, projected onto the patch).
+pub struct Crests {
+    /// Crest heights, mm.
+    pub heights: Vec<f64>,
+    /// Area each crest stands for (station spacing x distance between the passes), mm^2.
+    pub weights: Vec<f64>,
+}
+
+impl Crests {
+    /// Largest crest.
+    pub fn max(&self) -> f64 {
+        self.heights.iter().copied().fold(0.0, f64::max)
+    }
+
+    /// Smallest crest.
+    pub fn min(&self) -> f64 {
+        self.heights.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+
+    /// Area-weighted mean crest.
+    pub fn mean(&self) -> f64 {
+        let w: f64 = self.weights.iter().sum();
+        self.heights
+            .iter()
+            .zip(&self.weights)
+            .map(|(h, w)| h * w)
+            .sum::<f64>()
+            / w
+    }
+
+    /// Fraction of the area whose crest is within `[lo, hi]`.
+    pub fn fraction_within(&self, lo: f64, hi: f64) -> f64 {
+        let w: f64 = self.weights.iter().sum();
+        let inside: f64 = self
+            .heights
+            .iter()
+            .zip(&self.weights)
+            .filter(|(h, _)| (lo..=hi).contains(*h))
+            .map(|(_, w)| w)
+            .sum();
+        inside / w
+    }
+}
+
+/// The CC polyline (point, uv) of a pass.
+fn cc_line(pass: &Pass) -> Vec<(Point3, [f64; 2])> {
+    pass.points
+        .iter()
+        .filter_map(|p| p.contact.map(|c| (c.point, c.uv)))
+        .collect()
+}
+
+/// Crests of a single-patch plan (module doc).
+pub fn crests(
+    plan: &Plan,
+    patch: &Patch,
+    r: f64,
+    spacing: f64,
+    samples: usize,
+    max_gap: f64,
+) -> Crests {
+    let env = Envelope::new(plan, r);
+    let mut out = Crests {
+        heights: Vec::new(),
+        weights: Vec::new(),
+    };
+    let lines: Vec<_> = plan.toolpath.passes.iter().map(cc_line).collect();
+    for k in 0..lines.len().saturating_sub(1) {
+        let (a, b) = (&lines[k], &lines[k + 1]);
+        if b.len() < 2 {
+            continue;
+        }
+        for (p, uv) in stations(a, spacing) {
+            let Some((q, quv, gap)) = nearest_interior(&p, b) else {
+                continue;
+            };
+            if gap > max_gap {
+                continue;
+            }
+            let crest = (0..=samples)
+                .map(|s| {
+                    let t = s as f64 / samples as f64;
+                    let x = p + t * (q - p);
+                    let pr = patch.project_from(
+                        &x,
+                        uv[0] + t * (quv[0] - uv[0]),
+                        uv[1] + t * (quv[1] - uv[1]),
+                    );
+                    let d = patch.derivs(pr.u, pr.v);
+                    let n = d.du.cross(&d.dv).normalize();
+                    let n = if n.z < 0.0 { -n } else { n };
+                    env.residual(&pr.point, &n)
+                })
+                .fold(0.0, f64::max);
+            out.heights.push(crest);
+            out.weights.push(spacing * gap);
+        }
+    }
+    out
+}
+
+/// Points every `spacing` mm along a polyline, with interpolated parameters.
+fn stations(line: &[(Point3, [f64; 2])], spacing: f64) -> Vec<(Point3, [f64; 2])> {
+    let mut out = Vec::new();
+    for w in line.windows(2) {
+        let len = (w[1].0 - w[0].0).norm();
+        let n = (len / spacing).ceil().max(1.0) as usize;
+        for s in 0..n {
+            let t = s as f64 / n as f64;
+            out.push((w[0].0 + t * (w[1].0 - w[0].0), lerp(w[0].1, w[1].1, t)));
+        }
+    }
+    out
+}
+
+fn lerp(a: [f64; 2], b: [f64; 2], t: f64) -> [f64; 2] {
+    [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
+}
+
+/// Nearest point of a polyline to `p` when it is not one of its ends: point, params,
+/// distance.
+fn nearest_interior(p: &Point3, line: &[(Point3, [f64; 2])]) -> Option<(Point3, [f64; 2], f64)> {
+    let mut best: Option<(Point3, [f64; 2], f64, bool)> = None;
+    let last = line.len() - 2;
+    for (k, w) in line.windows(2).enumerate() {
+        let d = w[1].0 - w[0].0;
+        let dd = d.norm_squared();
+        let t = if dd > 0.0 {
+            ((p - w[0].0).dot(&d) / dd).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let q = w[0].0 + t * d;
+        let dist = (p - q).norm();
+        let end = (k == 0 && t == 0.0) || (k == last && t == 1.0);
+        if best.is_none_or(|b| dist < b.2) {
+            best = Some((q, lerp(w[0].1, w[1].1, t), dist, end));
+        }
+    }
+    best.filter(|b| !b.3).map(|b| (b.0, b.1, b.2))
+}
+
+/// Deepest entry (mm, >= 0) of the cutter at any CL point of `plan` into the surface
+/// points `surface` (a dense sampling of the part), by brute force over the points
+/// within the cutter's reach.
+pub fn max_penetration(plan: &Plan, cutter: &Cutter, surface: &[Point3]) -> f64 {
+    let r = cutter.radius();
+    let cell = r;
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in surface {
+        lo = [lo[0].min(p.x), lo[1].min(p.y)];
+        hi = [hi[0].max(p.x), hi[1].max(p.y)];
+    }
+    let dims = [0, 1].map(|k| ((hi[k] - lo[k]) / cell).floor() as usize + 1);
+    let mut grid = vec![Vec::new(); dims[0] * dims[1]];
+    let ix = |v: f64, k: usize| (((v - lo[k]) / cell).floor().max(0.0) as usize).min(dims[k] - 1);
+    for (n, p) in surface.iter().enumerate() {
+        grid[ix(p.y, 1) * dims[0] + ix(p.x, 0)].push(n as u32);
+    }
+    let mut worst: f64 = 0.0;
+    for pose in plan
+        .toolpath
+        .passes
+        .iter()
+        .flat_map(|p| &p.points)
+        .map(|p| p.pose)
+    {
+        let c = pose.cl;
+        for j in ix(c.y - r, 1)..=ix(c.y + r, 1) {
+            for i in ix(c.x - r, 0)..=ix(c.x + r, 0) {
+                for &n in &grid[j * dims[0] + i] {
+                    let p = &surface[n as usize];
+                    // Outside the cutter's cylinder or below its tip: cannot be inside.
+                    if (p.x - c.x).powi(2) + (p.y - c.y).powi(2) > r * r || p.z < c.z {
+                        continue;
+                    }
+                    worst = worst.max(-cutter.signed_distance(&pose, p));
+                }
+            }
+        }
+    }
+    worst
+}
+
+/// Largest material height left anywhere on `part` (a dense parameter grid with
+/// neighbours about `spacing` apart, boundaries included) by the ball passes of
+/// `plan`, and where.
+pub fn max_residual(plan: &Plan, part: &Part, r: f64, spacing: f64) -> (f64, Point3) {
+    let env = Envelope::new(plan, r);
+    let mut worst = (0.0, Point3::origin());
+    for patch in &part.patches {
+        for (p, n) in dense_frames(patch, spacing) {
+            let h = env.residual(&p, &n);
+            if h > worst.0 {
+                worst = (h, p);
+            }
+        }
+    }
+    worst
+}
+
+/// Points and unit normals (toward +z) on a parameter grid of `patch`.
+fn dense_frames(patch: &Patch, spacing: f64) -> Vec<(Point3, Vec3)> {
+    let [[u0, u1], [v0, v1]] = patch.domain();
+    let (nu, nv) = grid_size(patch, spacing);
+    let mut out = Vec::with_capacity((nu + 1) * (nv + 1));
+    for i in 0..=nu {
+        for j in 0..=nv {
+            let d = patch.derivs(
+                u0 + (u1 - u0) * i as f64 / nu as f64,
+                v0 + (v1 - v0) * j as f64 / nv as f64,
+            );
+            let n = d.du.cross(&d.dv).normalize();
+            out.push((d.point, if n.z < 0.0 { -n } else { n }));
+        }
+    }
+    out
+}
+
+/// Grid intervals per direction so that neighbours are at most about `spacing` apart.
+fn grid_size(patch: &Patch, spacing: f64) -> (usize, usize) {
+    let [[u0, u1], [v0, v1]] = patch.domain();
+    let mut speed: [f64; 2] = [0.0, 0.0];
+    for a in 0..=16 {
+        for b in 0..=16 {
+            let d = patch.derivs(
+                u0 + (u1 - u0) * a as f64 / 16.0,
+                v0 + (v1 - v0) * b as f64 / 16.0,
+            );
+            speed = [speed[0].max(d.du.norm()), speed[1].max(d.dv.norm())];
+        }
+    }
+    let nu = (1.3 * speed[0] * (u1 - u0) / spacing).ceil() as usize + 1;
+    let nv = (1.3 * speed[1] * (v1 - v0) / spacing).ceil() as usize + 1;
+    (nu, nv)
+}
+
+/// `(n + 1)^2`-ish surface points of every patch on a uniform parameter grid whose
+/// neighbours are at most `spacing` apart (a fine structured tessellation's vertices).
+pub fn dense_points(part: &Part, spacing: f64) -> Vec<Point3> {
+    part.patches
+        .iter()
+        .flat_map(|patch| dense_frames(patch, spacing).into_iter().map(|(p, _)| p))
+        .collect()
+}
