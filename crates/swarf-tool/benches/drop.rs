@@ -3,10 +3,9 @@
 //! - `mesh/*`: one thread, drops over a 0.5 mm grid of points in input order (as a
 //!   raster or `swarf drop` runs them): ball d=8 on die.toml tessellated to ~78,000
 //!   triangles, bull d=10 r=2 on wave.toml tessellated to ~180,000 triangles. The
-//!   `xyindex_peer` variant does the same drop over `swarf_geom::XyIndex` (the shared
-//!   index: visit the disc's triangles, skip those whose top is below the best
-//!   height, drop onto the rest through the mesh's vertex list), to measure what the
-//!   drop grid's layout buys (see `drop/grid.rs`).
+//!   `xyindex_peer` variant runs the same algorithm over `swarf_geom::XyIndex` (the
+//!   shared index, a separate array of triangle tops, corners through the mesh's
+//!   vertex list), to measure what the drop grid's layout buys (see `drop/grid.rs`).
 //! - `kernel/*`: `triangle_drop` alone over (point, triangle) pairs within reach taken
 //!   from the same meshes: the time of one triangle-cutter test, the floor a drop
 //!   approaches.
@@ -15,10 +14,11 @@
 //! `tools/ocl/bench_drop.py`.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use std::collections::BinaryHeap;
 use std::hint::black_box;
 use swarf_geom::{TriMesh, XyIndex};
 use swarf_tool::Cutter;
-use swarf_tool::drop::{DropCutter, DropScratch, MeshDropper, triangle_drop};
+use swarf_tool::drop::{DropCutter, DropScratch, MeshDropper, triangle_drop, triangle_drop_above};
 
 /// Points per measured batch.
 const BATCH: usize = 4000;
@@ -44,7 +44,10 @@ fn grid(mesh: &TriMesh) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// The same drop over `XyIndex`: the peer of `MeshDropper`.
+/// The same drop over `XyIndex`: the peer of `MeshDropper`, with the same algorithm
+/// (last-winner hint, height bound `z_max - h(rho_min)`, candidates from a heap in
+/// descending bound, `triangle_drop_above`), but the shared index's ids, a separate
+/// array of tops and the corners fetched through the mesh's vertex list.
 struct IndexPeer<'a> {
     mesh: &'a TriMesh,
     index: XyIndex,
@@ -53,20 +56,61 @@ struct IndexPeer<'a> {
 }
 
 impl IndexPeer<'_> {
-    fn drop(&self, xy: [f64; 2]) -> Option<f64> {
-        let mut best: Option<f64> = None;
+    fn drop(
+        &self,
+        xy: [f64; 2],
+        hint: &mut Option<u32>,
+        heap: &mut BinaryHeap<(u64, u32)>,
+    ) -> Option<f64> {
+        let mut best: Option<(f64, u32)> = None;
+        let mut consider = |t: u32, floor: f64, best: &mut Option<(f64, u32)>| {
+            let tri = self.mesh.triangle(t as usize);
+            if let Some(c) = triangle_drop_above(&self.tool, xy, &tri, floor)
+                && best.is_none_or(|b| c.z > b.0 || (c.z == b.0 && t < b.1))
+            {
+                *best = Some((c.z, t));
+            }
+        };
+        if let Some(t) = hint.take() {
+            consider(t, f64::NEG_INFINITY, &mut best);
+        }
+        let seed = best.map_or(f64::NEG_INFINITY, |b| b.0);
+        let env = self.tool.envelope();
+        heap.clear();
         self.index.for_each_in_disc(xy, self.tool.radius(), |t| {
-            if best.is_some_and(|b| self.zmax[t as usize] < b) {
+            let top = self.zmax[t as usize];
+            if top < seed {
                 return;
             }
-            if let Some(c) = triangle_drop(&self.tool, xy, &self.mesh.triangle(t as usize))
-                && best.is_none_or(|b| c.z > b)
-            {
-                best = Some(c.z);
+            let c = self.mesh.triangle(t as usize);
+            let lo = |a: usize| c[0][a].min(c[1][a]).min(c[2][a]);
+            let hi = |a: usize| c[0][a].max(c[1][a]).max(c[2][a]);
+            let dx = (lo(0) - xy[0]).max(xy[0] - hi(0)).max(0.0);
+            let dy = (lo(1) - xy[1]).max(xy[1] - hi(1)).max(0.0);
+            let ub = top - env.height((dx * dx + dy * dy).sqrt().min(self.tool.radius()));
+            if ub >= seed {
+                heap.push((ordered(ub), t));
             }
         });
-        best
+        while let Some((key, t)) = heap.pop() {
+            let floor = best.map_or(f64::NEG_INFINITY, |b| b.0);
+            if unordered(key) < floor {
+                break;
+            }
+            consider(t, floor, &mut best);
+        }
+        *hint = best.map(|b| b.1);
+        best.map(|b| b.0)
     }
+}
+
+fn ordered(v: f64) -> u64 {
+    let b = v.to_bits();
+    if b >> 63 == 1 { !b } else { b | (1 << 63) }
+}
+
+fn unordered(k: u64) -> f64 {
+    f64::from_bits(if k >> 63 == 1 { k & !(1 << 63) } else { !k })
 }
 
 fn mesh_case(c: &mut Criterion, name: &str, mesh: &TriMesh, spec: &str) {
@@ -98,14 +142,19 @@ fn mesh_case(c: &mut Criterion, name: &str, mesh: &TriMesh, spec: &str) {
         tool: DropCutter::new(&cutter),
     };
     let mut s = DropScratch::default();
-    for p in pts.iter().step_by(37) {
+    let (mut hint, mut heap) = (None, BinaryHeap::new());
+    for p in pts.iter().step_by(7) {
         let ours = dropper.drop(p[0], p[1], &mut s).map(|d| d.z);
-        assert_eq!(ours, peer.drop(*p), "peer disagrees at {p:?}");
+        assert_eq!(
+            ours,
+            peer.drop(*p, &mut hint, &mut heap),
+            "peer disagrees at {p:?}"
+        );
     }
     group.bench_function("xyindex_peer", |b| {
         b.iter(|| {
             for p in &pts {
-                black_box(peer.drop(*p));
+                black_box(peer.drop(*p, &mut hint, &mut heap));
             }
         });
     });

@@ -104,6 +104,37 @@ fn g(piece: &Piece, d0: f64, m: f64, s: f64) -> f64 {
     if ratio == 0.0 { m } else { m - slope * ratio }
 }
 
+/// Upper bound of the tip height along the reachable part `[lo, hi]` of an edge
+/// line (distance `d0`, rise `m`) whose tip heights at the ends are `t_lo`, `t_hi`:
+/// the tip height is concave in `s`, so it lies below its tangent lines at both ends
+/// (any supergradient will do at a kink), and the bound is the highest point of the
+/// lower of the two lines. Used to skip the torus solve of edges that cannot reach
+/// the best height found so far.
+pub(crate) fn edge_upper_bound(
+    tool: &DropCutter,
+    d0: f64,
+    m: f64,
+    [lo, hi]: [f64; 2],
+    [t_lo, t_hi]: [f64; 2],
+) -> f64 {
+    let (g_lo, g_hi) = (g_at(tool, d0, m, lo), g_at(tool, d0, m, hi));
+    if g_lo <= 0.0 {
+        return t_lo;
+    }
+    if g_hi >= 0.0 {
+        return t_hi;
+    }
+    match (g_lo.is_finite(), g_hi.is_finite()) {
+        (true, true) => {
+            let s = (t_hi - t_lo + g_lo * lo - g_hi * hi) / (g_lo - g_hi);
+            t_lo + g_lo * (s.clamp(lo, hi) - lo)
+        }
+        (true, false) => t_lo + g_lo * (hi - lo),
+        (false, true) => t_hi + g_hi * (lo - hi),
+        (false, false) => f64::INFINITY,
+    }
+}
+
 /// `g` at `s` on the piece holding `rho(s)` (the inner one at a joint).
 fn g_at(tool: &DropCutter, d0: f64, m: f64, s: f64) -> f64 {
     let rho = dist(d0, s);
@@ -292,6 +323,43 @@ mod tests {
             assert!(rho > 3.0 && rho < 5.0, "{d0} {m}: rho {rho}");
             let slope = bull.envelope.slope(rho) * s / rho;
             assert!((slope - m).abs() < 1e-9, "{d0} {m}: {slope}");
+        }
+    }
+
+    #[test]
+    fn tangent_bound_is_above_the_edge() {
+        for spec in [
+            "bull:d=10,r=2",
+            "taperball:d=6,angle=10,tip=1",
+            "apt:d=8,r=0,alpha=20,beta=10,h=30",
+        ] {
+            let t = tool(spec);
+            let r = t.radius;
+            for i in 0..=12 {
+                let d0 = r * f64::from(i) / 12.0;
+                let w = (r * r - d0 * d0).max(0.0).sqrt();
+                for m in [-2.0, -0.3, 0.0, 0.1, 0.7, 3.0] {
+                    for (lo, hi) in [
+                        (-w, w),
+                        (-0.3 * w, 0.8 * w),
+                        (0.1 * w, 0.2 * w),
+                        (-w, -0.5 * w),
+                    ] {
+                        if lo >= hi {
+                            continue;
+                        }
+                        let tip = |s: f64| m * s - t.envelope.height(dist(d0, s).min(r));
+                        let bound = edge_upper_bound(&t, d0, m, [lo, hi], [tip(lo), tip(hi)]);
+                        let most = (0..=2000)
+                            .map(|k| tip(lo + (hi - lo) * f64::from(k) / 2000.0))
+                            .fold(f64::NEG_INFINITY, f64::max);
+                        assert!(
+                            bound >= most - 1e-12,
+                            "{spec} d0={d0} m={m} [{lo}, {hi}]: {bound} < {most}"
+                        );
+                    }
+                }
+            }
         }
     }
 }

@@ -30,6 +30,9 @@ const MIN_CELLS: f64 = 64.0;
 const EXTENT_SAMPLES: usize = 65_536;
 /// Smallest chunk of triangles per rayon task while building.
 const PAR_CHUNK: usize = 4096;
+/// Relative slack of the row narrowing of disc scans: far above the rounding of the
+/// band and half-width computations, far below a cell.
+const ROW_SLACK: f64 = 1e-9;
 
 /// A stored triangle's XY box `[x0, y0, x1, y1]` relative to the grid origin and its
 /// highest z, all rounded outward.
@@ -41,6 +44,7 @@ pub(crate) struct Entry {
 
 #[derive(Debug, Clone)]
 struct Level {
+    cell: f64,
     inv_cell: f64,
     dims: [usize; 2],
     base: usize,
@@ -58,6 +62,20 @@ impl Level {
 
     fn fits(&self, b: &[f32; 4]) -> bool {
         (0..2).all(|a| self.cell(a, f64::from(b[a + 2])) <= self.cell(a, f64::from(b[a])) + 1)
+    }
+
+    /// Half-width in x of the disc of `radius` about height `cy` over the band of y
+    /// that boxes anchored in row `j` can occupy, widened by [`ROW_SLACK`]; the whole
+    /// radius for the first and last rows (their bands are open, the cell index being
+    /// clamped).
+    fn row_half_width(&self, j: usize, cy: f64, radius: f64) -> f64 {
+        let slack = ROW_SLACK * (radius + self.cell + cy.abs());
+        if j == 0 || j + 1 >= self.dims[1] {
+            return radius + slack;
+        }
+        let (lo, hi) = (j as f64 * self.cell, (j + 2) as f64 * self.cell);
+        let dy = (lo - cy).max(cy - hi).max(0.0);
+        (radius * radius - dy * dy).max(0.0).sqrt() + slack
     }
 
     fn anchor(&self, b: &[f32; 4]) -> usize {
@@ -179,14 +197,20 @@ impl DropGrid {
             + self.ids.capacity() * 4
     }
 
-    /// Calls `f(entry index, rho_min^2)` for every stored triangle whose box meets
-    /// the disc of `radius` about `(x, y)`, `rho_min` the distance from the centre to
-    /// the box, in a fixed order.
+    /// Calls `f(entry index, entry, rho_min^2)` for every stored triangle whose top is
+    /// at least `floor` and whose box meets the disc of `radius` about `(x, y)`,
+    /// `rho_min` the distance from the centre to the box, in a fixed order.
+    ///
+    /// Each grid row is scanned only over the cells the disc can reach from the band
+    /// of heights its anchored boxes occupy (`[j c, (j + 2) c]` for row `j`), widened
+    /// by [`ROW_SLACK`] against rounding: the corners of the disc's bounding square
+    /// are skipped.
     #[inline]
     pub(crate) fn for_each_in_disc(
         &self,
         xy: [f64; 2],
         radius: f64,
+        floor: f64,
         mut f: impl FnMut(usize, &Entry, f64),
     ) {
         if self.entries.is_empty() || radius.is_nan() || radius < 0.0 {
@@ -198,21 +222,25 @@ impl DropGrid {
         }
         let r2 = radius * radius;
         for level in &self.levels {
-            let cx = [
-                level.cell(0, c[0] - radius).saturating_sub(1),
-                level.cell(0, c[0] + radius),
-            ];
             let cy = [
                 level.cell(1, c[1] - radius).saturating_sub(1),
                 level.cell(1, c[1] + radius),
             ];
             for j in cy[0]..=cy[1] {
+                let w = level.row_half_width(j, c[1], radius);
+                let cx = [
+                    level.cell(0, c[0] - w).saturating_sub(1),
+                    level.cell(0, c[0] + w),
+                ];
                 let row = level.base + j * level.dims[0];
                 let (a, b) = (
                     self.offsets[row + cx[0]] as usize,
                     self.offsets[row + cx[1] + 1] as usize,
                 );
                 for (i, e) in self.entries[a..b].iter().enumerate() {
+                    if f64::from(e.zmax) < floor {
+                        continue;
+                    }
                     let dx = (f64::from(e.bbox[0]) - c[0])
                         .max(c[0] - f64::from(e.bbox[2]))
                         .max(0.0);
@@ -268,6 +296,7 @@ fn make_levels(c0: f64, extent: [f64; 2]) -> Vec<Level> {
     loop {
         let dims = extent.map(|e| (e / cell).floor() as usize + 1);
         levels.push(Level {
+            cell,
             inv_cell: 1.0 / cell,
             dims,
             base,
@@ -331,7 +360,7 @@ mod tests {
             let mesh = soup(&tris);
             let grid = DropGrid::build(&mesh);
             let mut seen = vec![0u32; mesh.len()];
-            grid.for_each_in_disc([q.0, q.1], q.2, |e, entry, _| {
+            grid.for_each_in_disc([q.0, q.1], q.2, f64::NEG_INFINITY, |e, entry, _| {
                 let t = grid.ids[e] as usize;
                 seen[t] += 1;
                 assert_eq!(grid.corners[e], mesh.triangle(t));
@@ -362,14 +391,16 @@ mod tests {
         let grid = DropGrid::build(&nan);
         assert_eq!(grid.len(), 0);
         let mut n = 0;
-        grid.for_each_in_disc([0.0, 0.0], 1e9, |_, _, _| n += 1);
+        grid.for_each_in_disc([0.0, 0.0], 1e9, f64::NEG_INFINITY, |_, _, _| n += 1);
         assert_eq!(n, 0);
         let one = soup(&[(0.0, 0.0, 0.0, 0.0, 1)]);
         let grid = DropGrid::build(&one);
-        grid.for_each_in_disc([f64::NAN, 0.0], 1.0, |_, _, _| n += 1);
-        grid.for_each_in_disc([0.0, 0.0], -1.0, |_, _, _| n += 1);
+        grid.for_each_in_disc([f64::NAN, 0.0], 1.0, f64::NEG_INFINITY, |_, _, _| n += 1);
+        grid.for_each_in_disc([0.0, 0.0], -1.0, f64::NEG_INFINITY, |_, _, _| n += 1);
         assert_eq!(n, 0);
-        grid.for_each_in_disc([1e300, 0.0], f64::INFINITY, |_, _, _| n += 1);
+        grid.for_each_in_disc([1e300, 0.0], f64::INFINITY, f64::NEG_INFINITY, |_, _, _| {
+            n += 1
+        });
         assert_eq!(n, 1);
         assert!(grid.memory_bytes() > 0);
     }

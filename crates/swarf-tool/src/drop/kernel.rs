@@ -21,9 +21,9 @@
 //! facet is tried first (an inside contact ends the search); then vertices and edges
 //! are compared with `>` in that order, so ties keep the first (deterministic).
 
-use super::edge::edge_argmax;
+use super::edge::{edge_argmax, edge_upper_bound};
 use super::facet::{PlaneDrop, plane_drop};
-use super::{DropCutter, Feature, TriContact};
+use super::{DropCutter, EdgeShape, Feature, TriContact};
 use swarf_geom::Point3;
 
 /// Drop onto vertex `k` of `tri`: the tip height at which the cutter at `xy` touches
@@ -66,7 +66,9 @@ pub fn edge_drop(
 }
 
 /// [`edge_drop`] when it can reach `floor`: `None` early when even the edge's highest
-/// end minus `h` at the edge line's distance is below it.
+/// end minus `h` at the edge line's distance is below it, or (envelopes of several
+/// pieces, whose edge case may need a solve) the tangent bound of the edge's tip
+/// height is ([`super::edge::edge_upper_bound`]).
 fn edge_above(
     tool: &DropCutter,
     xy: [f64; 2],
@@ -89,6 +91,22 @@ fn edge_above(
     }
     let sa = ax * tx + ay * ty;
     let m = (b.z - a.z) / len;
+    if tool.shape == EdgeShape::Pieces && floor > f64::NEG_INFINITY {
+        let w = (tool.radius2 - d0 * d0).max(0.0).sqrt();
+        let (lo, hi) = (sa.max(-w), (sa + len).min(w));
+        if lo >= hi {
+            return None;
+        }
+        let tip = |s: f64| {
+            a.z + m * (s - sa)
+                - tool
+                    .envelope
+                    .height((d0 * d0 + s * s).sqrt().min(tool.radius))
+        };
+        if edge_upper_bound(tool, d0, m, [lo, hi], [tip(lo), tip(hi)]) < floor {
+            return None;
+        }
+    }
     let (s, h) = edge_argmax(tool, d0, m, sa, sa + len)?;
     let u = ((s - sa) / len).clamp(0.0, 1.0);
     let cc = Point3::new(a.x + u * dx, a.y + u * dy, a.z + u * (b.z - a.z));

@@ -154,18 +154,19 @@ impl MeshDropper {
     /// mm.
     pub fn surface_z(&self, x: f64, y: f64) -> Option<f64> {
         let mut best: Option<f64> = None;
-        self.grid.for_each_in_disc([x, y], 0.0, |e, entry, _| {
-            if best.is_some_and(|b| f64::from(entry.zmax) < b) {
-                return;
-            }
-            let t = &self.grid.corners[e];
-            if let Some(l) = barycentric_xy(t, [x, y]) {
-                let z = l[0] * t[0].z + l[1] * t[1].z + l[2] * t[2].z;
-                if best.is_none_or(|b| z > b) {
-                    best = Some(z);
+        self.grid
+            .for_each_in_disc([x, y], 0.0, f64::NEG_INFINITY, |e, entry, _| {
+                if best.is_some_and(|b| f64::from(entry.zmax) < b) {
+                    return;
                 }
-            }
-        });
+                let t = &self.grid.corners[e];
+                if let Some(l) = barycentric_xy(t, [x, y]) {
+                    let z = l[0] * t[0].z + l[1] * t[1].z + l[2] * t[2].z;
+                    if best.is_none_or(|b| z > b) {
+                        best = Some(z);
+                    }
+                }
+            });
         best
     }
 
@@ -201,13 +202,9 @@ impl MeshDropper {
         let mut heap = BinaryHeap::from(std::mem::take(&mut scratch.heap));
         heap.clear();
         self.grid
-            .for_each_in_disc(xy, self.tool.radius(), |e, entry, d2| {
-                let top = f64::from(entry.zmax);
-                if top < seed || Some(e) == hint {
-                    return;
-                }
-                let ub = top - env.height(d2.sqrt());
-                if ub >= seed {
+            .for_each_in_disc(xy, self.tool.radius(), seed, |e, entry, d2| {
+                let ub = f64::from(entry.zmax) - env.height(d2.sqrt());
+                if ub >= seed && Some(e) != hint {
                     heap.push((order_key(ub), e as u32));
                 }
             });
