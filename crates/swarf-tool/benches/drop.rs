@@ -63,7 +63,7 @@ impl IndexPeer<'_> {
         heap: &mut BinaryHeap<(u64, u32)>,
     ) -> Option<f64> {
         let mut best: Option<(f64, u32)> = None;
-        let mut consider = |t: u32, floor: f64, best: &mut Option<(f64, u32)>| {
+        let consider = |t: u32, floor: f64, best: &mut Option<(f64, u32)>| {
             let tri = self.mesh.triangle(t as usize);
             if let Some(c) = triangle_drop_above(&self.tool, xy, &tri, floor)
                 && best.is_none_or(|b| c.z > b.0 || (c.z == b.0 && t < b.1))
