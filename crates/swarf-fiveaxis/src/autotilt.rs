@@ -23,7 +23,9 @@
 //! envelope `alpha_s(i) = max_j (alpha_j - max_rate |s_i - s_j|)` (a forward and a
 //! backward sweep). It only raises alpha.
 //!
-//! **Check.** With the smoothed alphas every pose is checked with its real neighbours;
+//! **Check.** With the smoothed alphas every pose is checked with its real neighbours
+//! and with its whole tool ([`crate::gouge`]: the generating curves miss the patch of
+//! the tool where the motion turns);
 //! a pose that gouges is raised by the same search starting at its current alpha (its
 //! neighbours held), the pass is smoothed again, and the check repeats (at most
 //! `max_rounds` times). A pose that no alpha up to `max_alpha` clears is an error naming
@@ -111,6 +113,8 @@ struct PassTilt<'a> {
     opts: &'a TiltOptions,
     pass: usize,
     evaluations: usize,
+    /// Check the whole tool at every pose (the final check and its raises).
+    strict: bool,
 }
 
 impl PassTilt<'_> {
@@ -256,6 +260,9 @@ fn tilt_pass(t: &mut PassTilt<'_>) -> Result<PassResult, FiveAxisError> {
     let mut depth = vec![f64::NEG_INFINITY; n];
     let mut dirty = vec![true; n];
     let mut raised = 0;
+    t.strict = true;
+    let mut strict = t.opts.gouge;
+    strict.whole_tool = true;
     for _ in 0..t.opts.max_rounds.max(1) {
         let poses = alphas
             .iter()
@@ -264,7 +271,7 @@ fn tilt_pass(t: &mut PassTilt<'_>) -> Result<PassResult, FiveAxisError> {
             .collect::<Result<Vec<_>, _>>()?;
         let before = alphas.clone();
         for i in (0..n).filter(|&i| dirty[i]) {
-            let g = pose_gouge(t.design, t.table, &poses, i, &t.opts.gouge);
+            let g = pose_gouge(t.design, t.table, &poses, i, &strict);
             t.evaluations += 1;
             depth[i] = g.depth;
             if g.gouges(t.opts.gouge.tolerance) {
@@ -346,6 +353,7 @@ pub fn gouge_free_tilt(
                 opts,
                 pass,
                 evaluations: 0,
+                strict: false,
             };
             let r = tilt_pass(&mut t)?;
             Ok((r, t.evaluations))
@@ -473,7 +481,8 @@ mod tests {
                 sections: Sections::along(60f64.to_radians(), 1.0).unwrap(),
                 tolerance: 0.01,
                 curve: CurveOptions::default(),
-                cap_meridians: 0,
+                cap_meridians: 96,
+                whole_tool: false,
             },
             max_rounds: 50,
         }
@@ -556,6 +565,7 @@ mod tests {
             opts: &o,
             pass: 1,
             evaluations: 0,
+            strict: false,
         };
         let mut checked = 0;
         for i in [n / 5, n / 3, n / 2, 2 * n / 3, 4 * n / 5] {

@@ -36,10 +36,14 @@ struct Indexed {
     starts: Vec<[f64; 2]>,
 }
 
+/// Points per patch edge in [`DesignSurface::boundary`].
+const EDGE_SAMPLES: usize = 800;
+
 /// The design surface of a part as heights over XY.
 #[derive(Debug, Clone)]
 pub struct DesignSurface {
     patches: Vec<Indexed>,
+    boundary: Vec<swarf_geom::Point3>,
 }
 
 impl DesignSurface {
@@ -47,7 +51,15 @@ impl DesignSurface {
     pub fn new(part: &Part) -> DesignSurface {
         DesignSurface {
             patches: part.patches.iter().map(index_patch).collect(),
+            boundary: part.patches.iter().flat_map(edge_points).collect(),
         }
+    }
+
+    /// Points along every patch edge ([`EDGE_SAMPLES`] per edge): where section planes
+    /// pass a thin corner of the design's XY shadow without a sample in it, the
+    /// gouge check tests these directly.
+    pub fn boundary(&self) -> &[swarf_geom::Point3] {
+        &self.boundary
     }
 
     /// The design height at `(x, y)`: the highest patch point above it, with the patch
@@ -130,6 +142,22 @@ impl Indexed {
         }
         (miss <= XY_MATCH && z.is_finite()).then_some((z, [u, v]))
     }
+}
+
+fn edge_points(patch: &Patch) -> Vec<swarf_geom::Point3> {
+    let [[u0, u1], [v0, v1]] = patch.domain();
+    let mut out = Vec::with_capacity(4 * EDGE_SAMPLES);
+    for k in 0..EDGE_SAMPLES {
+        let t = k as f64 / (EDGE_SAMPLES - 1) as f64;
+        let (u, v) = (u0 + (u1 - u0) * t, v0 + (v1 - v0) * t);
+        out.extend([
+            patch.eval(u, v0),
+            patch.eval(u, v1),
+            patch.eval(u0, v),
+            patch.eval(u1, v),
+        ]);
+    }
+    out
 }
 
 fn index_patch(patch: &Patch) -> Indexed {

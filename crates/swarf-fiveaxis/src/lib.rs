@@ -14,6 +14,7 @@ pub mod gouge;
 pub mod inclined;
 pub mod machine;
 pub mod motion;
+pub mod positioning;
 pub mod post;
 pub mod profile_point;
 pub mod sections;

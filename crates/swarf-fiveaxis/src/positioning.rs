@@ -1,0 +1,369 @@
+//! Five-axis positioning of a job's CC paths, as a job file asks for it:
+//!
+//! ```toml
+//! positioning = { method = "inclined", alpha = 3 }                      # thesis §7.3.1
+//! positioning = { method = "gouge-free", max_alpha = 15, sections = 1.0 } # thesis §7.3
+//! ```
+//!
+//! Angles in degrees, lengths in mm, at this edge only. Both methods run the sectioning
+//! gouge check ([`crate::gouge`]) on planes parallel to the passes' mean direction
+//! (`sections` mm apart): the fixed lead reports where it gouges (it is the user's
+//! choice, as in the thesis's first experiments), the gouge-free method raises the lead
+//! until nothing does ([`crate::autotilt`]) and fails where it cannot.
+
+use crate::autotilt::{TiltOptions, gouge_free_tilt};
+use crate::design::DesignSurface;
+use crate::error::FiveAxisError;
+use crate::gencurve::CurveOptions;
+use crate::gouge::{GougeOptions, check_pass};
+use crate::inclined::incline_pass;
+use crate::profile_point::ProfileTable;
+use crate::sections::Sections;
+use serde::{Deserialize, Serialize};
+use swarf_geom::Part;
+use swarf_path::{Contact, Pass};
+use swarf_tool::{Cutter, Pose};
+
+/// Largest number of gouging poses listed in a report (the count is always given).
+pub const MAX_LISTED_GOUGES: usize = 100;
+
+fn default_sections() -> f64 {
+    1.0
+}
+
+fn default_rate() -> f64 {
+    0.5
+}
+
+/// How a job places the tool on its CC paths (degrees and mm).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "method", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum Positioning {
+    /// A fixed lead angle for the whole path.
+    Inclined {
+        /// Lead angle, degrees.
+        alpha: f64,
+        /// Side tilt, degrees.
+        #[serde(default)]
+        tilt: f64,
+        /// Section spacing of the gouge report, mm.
+        #[serde(default = "default_sections")]
+        sections: f64,
+    },
+    /// The smallest gouge-free lead at every point, smoothed.
+    GougeFree {
+        /// Largest lead allowed, degrees.
+        max_alpha: f64,
+        /// Section spacing, mm.
+        #[serde(default = "default_sections")]
+        sections: f64,
+        /// Side tilt, degrees.
+        #[serde(default)]
+        tilt: f64,
+        /// Largest change of the lead per mm of feed, degrees/mm.
+        #[serde(default = "default_rate")]
+        max_rate: f64,
+        /// Gouge tolerance, mm (default: the job's strategy tolerance).
+        #[serde(default)]
+        tolerance: Option<f64>,
+    },
+}
+
+/// A gouging pose.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GougeSpot {
+    /// Pass index.
+    pub pass: usize,
+    /// Point index in the pass.
+    pub index: usize,
+    /// Depth below the design, mm.
+    pub depth: f64,
+    /// Where, mm.
+    pub at: [f64; 3],
+    /// `front` or `back`.
+    pub half: &'static str,
+}
+
+/// What positioning did.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PositioningReport {
+    /// `inclined` or `gouge-free`.
+    pub method: &'static str,
+    /// Number of poses.
+    pub poses: usize,
+    /// Smallest and largest lead angle used, degrees.
+    pub alpha_range_deg: [f64; 2],
+    /// Pass and point of the largest lead.
+    pub max_alpha_at: [usize; 2],
+    /// Section planes: direction (degrees from X) and spacing (mm).
+    pub sections: [f64; 2],
+    /// Gouge tolerance, mm.
+    pub tolerance: f64,
+    /// Poses deeper than the tolerance below the design.
+    pub gouging_poses: usize,
+    /// The deepest point found, mm (negative: clearance).
+    pub worst_depth: f64,
+    /// The deepest gouging poses, deepest first (at most [`MAX_LISTED_GOUGES`]).
+    pub gouges: Vec<GougeSpot>,
+    /// Gouge checks evaluated (gouge-free method).
+    pub evaluations: usize,
+    /// Poses raised after smoothing (gouge-free method).
+    pub raised: usize,
+    /// Largest turn of the tool axis per mm of feed, degrees/mm.
+    pub max_axis_rate_deg_per_mm: f64,
+}
+
+/// Places the tool on the CC paths `cc` of `part` (module doc). `tolerance` is the
+/// job's gouge tolerance (mm), used unless the positioning gives its own.
+///
+/// # Errors
+/// [`FiveAxisError::InvalidParameter`] naming the field for out-of-range values
+/// (`positioning.alpha` ...); the errors of [`incline_pass`] and [`gouge_free_tilt`].
+pub fn position(
+    cutter: &Cutter,
+    part: &Part,
+    cc: &[Vec<Contact>],
+    positioning: &Positioning,
+    tolerance: f64,
+) -> Result<(Vec<Pass>, PositioningReport), FiveAxisError> {
+    let design = DesignSurface::new(part);
+    let angle = mean_direction(cc);
+    match *positioning {
+        Positioning::Inclined {
+            alpha,
+            tilt,
+            sections,
+        } => {
+            angle_in("positioning.alpha", alpha, 0.0)?;
+            angle_in("positioning.tilt", tilt.abs(), 0.0)?;
+            let gouge = gouge_options(angle, sections, tolerance)?;
+            let passes = cc
+                .iter()
+                .enumerate()
+                .map(|(k, c)| incline_pass(cutter, c, &[alpha.to_radians()], tilt.to_radians(), k))
+                .collect::<Result<Vec<_>, _>>()?;
+            let mut report = report("inclined", &passes, &gouge, angle);
+            report.alpha_range_deg = [alpha, alpha];
+            check(&design, cutter, &passes, &gouge, &mut report);
+            Ok((passes, report))
+        }
+        Positioning::GougeFree {
+            max_alpha,
+            sections,
+            tilt,
+            max_rate,
+            tolerance: own,
+        } => {
+            angle_in("positioning.max_alpha", max_alpha, f64::MIN_POSITIVE)?;
+            angle_in("positioning.tilt", tilt.abs(), 0.0)?;
+            if !(max_rate.is_finite() && max_rate > 0.0) {
+                return Err(FiveAxisError::parameter(
+                    "positioning.max_rate",
+                    format!("expected a rate > 0 degrees per mm, found {max_rate}"),
+                ));
+            }
+            let gouge = gouge_options(angle, sections, own.unwrap_or(tolerance))?;
+            let opts = TiltOptions {
+                max_alpha: max_alpha.to_radians(),
+                tilt: tilt.to_radians(),
+                resolution: 0.01f64.to_radians(),
+                max_rate: max_rate.to_radians(),
+                gouge,
+                max_rounds: 50,
+            };
+            let (passes, t) = gouge_free_tilt(cutter, &design, cc, &opts)?;
+            let mut report = report("gouge-free", &passes, &gouge, angle);
+            let flat = t.alphas.iter().flatten().copied();
+            let lo = flat.clone().fold(f64::INFINITY, f64::min);
+            report.alpha_range_deg = [lo.to_degrees(), t.max_alpha.to_degrees()];
+            report.max_alpha_at = t.max_alpha_at;
+            report.evaluations = t.evaluations;
+            report.raised = t.raised;
+            report.max_axis_rate_deg_per_mm = t.max_axis_rate.to_degrees();
+            check(&design, cutter, &passes, &gouge, &mut report);
+            Ok((passes, report))
+        }
+    }
+}
+
+fn angle_in(field: &str, v: f64, lo: f64) -> Result<(), FiveAxisError> {
+    if v.is_finite() && v >= lo && v < 90.0 {
+        Ok(())
+    } else {
+        Err(FiveAxisError::parameter(
+            field,
+            format!("expected an angle in [0, 90) degrees, found {v}"),
+        ))
+    }
+}
+
+fn gouge_options(angle: f64, spacing: f64, tolerance: f64) -> Result<GougeOptions, FiveAxisError> {
+    if !(tolerance.is_finite() && tolerance >= 0.0) {
+        return Err(FiveAxisError::parameter(
+            "positioning.tolerance",
+            format!("expected a tolerance >= 0 mm, found {tolerance}"),
+        ));
+    }
+    let sections = Sections::along(angle, spacing).map_err(|_| {
+        FiveAxisError::parameter(
+            "positioning.sections",
+            format!("expected a section spacing > 0 mm, found {spacing}"),
+        )
+    })?;
+    Ok(GougeOptions {
+        sections,
+        tolerance,
+        curve: CurveOptions::default(),
+        cap_meridians: 96,
+        whole_tool: false,
+    })
+}
+
+fn report(
+    method: &'static str,
+    passes: &[Pass],
+    g: &GougeOptions,
+    angle: f64,
+) -> PositioningReport {
+    PositioningReport {
+        method,
+        poses: passes.iter().map(|p| p.points.len()).sum(),
+        alpha_range_deg: [0.0, 0.0],
+        max_alpha_at: [0, 0],
+        sections: [angle.to_degrees(), g.sections.spacing],
+        tolerance: g.tolerance,
+        gouging_poses: 0,
+        worst_depth: f64::NEG_INFINITY,
+        gouges: Vec::new(),
+        evaluations: 0,
+        raised: 0,
+        max_axis_rate_deg_per_mm: max_axis_rate(passes).to_degrees(),
+    }
+}
+
+/// The sectioning check of every pose, into the report.
+fn check(
+    design: &DesignSurface,
+    cutter: &Cutter,
+    passes: &[Pass],
+    g: &GougeOptions,
+    r: &mut PositioningReport,
+) {
+    let profile = cutter.profile();
+    let table = ProfileTable::new(&profile);
+    let g = &GougeOptions {
+        whole_tool: true,
+        ..*g
+    };
+    let mut spots = Vec::new();
+    for (k, pass) in passes.iter().enumerate() {
+        let poses: Vec<Pose> = pass.points.iter().map(|p| p.pose).collect();
+        for (i, pg) in check_pass(design, &table, &poses, g)
+            .into_iter()
+            .enumerate()
+        {
+            r.worst_depth = r.worst_depth.max(pg.depth);
+            if pg.gouges(g.tolerance) {
+                spots.push(GougeSpot {
+                    pass: k,
+                    index: i,
+                    depth: pg.depth,
+                    at: [pg.at.x, pg.at.y, pg.at.z],
+                    half: pg.half.name(),
+                });
+            }
+        }
+    }
+    r.gouging_poses = spots.len();
+    spots.sort_by(|a, b| b.depth.total_cmp(&a.depth));
+    spots.truncate(MAX_LISTED_GOUGES);
+    r.gouges = spots;
+}
+
+/// Largest angle between consecutive tool axes per mm of tip travel, rad/mm.
+fn max_axis_rate(passes: &[Pass]) -> f64 {
+    passes
+        .iter()
+        .flat_map(|p| p.points.windows(2))
+        .map(|w| {
+            let ds = (w[1].pose.cl - w[0].pose.cl).norm();
+            let da = w[0].pose.axis.angle(&w[1].pose.axis);
+            if ds > 1e-6 { da / ds } else { 0.0 }
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The mean XY direction of the passes (radians from X, modulo pi), weighted by
+/// length: the angle of the summed doubled-angle vectors, halved.
+pub fn mean_direction(cc: &[Vec<Contact>]) -> f64 {
+    let (mut c, mut s) = (0.0, 0.0);
+    for pass in cc {
+        if let (Some(a), Some(b)) = (pass.first(), pass.last()) {
+            let d = (b.point - a.point).xy();
+            let len = d.norm();
+            if len > 0.0 {
+                let t = d.y.atan2(d.x);
+                c += len * (2.0 * t).cos();
+                s += len * (2.0 * t).sin();
+            }
+        }
+    }
+    0.5 * s.atan2(c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Deserialize)]
+    struct Job {
+        positioning: Positioning,
+    }
+
+    #[test]
+    fn job_tables_parse() {
+        let j: Job = toml::from_str(r#"positioning = { method = "inclined", alpha = 3 }"#).unwrap();
+        assert_eq!(
+            j.positioning,
+            Positioning::Inclined {
+                alpha: 3.0,
+                tilt: 0.0,
+                sections: 1.0
+            }
+        );
+        let j: Job = toml::from_str(
+            r#"positioning = { method = "gouge-free", max_alpha = 15, sections = 1.0 }"#,
+        )
+        .unwrap();
+        assert!(matches!(
+            j.positioning,
+            Positioning::GougeFree {
+                max_alpha: 15.0,
+                ..
+            }
+        ));
+        for bad in [
+            r#"positioning = { method = "tilted", alpha = 3 }"#,
+            r#"positioning = { method = "inclined", alpha = 3, beta = 2 }"#,
+            r#"positioning = { method = "gouge-free" }"#,
+        ] {
+            assert!(toml::from_str::<Job>(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn mean_direction_ignores_pass_orientation() {
+        let c = |x: f64, y: f64| Contact {
+            point: swarf_geom::Point3::new(x, y, 0.0),
+            normal: swarf_geom::Vec3::z(),
+            face: 0,
+            uv: [0.0; 2],
+        };
+        let (s, co) = 60f64.to_radians().sin_cos();
+        let passes = vec![
+            vec![c(0.0, 0.0), c(10.0 * co, 10.0 * s)],
+            vec![c(10.0 * co, 10.0 * s + 3.0), c(0.0, 3.0)],
+        ];
+        assert!((mean_direction(&passes) - 60f64.to_radians()).abs() < 1e-12);
+    }
+}
