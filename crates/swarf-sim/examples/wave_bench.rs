@@ -1,7 +1,8 @@
 //! Verifies a finishing program on wave.toml at 0.05 mm cells (about 8 million) and
 //! prints the stage times, cell updates per second and the peak memory.
 //!
-//! `cargo run --release -p swarf-sim --example wave_bench [PROGRAM]`: without a
+//! `cargo run --release -p swarf-sim --example wave_bench [PROGRAM [normal]]`
+//! (`normal`: deviation along the design normals). Without a
 //! program, a ball (r = 4) iso-parametric zigzag over wave with a 2.17 mm side step
 //! (the step for a 0.15 mm scallop on a plane) is generated: CL = CC + r N - r z.
 
@@ -89,6 +90,7 @@ fn main() {
         tol: 0.01,
         allowed_excess: 0.15,
         stock: StockSpec::Offset { allowance: 0.5 },
+        along_normals: std::env::args().nth(2).is_some_and(|a| a == "normal"),
         ..VerifyOptions::default()
     };
     let (t, c) = (Instant::now(), cpu_s());

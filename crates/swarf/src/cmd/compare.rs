@@ -7,7 +7,9 @@
 //! "Points" are grid cells: remaining material = cells more than the job's scallop
 //! limit plus its tolerance above the design, gouge = cells more than the tolerance
 //! below it (regions in brackets). The scallop range is the 5th to 95th percentile of
-//! the scallop crest heights, with the highest crest after it.
+//! the scallop crest heights, with the highest crest after it. Deviations are measured
+//! along the design normals by default (a scallop height is a distance normal to the
+//! surface; vertically it reads `1 / cos(slope)` taller on the wave's flanks).
 
 use super::plan::plan_job;
 use super::verify::{SimArgs, context, verify_and_write};
@@ -116,7 +118,7 @@ fn compare_one(path: &Path, sim: &SimArgs, out: &Path) -> Result<Row> {
     };
     let model = load_model(&part_arg)?;
     let scallop = job.strategy.scallop.unwrap_or(0.0);
-    let opts = sim.options(job.strategy.tolerance, scallop, job.feeds.rapid)?;
+    let opts = sim.options(job.strategy.tolerance, scallop, job.feeds.rapid, true)?;
     let ctx = context(&part_arg, &program, &job.tool, &opts);
     let v = verify_and_write(
         &model,

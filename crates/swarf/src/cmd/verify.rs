@@ -58,10 +58,11 @@ pub struct SimArgs {
     /// Memory limit for the grid, MiB.
     #[arg(long, default_value_t = 4096)]
     max_memory: u64,
-    /// Measure the deviation along the design normals ("mow the grass") instead of
-    /// vertically.
-    #[arg(long)]
-    normal: bool,
+    /// How deviation is measured: `vertical` (along z) or `normal` (along the design
+    /// normals, "mow the grass"; the scallop height of paper 004). Default: vertical
+    /// for verify, normal for compare.
+    #[arg(long, value_parser = ["vertical", "normal"])]
+    deviation: Option<String>,
 }
 
 impl SimArgs {
@@ -76,12 +77,18 @@ impl SimArgs {
             rapid: None,
             sample_tol: None,
             max_memory: 4096,
-            normal: false,
+            deviation: Some("normal".into()),
         }
     }
 
     /// Verification options, with the given defaults where an option is absent.
-    pub fn options(&self, tol: f64, scallop: f64, rapid: f64) -> Result<VerifyOptions> {
+    pub fn options(
+        &self,
+        tol: f64,
+        scallop: f64,
+        rapid: f64,
+        along_normals: bool,
+    ) -> Result<VerifyOptions> {
         Ok(VerifyOptions {
             cell: self.cell,
             tol: self.tol.unwrap_or(tol),
@@ -90,7 +97,10 @@ impl SimArgs {
             max_bytes: self.max_memory.saturating_mul(1 << 20),
             sample_tol: self.sample_tol,
             rapid_rate: self.rapid.unwrap_or(rapid),
-            along_normals: self.normal,
+            along_normals: self
+                .deviation
+                .as_deref()
+                .map_or(along_normals, |d| d == "normal"),
             ..VerifyOptions::default()
         })
     }
@@ -193,7 +203,7 @@ pub fn run(args: &Args) -> Result<()> {
             program.source
         ),
     };
-    let opts = args.sim.options(0.01, 0.0, 5000.0)?;
+    let opts = args.sim.options(0.01, 0.0, 5000.0, false)?;
     let ctx = context(&args.part, &program, &cutter, &opts);
     let v = verify_and_write(&model, &program, &cutter, &opts, &args.out, "", &ctx)?;
     print!("{}", text_summary(&v, &ctx));
