@@ -182,7 +182,9 @@ impl Toolpath {
         if is_first {
             let mut high = above;
             high.cl.z = high.cl.z.max(self.linking.clearance);
-            out.push(rapid(high));
+            if high != above {
+                out.push(rapid(high));
+            }
         }
         out.push(rapid(above));
         let approach = Pose {
