@@ -16,6 +16,7 @@ mod ordering;
 pub mod plan;
 pub mod raster;
 mod raster_double;
+mod raster_frame;
 mod raster_pass;
 pub mod raster_step;
 pub mod scallop_step;

@@ -29,10 +29,11 @@
 //! `predicted_max_scallop` the exact scallop it leaves on a horizontal plane.
 
 use crate::error::PathError;
-use crate::job::{Job, StartSide};
+use crate::job::Job;
 use crate::plan::{Plan, PlanReport};
-use crate::raster_pass::{Line, PassOut, Sampler};
-use crate::raster_step::{flat_scallop, stepover_for_scallop};
+use crate::raster_frame::Frame;
+use crate::raster_pass::{PassOut, Sampler};
+use crate::raster_step::flat_scallop;
 use crate::toolpath::{Pass, Toolpath};
 use rayon::prelude::*;
 use swarf_geom::TriMesh;
@@ -44,9 +45,6 @@ pub const INIT_STEP_RADII: f64 = 0.25;
 pub const MIN_STEP_FLOOR: f64 = 1e-3;
 /// Contacts this many tool radii apart can make a double contact.
 pub const DOUBLE_SEPARATION_RADII: f64 = 0.05;
-/// A given boundary is widened by this (relative to its largest coordinate) so that
-/// passes on its edges survive rounding.
-pub const BOUNDARY_SLACK: f64 = 1e-12;
 
 /// Plans raster passes over `mesh` for `job` (module doc).
 ///
@@ -134,124 +132,6 @@ pub fn plan(mesh: &TriMesh, job: &Job) -> Result<Plan, PathError> {
         report,
         double_contacts,
     })
-}
-
-/// Pass geometry: directions, side offsets in cutting order, extents along the feed.
-struct Frame {
-    d: [f64; 2],
-    n: [f64; 2],
-    offsets: Vec<f64>,
-    spacing: f64,
-    /// Range of `p . d` the passes may cover (before the boundary).
-    along: [f64; 2],
-    boundary: Option<[f64; 4]>,
-}
-
-impl Frame {
-    fn new(mesh: &TriMesh, job: &Job, dropper: &MeshDropper) -> Result<Frame, PathError> {
-        let (sa, ca) = job.angle_rad().sin_cos();
-        let (d, n) = ([ca, sa], [-sa, ca]);
-        let radius = dropper.tool().radius();
-        let stepover = match (job.strategy.stepover, job.strategy.scallop) {
-            (Some(s), _) => s,
-            (None, Some(h)) => stepover_for_scallop(&job.tool, h)?,
-            (None, None) => {
-                return Err(PathError::InvalidParameter {
-                    field: "strategy".into(),
-                    message: "expected `scallop` (mm) or `stepover` (mm)".into(),
-                });
-            }
-        };
-        if !(stepover.is_finite() && stepover > 0.0 && stepover <= 2.0 * radius) {
-            return Err(PathError::InvalidParameter {
-                field: "strategy.stepover".into(),
-                message: format!(
-                    "{stepover} mm: expected a stepover > 0 and at most the tool diameter {} mm",
-                    2.0 * radius
-                ),
-            });
-        }
-        let dot = |v: [f64; 2], x: f64, y: f64| v[0] * x + v[1] * y;
-        let range = |v: [f64; 2]| -> [f64; 2] {
-            let pts: Vec<[f64; 2]> = match job.strategy.boundary {
-                Some(b) => vec![[b[0], b[1]], [b[2], b[1]], [b[2], b[3]], [b[0], b[3]]],
-                None => finite_xy(mesh),
-            };
-            pts.iter().fold([f64::INFINITY, f64::NEG_INFINITY], |r, p| {
-                let x = dot(v, p[0], p[1]);
-                [r[0].min(x), r[1].max(x)]
-            })
-        };
-        let side = range(n);
-        let mesh_along = {
-            let pts = finite_xy(mesh);
-            pts.iter().fold([f64::INFINITY, f64::NEG_INFINITY], |r, p| {
-                let x = dot(d, p[0], p[1]);
-                [r[0].min(x), r[1].max(x)]
-            })
-        };
-        let width = (side[1] - side[0]).max(0.0);
-        let k = (width / stepover).ceil().max(1.0) as usize;
-        let spacing = if width > 0.0 {
-            width / k as f64
-        } else {
-            stepover
-        };
-        let mut offsets: Vec<f64> = (0..=k)
-            .map(|i| side[0] + width * i as f64 / k as f64)
-            .collect();
-        if job.strategy.start == StartSide::Max {
-            offsets.reverse();
-        }
-        Ok(Frame {
-            d,
-            n,
-            offsets,
-            spacing,
-            along: [mesh_along[0] - radius, mesh_along[1] + radius],
-            boundary: job.strategy.boundary,
-        })
-    }
-
-    /// The pass line at side offset `c`, clipped to the boundary (`None` when the
-    /// line misses it). The boundary is widened by [`BOUNDARY_SLACK`] (relative) so
-    /// that a pass on its edge survives the rounding of `c`.
-    fn line(&self, c: f64) -> Option<Line> {
-        let origin = [c * self.n[0], c * self.n[1]];
-        let [mut t0, mut t1] = self.along;
-        if let Some(b) = self.boundary {
-            let slack = BOUNDARY_SLACK * (1.0 + b.iter().fold(0.0f64, |m, v| m.max(v.abs())));
-            for axis in 0..2 {
-                let (lo, hi) = (b[axis] - slack, b[axis + 2] + slack);
-                let (o, v) = (origin[axis], self.d[axis]);
-                if v.abs() < 1e-12 {
-                    if o < lo || o > hi {
-                        return None;
-                    }
-                } else {
-                    let (a, e) = ((lo - o) / v, (hi - o) / v);
-                    t0 = t0.max(a.min(e));
-                    t1 = t1.min(a.max(e));
-                }
-            }
-        }
-        (t0 <= t1).then_some(Line {
-            origin,
-            dir: self.d,
-            t0,
-            t1,
-        })
-    }
-}
-
-/// XY of the vertices of the finite triangles.
-fn finite_xy(mesh: &TriMesh) -> Vec<[f64; 2]> {
-    mesh.triangles
-        .iter()
-        .map(|t| t.map(|k| mesh.vertices[k as usize]))
-        .filter(|c| c.iter().all(|p| p.coords.iter().all(|v| v.is_finite())))
-        .flat_map(|c| c.map(|p| [p.x, p.y]))
-        .collect()
 }
 
 #[cfg(test)]
