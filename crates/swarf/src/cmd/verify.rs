@@ -89,6 +89,17 @@ impl SimArgs {
         rapid: f64,
         along_normals: bool,
     ) -> Result<VerifyOptions> {
+        for (flag, v) in [
+            ("--cell", self.cell),
+            ("--tol", self.tol),
+            ("--sample-tol", self.sample_tol),
+        ] {
+            if let Some(x) = v
+                && !(x.is_finite() && x > 0.0)
+            {
+                bail!("{flag}: expected a finite number > 0 mm, found {x}");
+            }
+        }
         Ok(VerifyOptions {
             cell: self.cell,
             tol: self.tol.unwrap_or(tol),
@@ -278,6 +289,72 @@ pub fn verify_and_write(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A ball raster over a plane with one CL point 0.05 mm too deep, then the same
+    /// program cut off by a bad word: the gouge is reported with its line, and the
+    /// stopped program still writes its report but fails.
+    #[test]
+    fn verify_finds_the_gouge_and_fails_on_a_stopped_program() {
+        let dir = std::env::temp_dir().join(format!("swarf-verify-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let part = dir.join("plane.toml");
+        std::fs::write(
+            &part,
+            "name = \"plane\"\nunits = \"mm\"\n[[patch]]\ndegree = [1, 1]\n\
+             points = [[0, 0, 0], [0, 10, 0], [20, 0, 0], [20, 10, 0]]\n",
+        )
+        .unwrap();
+        let mut g = String::from("G21 G90 G17\nG0 Z5\n");
+        let mut gouge_line = 0;
+        for k in 0..8 {
+            let y = 0.625 + 1.25 * k as f64;
+            g += &format!("G0 X-3 Y{y}\nG1 Z0 F100\n");
+            for s in 0..=13 {
+                let x = -3.0 + 2.0 * s as f64;
+                let z = if k == 4 && s == 6 { -0.05 } else { 0.0 };
+                g += &format!("G1 X{x} Y{y} Z{z} F300\n");
+                if z < 0.0 {
+                    gouge_line = g.lines().count();
+                }
+            }
+            g += "G0 Z5\n";
+        }
+        let program = dir.join("raster.ngc");
+        std::fs::write(&program, &g).unwrap();
+        let args = |program: &Path, out: &str| Args {
+            part: part.display().to_string(),
+            program: program.to_path_buf(),
+            tool: Some("ball:d=6".into()),
+            sim: SimArgs {
+                deviation: None,
+                ..SimArgs::for_tests(0.05)
+            },
+            out: dir.join(out),
+        };
+        run(&args(&program, "ok")).unwrap();
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("ok/report.json")).unwrap())
+                .unwrap();
+        let worst = &report["deviation"]["gouges"][0];
+        assert_eq!(worst["line"].as_u64(), Some(gouge_line as u64), "{worst}");
+        assert!(
+            (worst["worst"].as_f64().unwrap() + 0.05).abs() < 2e-3,
+            "{worst}"
+        );
+        for f in ["flagged.csv", "deviation.png", "toolpath.png"] {
+            assert!(dir.join("ok").join(f).exists(), "{f}");
+        }
+        let stopped = dir.join("stopped.ngc");
+        let cut: String = g.lines().take(30).map(|l| format!("{l}\n")).collect();
+        std::fs::write(&stopped, cut + "G1 X4 Y\n").unwrap();
+        let err = run(&args(&stopped, "stop")).unwrap_err().to_string();
+        assert!(err.contains("stopped.ngc:31"), "{err}");
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("stop/report.json")).unwrap())
+                .unwrap();
+        assert_eq!(report["complete"], serde_json::Value::Bool(false));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 
     #[test]
     fn stock_specs() {
