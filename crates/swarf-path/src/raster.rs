@@ -270,7 +270,7 @@ mod tests {
         let j = job("flat:d=4", "stepover = 2\ntolerance = 0.01");
         let plan = plan(&mesh, &j).unwrap();
         let rows = plan.toolpath.passes.len();
-        assert!(rows >= 8 && rows % 2 == 0, "{rows}");
+        assert!(rows >= 8 && rows.is_multiple_of(2), "{rows}");
         for p in &plan.toolpath.passes {
             let xs: Vec<f64> = p.points.iter().map(|q| q.pose.cl.x).collect();
             let (lo, hi) = (
