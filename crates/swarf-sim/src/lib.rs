@@ -7,10 +7,11 @@
 //!   bounds for arcs and five-axis motions), with [`sweep_linear`] (exact) and
 //!   [`sweep_tilted`] (one tilted tool position).
 //! - [`design`]: the design's height (and normal) at every cell centre, exact by
-//!   Newton on patches or by ray casts on meshes ([`raster`]).
+//!   Newton on patches (in [`power`] form) or by ray casts on meshes ([`raster`]).
 //! - [`deviation`]: gouge, excess and scallop crests against the design, by region.
 //! - [`mow`]: deviation along the design normals ("mow the grass").
-//! - [`simulate`](mod@simulate): a program over a stock, in parallel row bands, deterministically.
+//! - [`simulate`](mod@simulate): a program over a stock, in parallel row bands,
+//!   deterministically.
 //! - [`verify`](mod@verify): all of it for a program, a tool and a design.
 //! - [`report`] (JSON, CSV, text) and [`picture`] (heat map, tool path; drawn on a
 //!   small [`canvas`]).

@@ -181,8 +181,12 @@ impl LinearSweep {
             }
             let tx = grid.x(i) - self.a[0];
             let s = tx * self.e[0] + ty * self.e[1];
-            let d = ty * self.e[0] - tx * self.e[1];
-            let z = self.a[2] + env.swept_min(s, d.abs(), self.len, self.m);
+            let d = (ty * self.e[0] - tx * self.e[1]).abs();
+            // The tool is never nearer the cell than d, so never below zmin + h(d).
+            if h <= self.zmin + env.h(d) {
+                continue;
+            }
+            let z = self.a[2] + env.swept_min(s, d, self.len, self.m);
             if z < h {
                 heights[i] = z;
                 last[i] = motion;

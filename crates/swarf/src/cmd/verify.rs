@@ -65,19 +65,30 @@ pub struct SimArgs {
     deviation: Option<String>,
 }
 
-impl SimArgs {
-    /// Defaults with cell size `cell` (for tests).
-    #[cfg(test)]
-    pub fn for_tests(cell: f64) -> SimArgs {
+impl Default for SimArgs {
+    /// The command-line defaults (for callers such as `swarf demo`).
+    fn default() -> Self {
         SimArgs {
             stock: "offset:0.5".into(),
-            cell: Some(cell),
+            cell: None,
             tol: None,
             scallop: None,
             rapid: None,
             sample_tol: None,
             max_memory: 4096,
+            deviation: None,
+        }
+    }
+}
+
+impl SimArgs {
+    /// Defaults with cell size `cell`, measuring along the normals (for tests).
+    #[cfg(test)]
+    pub fn for_tests(cell: f64) -> SimArgs {
+        SimArgs {
+            cell: Some(cell),
             deviation: Some("normal".into()),
+            ..SimArgs::default()
         }
     }
 
@@ -272,8 +283,13 @@ pub fn verify_and_write(
     let name = Path::new(&ctx.program)
         .file_name()
         .map_or(ctx.program.clone(), |n| n.to_string_lossy().into_owned());
+    let mode = if v.along_normals {
+        "normal"
+    } else {
+        "vertical"
+    };
     let title = format!(
-        "deviation: {name}, {}, tol {} mm",
+        "{mode} deviation: {name}, {}, tol {} mm",
         ctx.tool, v.deviation.summary.tol
     );
     swarf_io::write_atomic(
