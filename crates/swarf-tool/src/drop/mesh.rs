@@ -7,8 +7,14 @@
 //! `z_max` puts the tip at most at `ub = z_max - h(rho_min)`. The scan of the grid
 //! ([`super::grid`]) computes `ub` for the triangles in the disc, keeps those above the
 //! best height found so far, and visits them in descending `ub` from a binary heap,
-//! stopping at the first whose bound is below the best: typically a handful of the
-//! ~100 triangles under a 4 mm tool are dropped onto.
+//! stopping at the first whose bound is below the best. Each visit is
+//! [`super::kernel::triangle_drop_above`] with the best height as floor, which settles
+//! most triangles with their plane's drop alone. The search starts from the triangle
+//! that won the previous drop of the same scratch (neighbouring points of a raster or
+//! grid row touch the same or a nearby triangle), so the best height is near the
+//! answer from the start. On die.toml at 78k triangles (about 460 triangles within
+//! reach of a ball d=8 at each point, 34 of them with `ub` above the answer) a drop
+//! costs a few microseconds.
 //!
 //! Ties: the highest contact wins; equal heights go to the lowest triangle index, so
 //! the result does not depend on the visiting order or on threads. Nothing is

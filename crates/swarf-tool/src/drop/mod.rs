@@ -11,19 +11,21 @@
 //!   forms of the profile; `h` is convex.
 //! - [`kernel`]: the drop onto one triangle, as the maximum of its vertex, edge and
 //!   facet cases (vertex and facet written once over the profile).
+//! - [`facet`]: the facet case and the plane bound that settles most triangles.
 //! - [`edge`]: the edge case, a 1-D concave maximisation: closed forms for flat, ball
-//!   and cone pieces, a bracketed Newton solve for torus pieces.
-//! - [`mesh`]: [`MeshDropper`], the mesh in a cache-friendly layout with its own XY
-//!   grid, pruning by height; [`batch`]: many points in parallel, deterministic.
+//!   and cone pieces, a bracketed Newton solve ([`bracket`]) for torus pieces.
+//! - [`grid`], [`mesh`]: [`MeshDropper`], the mesh in a cache-friendly layout with
+//!   its own XY grid, pruning by height; [`batch`]: many points in parallel,
+//!   deterministic.
 //!
 //! The cutter is treated as its cutting surface extended upward (the shank and
 //! holder are not checked), as in OpenCAMLib. Units: mm.
 
 pub mod batch;
-mod bracket;
+pub mod bracket;
 pub mod edge;
 pub mod envelope;
-mod facet;
+pub mod facet;
 pub mod grid;
 pub mod kernel;
 pub mod mesh;
