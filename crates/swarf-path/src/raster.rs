@@ -6,7 +6,7 @@
 //! (`a` = `strategy.angle`, degrees) on lines `p . n = c` with side direction
 //! `n = (-sin a, cos a)`; each is sampled by exact drop-cutter
 //! ([`swarf_tool::drop::MeshDropper`]) adaptively to the tolerance
-//! ([`crate::raster_pass`]).
+//! (`raster_pass.rs`).
 //!
 //! - **Side step**: `stepover` when given, else from `scallop`
 //!   ([`crate::raster_step`]: exact for a ball on a horizontal plane, a conservative
@@ -23,7 +23,7 @@
 //!   order, so the result does not depend on the thread count.
 //! - **Contacts**: each pose records its CC point and triangle (face = triangle index,
 //!   normal = the triangle's upward normal, `uv` NaN). Double contacts found at any
-//!   sample go to [`Plan::double_contacts`] ([`crate::raster_double`]).
+//!   sample go to [`Plan::double_contacts`] (`raster_double.rs`).
 //!
 //! Report: `side_step_range` is the even spacing used (both ends), and
 //! `predicted_max_scallop` the exact scallop it leaves on a horizontal plane.
