@@ -6,7 +6,10 @@
 //! scallop) and increases alpha "progressively" until the gouge disappears. Here the
 //! predicate `gouges(alpha)` is the sectioning check ([`crate::gouge::pose_gouge`]) of
 //! the pose with its two neighbours placed at the same alpha (the motion at a pose
-//! depends on its neighbours, which are not known yet). The search tests alpha = 0,
+//! depends on its neighbours, which are not known yet): first with the generating
+//! curves alone, then, from that answer upward, with the whole tool and the design's
+//! edges as well (a few more checks, ten times dearer, that the curves cannot replace:
+//! see [`crate::gouge`]). The search tests alpha = 0,
 //! then brackets the answer upward from a hint (the previous point's answer, the path
 //! being smooth) by doubling steps, and bisects the bracket `[lo, hi]` (`lo` gouging,
 //! `hi` gouge-free) down to `resolution`; it returns `hi`, so the answer is always an
@@ -18,8 +21,9 @@
 //! caught by the final check below and raised. The tests compare the result with a
 //! brute-force sweep of alpha on sampled poses.
 //!
-//! **Smoothing.** Rotary axes should not jerk: alpha may change by at most `max_rate`
-//! per mm of CC travel. The smallest such sequence above the searched one is its upper
+//! **Smoothing.** Each searched alpha other than 0 gets a margin of 0.05 degree (the
+//! check below sees the real neighbours, which smoothing moves). Rotary axes should not
+//! jerk: alpha may change by at most `max_rate` per mm of CC travel. The smallest such sequence above the searched one is its upper
 //! envelope `alpha_s(i) = max_j (alpha_j - max_rate |s_i - s_j|)` (a forward and a
 //! backward sweep). It only raises alpha.
 //!
@@ -51,9 +55,9 @@ const FIRST_STEP: f64 = 0.017_453_292_519_943_295;
 /// usually is when the hint was good (radians, 0.25 degree).
 const NEAR: f64 = 0.004_363_323_129_985_824;
 
-/// A pose raised after smoothing is raised this much beyond the alpha that clears it
-/// with its current neighbours, which the next smoothing may move (radians, 0.05
-/// degree).
+/// Searched alphas (when not 0) and poses raised after smoothing get this much more
+/// than the alpha that clears them: smoothing moves the neighbours, and with them the
+/// motion that the generating curves follow (radians, 0.05 degree).
 const RAISE_MARGIN: f64 = 0.000_872_664_625_997_164_8;
 
 /// Options of the automatic tilt.
@@ -152,13 +156,9 @@ impl PassTilt<'_> {
                 Neighbours::Fixed(p) => p[j],
             });
         }
-        Ok(pose_gouge(
-            self.design,
-            self.table,
-            &poses,
-            i - lo,
-            &self.opts.gouge,
-        ))
+        let mut g = self.opts.gouge;
+        g.whole_tool |= self.strict;
+        Ok(pose_gouge(self.design, self.table, &poses, i - lo, &g))
     }
 
     /// Smallest gouge-free alpha at `i` not below `start` (module doc, search).
@@ -250,12 +250,26 @@ fn tilt_pass(t: &mut PassTilt<'_>) -> Result<PassResult, FiveAxisError> {
     let mut searched = Vec::with_capacity(n);
     let mut hint = 0.0;
     for i in 0..n {
+        // The generating curves first (cheap), then up from there with the whole tool.
         let a = t.search(i, 0.0, hint, Neighbours::SameAlpha)?;
+        t.strict = true;
+        let a = t.search(i, a, a, Neighbours::SameAlpha);
+        t.strict = false;
+        let a = a?;
         searched.push(a);
         hint = a;
     }
     let s = t.stations();
-    let mut alphas = searched.clone();
+    let mut alphas: Vec<f64> = searched
+        .iter()
+        .map(|a| {
+            if *a > 0.0 {
+                (a + RAISE_MARGIN).min(t.opts.max_alpha)
+            } else {
+                0.0
+            }
+        })
+        .collect();
     smooth(&mut alphas, &s, t.opts.max_rate);
     let mut depth = vec![f64::NEG_INFINITY; n];
     let mut dirty = vec![true; n];

@@ -201,13 +201,23 @@ pub fn check_cap(
 /// tool's exact signed distance (1-Lipschitz, so a step of the distance never enters
 /// the tool; the solid is convex, so a step that does not shrink the distance means a
 /// miss).
-pub fn check_boundary(design: &DesignSurface, profile: &Profile, pose: &Pose, out: &mut PoseGouge) {
-    let reach = profile.radius() + profile.top().z;
+pub fn check_boundary(
+    design: &DesignSurface,
+    profile: &Profile,
+    pose: &Pose,
+    top: f64,
+    out: &mut PoseGouge,
+) {
+    // The tool up to `top` lies within `reach` of the tip (the generating curves and
+    // the caps stop there too).
+    let reach = profile.radius() + top;
+    let c = pose.cl.xy();
     for q in design.boundary() {
-        if (q.xy() - pose.cl.xy()).norm() > reach {
+        let (dx, dy) = (q.x - c.x, q.y - c.y);
+        if dx * dx + dy * dy > reach * reach || q.z < pose.cl.z - reach {
             continue;
         }
-        if let Some(z) = lowest_tool_z(profile, pose, q.x, q.y, q.z - reach) {
+        if let Some(z) = lowest_tool_z(profile, pose, q.x, q.y, pose.cl.z - reach) {
             let depth = q.z - z;
             if depth > out.depth {
                 out.depth = depth;
@@ -236,6 +246,12 @@ fn lowest_tool_z(profile: &Profile, pose: &Pose, x: f64, y: f64, z0: f64) -> Opt
         z += d;
     }
     None
+}
+
+/// Points of the boundary and the tool's lowest point over each, for tests.
+#[cfg(test)]
+pub(crate) fn tool_height(profile: &Profile, pose: &Pose, x: f64, y: f64) -> Option<f64> {
+    lowest_tool_z(profile, pose, x, y, pose.cl.z - 100.0)
 }
 
 /// The march of [`lowest_tool_z`] stops this close to the tool (mm).
@@ -278,7 +294,8 @@ pub fn pose_gouge(
         check_curve(design, &pc, &opts.sections, half, &mut out);
     }
     if opts.whole_tool {
-        check_boundary(design, table.profile(), &poses[i], &mut out);
+        let top = wall_top(table.profile(), &opts.curve);
+        check_boundary(design, table.profile(), &poses[i], top, &mut out);
     }
     if opts.cap_meridians > 0 && (opts.whole_tool || i == 0 || i + 1 == poses.len()) {
         let profile = table.profile();
@@ -405,5 +422,36 @@ mod tests {
             }
         }
         assert!(found >= 10, "{found}");
+    }
+
+    #[test]
+    fn march_finds_the_lowest_tool_point_and_edges_are_checked() {
+        let ball = Cutter::ball(10.0, Some(30.0)).unwrap().profile();
+        let pose = Pose::new(Point3::new(1.0, 2.0, 3.0), Vec3::new(0.3, 0.0, 1.0)).unwrap();
+        let centre = pose.cl + 5.0 * pose.axis;
+        for (dx, dy) in [(0.0, 0.0), (2.0, 1.0), (-3.0, 2.5)] {
+            let z = tool_height(&ball, &pose, centre.x + dx, centre.y + dy).unwrap();
+            let expected = centre.z - (25.0f64 - dx * dx - dy * dy).sqrt();
+            assert!((z - expected).abs() < 1e-6, "{z} vs {expected}");
+        }
+        assert!(tool_height(&ball, &pose, centre.x, centre.y + 5.5).is_none());
+        // A bull beyond the edge x = 50 of a plane at z = 0, 0.05 mm low: no section
+        // point lies on the design, the edge check finds the depth.
+        let bull = Cutter::bull(10.0, 2.0, Some(20.0)).unwrap();
+        let profile = bull.profile();
+        let design = DesignSurface::new(&plane_part(0.0));
+        let low = Pose::vertical(Point3::new(53.0, 0.0, -0.05));
+        let mut g = PoseGouge::none();
+        check_boundary(&design, &profile, &low, 2.0, &mut g);
+        assert!((g.depth - 0.05).abs() < 1e-6, "{g:?}");
+        let mut g = PoseGouge::none();
+        check_boundary(
+            &design,
+            &profile,
+            &Pose::vertical(Point3::new(53.0, 0.0, 0.0)),
+            2.0,
+            &mut g,
+        );
+        assert!(g.depth.abs() < 1e-6, "{g:?}");
     }
 }
