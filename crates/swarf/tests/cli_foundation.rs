@@ -1,0 +1,160 @@
+//! Golden CLI tests of the foundation commands: outputs, exit codes and error
+//! messages that name the file and field.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn swarf(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_swarf"))
+        .args(args)
+        .output()
+        .expect("the swarf binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("swarf-cli-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn help_lists_every_subcommand() {
+    let o = swarf(&["--help"]);
+    assert!(o.status.success());
+    let text = stdout(&o);
+    for sub in [
+        "inspect",
+        "eval",
+        "tessellate",
+        "plan",
+        "drop",
+        "verify",
+        "compare",
+        "demo",
+    ] {
+        assert!(
+            text.contains(&format!("  {sub}")),
+            "{sub} missing from:\n{text}"
+        );
+    }
+}
+
+#[test]
+fn eval_matches_the_die_closed_form() {
+    let o = swarf(&["eval", "die", "--patch", "0", "--uv", "0.3,0.7"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let (u, w) = (0.3_f64, 0.7_f64);
+    let want = [
+        -99.4 + 88.9 * w + 5.6 * w * w,
+        -131.3 * u + 28.1 * u * u,
+        5.9 * (u * u * w * w + u * u * w) - 3.9 * w * w * u + 76.2 * u * u + 6.7 * w * w
+            - 27.3 * u * w
+            - 50.8 * u
+            + 25.0 * w
+            + 12.1,
+    ];
+    for (k, want) in want.iter().enumerate() {
+        let got = v["point"][k].as_f64().unwrap();
+        assert!((got - want).abs() < 1e-9, "point[{k}] {got} vs {want}");
+    }
+    let want_du = [0.0, -131.3 + 56.2 * u];
+    for (k, want) in want_du.iter().enumerate() {
+        assert!((v["du"][k].as_f64().unwrap() - want).abs() < 1e-9);
+    }
+    let k1 = v["k1"].as_f64().unwrap();
+    let k2 = v["k2"].as_f64().unwrap();
+    assert!(k1 >= k2);
+    let n: Vec<f64> = (0..3).map(|k| v["normal"][k].as_f64().unwrap()).collect();
+    assert!((n.iter().map(|x| x * x).sum::<f64>() - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn inspect_reports_the_wave_box() {
+    let o = swarf(&["inspect", "wave", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let p = &v["patches"][0];
+    assert_eq!(p["degree"], serde_json::json!([3, 3]));
+    for (k, want) in [0.0, 0.0].iter().enumerate() {
+        assert!((p["bbox_min"][k].as_f64().unwrap() - want).abs() < 1e-6);
+    }
+    for (k, want) in [200.0, 100.0].iter().enumerate() {
+        assert!((p["bbox_max"][k].as_f64().unwrap() - want).abs() < 1e-6);
+    }
+}
+
+#[test]
+fn tessellate_writes_a_readable_stl() {
+    let dir = temp_dir("tess");
+    let stl = dir.join("die.stl");
+    let o = swarf(&[
+        "tessellate",
+        "die",
+        "--tol",
+        "0.1",
+        "-o",
+        stl.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mesh = swarf_io::read_stl(&stl).unwrap();
+    assert!(mesh.triangles.len() > 100);
+    let o = swarf(&["inspect", stl.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("no degenerate"), "{}", stdout(&o));
+}
+
+#[test]
+fn bad_input_names_the_file_and_field() {
+    let dir = temp_dir("bad");
+    let part = dir.join("bad.toml");
+    std::fs::write(
+        &part,
+        "name = \"bad\"\nunits = \"mm\"\n[[patch]]\ndegree = [1, 1]\npoints = [[0,0,0],[1,0,0],[0,1,0]]\n",
+    )
+    .unwrap();
+    let p = part.to_str().unwrap();
+    let stl = dir.join("out.stl");
+    let cases: [(Vec<&str>, &[&str]); 6] = [
+        (vec!["inspect", p], &["bad.toml", "points", "expected 4"]),
+        (vec!["eval", "die", "--uv", "0.5"], &["--uv", "two numbers"]),
+        (vec!["eval", "die", "--uv", "1.5,0"], &["--uv", "outside"]),
+        (
+            vec!["eval", "die", "--patch", "3", "--uv", "0,0"],
+            &["--patch"],
+        ),
+        (
+            vec!["inspect", "no-such-part"],
+            &["no-such-part", "built-in parts"],
+        ),
+        (
+            vec![
+                "tessellate",
+                "wave",
+                "--tol",
+                "0",
+                "-o",
+                stl.to_str().unwrap(),
+            ],
+            &["--tol"],
+        ),
+    ];
+    for (args, wants) in cases {
+        let o = swarf(&args);
+        assert!(!o.status.success(), "{args:?} should fail");
+        let e = stderr(&o);
+        for want in wants {
+            assert!(e.contains(want), "{args:?}: {want:?} not in {e}");
+        }
+        assert!(!e.contains("panicked"), "{args:?}: {e}");
+    }
+    assert!(!stl.exists(), "a failed run must not write its output");
+}
