@@ -69,7 +69,8 @@ pub struct SimReport {
     pub primitives: usize,
     /// Motions that were sampled (arcs, five-axis).
     pub sampled_motions: usize,
-    /// Largest sampling bound of any motion, mm (0: all exact).
+    /// Largest sampling bound of any motion, mm (0: all exact); five-axis rapids are
+    /// sampled at least as coarsely as [`crate::sweep::RAPID_SAMPLE`].
     pub max_sample_bound: f64,
     /// Cell evaluations (cells within reach of a primitive).
     pub cells_visited: u64,
@@ -137,7 +138,7 @@ pub fn simulate(
         chunk.extend(sw.primitives.into_iter().map(|p| (p, index)));
         pending += 1;
         if chunk.len() >= CHUNK_PRIMITIVES || k + 1 == motions.len() {
-            run_chunk(dexel, tool, motions, &chunk, opts, &mut report, &mut rapid);
+            run_chunk(dexel, tool, motions, &chunk, &mut report, &mut rapid);
             report.primitives += chunk.len();
             chunk.clear();
             progress.advance(pending);
@@ -162,7 +163,6 @@ fn run_chunk(
     tool: &SimTool,
     motions: &[Motion],
     chunk: &[(Primitive, u32)],
-    opts: &SimOptions,
     report: &mut SimReport,
     rapid: &mut BTreeMap<u32, f64>,
 ) {
@@ -193,7 +193,6 @@ fn run_chunk(
                         grid: &grid,
                         row: j,
                         motion: *motion,
-                        accept: opts.sample_tol,
                     };
                     let cut = prim.cut_row(
                         &job,

@@ -134,8 +134,6 @@ pub struct RowJob<'a> {
     pub row: usize,
     /// Motion index to record.
     pub motion: u32,
-    /// Sampling tolerance (accept distance of a sphere-tracing march), mm.
-    pub accept: f64,
 }
 
 impl Sweep for LinearSweep {
@@ -177,7 +175,7 @@ impl Sweep for ToolInstance {
                 continue;
             }
             let x = job.grid.x(i);
-            let z = self.lowest(&job.tool.profile, job.tool.convex, x, y, job.accept);
+            let z = self.lowest(&job.tool.profile, job.tool.convex, (x, y), h);
             if z < h {
                 heights[i] = z;
                 last[i] = job.motion;

@@ -8,9 +8,11 @@
 //! the tool, `z <- z + f(q, z)`, never passes the first entry point: every iterate is
 //! a lower bound of the lowest tool point on the line, and the march stops at a point
 //! within [`HIT_DISTANCE`] of the tool. Where the normal there is steep the march
-//! slows down (factor `1 - cos(slope)` a step); after [`MAX_STEPS`] it accepts the
-//! point if it lies within the sampling tolerance of the tool (so the result stays
-//! within the stated 3D bound) and reports a miss otherwise.
+//! slows down (factor `1 - cos(slope)` a step); a march that rises above the cell's
+//! current height stops there (the tool cannot lower the cell). A line that grazes
+//! the tool, where the march crawls, is finished after [`MAX_STEPS`] by a bracketing
+//! search on the convex distance (golden section for its minimum, then bisection for
+//! the entry), so the result never lies below the tool.
 //!
 //! The tools of the family are convex solids of revolution, and the signed distance of
 //! a convex set is convex, so along the line `f` is convex: once a step does not
@@ -24,6 +26,9 @@ use swarf_tool::{Pose, Profile};
 pub const HIT_DISTANCE: f64 = 1e-9;
 /// Largest number of sphere-tracing steps per cell.
 pub const MAX_STEPS: usize = 200;
+/// Golden-section and bisection steps for a grazing line (bracket shrinks to
+/// `0.618^80`, about 1e-17, of the tool's height).
+const BRACKET_STEPS: usize = 80;
 
 /// One tool position, with its XY box and height range.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,31 +64,66 @@ impl ToolInstance {
         self.zlo
     }
 
-    /// Lowest point of the tool over `(x, y)`, mm; `+inf` when the line misses it.
-    /// `accept` is the distance within which a march that runs out of steps still
-    /// counts as a hit.
-    pub fn lowest(&self, profile: &Profile, convex: bool, x: f64, y: f64, accept: f64) -> f64 {
+    /// Lowest point of the tool over `(x, y)`, mm; `+inf` when the line misses it or
+    /// only meets it above `ceiling` (the cell's current height: nothing to cut).
+    pub fn lowest(&self, profile: &Profile, convex: bool, (x, y): (f64, f64), ceiling: f64) -> f64 {
+        let top = self.ztop.min(ceiling);
+        let f = |z: f64| profile.signed_distance(&self.pose, &Point3::new(x, y, z));
         let mut z = self.zlo - 1.0;
         let mut prev = f64::INFINITY;
         for _ in 0..MAX_STEPS {
-            let f = profile.signed_distance(&self.pose, &Point3::new(x, y, z));
-            if !f.is_finite() {
+            let d = f(z);
+            if !d.is_finite() {
                 return f64::INFINITY;
             }
-            if f <= HIT_DISTANCE {
+            if d <= HIT_DISTANCE {
                 return z;
             }
-            if convex && f >= prev {
+            if convex && d >= prev {
                 return f64::INFINITY;
             }
-            prev = f;
-            z += f;
-            if z > self.ztop {
+            prev = d;
+            z += d;
+            if z > top {
                 return f64::INFINITY;
             }
         }
-        if prev <= accept { z } else { f64::INFINITY }
+        if convex {
+            grazing(&f, z, top)
+        } else {
+            f64::INFINITY
+        }
     }
+}
+
+/// The entry point of a grazing line into a convex tool, from `z` (below it) up to
+/// `top`: golden-section search for the minimum of the convex distance `f`, then
+/// bisection between `z` and that minimum; `+inf` when the minimum stays outside.
+fn grazing(f: &impl Fn(f64) -> f64, z: f64, top: f64) -> f64 {
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (z, top);
+    for _ in 0..BRACKET_STEPS {
+        let (c, d) = (b - ratio * (b - a), a + ratio * (b - a));
+        if f(c) <= f(d) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    let low = 0.5 * (a + b);
+    if f(low) > HIT_DISTANCE {
+        return f64::INFINITY;
+    }
+    let (mut out, mut inside) = (z, low);
+    for _ in 0..BRACKET_STEPS {
+        let mid = 0.5 * (out + inside);
+        if f(mid) > HIT_DISTANCE {
+            out = mid;
+        } else {
+            inside = mid;
+        }
+    }
+    inside
 }
 
 #[cfg(test)]
@@ -116,7 +156,7 @@ mod tests {
         let centre = pose.cl + axis * 4.0;
         for k in 0..40 {
             let (x, y) = (centre.x - 3.9 + 0.2 * k as f64, centre.y + 0.7);
-            let got = inst.lowest(&profile, true, x, y, 1e-6);
+            let got = inst.lowest(&profile, true, (x, y), f64::INFINITY);
             let d2 = (x - centre.x).powi(2) + (y - centre.y).powi(2);
             let sphere = centre.z - (16.0 - d2).sqrt();
             // The lowest point over the cell is on the ball wherever the ball's lowest
@@ -129,7 +169,7 @@ mod tests {
             assert!((got - inside).abs() < 1e-7, "x {x}: {got} vs {inside}");
         }
         assert_eq!(
-            inst.lowest(&profile, true, centre.x + 30.0, centre.y, 1e-6),
+            inst.lowest(&profile, true, (centre.x + 30.0, centre.y), f64::INFINITY),
             f64::INFINITY
         );
     }
@@ -146,7 +186,7 @@ mod tests {
         for k in 0..=60 {
             let x = b[0] + (b[2] - b[0]) * k as f64 / 60.0;
             let y = 1.3;
-            let got = inst.lowest(&profile, true, x, y, 1e-6);
+            let got = inst.lowest(&profile, true, (x, y), f64::INFINITY);
             if got.is_finite() {
                 hits += 1;
                 assert!(

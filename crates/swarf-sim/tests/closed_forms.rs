@@ -228,3 +228,54 @@ fn a_planted_gouge_is_found_where_and_as_deep_as_planted() {
         g.area_mm2
     );
 }
+
+#[test]
+fn tilted_ball_passes_leave_the_same_scallop_within_the_sampling_bound() {
+    // A ball tilted 20 degrees about y is still a sphere at its tip: two five-axis
+    // passes s apart leave r - sqrt(r^2 - s^2 / 4), up to the stated sampling bound.
+    // (passes off the cell lattice, so that no centre is exactly tangent to the tool,
+    // where a distance threshold decides)
+    let (r, s, tilt) = (2.0, 2.06, 20f64.to_radians());
+    let axis = swarf_geom::Vec3::new(tilt.sin(), 0.0, tilt.cos());
+    let pose = |x: f64, y: f64| Pose::new(Point3::new(x, y, r) - axis * r, axis).unwrap();
+    let tilted = |a: Pose, b: Pose, line: usize| Motion {
+        kind: MotionKind::Linear,
+        start: a,
+        end: b,
+        feed: 300.0,
+        line,
+    };
+    let moves = [
+        tilted(pose(-7.0, -s / 2.0), pose(7.0, -s / 2.0), 1),
+        tilted(pose(7.0, s / 2.0), pose(-7.0, s / 2.0), 2),
+    ];
+    let g = grid(4.0, 3.0);
+    let tool = SimTool::new(&"ball:d=4".parse::<Cutter>().unwrap()).unwrap();
+    let mut d = Dexel::new(g, StockInit::Box { top: 3.0 }).unwrap();
+    let opts = SimOptions {
+        sample_tol: 0.01,
+        ..SimOptions::default()
+    };
+    let report = simulate(&mut d, &tool, &moves, &opts, &Quiet);
+    assert!(report.max_sample_bound <= 0.01 && report.sampled_motions == 2);
+    let h = |rho: f64| {
+        if rho <= r {
+            r - (r * r - rho * rho).sqrt()
+        } else {
+            3.0
+        }
+    };
+    for j in 0..g.ny {
+        let y = g.y(j);
+        let want = h((y - s / 2.0).abs()).min(h((y + s / 2.0).abs())).min(3.0);
+        for i in 0..g.nx {
+            let got = d.height(i, j);
+            // The march stops within 1e-9 mm (3D) of the tool: vertically 1e-9 over
+            // the cosine of the slope, which on the ball's flank is 1e-7 at most here.
+            assert!(
+                got >= want - 1e-7 && got <= want + report.max_sample_bound,
+                "y {y}: {got} vs {want}"
+            );
+        }
+    }
+}
