@@ -213,12 +213,17 @@ impl<'s, 'a> IsoScallop<'s, 'a> {
                 Some((uv, d, tool_side_normal(&d)?))
             })
             .collect();
+        let last = frames.len().saturating_sub(1);
         (0..frames.len())
             .filter_map(|i| {
                 let (uv, d, normal) = frames[i];
-                let a = frames[i.saturating_sub(1)].1.point;
-                let b = frames[(i + 1).min(frames.len() - 1)].1.point;
-                let chord = b - a;
+                // Tangent over a baseline of at least half a station spacing each way
+                // (the first segments of a path can be very short).
+                let here = d.point;
+                let far = |k: &usize| (frames[*k].1.point - here).norm() >= 0.5 * STATION_SPACING;
+                let a = (0..i).rev().find(far).unwrap_or(0);
+                let b = (i + 1..=last).find(far).unwrap_or(last);
+                let chord = frames[b].1.point - frames[a].1.point;
                 let tangent = (chord - normal * normal.dot(&chord)).try_normalize(0.0)?;
                 let side = sign * normal.cross(&tangent);
                 let kappa = tool_side_curvature(&d, &side)?;
@@ -231,6 +236,7 @@ impl<'s, 'a> IsoScallop<'s, 'a> {
                     side,
                     step: self.setup.side.step(kappa, tilt),
                     radius: self.setup.side.effective_radius(tilt),
+                    end: i == 0 || i == last,
                 })
             })
             .collect()
@@ -247,11 +253,15 @@ impl<'s, 'a> IsoScallop<'s, 'a> {
             .collect();
         let mut curves = Vec::new();
         let mut current: Vec<NextPoint> = Vec::new();
+        let mut beside: Option<NextPoint> = None;
         for (st, q) in stations.iter().zip(&next) {
             match q {
                 Next::Skip => {}
                 Next::Point(q) => {
                     figures.add_step(q.across, Some(q.scallop));
+                    if current.is_empty() {
+                        current.extend(beside.take());
+                    }
                     let advances =
                         |l: &NextPoint| (q.point - l.point).dot(&st.tangent) > MIN_ADVANCE;
                     if q.slid {
@@ -263,10 +273,12 @@ impl<'s, 'a> IsoScallop<'s, 'a> {
                         current.push(*q);
                     }
                 }
-                Next::Covered => {
+                Next::Covered(edge) => {
                     if !current.is_empty() {
+                        current.extend(edge);
                         curves.push(std::mem::take(&mut current));
                     }
+                    beside = *edge;
                 }
             }
         }

@@ -1,6 +1,7 @@
 //! What the three iso strategies share: validated parameters, the side-step model,
 //! the forward-step options, the side geometry at a CC point, and the end of planning
-//! (whole-part gouge check, joining and ordering rows, the report).
+//! (boundary passes where the rows leave too much on an edge, whole-part gouge check,
+//! joining and ordering rows, the report).
 //!
 //! Side geometry (paper 004, iso-parametric section): at a CC point with unit normal
 //! `N` (toward the tool) and unit path tangent `T`, the side direction is
@@ -8,6 +9,7 @@
 //! ([`crate::side_step`]) and the tilt of `N` from the tool axis seen in the section
 //! normal to `T`, `atan2(|B.z|, N.z)`.
 
+use crate::boundary::boundary_passes;
 use crate::cl_curve::{ClMap, tool_side_curvature, tool_side_normal};
 use crate::envelope::Envelope;
 use crate::error::PathError;
@@ -177,6 +179,10 @@ impl<'a> IsoSetup<'a> {
                 "{:?}: no CC point of part {:?} can be reached by the tool",
                 self.job.strategy.kind, self.part.name
             )));
+        }
+        let extra = boundary_passes(self, &rows);
+        if !extra.is_empty() {
+            rows.push(extra);
         }
         let stats = self.gouge.apply(&mut rows);
         if stats.lifted == total {

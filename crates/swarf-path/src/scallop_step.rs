@@ -49,6 +49,10 @@ const MIN_OFFSET: f64 = 1e-6;
 /// A direction with more than this share along an edge runs along it (a station on
 /// the edge slides; an exit through it is through the far edge).
 const HALF: f64 = 0.5;
+/// A path's end station on an edge slides along it when its side direction has at
+/// least this share along the edge (the path ends on that edge and must keep reaching
+/// it; a side direction straight across the edge means the path runs along it).
+const END_SLIDE_SHARE: f64 = 0.2;
 /// Parameters within this fraction of the range of a bound are on that edge.
 const ON_EDGE_REL: f64 = 1e-9;
 
@@ -69,6 +73,8 @@ pub struct Station {
     pub step: f64,
     /// Effective cutting radius here, mm.
     pub radius: f64,
+    /// True at the first and last station of a path.
+    pub end: bool,
 }
 
 /// The next CC point.
@@ -106,14 +112,16 @@ pub enum Next {
     Skip,
     /// The surface beyond is covered (the cross-section leaves at once through the far
     /// boundary, or the tool here alone leaves at most `h` up to it): the next path is
-    /// cut here.
-    Covered,
+    /// cut here. In the second case the point where the section leaves is given: a
+    /// next path that starts or ends beside this station continues to it along the
+    /// edge, so that no stretch of the edge falls between the two.
+    Covered(Option<NextPoint>),
 }
 
 /// The next CC point from `st` on `patch` for the scallop model `side` (module doc).
 pub fn next_point(patch: &Patch, side: &SideStep, st: &Station) -> Next {
     let Some(mode) = mode(patch, st) else {
-        return Next::Covered;
+        return Next::Covered(None);
     };
     let h = side.h();
     let eval = |w: f64, guess: [f64; 2]| candidate(patch, side, st, mode, w, guess);
@@ -131,11 +139,11 @@ pub fn next_point(patch: &Patch, side: &SideStep, st: &Station) -> Next {
             None => return lo.q.map_or(Next::Skip, Next::Point),
         };
         if c.beyond && c.w <= MIN_OFFSET {
-            return Next::Covered;
+            return Next::Covered(None);
         }
         if c.s <= h && c.beyond {
             if alone(st, &c) <= h {
-                return Next::Covered;
+                return Next::Covered(Some(c.q.with_scallop(c.s)));
             }
             return Next::Point(c.q.with_scallop(c.s));
         }
@@ -423,7 +431,8 @@ fn mode(patch: &Patch, st: &Station) -> Option<Mode> {
             let inward =
                 if dir == 0 { st.d.du } else { st.d.dv } * if end == 0 { 1.0 } else { -1.0 };
             let c = along_share(&st.d, Edge { dir, end }, &st.side);
-            if c > HALF && slide.is_none_or(|(b, _)| c > b) {
+            let threshold = if st.end { END_SLIDE_SHARE } else { HALF };
+            if c > threshold && slide.is_none_or(|(b, _)| c > b) {
                 slide = Some((c, Edge { dir, end }));
             }
             if st.side.dot(&inward) <= 0.0 {
@@ -501,6 +510,7 @@ mod tests {
             side: sidev,
             step: side.step(-1.0 / 60.0, 0.0),
             radius: 4.0,
+            end: uv[0] == 0.0 || uv[0] == 1.0,
         }
     }
 
@@ -528,10 +538,10 @@ mod tests {
         assert!((q.uv[1] - 1.0).abs() < 1e-12 && q.scallop < 0.15);
         // 0.3 mm from it: this tool alone leaves less than h at the edge.
         let st = station(&p, &side, [0.5, 0.995]);
-        assert_eq!(next_point(&p, &side, &st), Next::Covered);
+        assert!(matches!(next_point(&p, &side, &st), Next::Covered(_)));
         // On the edge with the side pointing out: dropped.
         let st = station(&p, &side, [0.5, 1.0]);
-        assert_eq!(next_point(&p, &side, &st), Next::Covered);
+        assert!(matches!(next_point(&p, &side, &st), Next::Covered(_)));
         // On a side edge (u = 0) the point slides along it.
         let st = station(&p, &side, [0.0, 0.3]);
         let q = point(next_point(&p, &side, &st));

@@ -159,3 +159,17 @@ fn the_scallop_oracle_measures_the_closed_form() {
     let c = crests(&thin, &wave().patches[0], 4.0, 4.0, 16, 8.0);
     assert!(c.max() > 2.0 * H, "{}", c.max());
 }
+
+/// Drive planes oblique to the patch edges end adjacent pieces on different edges
+/// around the corners; the boundary passes cover what lies between their ends.
+#[test]
+fn oblique_drive_planes_leave_no_corner_uncovered() {
+    let part = wave();
+    let mut job = wave_job("iso-planar", H, TOL);
+    job.strategy.angle = 30.0;
+    let plan = swarf_path::plan(&job, PlanInput::Part(&part)).unwrap();
+    let (anywhere, at) = max_residual(&plan, &part, 4.0, 0.5);
+    assert!(anywhere <= SLACK * H, "{anywhere} left at {at:?}");
+    let c = crests(&plan, &part.patches[0], 4.0, 2.0, 16, 4.0);
+    assert!(c.max() <= SLACK * H, "crest {}", c.max());
+}
