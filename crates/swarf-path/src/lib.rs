@@ -20,6 +20,7 @@ mod raster_double;
 mod raster_frame;
 mod raster_pass;
 pub mod raster_step;
+pub mod scallop_crest;
 pub mod scallop_step;
 pub mod section_point;
 pub mod side_step;

@@ -10,14 +10,9 @@
 //!
 //! 1. Candidates `q(w)` lie on the surface in the plane through `P` normal to `T` (the
 //!    cross-section), at side offset `B . (q - P) = w` ([`crate::section_point`]).
-//! 2. In that plane each tool's envelope is the circle of its effective radius about
-//!    its centre, `P + r_e N` and `q + r_e' N'` (the latter projected into the plane:
-//!    with the paths' tangents parallel, Feng and Li's assumption, the swept envelope
-//!    of the next path cuts the plane in exactly that circle; where they are not, the
-//!    true section is an ellipse around it and the true scallop is smaller). Where the
-//!    circles cross nearest the surface is the scallop crest; its distance to the
-//!    surface (the patch's projection; beyond an edge, the distance to the tangent
-//!    plane there, i.e. the surface continued) is the scallop height `s(w)`.
+//! 2. The scallop height `s(w)` between the tool at `P` and the tool at `q(w)` is
+//!    measured in that plane ([`crate::scallop_crest`]: the crossing of the two tool
+//!    circles nearest the surface, and its distance to the surface).
 //! 3. `s(w) = h` is solved for `w` by regula falsi (Illinois) from the local estimate
 //!    of [`crate::side_step`], so the crest lies on the offset surface at `h` exactly
 //!    as in Feng and Li, without their offset surfaces.
@@ -27,13 +22,14 @@
 //! is covered if the station's tool alone leaves at most `h` there (the height where
 //! the ray along the normal at the edge point enters its envelope); then no point
 //! follows. Otherwise the next point is where the section leaves (the next path then
-//! runs along that edge), and a point whose cross-section leaves at once is dropped. When
-//! it leaves through an edge the path ends on (a side edge), the station gives no
-//! point: the path's end on that edge is carried by its end station, which, lying on
-//! the edge with `B` along it, slides along the edge (paths keep spanning the patch
-//! from edge to edge).
+//! runs along that edge), and a point whose cross-section leaves at once is dropped.
+//! When it leaves through an edge the path ends on (a side edge), the station gives
+//! no point: the path's end on that edge is carried by its end station, which, lying
+//! on the edge with `B` along it, slides along the edge (paths keep spanning the
+//! patch from edge to edge).
 
 use crate::cl_curve::tool_side_normal;
+use crate::scallop_crest::{alone, scallop};
 use crate::section_point::{Edge, PlaneEq, Solved, on_edge, two_planes};
 use crate::side_step::SideStep;
 use swarf_geom::{Patch, Point3, SurfaceDerivs, Vec3};
@@ -142,7 +138,7 @@ pub fn next_point(patch: &Patch, side: &SideStep, st: &Station) -> Next {
             return Next::Covered(None);
         }
         if c.s <= h && c.beyond {
-            if alone(st, &c) <= h {
+            if alone(st, &c.q.point, &c.normal) <= h {
                 return Next::Covered(Some(c.q.with_scallop(c.s)));
             }
             return Next::Point(c.q.with_scallop(c.s));
@@ -164,24 +160,6 @@ pub fn next_point(patch: &Patch, side: &SideStep, st: &Station) -> Next {
         w *= BRACKET_GROWTH;
     }
     lo.q.map_or(Next::Skip, Next::Point)
-}
-
-/// Material left at the exit point of `c` (on the far edge) by the station's tool
-/// alone: where the ray along the surface normal there enters the tool's circle.
-fn alone(st: &Station, c: &Cand) -> f64 {
-    let centre = st.d.point + st.radius * st.normal;
-    let m = c.q.point - centre;
-    let b = m.dot(&c.normal);
-    let cc = m.norm_squared() - st.radius * st.radius;
-    if cc <= 0.0 {
-        return 0.0;
-    }
-    let disc = b * b - cc;
-    if disc < 0.0 {
-        return f64::INFINITY;
-    }
-    let t = -b - disc.sqrt();
-    if t >= 0.0 { t } else { f64::INFINITY }
 }
 
 /// The cross-section left through a side edge (see [`Next::Skip`]).
@@ -374,47 +352,6 @@ fn corner_beyond(
             sa.total_cmp(&sb)
         })?;
     (offset.normal.dot(&ahead.1.point.coords) < offset.offset).then_some(ahead)
-}
-
-/// Scallop height between the tool at the station and the tool at `d` (module doc).
-fn scallop(patch: &Patch, side: &SideStep, st: &Station, d: &SurfaceDerivs, uv: [f64; 2]) -> f64 {
-    let Some(n) = tool_side_normal(d) else {
-        return f64::INFINITY;
-    };
-    let t = st.tangent;
-    let tilt = st.side.z.abs().atan2(n.z);
-    let r2 = side.effective_radius(tilt);
-    let c1 = st.d.point + st.radius * st.normal;
-    let c2 = d.point + r2 * n;
-    let c2 = c2 - (c2 - st.d.point).dot(&t) * t;
-    let mid = Point3::from(0.5 * (st.d.point.coords + d.point.coords));
-    let Some(crest) = crest(&c1, st.radius, &c2, r2, &mid) else {
-        return f64::INFINITY;
-    };
-    let pr = patch.project_from(&crest, 0.5 * (st.uv[0] + uv[0]), 0.5 * (st.uv[1] + uv[1]));
-    let below = patch.derivs(pr.u, pr.v);
-    // Along the normal at the foot: the distance inside the patch, and the distance to
-    // the tangent plane at the edge where the crest lies beyond it.
-    tool_side_normal(&below).map_or(pr.distance, |nn| (crest - pr.point).dot(&nn))
-}
-
-/// The crossing of two coplanar circles nearest `near`; `None` when they do not meet.
-fn crest(c1: &Point3, r1: f64, c2: &Point3, r2: f64, near: &Point3) -> Option<Point3> {
-    let d = c2 - c1;
-    let len = d.norm();
-    if len == 0.0 || len > r1 + r2 || len < (r1 - r2).abs() {
-        return None;
-    }
-    let a = (r1 * r1 - r2 * r2 + len * len) / (2.0 * len);
-    let hh = (r1 * r1 - a * a).max(0.0).sqrt();
-    let e = d / len;
-    let base = c1 + a * e;
-    let mut perp = (near - base) - e * e.dot(&(near - base));
-    if perp.norm() == 0.0 {
-        return Some(base);
-    }
-    perp.normalize_mut();
-    Some(base + hh * perp)
 }
 
 /// How the station moves (module doc); `None` when it must be dropped.

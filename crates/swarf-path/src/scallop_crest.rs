@@ -1,0 +1,105 @@
+//! The scallop between two tools in a cross-section of the surface (Feng & Li 2002,
+//! the scallop point; paper 004 fig. 7).
+//!
+//! In the plane through a CC point `P` normal to its path tangent `T`, each tool's
+//! envelope is the circle of its effective radius about its centre: `P + r_e N` for
+//! the tool at `P`, and for the tool touching the surface at `Q` the centre
+//! `Q + r_e' N'` projected into the plane (with the paths' tangents parallel, Feng and
+//! Li's assumption, the swept envelope of the next path cuts the plane in exactly that
+//! circle; where they are not, the true section is an ellipse around it and the true
+//! scallop is smaller). The two circles cross at two points; the one nearer the
+//! surface (the midpoint of `P` and `Q`) is the scallop crest, and its distance to the
+//! surface along the normal at its foot (the patch's projection; beyond an edge, the
+//! distance to the tangent plane there, i.e. the surface continued) is the scallop
+//! height. A ball's envelope is exactly its circle; other cutters use the effective
+//! radius of [`crate::side_step`].
+
+use crate::cl_curve::tool_side_normal;
+use crate::scallop_step::Station;
+use crate::side_step::SideStep;
+use swarf_geom::{Patch, Point3, SurfaceDerivs, Vec3};
+
+/// Scallop height between the tool at the station and the tool touching the surface
+/// at `d` (parameters `uv`), in the station's cross-section (module doc), mm;
+/// infinite where the two envelopes do not meet.
+pub fn scallop(
+    patch: &Patch,
+    side: &SideStep,
+    st: &Station,
+    d: &SurfaceDerivs,
+    uv: [f64; 2],
+) -> f64 {
+    let Some(n) = tool_side_normal(d) else {
+        return f64::INFINITY;
+    };
+    let t = st.tangent;
+    let tilt = st.side.z.abs().atan2(n.z);
+    let r2 = side.effective_radius(tilt);
+    let c1 = st.d.point + st.radius * st.normal;
+    let c2 = d.point + r2 * n;
+    let c2 = c2 - (c2 - st.d.point).dot(&t) * t;
+    let mid = Point3::from(0.5 * (st.d.point.coords + d.point.coords));
+    let Some(crest) = crest(&c1, st.radius, &c2, r2, &mid) else {
+        return f64::INFINITY;
+    };
+    let pr = patch.project_from(&crest, 0.5 * (st.uv[0] + uv[0]), 0.5 * (st.uv[1] + uv[1]));
+    let below = patch.derivs(pr.u, pr.v);
+    // Along the normal at the foot: the distance inside the patch, and the distance to
+    // the tangent plane at the edge where the crest lies beyond it.
+    tool_side_normal(&below).map_or(pr.distance, |nn| (crest - pr.point).dot(&nn))
+}
+
+/// The crossing of two coplanar circles nearest `near`; `None` when they do not meet.
+fn crest(c1: &Point3, r1: f64, c2: &Point3, r2: f64, near: &Point3) -> Option<Point3> {
+    let d = c2 - c1;
+    let len = d.norm();
+    if len == 0.0 || len > r1 + r2 || len < (r1 - r2).abs() {
+        return None;
+    }
+    let a = (r1 * r1 - r2 * r2 + len * len) / (2.0 * len);
+    let hh = (r1 * r1 - a * a).max(0.0).sqrt();
+    let e = d / len;
+    let base = c1 + a * e;
+    let mut perp = (near - base) - e * e.dot(&(near - base));
+    if perp.norm() == 0.0 {
+        return Some(base);
+    }
+    perp.normalize_mut();
+    Some(base + hh * perp)
+}
+
+/// Material left at the surface point `q` (unit normal `normal`, toward the tool) by
+/// the station's tool alone: where the ray along the normal enters its circle.
+pub fn alone(st: &Station, q: &Point3, normal: &Vec3) -> f64 {
+    let centre = st.d.point + st.radius * st.normal;
+    let m = q - centre;
+    let b = m.dot(normal);
+    let cc = m.norm_squared() - st.radius * st.radius;
+    if cc <= 0.0 {
+        return 0.0;
+    }
+    let disc = b * b - cc;
+    if disc < 0.0 {
+        return f64::INFINITY;
+    }
+    let t = -b - disc.sqrt();
+    if t >= 0.0 { t } else { f64::INFINITY }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crest_of_two_equal_circles_is_on_the_bisector_nearest_the_surface() {
+        // Two circles of radius 4 centred 3 apart at height 4 over the plane z = 0:
+        // they cross at z = 4 -+ sqrt(16 - 2.25).
+        let c1 = Point3::new(0.0, 0.0, 4.0);
+        let c2 = Point3::new(3.0, 0.0, 4.0);
+        let low = crest(&c1, 4.0, &c2, 4.0, &Point3::new(1.5, 0.0, 0.0)).unwrap();
+        assert!((low - Point3::new(1.5, 0.0, 4.0 - 13.75f64.sqrt())).norm() < 1e-12);
+        let high = crest(&c1, 4.0, &c2, 4.0, &Point3::new(1.5, 0.0, 10.0)).unwrap();
+        assert!((high.z - (4.0 + 13.75f64.sqrt())).abs() < 1e-12);
+        assert!(crest(&c1, 1.0, &c2, 1.0, &Point3::origin()).is_none());
+    }
+}
