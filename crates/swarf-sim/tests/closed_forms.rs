@@ -279,3 +279,36 @@ fn tilted_ball_passes_leave_the_same_scallop_within_the_sampling_bound() {
         }
     }
 }
+
+#[test]
+fn a_mesh_design_and_a_mesh_stock_give_the_patch_results() {
+    let p = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
+    let plane = swarf_geom::TriMesh::from_triangles(&[
+        [p(0.0, 0.0, 0.0), p(40.0, 0.0, 0.0), p(40.0, 20.0, 0.0)],
+        [p(0.0, 0.0, 0.0), p(40.0, 20.0, 0.0), p(0.0, 20.0, 0.0)],
+    ]);
+    let lid = swarf_geom::TriMesh::from_triangles(&[
+        [p(-5.0, -5.0, 0.5), p(45.0, -5.0, 0.5), p(45.0, 25.0, 0.5)],
+        [p(-5.0, -5.0, 0.5), p(45.0, 25.0, 0.5), p(-5.0, 25.0, 0.5)],
+    ]);
+    let cutter: Cutter = "ball:d=6".parse().unwrap();
+    let (dirty, line) = raster(true);
+    let opts = VerifyOptions {
+        cell: Some(0.125),
+        stock: StockSpec::Mesh(lid),
+        ..VerifyOptions::default()
+    };
+    let v = verify(Design::Mesh(&plane), &dirty, &cutter, &opts, &Quiet).unwrap();
+    let s = &v.deviation.summary;
+    assert_eq!((s.gouge.regions, s.gouges[0].line), (1, Some(line)));
+    assert!((s.gouges[0].worst + 0.05).abs() < 1e-9);
+    let part = flat_part();
+    let w = verify(Design::Part(&part), &dirty, &cutter, &opts, &Quiet).unwrap();
+    assert_eq!(v.stock.heights(), w.stock.heights());
+    assert_eq!(v.deviation.summary, w.deviation.summary);
+    // Program figures: feed moves at their feeds, rapids at the machine's rate.
+    let p = &v.program;
+    let want = 60.0 * (p.cutting_length_mm / 300.0) + 60.0 * p.rapid_length_mm / 5000.0;
+    assert!(p.time_s > 0.0 && (p.time_s - want).abs() < 1e-9 * want);
+    assert_eq!((p.passes, p.rapids), (14, 28));
+}
