@@ -348,6 +348,32 @@ boundary = [{start}, 0, 20, 4]"
                 .unwrap()
                 .starts_with("x,y,z,cx,cy,cz\n")
         );
+        // Passes across the groove find its crease: one double contact each, at its
+        // bottom, where the path now goes down to.
+        let across = job("ball:d=6", "stepover = 2\ntolerance = 0.01\nangle = 90");
+        let cross = super::plan(&mesh, &across).unwrap();
+        let crossings = cross.toolpath.passes.len();
+        assert!(
+            cross.double_contacts.len() >= crossings,
+            "{} < {crossings}",
+            cross.double_contacts.len()
+        );
+        let bottom = 3.0 * 2f64.sqrt() - 3.0;
+        for d in &cross.double_contacts {
+            assert!(
+                (d.cl.y - 10.0).abs() < 1e-6 && (d.cl.z - bottom).abs() < 1e-6,
+                "{:?}",
+                d.cl
+            );
+        }
+        for p in &cross.toolpath.passes {
+            let low = p
+                .points
+                .iter()
+                .map(|q| q.pose.cl.z)
+                .fold(f64::INFINITY, f64::min);
+            assert!((low - bottom).abs() < 1e-6, "{low}");
+        }
     }
 
     #[test]

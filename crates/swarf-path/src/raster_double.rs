@@ -64,22 +64,38 @@ pub(crate) fn double_contact(
     })
 }
 
-/// True when every contact's triangle lies in the first one's plane (or has no
-/// normal, being degenerate and so on the others' edges).
+/// The plane of a contact's triangle (upward unit normal, offset), `None` for a
+/// degenerate triangle.
+fn plane(mesh: &TriMesh, c: &DropResult) -> Option<(Vec3, f64)> {
+    mesh.normal(c.tri as usize).map(|n| {
+        let n: Vec3 = if n.z < 0.0 { -n } else { n };
+        (n, n.dot(&c.cc.coords))
+    })
+}
+
+fn close(a: (Vec3, f64), b: (Vec3, f64)) -> bool {
+    (a.0 - b.0).norm() < SAME_PLANE && (a.1 - b.1).abs() < SAME_PLANE
+}
+
+/// True when the two contacts' triangles lie in one plane (a degenerate triangle
+/// counts as in any plane: it lies on its neighbours' edges).
+pub(crate) fn same_plane(mesh: &TriMesh, a: &DropResult, b: &DropResult) -> bool {
+    match (plane(mesh, a), plane(mesh, b)) {
+        (Some(p), Some(q)) => close(p, q),
+        _ => true,
+    }
+}
+
+/// True when every contact's triangle lies in the first one's plane (degenerate ones
+/// aside).
 fn one_plane(mesh: &TriMesh, contacts: &[DropResult]) -> bool {
-    let plane = |c: &DropResult| {
-        mesh.normal(c.tri as usize).map(|n| {
-            let n: Vec3 = if n.z < 0.0 { -n } else { n };
-            (n, n.dot(&c.cc.coords))
-        })
-    };
-    let Some((n0, d0)) = contacts.iter().find_map(plane) else {
+    let Some(p0) = contacts.iter().find_map(|c| plane(mesh, c)) else {
         return true;
     };
     contacts
         .iter()
-        .filter_map(plane)
-        .all(|(n, d)| (n - n0).norm() < SAME_PLANE && (d - d0).abs() < SAME_PLANE)
+        .filter_map(|c| plane(mesh, c))
+        .all(|p| close(p, p0))
 }
 
 #[cfg(test)]

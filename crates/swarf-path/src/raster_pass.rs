@@ -19,11 +19,20 @@
 //! `min_step` there.
 
 use crate::plan::DoubleContact;
-use crate::raster_double::{TOP_TOL, double_contact};
+use crate::raster_double::{TOP_TOL, double_contact, same_plane};
 use crate::toolpath::{Contact, PathPoint};
 use swarf_geom::{Point3, TriMesh, Vec3};
 use swarf_tool::Pose;
 use swarf_tool::drop::{DropResult, DropScratch, MeshDropper};
+
+/// The crease between two contacts is located to this along the pass, mm.
+pub const SWITCH_TOL: f64 = 1e-8;
+/// Most bisection steps of a crease search.
+const SWITCH_STEPS: usize = 48;
+/// A contact that moves more than this many times as far as the tool between two
+/// samples has jumped (on a smooth convex surface it moves less than the tool, on a
+/// concave one of radius above 4/3 of the tool's less than 4 times as far).
+pub const JUMP_RATIO: f64 = 4.0;
 
 /// Sampling parameters of a pass.
 pub(crate) struct Sampler<'a> {
@@ -86,29 +95,45 @@ impl Sampler<'_> {
         }
         let n = (span / self.init_step).ceil().max(1.0) as usize;
         let mut contacts = Vec::new();
-        let mut drop = |t: f64| self.sample(line, t, scratch, &mut contacts, &mut out.doubles);
+        let mut drop = |t: f64, check: bool| {
+            self.sample(line, t, check, scratch, &mut contacts, &mut out.doubles)
+        };
         let first: Vec<Sample> = (0..=n)
-            .map(|i| drop(line.t0 + span * i as f64 / n as f64))
+            .map(|i| drop(line.t0 + span * i as f64 / n as f64, true))
             .collect();
         let mut samples = vec![first[0]];
         for w in first.windows(2) {
             self.refine(w[0], w[1], &mut drop, &mut samples);
             samples.push(w[1]);
         }
+        let switches = self.switches(&samples, &mut drop);
+        if !switches.is_empty() {
+            samples.extend(switches);
+            samples.sort_by(|a, b| a.t.total_cmp(&b.t));
+        }
         out.pieces = self.pieces(line, &samples);
         out
     }
 
-    /// Drops at `t`, records a double contact there if any.
+    /// Drops at `t`; with `check`, records a double contact there if any.
     fn sample(
         &self,
         line: &Line,
         t: f64,
+        check: bool,
         scratch: &mut DropScratch,
         contacts: &mut Vec<DropResult>,
         doubles: &mut Vec<DoubleContact>,
     ) -> Sample {
         let [x, y] = line.at(t);
+        if !check {
+            let hit = self.dropper.drop(x, y, scratch);
+            return Sample {
+                t,
+                hit,
+                corner: None,
+            };
+        }
         let hit = self
             .dropper
             .drop_with_contacts(x, y, TOP_TOL, scratch, contacts);
@@ -138,13 +163,13 @@ impl Sampler<'_> {
         &self,
         a: Sample,
         b: Sample,
-        drop: &mut impl FnMut(f64) -> Sample,
+        drop: &mut impl FnMut(f64, bool) -> Sample,
         out: &mut Vec<Sample>,
     ) {
         if a.hit.is_none() && b.hit.is_none() {
             return;
         }
-        let m = drop(0.5 * (a.t + b.t));
+        let m = drop(0.5 * (a.t + b.t), true);
         let coarse = 0.5 * (b.t - a.t) >= self.min_step;
         match (a.hit, m.hit, b.hit) {
             (Some(ha), Some(hm), Some(hb)) => {
@@ -167,6 +192,53 @@ impl Sampler<'_> {
             }
             _ => {}
         }
+    }
+
+    /// The creases of the CL curve: where the winning contact jumps between
+    /// neighbouring samples, by more than `min_sep` and more than [`JUMP_RATIO`] times
+    /// the tool's move, from one plane to another, the cutter passes over a valley and
+    /// touches both sides at one point between them. That
+    /// point is bisected to [`SWITCH_TOL`] (the two contacts' heights there then differ
+    /// by far less than the double-contact tolerance) and returned as a sample; the
+    /// drop there records the double contact when there is one. Consecutive drops of a
+    /// pass rarely land exactly on such a crease, so without this step a raster
+    /// crossing a valley would record none.
+    fn switches(
+        &self,
+        samples: &[Sample],
+        drop: &mut impl FnMut(f64, bool) -> Sample,
+    ) -> Vec<Sample> {
+        let mut out = Vec::new();
+        for w in samples.windows(2) {
+            let (Some(ha), Some(hb)) = (w[0].hit, w[1].hit) else {
+                continue;
+            };
+            let jump = (ha.cc - hb.cc).norm();
+            let moved = w[1].t - w[0].t;
+            if jump <= self.min_sep.max(JUMP_RATIO * moved) || same_plane(self.mesh, &ha, &hb) {
+                continue;
+            }
+            let (mut a, mut b) = ((w[0].t, ha.cc), (w[1].t, hb.cc));
+            for _ in 0..SWITCH_STEPS {
+                if b.0 - a.0 <= SWITCH_TOL {
+                    break;
+                }
+                let m = drop(0.5 * (a.0 + b.0), false);
+                let Some(h) = m.hit else {
+                    break;
+                };
+                if (h.cc - a.1).norm() <= (h.cc - b.1).norm() {
+                    a = (m.t, h.cc);
+                } else {
+                    b = (m.t, h.cc);
+                }
+            }
+            let m = drop(0.5 * (a.0 + b.0), true);
+            if m.hit.is_some() {
+                out.push(m);
+            }
+        }
+        out
     }
 
     /// The runs of samples with contact as pieces of path points.
