@@ -17,6 +17,11 @@
 //! vertically at the other end (a staircase), so its moves stay above every sample
 //! and above a single jump wherever it lies; the CL curve is not followed closer than
 //! `min_step` there.
+//!
+//! Where the contact jumps from one side of a valley to the other between two
+//! samples, the crease of the CL curve between them (the point where the cutter
+//! touches both sides) is found by bisection and added: the pass goes down to the
+//! valley's reachable bottom, and the double contact there is recorded.
 
 use crate::plan::DoubleContact;
 use crate::raster_double::{TOP_TOL, double_contact, same_plane};
