@@ -185,8 +185,28 @@ impl Envelope {
     /// mm (`m` dimensionless).
     #[inline]
     pub fn swept_min(&self, s: f64, d: f64, len: f64, m: f64) -> f64 {
+        self.swept_min_below(s, d, len, m, f64::INFINITY)
+    }
+
+    /// [`Envelope::swept_min`] when it is below `cap`, else `+inf`. Pieces whose
+    /// cheap lower bound (the slope term's least value plus `h` at the interval's
+    /// point nearest the foot point) is not below the best so far are skipped, which
+    /// spares the torus its root search wherever the cell is already lower.
+    #[inline]
+    pub fn swept_min_below(&self, s: f64, d: f64, len: f64, m: f64, cap: f64) -> f64 {
         let (a, b) = (-s, len - s);
-        let mut best = f64::INFINITY;
+        let start = cap - m * s;
+        let mut best = start;
+        let try_interval = |p: &Piece, lo: f64, hi: f64, best: &mut f64| {
+            if lo.is_nan() || hi.is_nan() || lo > hi {
+                return;
+            }
+            let near = 0.0f64.clamp(lo, hi);
+            let bound = (m * lo).min(m * hi) + p.h((near * near + d * d).sqrt().max(p.range().0));
+            if bound < *best {
+                *best = best.min(interval_min(p, lo, hi, d, m));
+            }
+        };
         for p in self.pieces() {
             let (r0, r1) = p.range();
             if d > r1 {
@@ -194,14 +214,18 @@ impl Envelope {
             }
             let w1 = (r1 * r1 - d * d).max(0.0).sqrt();
             if d >= r0 {
-                best = best.min(interval_min(p, a.max(-w1), b.min(w1), d, m));
+                try_interval(p, a.max(-w1), b.min(w1), &mut best);
             } else {
                 let w0 = (r0 * r0 - d * d).max(0.0).sqrt();
-                best = best.min(interval_min(p, a.max(-w1), b.min(-w0), d, m));
-                best = best.min(interval_min(p, a.max(w0), b.min(w1), d, m));
+                try_interval(p, a.max(-w1), b.min(-w0), &mut best);
+                try_interval(p, a.max(w0), b.min(w1), &mut best);
             }
         }
-        best + m * s
+        if best < start {
+            best + m * s
+        } else {
+            f64::INFINITY
+        }
     }
 }
 
@@ -408,10 +432,18 @@ mod tests {
         #[test]
         fn swept_min_matches_brute_force(
             which in 0usize..5, s in -6.0..16.0f64, d in 0.0..6.0f64,
-            len in 0.0..10.0f64, m in -3.0..3.0f64,
+            len in 0.0..10.0f64, m in -3.0..3.0f64, cap in -5.0..30.0f64,
         ) {
             let env = Envelope::new(&cutters()[which].profile());
             let got = env.swept_min(s, d, len, m);
+            let capped = env.swept_min_below(s, d, len, m, cap);
+            // (equal up to rounding at the cap itself)
+            let eps = 1e-12 * (1.0 + got.abs());
+            if capped.is_finite() {
+                prop_assert!((capped - got).abs() <= eps && got < cap + eps);
+            } else {
+                prop_assert!(got >= cap - eps);
+            }
             let want = brute(&env, s, d, len, m);
             if want.is_finite() {
                 prop_assert!((got - want).abs() < 1e-7, "got {got} want {want}");

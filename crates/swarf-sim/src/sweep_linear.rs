@@ -186,7 +186,7 @@ impl LinearSweep {
             if h <= self.zmin + env.h(d) {
                 continue;
             }
-            let z = self.a[2] + env.swept_min(s, d, self.len, self.m);
+            let z = self.a[2] + env.swept_min_below(s, d, self.len, self.m, h - self.a[2]);
             if z < h {
                 heights[i] = z;
                 last[i] = motion;
