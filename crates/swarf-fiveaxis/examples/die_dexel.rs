@@ -1,17 +1,48 @@
 //! The machined surface of the die experiment (thesis 000 ch. 6 and 8) by generating
 //! curves against the dexel (Z-map) verifier of swarf-sim, on section lines `x = c`:
-//! `cargo run --release -p swarf-fiveaxis --example die_dexel -- [alpha] [cell] [sample_tol] [meridians] [x...]`.
+//! `cargo run --release -p swarf-fiveaxis --example die_dexel -- [alpha|auto] [cell] [sample_tol] [meridians] [x...]`.
 //! Prints, per section, the largest difference of the two machined heights and both
-//! times.
+//! times; the deepest gouge the dexel finds; and whether every cell the dexel finds
+//! gouged lies under a pose that the sectioning check flagged.
 
 use std::time::Instant;
+use swarf_fiveaxis::CurveOptions;
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::drive::{DrivePlanes, drive_plane_passes};
+use swarf_fiveaxis::gouge::{GougeOptions, check_pass};
+use swarf_fiveaxis::positioning::{Positioning, position};
+use swarf_fiveaxis::profile_point::ProfileTable;
+use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
-use swarf_fiveaxis::{CurveOptions, incline_pass};
+use swarf_geom::Point3;
 use swarf_nc::read::{Motion, MotionKind};
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, SimTool, StockInit, simulate};
 use swarf_tool::{Cutter, Pose};
+
+/// Gouge tolerance, mm.
+const TOL: f64 = 0.01;
+
+/// Tip positions of the poses the sectioning check (whole tool) flags.
+fn flagged_poses(design: &DesignSurface, cutter: &Cutter, passes: &[Vec<Pose>]) -> Vec<Point3> {
+    let profile = cutter.profile();
+    let table = ProfileTable::new(&profile);
+    let g = GougeOptions {
+        sections: Sections::along(60f64.to_radians(), 1.0).expect("sections"),
+        tolerance: TOL,
+        curve: CurveOptions::default(),
+        cap_meridians: 96,
+        whole_tool: true,
+    };
+    let mut out = Vec::new();
+    for poses in passes {
+        for (p, pg) in poses.iter().zip(check_pass(design, &table, poses, &g)) {
+            if pg.gouges(TOL) {
+                out.push(p.cl);
+            }
+        }
+    }
+    out
+}
 
 fn arg(k: usize, default: f64) -> f64 {
     std::env::args()
@@ -21,6 +52,7 @@ fn arg(k: usize, default: f64) -> f64 {
 }
 
 fn main() {
+    let auto = std::env::args().nth(1).as_deref() == Some("auto");
     let alpha = arg(1, 3.0);
     let cell = arg(2, 0.05);
     let sample_tol = arg(3, 0.002);
@@ -42,14 +74,34 @@ fn main() {
     };
     let cc = drive_plane_passes(&design, &part.control_box(), &dp).expect("passes");
     let cutter: Cutter = "bull:d=38.1,r=6.35".parse().expect("tool");
-    let passes: Vec<Vec<Pose>> = cc
+    let p = if auto {
+        Positioning::GougeFree {
+            max_alpha: 25.0,
+            sections: 1.0,
+            tilt: 0.0,
+            max_rate: 0.5,
+            tolerance: None,
+        }
+    } else {
+        Positioning::Inclined {
+            alpha,
+            tilt: 0.0,
+            sections: 1.0,
+        }
+    };
+    let (planned, report) = position(&cutter, &part, &cc, &p, TOL).expect("positioning");
+    let passes: Vec<Vec<Pose>> = planned
         .iter()
-        .enumerate()
-        .map(|(k, c)| {
-            let p = incline_pass(&cutter, c, &[alpha.to_radians()], 0.0, k).expect("pose");
-            p.points.iter().map(|q| q.pose).collect()
-        })
+        .map(|p| p.points.iter().map(|q| q.pose).collect())
         .collect();
+    let flagged = flagged_poses(&design, &cutter, &passes);
+    println!(
+        "{}: lead {:.2}..{:.2} deg, sectioning flags {} poses",
+        if auto { "automatic" } else { "fixed" },
+        report.alpha_range_deg[0],
+        report.alpha_range_deg[1],
+        flagged.len()
+    );
     let t = Instant::now();
     let opts = CurveOptions {
         meridians,
@@ -95,6 +147,7 @@ fn main() {
         let t_dx = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let (mut worst, mut at, mut n, mut gouge) = (0.0f64, 0.0, 0, 0.0f64);
+        let (mut gouged, mut unflagged) = (0, 0);
         for j in 0..grid.ny {
             let [cx, cy] = grid.centre(0, j);
             let (Some(h), Some((d, _))) = (swept.height(cx, cy), design.height(cx, cy)) else {
@@ -106,6 +159,13 @@ fn main() {
             }
             n += 1;
             gouge = gouge.max(d - z);
+            if d - z > TOL {
+                gouged += 1;
+                let reach = cutter.radius() + 1.0;
+                if !flagged.iter().any(|q| (q.x - cx).hypot(q.y - cy) < reach) {
+                    unflagged += 1;
+                }
+            }
             if (h - z).abs() > worst.abs() {
                 worst = h - z;
                 at = cy;
@@ -114,7 +174,8 @@ fn main() {
         let t_q = t.elapsed().as_secs_f64();
         println!(
             "x = {x}: {n} cells; largest difference (curves - dexel) {:.4} mm at y = {at:.2}; \
-             dexel deepest below design {:.4} mm; dexel {:.2} s, section of the curves' surface {:.3} s",
+             dexel deepest below design {:.4} mm, {gouged} cells gouged, {unflagged} of them under \
+             no flagged pose; dexel {:.2} s, section of the curves' surface {:.3} s",
             worst, gouge, t_dx, t_q
         );
     }

@@ -1,7 +1,21 @@
-//! swarf-fiveaxis: five-axis positioning and checking.
+//! swarf-fiveaxis: five-axis positioning, swept surfaces, gouge checking and machines.
 //!
-//! - [`inclined`]: inclined-tool (Sturz) positioning along CC paths (thesis 000 §7.3.1).
-//! - [`gencurve`]: generating curves of a tool between two poses (thesis 000 ch. 5).
+//! Positioning (thesis 000 ch. 7):
+//! - [`inclined`]: inclined-tool (Sturz) positioning along CC paths (§7.3.1, eqs. 7.1-7.4).
+//! - [`autotilt`]: the smallest gouge-free lead at every CC point, smoothed (§7.3).
+//! - [`positioning`]: both as a job's `positioning` table asks, with gouge reports.
+//! - [`drive`]: CC paths on drive planes at a fixed cross feed (the thesis's experiments).
+//!
+//! Swept surfaces and gouges (thesis 000 ch. 3, 5, 7):
+//! - [`motion`]: the velocity field of the tool at a pose of a path.
+//! - [`gencurve`]: generating curves of inserts and cards (§5.3-5.4, eqs. 5.2-5.17).
+//! - [`profile_point`]: profile points by normal direction, arc length and height.
+//! - [`swept`]: the machined surface as a mesh of generating curves, sampled by height.
+//! - [`sections`], [`design`], [`gouge`]: sectioning gouge detection (§7.2).
+//!
+//! Machines and output:
+//! - [`machine`]: machine files, forward and inverse kinematics, rotary continuity.
+//! - [`post`]: five-axis G-code (`X Y Z` and two rotary words, G93 or G94).
 //!
 //! Units: millimetres and radians inside; degrees only in files and reports.
 

@@ -24,9 +24,9 @@ use swarf_tool::{Pose, Profile, Segment};
 /// Twice a triangle's area below which it is dropped from the mesh (mm^2).
 const MIN_DOUBLE_AREA: f64 = 1e-12;
 /// Chords per profile arc in the end caps.
-const CAP_ARC_PIECES: usize = 24;
+const CAP_ARC_PIECES: usize = 64;
 /// Meridians around the axis in the end caps.
-const CAP_MERIDIANS: usize = 96;
+const CAP_MERIDIANS: usize = 360;
 
 /// The machined surface of one or more passes.
 #[derive(Debug, Clone)]
