@@ -20,6 +20,7 @@ use crate::forward_step::sample_curve;
 use crate::iso_setup::IsoSetup;
 use crate::ordering::Row;
 use crate::toolpath::Pass;
+use rayon::prelude::*;
 use swarf_geom::{Point3, Vec3};
 
 /// Edge samples per coverage radius.
@@ -35,6 +36,8 @@ const CREST_FLOOR: f64 = 0.5;
 /// Golden-section ratio and steps refining a crest along an edge.
 const GOLDEN: f64 = 0.618_033_988_749_894_8;
 const GOLDEN_STEPS: usize = 30;
+/// Side of the capsules' XY grid cells, in capsule radii.
+const CELL_RADII: f64 = 0.5;
 /// Most samples along one edge.
 const MAX_EDGE_SAMPLES: usize = 200_000;
 
@@ -88,26 +91,30 @@ pub fn boundary_passes(setup: &IsoSetup<'_>, rows: &[Row]) -> Vec<Pass> {
 /// themselves, and the local maxima of the samples refined by golden-section search
 /// between their neighbours (crests between passes that meet the edge obliquely are
 /// sharp, narrower than the sample spacing).
-fn bare_samples(ts: &[f64], material: &impl Fn(f64) -> f64, limit: f64) -> Vec<bool> {
-    let m: Vec<f64> = ts.iter().map(|&t| material(t)).collect();
-    let mut bare: Vec<bool> = m.iter().map(|x| *x > limit).collect();
-    for k in 1..ts.len().saturating_sub(1) {
-        let crest = m[k] >= m[k - 1] && m[k] >= m[k + 1] && m[k] > CREST_FLOOR * limit;
-        if bare[k] || !crest || !m[k].is_finite() {
-            continue;
-        }
-        let (mut a, mut b) = (ts[k - 1], ts[k + 1]);
-        for _ in 0..GOLDEN_STEPS {
-            let (c, d) = (b - GOLDEN * (b - a), a + GOLDEN * (b - a));
-            if material(c) >= material(d) {
-                b = d;
-            } else {
-                a = c;
+fn bare_samples(ts: &[f64], material: &(impl Fn(f64) -> f64 + Sync), limit: f64) -> Vec<bool> {
+    let m: Vec<f64> = ts.par_iter().map(|&t| material(t)).collect();
+    (0..ts.len())
+        .into_par_iter()
+        .map(|k| {
+            if m[k] > limit {
+                return true;
             }
-        }
-        bare[k] = material(0.5 * (a + b)) > limit;
-    }
-    bare
+            let inner = k > 0 && k + 1 < ts.len();
+            if !inner || !(m[k] >= m[k - 1] && m[k] >= m[k + 1] && m[k] > CREST_FLOOR * limit) {
+                return false;
+            }
+            let (mut a, mut b) = (ts[k - 1], ts[k + 1]);
+            for _ in 0..GOLDEN_STEPS {
+                let (c, d) = (b - GOLDEN * (b - a), a + GOLDEN * (b - a));
+                if material(c) >= material(d) {
+                    b = d;
+                } else {
+                    a = c;
+                }
+            }
+            material(0.5 * (a + b)) > limit
+        })
+        .collect()
 }
 
 /// Length of an edge curve (chord sum over a fine sampling), mm.
@@ -175,7 +182,7 @@ impl Capsules {
                 hi = [hi[0].max(p.x), hi[1].max(p.y)];
             }
         }
-        let cell = 2.0 * r;
+        let cell = CELL_RADII * r;
         let origin = [lo[0] - r, lo[1] - r];
         let dims = [0, 1].map(|k| {
             if hi[k] >= lo[k] {
@@ -194,8 +201,14 @@ impl Capsules {
         };
         for k in 0..caps.segs.len() {
             let (a, b) = caps.segs[k];
-            let (x0, x1) = (caps.index(0, a.x.min(b.x) - r), caps.index(0, a.x.max(b.x) + r));
-            let (y0, y1) = (caps.index(1, a.y.min(b.y) - r), caps.index(1, a.y.max(b.y) + r));
+            let (x0, x1) = (
+                caps.index(0, a.x.min(b.x) - r),
+                caps.index(0, a.x.max(b.x) + r),
+            );
+            let (y0, y1) = (
+                caps.index(1, a.y.min(b.y) - r),
+                caps.index(1, a.y.max(b.y) + r),
+            );
             for j in y0..=y1 {
                 for i in x0..=x1 {
                     caps.cells[j * dims[0] + i].push(k as u32);
@@ -229,7 +242,11 @@ fn ray_capsule(p: &Point3, n: &Vec3, a: &Point3, b: &Point3, r: f64) -> f64 {
     let d = b - a;
     let dd = d.norm_squared();
     let inside = |q: &Point3| {
-        let t = if dd > 0.0 { ((q - a).dot(&d) / dd).clamp(0.0, 1.0) } else { 0.0 };
+        let t = if dd > 0.0 {
+            ((q - a).dot(&d) / dd).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         (q - (a + t * d)).norm() <= r
     };
     if inside(p) {
@@ -284,7 +301,13 @@ mod tests {
         // Below an end cap, off the axis by 3: z = 5 - sqrt(16 - 9).
         let t = ray_capsule(&Point3::new(-3.0, 0.0, 0.0), &Vec3::z(), &a, &b, 4.0);
         assert!((t - (5.0 - 7f64.sqrt())).abs() < 1e-12);
-        assert_eq!(ray_capsule(&Point3::new(4.0, 9.0, 0.0), &Vec3::z(), &a, &b, 4.0), f64::INFINITY);
-        assert_eq!(ray_capsule(&Point3::new(4.0, 0.0, 3.0), &Vec3::z(), &a, &b, 4.0), 0.0);
+        assert_eq!(
+            ray_capsule(&Point3::new(4.0, 9.0, 0.0), &Vec3::z(), &a, &b, 4.0),
+            f64::INFINITY
+        );
+        assert_eq!(
+            ray_capsule(&Point3::new(4.0, 0.0, 3.0), &Vec3::z(), &a, &b, 4.0),
+            0.0
+        );
     }
 }
