@@ -99,8 +99,12 @@ fn bare_samples(ts: &[f64], material: &(impl Fn(f64) -> f64 + Sync), limit: f64)
             if m[k] > limit {
                 return true;
             }
-            let inner = k > 0 && k + 1 < ts.len();
-            if !inner || !(m[k] >= m[k - 1] && m[k] >= m[k + 1] && m[k] > CREST_FLOOR * limit) {
+            let crest = k > 0
+                && k + 1 < ts.len()
+                && m[k] >= m[k - 1]
+                && m[k] >= m[k + 1]
+                && m[k] > CREST_FLOOR * limit;
+            if !crest {
                 return false;
             }
             let (mut a, mut b) = (ts[k - 1], ts[k + 1]);
