@@ -125,7 +125,7 @@ fn main() {
     let tool = SimTool::new(&cutter).expect("sim tool");
     let b = part.control_box();
     println!(
-        "alpha {alpha} deg: {} poses; generating curves ({meridians} meridians): {:.2} s",
+        "{} poses; generating curves ({meridians} meridians): {:.2} s",
         passes.iter().map(Vec::len).sum::<usize>(),
         t_gc
     );
