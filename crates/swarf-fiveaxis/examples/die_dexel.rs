@@ -51,6 +51,18 @@ fn arg(k: usize, default: f64) -> f64 {
         .unwrap_or(default)
 }
 
+/// What a section compares.
+struct Run<'a> {
+    design: &'a DesignSurface,
+    swept: &'a SweptSurface,
+    motions: &'a [Motion],
+    flagged: &'a [Point3],
+    cutter: &'a Cutter,
+    part: &'a swarf_geom::Part,
+    cell: f64,
+    sample_tol: f64,
+}
+
 fn main() {
     let auto = std::env::args().nth(1).as_deref() == Some("auto");
     let alpha = arg(1, 3.0);
@@ -66,14 +78,64 @@ fn main() {
     }
     let part = swarf_io::builtin_part("die").expect("built-in die");
     let design = DesignSurface::new(&part);
+    let cutter: Cutter = "bull:d=38.1,r=6.35".parse().expect("tool");
+    let passes = plan(&part, &design, &cutter, auto, alpha);
+    let flagged = flagged_poses(&design, &cutter, &passes);
+    println!("sectioning flags {} poses", flagged.len());
+    let t = Instant::now();
+    let opts = CurveOptions {
+        meridians,
+        wall_cards: 24,
+        ..CurveOptions::default()
+    };
+    let swept = SweptSurface::new(&cutter.profile(), &passes, &opts).expect("swept");
+    println!(
+        "{} poses; generating curves ({meridians} meridians): {:.2} s",
+        passes.iter().map(Vec::len).sum::<usize>(),
+        t.elapsed().as_secs_f64()
+    );
+    let motions: Vec<Motion> = passes
+        .iter()
+        .flat_map(|p| p.windows(2))
+        .enumerate()
+        .map(|(i, w)| Motion {
+            kind: MotionKind::Linear,
+            start: w[0],
+            end: w[1],
+            feed: 150.0,
+            line: i + 1,
+        })
+        .collect();
+    let run = Run {
+        design: &design,
+        swept: &swept,
+        motions: &motions,
+        flagged: &flagged,
+        cutter: &cutter,
+        part: &part,
+        cell,
+        sample_tol,
+    };
+    for x in sections {
+        compare(&run, x);
+    }
+}
+
+/// The die's passes with the fixed lead `alpha` or the automatic one.
+fn plan(
+    part: &swarf_geom::Part,
+    design: &DesignSurface,
+    cutter: &Cutter,
+    auto: bool,
+    alpha: f64,
+) -> Vec<Vec<Pose>> {
     let dp = DrivePlanes {
         angle: 60f64.to_radians(),
         cross_feed: 3.5,
         step: 1.0,
         zigzag: true,
     };
-    let cc = drive_plane_passes(&design, &part.control_box(), &dp).expect("passes");
-    let cutter: Cutter = "bull:d=38.1,r=6.35".parse().expect("tool");
+    let cc = drive_plane_passes(design, &part.control_box(), &dp).expect("passes");
     let p = if auto {
         Positioning::GougeFree {
             max_alpha: 25.0,
@@ -89,94 +151,66 @@ fn main() {
             sections: 1.0,
         }
     };
-    let (planned, report) = position(&cutter, &part, &cc, &p, TOL).expect("positioning");
-    let passes: Vec<Vec<Pose>> = planned
-        .iter()
-        .map(|p| p.points.iter().map(|q| q.pose).collect())
-        .collect();
-    let flagged = flagged_poses(&design, &cutter, &passes);
+    let (planned, report) = position(cutter, part, &cc, &p, TOL).expect("positioning");
     println!(
-        "{}: lead {:.2}..{:.2} deg, sectioning flags {} poses",
+        "{}: lead {:.2}..{:.2} deg",
         if auto { "automatic" } else { "fixed" },
         report.alpha_range_deg[0],
         report.alpha_range_deg[1],
-        flagged.len()
     );
-    let t = Instant::now();
-    let opts = CurveOptions {
-        meridians,
-        wall_cards: 24,
-        ..CurveOptions::default()
-    };
-    let swept = SweptSurface::new(&cutter.profile(), &passes, &opts).expect("swept");
-    let t_gc = t.elapsed().as_secs_f64();
-    let motions: Vec<Motion> = passes
+    planned
         .iter()
-        .flat_map(|p| p.windows(2))
-        .enumerate()
-        .map(|(i, w)| Motion {
-            kind: MotionKind::Linear,
-            start: w[0],
-            end: w[1],
-            feed: 150.0,
-            line: i + 1,
-        })
-        .collect();
-    let tool = SimTool::new(&cutter).expect("sim tool");
-    let b = part.control_box();
-    println!(
-        "{} poses; generating curves ({meridians} meridians): {:.2} s",
-        passes.iter().map(Vec::len).sum::<usize>(),
-        t_gc
-    );
-    for x in sections {
-        let grid = Grid::covering(
-            [x - 0.5 * cell, b.min.y],
-            [x + 0.5 * cell, b.max.y],
-            cell,
-            1 << 30,
-        )
-        .expect("grid");
-        let mut dexel = Dexel::new(grid, StockInit::Box { top: b.max.z + 5.0 }).expect("stock");
-        let t = Instant::now();
-        let so = SimOptions {
-            sample_tol,
-            known_start: true,
+        .map(|p| p.points.iter().map(|q| q.pose).collect())
+        .collect()
+}
+
+/// The dexel of the strip `x` against the curves' surface and the design.
+fn compare(r: &Run<'_>, x: f64) {
+    let b = r.part.control_box();
+    let grid = Grid::covering(
+        [x - 0.5 * r.cell, b.min.y],
+        [x + 0.5 * r.cell, b.max.y],
+        r.cell,
+        1 << 30,
+    )
+    .expect("grid");
+    let mut dexel = Dexel::new(grid, StockInit::Box { top: b.max.z + 5.0 }).expect("stock");
+    let t = Instant::now();
+    let so = SimOptions {
+        sample_tol: r.sample_tol,
+        known_start: true,
+    };
+    let tool = SimTool::new(r.cutter).expect("sim tool");
+    simulate(&mut dexel, &tool, r.motions, &so, &Quiet);
+    let t_dx = t.elapsed().as_secs_f64();
+    let (mut worst, mut at, mut n, mut gouge) = (0.0f64, 0.0, 0, 0.0f64);
+    let (mut gouged, mut unflagged) = (0, 0);
+    let reach = r.cutter.radius() + 1.0;
+    for j in 0..grid.ny {
+        let [cx, cy] = grid.centre(0, j);
+        let (Some(h), Some((d, _))) = (r.swept.height(cx, cy), r.design.height(cx, cy)) else {
+            continue;
         };
-        simulate(&mut dexel, &tool, &motions, &so, &Quiet);
-        let t_dx = t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let (mut worst, mut at, mut n, mut gouge) = (0.0f64, 0.0, 0, 0.0f64);
-        let (mut gouged, mut unflagged) = (0, 0);
-        for j in 0..grid.ny {
-            let [cx, cy] = grid.centre(0, j);
-            let (Some(h), Some((d, _))) = (swept.height(cx, cy), design.height(cx, cy)) else {
-                continue;
-            };
-            let z = dexel.height(0, j);
-            if z > b.max.z {
-                continue;
-            }
-            n += 1;
-            gouge = gouge.max(d - z);
-            if d - z > TOL {
-                gouged += 1;
-                let reach = cutter.radius() + 1.0;
-                if !flagged.iter().any(|q| (q.x - cx).hypot(q.y - cy) < reach) {
-                    unflagged += 1;
-                }
-            }
-            if (h - z).abs() > worst.abs() {
-                worst = h - z;
-                at = cy;
+        let z = dexel.height(0, j);
+        if z > b.max.z {
+            continue;
+        }
+        n += 1;
+        gouge = gouge.max(d - z);
+        if d - z > TOL {
+            gouged += 1;
+            if !r.flagged.iter().any(|q| (q.x - cx).hypot(q.y - cy) < reach) {
+                unflagged += 1;
             }
         }
-        let t_q = t.elapsed().as_secs_f64();
-        println!(
-            "x = {x}: {n} cells; largest difference (curves - dexel) {:.4} mm at y = {at:.2}; \
-             dexel deepest below design {:.4} mm, {gouged} cells gouged, {unflagged} of them under \
-             no flagged pose; dexel {:.2} s, section of the curves' surface {:.3} s",
-            worst, gouge, t_dx, t_q
-        );
+        if (h - z).abs() > worst.abs() {
+            worst = h - z;
+            at = cy;
+        }
     }
+    println!(
+        "x = {x}: {n} cells; largest difference (curves - dexel) {worst:.4} mm at y = {at:.2}; \
+         dexel deepest below design {gouge:.4} mm, {gouged} cells gouged, {unflagged} of them \
+         under no flagged pose; dexel {t_dx:.2} s"
+    );
 }
