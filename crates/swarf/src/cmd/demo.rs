@@ -1,9 +1,18 @@
 //! `swarf demo [--out DIR]`: the main job on the built-in shared parts.
 //!
-//! Inspects and tessellates every built-in part, then plans the shipped example jobs
-//! (paper 004's experiment on wave.toml) and writes everything under `--out`.
+//! 1. Inspects and tessellates every built-in part (STL within 0.01 mm).
+//! 2. Plans the shipped example jobs (paper 004's experiment on wave.toml: ball r = 4,
+//!    h = 0.15, tolerance 0.01, feed 300, spindle 1500; iso-parametric, iso-planar,
+//!    iso-scallop, and the drop-cutter raster on the tessellated wave), writing their
+//!    G-code, APT CL, pose CSV and JSON summaries.
+//! 3. Verifies each program on a dexel stock and prints paper 004's Table 1 for our
+//!    tool paths (`compare.md`, `compare.json`, deviation and tool path pictures).
+//!
+//! The jobs are embedded so that the demo needs no files; their parts are built-in.
 
+use super::compare::{compare_jobs, markdown};
 use super::inspect::{patch_text, summarise_patch};
+use super::verify::SimArgs;
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 
@@ -18,9 +27,8 @@ pub struct Args {
 /// Chordal tolerance of the demo tessellations, mm.
 const DEMO_TOL: f64 = 0.01;
 
-/// The example jobs shipped in `jobs/`, embedded so that the demo needs no files
-/// (their parts are built-in). Outputs go to `--out` under the names the jobs give.
-const JOBS: [(&str, &str); 3] = [
+/// The example jobs shipped in `jobs/`.
+const JOBS: [(&str, &str); 4] = [
     (
         "wave-iso-parametric.toml",
         include_str!("../../../../jobs/wave-iso-parametric.toml"),
@@ -33,12 +41,46 @@ const JOBS: [(&str, &str); 3] = [
         "wave-iso-scallop.toml",
         include_str!("../../../../jobs/wave-iso-scallop.toml"),
     ),
+    (
+        "wave-raster.toml",
+        include_str!("../../../../jobs/wave-raster.toml"),
+    ),
 ];
 
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("{}: cannot create the output directory", args.out.display()))?;
+    println!("== parts");
+    tessellate_parts(&args.out)?;
+    println!("\n== tool paths (paper 004 on wave.toml)");
+    let jobs_dir = args.out.join("jobs");
+    let mut paths = Vec::new();
+    for (name, text) in JOBS {
+        let job = swarf_path::Job::parse(text, name)?;
+        let summary = super::plan::plan_job(&job, Path::new("."), &args.out)?;
+        println!(
+            "{name}: {} passes, {:.0} mm cutting, {:.1} min, predicted scallop <= {:.4} mm",
+            summary["passes"],
+            summary["cutting_length_mm"].as_f64().unwrap_or(f64::NAN),
+            summary["estimated_time_s"].as_f64().unwrap_or(f64::NAN) / 60.0,
+            summary["report"]["predicted_max_scallop"]
+                .as_f64()
+                .unwrap_or(f64::NAN),
+        );
+        let path = jobs_dir.join(name);
+        swarf_io::write_atomic(&path, text.as_bytes())?;
+        paths.push(path);
+    }
+    println!("\n== verification (dexel simulation against the design; paper 004, Table 1)");
+    let compare_dir = args.out.join("compare");
+    let rows = compare_jobs(&paths, &SimArgs::default(), &compare_dir)?;
+    print!("{}", markdown(&rows));
+    println!("\nall results in {}", args.out.display());
+    Ok(())
+}
+
+fn tessellate_parts(out: &Path) -> Result<()> {
     for (name, _) in swarf_io::builtin_parts() {
         let part = swarf_io::builtin_part(name).context("built-in part does not load")?;
         let summaries = part
@@ -49,26 +91,12 @@ pub fn run(args: &Args) -> Result<()> {
             .collect::<Result<Vec<_>>>()?;
         print!("{}", patch_text(&part.name, &summaries));
         let mesh = part.tessellate(DEMO_TOL)?;
-        let path = args.out.join(format!("{name}.stl"));
+        let path = out.join(format!("{name}.stl"));
         swarf_io::write_stl(&path, &mesh, name)?;
         println!(
             "  tessellated within {DEMO_TOL} mm: {} triangles -> {}",
             mesh.triangles.len(),
             path.display()
-        );
-    }
-    for (name, text) in JOBS {
-        let job = swarf_path::Job::parse(text, name)?;
-        let summary = super::plan::plan_job(&job, Path::new("."), &args.out)?;
-        println!(
-            "{name}: {} passes, {:.0} mm cutting, {:.1} min, predicted scallop <= {:.4} mm -> {}",
-            summary["passes"],
-            summary["cutting_length_mm"].as_f64().unwrap_or(f64::NAN),
-            summary["estimated_time_s"].as_f64().unwrap_or(f64::NAN) / 60.0,
-            summary["report"]["predicted_max_scallop"]
-                .as_f64()
-                .unwrap_or(f64::NAN),
-            args.out.display()
         );
     }
     Ok(())
