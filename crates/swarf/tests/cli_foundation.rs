@@ -110,6 +110,7 @@ fn tessellate_writes_a_readable_stl() {
     let o = swarf(&["inspect", stl.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stdout(&o).contains("no degenerate"), "{}", stdout(&o));
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -157,4 +158,5 @@ fn bad_input_names_the_file_and_field() {
         assert!(!e.contains("panicked"), "{args:?}: {e}");
     }
     assert!(!stl.exists(), "a failed run must not write its output");
+    std::fs::remove_dir_all(&dir).unwrap();
 }
