@@ -175,6 +175,9 @@ impl Sweep for ToolInstance {
                 continue;
             }
             let x = job.grid.x(i);
+            if self.floor(x, y) >= h {
+                continue;
+            }
             let z = self.lowest(&job.tool.profile, job.tool.convex, (x, y), h);
             if z < h {
                 heights[i] = z;

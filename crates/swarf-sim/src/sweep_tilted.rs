@@ -37,6 +37,9 @@ pub struct ToolInstance {
     bounds: [f64; 4],
     zlo: f64,
     ztop: f64,
+    /// Axis segment length (the flute length) and radius of the bounding cylinder.
+    length: f64,
+    radius: f64,
 }
 
 impl ToolInstance {
@@ -51,7 +54,45 @@ impl ToolInstance {
             bounds: [lo(0), lo(1), hi(0), hi(1)],
             zlo: lo(2),
             ztop: hi(2),
+            length,
+            radius,
         }
+    }
+
+    /// A lower bound of the tool's lowest point over `(x, y)` (`+inf` when the tool
+    /// cannot be there), from the cylinder of the tool's radius about its axis
+    /// segment, which holds the tool: a point `A(t) + w` (`A(t) = cl + t a`,
+    /// `|w| <= R`, `w` normal to `a`) over `(x, y)` has `|A(t)_xy - (x, y)| <= R`,
+    /// an interval of `t`, and lies no lower than `A(t)_z - R sqrt(1 - a_z^2)`.
+    #[inline]
+    pub fn floor(&self, x: f64, y: f64) -> f64 {
+        let (p, a) = (&self.pose.cl, &self.pose.axis);
+        let (dx, dy) = (p.x - x, p.y - y);
+        // |(dx, dy) + t (ax, ay)|^2 <= R^2: a t^2 + 2 b t + c <= 0
+        let qa = a.x * a.x + a.y * a.y;
+        let qb = dx * a.x + dy * a.y;
+        // (the radius grown by a hair, so that rounding cannot cut off a tangent line)
+        let r = self.radius * (1.0 + 1e-9) + 1e-12;
+        let qc = dx * dx + dy * dy - r * r;
+        let (t0, t1) = if qa <= 1e-18 {
+            if qc > 0.0 {
+                return f64::INFINITY;
+            }
+            (0.0, self.length)
+        } else {
+            let disc = qb * qb - qa * qc;
+            if disc < 0.0 {
+                return f64::INFINITY;
+            }
+            let sq = disc.sqrt();
+            ((-qb - sq) / qa, (-qb + sq) / qa)
+        };
+        let (t0, t1) = (t0.max(0.0), t1.min(self.length));
+        if t0 > t1 {
+            return f64::INFINITY;
+        }
+        let lowest_t = if a.z >= 0.0 { t0 } else { t1 };
+        p.z + lowest_t * a.z - r * qa.sqrt()
     }
 
     /// XY box of the cells it may lower: `[xmin, ymin, xmax, ymax]`, mm.
@@ -172,6 +213,33 @@ mod tests {
             inst.lowest(&profile, true, (centre.x + 30.0, centre.y), f64::INFINITY),
             f64::INFINITY
         );
+    }
+
+    #[test]
+    fn floor_is_a_lower_bound() {
+        let cutter: Cutter = "bull:d=10,r=2".parse().unwrap();
+        let profile = cutter.profile();
+        for axis in [
+            Vec3::new(-0.5, 0.1, 1.0),
+            Vec3::z(),
+            Vec3::new(1.0, 0.0, 0.2),
+        ] {
+            let pose = Pose::new(Point3::new(0.5, -0.2, 1.0), axis).unwrap();
+            let inst = ToolInstance::new(pose, 5.0, cutter.length());
+            let b = inst.bounds();
+            let mut pruned = 0;
+            for k in 0..=40 {
+                for l in 0..=40 {
+                    let x = b[0] + (b[2] - b[0]) * k as f64 / 40.0;
+                    let y = b[1] + (b[3] - b[1]) * l as f64 / 40.0;
+                    let exact = inst.lowest(&profile, true, (x, y), f64::INFINITY);
+                    let floor = inst.floor(x, y);
+                    assert!(floor <= exact + 1e-9, "{x} {y}: {floor} > {exact}");
+                    pruned += usize::from(floor.is_infinite());
+                }
+            }
+            assert!(pruned > 0 || axis == Vec3::z());
+        }
     }
 
     #[test]
