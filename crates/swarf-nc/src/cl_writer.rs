@@ -26,7 +26,13 @@ pub fn write_cl(
     let mut out = String::with_capacity(moves.len() * 64 + 256);
     let name: String = part_name
         .chars()
-        .map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_uppercase() } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_uppercase()
+            } else {
+                '_'
+            }
+        })
         .collect();
     let _ = writeln!(out, "PARTNO/{name}");
     let (unit_word, feed_word) = match units {
@@ -53,7 +59,10 @@ pub fn write_cl(
         let p = m.to.cl;
         let a = m.to.axis;
         if !(p.coords.iter().chain(a.iter()).all(|c| c.is_finite())) {
-            return Err(NcError::NonFinite { index, what: "pose" });
+            return Err(NcError::NonFinite {
+                index,
+                what: "pose",
+            });
         }
         match m.kind {
             MoveKind::Rapid => {
@@ -61,7 +70,10 @@ pub fn write_cl(
             }
             MoveKind::Feed => {
                 if !(m.feed.is_finite() && m.feed > 0.0) {
-                    return Err(NcError::NonFinite { index, what: "feed" });
+                    return Err(NcError::NonFinite {
+                        index,
+                        what: "feed",
+                    });
                 }
                 if feed != Some(m.feed) {
                     let _ = writeln!(out, "FEDRAT/{:.4},{feed_word}", len(m.feed));

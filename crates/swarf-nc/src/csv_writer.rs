@@ -5,8 +5,8 @@
 //! reader ([`crate::read::parse_pose_csv`]) does not join passes by cutting moves.
 
 use crate::number::Units;
-use std::fmt::Write as _;
 use crate::number::format_decimal;
+use std::fmt::Write as _;
 use swarf_path::Toolpath;
 
 /// The cutting poses of `toolpath` as CSV text.

@@ -98,7 +98,11 @@ pub fn write_gcode(moves: &[Move], feeds: &Feeds, opts: &GcodeOptions) -> Result
             }
         }
         if modal.motion != Some(m.kind) {
-            out.push_str(if m.kind == MoveKind::Rapid { "G0 " } else { "G1 " });
+            out.push_str(if m.kind == MoveKind::Rapid {
+                "G0 "
+            } else {
+                "G1 "
+            });
             modal.motion = Some(m.kind);
         }
         out.push_str(&words);
@@ -125,10 +129,16 @@ fn push_word(block: &mut String, letter: char, value: &str) {
 
 fn check_move(index: usize, m: &Move) -> Result<(), NcError> {
     if !m.to.cl.coords.iter().all(|c| c.is_finite()) {
-        return Err(NcError::NonFinite { index, what: "CL point" });
+        return Err(NcError::NonFinite {
+            index,
+            what: "CL point",
+        });
     }
     if m.kind == MoveKind::Feed && !(m.feed.is_finite() && m.feed > 0.0) {
-        return Err(NcError::NonFinite { index, what: "feed" });
+        return Err(NcError::NonFinite {
+            index,
+            what: "feed",
+        });
     }
     let a = m.to.axis;
     if (a.x.abs() > 1e-9) || (a.y.abs() > 1e-9) || (a.z - 1.0).abs() > 1e-9 {

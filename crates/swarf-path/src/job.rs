@@ -229,10 +229,15 @@ impl Job {
         positive("strategy.scallop", s.scallop)?;
         positive("strategy.stepover", s.stepover)?;
         if s.scallop.is_none() && s.stepover.is_none() {
-            return Err("strategy: expected `scallop` (scallop height limit, mm) or `stepover` (mm)".into());
+            return Err(
+                "strategy: expected `scallop` (scallop height limit, mm) or `stepover` (mm)".into(),
+            );
         }
         if s.stepover.is_some() && s.kind != StrategyKind::Raster {
-            return Err("strategy.stepover: only the raster strategy takes a fixed stepover; use `scallop`".into());
+            return Err(
+                "strategy.stepover: only the raster strategy takes a fixed stepover; use `scallop`"
+                    .into(),
+            );
         }
         if let Some(h) = s.scallop {
             let r = self.tool.radius();
@@ -342,12 +347,27 @@ gcode = "a.ngc"
     #[test]
     fn bad_jobs_name_the_field() {
         let cases = [
-            (GOOD.replace("scallop = 0.15", "scallop = -1"), "strategy.scallop"),
-            (GOOD.replace("scallop = 0.15", "scallop = 5"), "strategy.scallop"),
-            (GOOD.replace("tolerance = 0.01", "tolerance = 0"), "strategy.tolerance"),
-            (GOOD.replace("scallop = 0.15", ""), "strategy: expected `scallop`"),
+            (
+                GOOD.replace("scallop = 0.15", "scallop = -1"),
+                "strategy.scallop",
+            ),
+            (
+                GOOD.replace("scallop = 0.15", "scallop = 5"),
+                "strategy.scallop",
+            ),
+            (
+                GOOD.replace("tolerance = 0.01", "tolerance = 0"),
+                "strategy.tolerance",
+            ),
+            (
+                GOOD.replace("scallop = 0.15", ""),
+                "strategy: expected `scallop`",
+            ),
             (GOOD.replace("feed = 300", "feed = -3"), "feeds.feed"),
-            (GOOD.replace("kind = \"iso-scallop\"", "kind = \"spiral\""), "line 5"),
+            (
+                GOOD.replace("kind = \"iso-scallop\"", "kind = \"spiral\""),
+                "line 5",
+            ),
             (GOOD.replace("feed = 300", "fed = 300"), "fed"),
             (GOOD.replace("ball:d=8", "ball:d=-8"), "line 3"),
         ];

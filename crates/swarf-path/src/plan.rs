@@ -101,7 +101,9 @@ pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
                 "strategy {kind:?} plans on parametric patches; a mesh part needs strategy \"raster\""
             )));
         }
-        (StrategyKind::IsoParametric, PlanInput::Part(part)) => crate::iso_parametric::plan(part, job)?,
+        (StrategyKind::IsoParametric, PlanInput::Part(part)) => {
+            crate::iso_parametric::plan(part, job)?
+        }
         (StrategyKind::IsoPlanar, PlanInput::Part(part)) => crate::iso_planar::plan(part, job)?,
         (StrategyKind::IsoScallop, PlanInput::Part(part)) => crate::iso_scallop::plan(part, job)?,
     };

@@ -21,7 +21,9 @@ pub fn builtin_names() -> Vec<&'static str> {
 /// a `.toml` part file, or an `.stl` / `.obj` mesh.
 pub fn load_model(arg: &str) -> Result<Model> {
     let path = Path::new(arg);
-    let builtin = arg.strip_prefix("builtin:").or_else(|| (!path.exists()).then_some(arg));
+    let builtin = arg
+        .strip_prefix("builtin:")
+        .or_else(|| (!path.exists()).then_some(arg));
     if let Some(name) = builtin {
         if let Some(part) = swarf_io::builtin_part(name) {
             return Ok(Model::Patches(part));
@@ -54,7 +56,9 @@ pub fn load_model(arg: &str) -> Result<Model> {
 pub fn load_part(arg: &str) -> Result<Part> {
     match load_model(arg)? {
         Model::Patches(p) => Ok(p),
-        Model::Mesh { .. } => bail!("{arg}: this command needs a parametric part (.toml), not a mesh"),
+        Model::Mesh { .. } => {
+            bail!("{arg}: this command needs a parametric part (.toml), not a mesh")
+        }
     }
 }
 

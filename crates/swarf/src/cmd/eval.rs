@@ -30,7 +30,9 @@ pub fn run(args: &Args) -> Result<()> {
     let [u, v] = parse_pair(&args.uv, "--uv")?;
     let [[u0, u1], [v0, v1]] = patch.domain();
     if !(u0..=u1).contains(&u) || !(v0..=v1).contains(&v) {
-        bail!("--uv: ({u}, {v}) is outside the patch's domain u in [{u0}, {u1}], v in [{v0}, {v1}]");
+        bail!(
+            "--uv: ({u}, {v}) is outside the patch's domain u in [{u0}, {u1}], v in [{v0}, {v1}]"
+        );
     }
     let d = patch.derivs(u, v);
     let Some(normal) = d.normal() else {

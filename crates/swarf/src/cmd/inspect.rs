@@ -109,7 +109,11 @@ pub fn patch_text(name: &str, patches: &[PatchSummary]) -> String {
             p.domain[1][0],
             p.domain[1][1]
         );
-        s += &format!("    bounding box {} .. {} mm\n", fmt3(p.bbox_min), fmt3(p.bbox_max));
+        s += &format!(
+            "    bounding box {} .. {} mm\n",
+            fmt3(p.bbox_min),
+            fmt3(p.bbox_max)
+        );
         s += &format!(
             "    principal curvature k1 in [{:.6}, {:.6}], k2 in [{:.6}, {:.6}] 1/mm \
              (positive bends toward the normal du x dv)\n",

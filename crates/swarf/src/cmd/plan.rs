@@ -40,8 +40,14 @@ pub fn plan_job(job: &Job, job_dir: &Path, out_dir: &Path) -> Result<serde_json:
     };
     let model = load_model(&part_arg)?;
     let (name, plan) = match &model {
-        Model::Patches(part) => (part.name.clone(), swarf_path::plan::plan(job, PlanInput::Part(part))?),
-        Model::Mesh { name, mesh } => (name.clone(), swarf_path::plan::plan(job, PlanInput::Mesh(mesh))?),
+        Model::Patches(part) => (
+            part.name.clone(),
+            swarf_path::plan::plan(job, PlanInput::Part(part))?,
+        ),
+        Model::Mesh { name, mesh } => (
+            name.clone(),
+            swarf_path::plan::plan(job, PlanInput::Mesh(mesh))?,
+        ),
     };
     write_outputs(job, &name, &plan, out_dir)
 }
@@ -53,7 +59,12 @@ fn units(job: &Job) -> Units {
     }
 }
 
-fn write_outputs(job: &Job, part_name: &str, plan: &Plan, out_dir: &Path) -> Result<serde_json::Value> {
+fn write_outputs(
+    job: &Job,
+    part_name: &str,
+    plan: &Plan,
+    out_dir: &Path,
+) -> Result<serde_json::Value> {
     let moves = plan.toolpath.moves();
     let stats = motion_stats(&moves, job.feeds.rapid);
     let strategy = serde_json::to_value(job.strategy.kind)?;

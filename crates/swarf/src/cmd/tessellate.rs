@@ -20,7 +20,10 @@ pub struct Args {
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
     if !(args.tol.is_finite() && args.tol > 0.0) {
-        bail!("--tol: expected a chordal tolerance > 0 mm, found {}", args.tol);
+        bail!(
+            "--tol: expected a chordal tolerance > 0 mm, found {}",
+            args.tol
+        );
     }
     let part = load_part(&args.part)?;
     let mesh = part.tessellate(args.tol)?;
