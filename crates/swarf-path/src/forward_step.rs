@@ -23,6 +23,10 @@ use swarf_geom::Point3;
 
 /// Safety factor on the curvature-predicted step (dimensionless).
 const STEP_SAFETY: f64 = 0.9;
+/// Part of the chordal tolerance kept back for the NC output's rounding, mm: the
+/// posts write 4 decimals in mm (a CL point moves by at most 0.87e-4 mm in 3D), so a
+/// chord planned to `tolerance - OUTPUT_ROUNDING` stays within `tolerance` as written.
+pub const OUTPUT_ROUNDING: f64 = 1e-4;
 /// Safety factor on the length-limited step (dimensionless; absorbs rounding).
 const LENGTH_SAFETY: f64 = 1.0 - 1e-9;
 /// Largest growth of the parameter step from one accepted step to the next.

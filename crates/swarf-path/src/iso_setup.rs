@@ -13,7 +13,7 @@ use crate::boundary::boundary_passes;
 use crate::cl_curve::{ClMap, tool_side_curvature, tool_side_normal};
 use crate::envelope::Envelope;
 use crate::error::PathError;
-use crate::forward_step::StepOptions;
+use crate::forward_step::{OUTPUT_ROUNDING, StepOptions};
 use crate::gouge::GougeCheck;
 use crate::job::Job;
 use crate::ordering::{Joining, Row, order_rows};
@@ -99,7 +99,7 @@ impl<'a> IsoSetup<'a> {
             job,
             side,
             step: StepOptions {
-                tolerance,
+                tolerance: (tolerance - OUTPUT_ROUNDING).max(0.5 * tolerance),
                 max_step: job.tool.radius(),
             },
             gouge,
