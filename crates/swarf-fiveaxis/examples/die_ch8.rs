@@ -23,7 +23,7 @@ fn show(name: &str, r: &PositioningReport, secs: f64) {
     let worst = r.gouges.first();
     println!(
         "{name:>10}: alpha {:.2}..{:.2} deg (max at pass {} point {}), gouging poses {}/{}, \
-         deepest {:.4} mm{}, axis turn <= {:.2} deg/mm, {} checks, {} raised, {:.2} s",
+         deepest {:.4} mm{}, axis turn <= {:.2} deg/mm, {} checks ({} whole-tool), {} raised, {:.2} s",
         r.alpha_range_deg[0],
         r.alpha_range_deg[1],
         r.max_alpha_at[0],
@@ -37,6 +37,7 @@ fn show(name: &str, r: &PositioningReport, secs: f64) {
         )),
         r.max_axis_rate_deg_per_mm,
         r.evaluations,
+        r.whole_tool_evaluations,
         r.raised,
         secs
     );
@@ -147,7 +148,7 @@ fn write_outputs(dir: &std::path::Path, cutter: &Cutter, passes: Vec<Pass>) {
             ..Feeds::default()
         },
         linking: Linking {
-            clearance: top + 30.0,
+            clearance: top + 10.0,
             approach: 2.0,
         },
     };

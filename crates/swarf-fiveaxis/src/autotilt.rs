@@ -51,6 +51,9 @@ use swarf_tool::{Cutter, Pose, Profile};
 /// degree).
 const FIRST_STEP: f64 = 0.017_453_292_519_943_295;
 
+/// The first upward step from a nonzero start (radians, 0.05 degree).
+const SMALL_STEP: f64 = 0.000_872_664_625_997_164_8;
+
 /// Below a free upper end the search probes this much lower first, where the answer
 /// usually is when the hint was good (radians, 0.25 degree).
 const NEAR: f64 = 0.004_363_323_129_985_824;
@@ -90,6 +93,8 @@ pub struct TiltReport {
     pub max_alpha_at: [usize; 2],
     /// Gouge predicate evaluations.
     pub evaluations: usize,
+    /// Of these, the ones with the whole tool and the design's edges.
+    pub whole_tool_evaluations: usize,
     /// Poses raised by the check after smoothing.
     pub raised: usize,
     /// Deepest point of the final check, mm (at most the tolerance).
@@ -117,6 +122,7 @@ struct PassTilt<'a> {
     opts: &'a TiltOptions,
     pass: usize,
     evaluations: usize,
+    whole_tool_evaluations: usize,
     /// Check the whole tool at every pose (the final check and its raises).
     strict: bool,
 }
@@ -146,6 +152,7 @@ impl PassTilt<'_> {
         nb: Neighbours<'_>,
     ) -> Result<PoseGouge, FiveAxisError> {
         self.evaluations += 1;
+        self.whole_tool_evaluations += usize::from(self.strict);
         let lo = i.saturating_sub(1);
         let hi = (i + 1).min(self.contacts.len() - 1);
         let mut poses = Vec::with_capacity(3);
@@ -174,7 +181,10 @@ impl PassTilt<'_> {
         if !self.check(i, start, nb)?.gouges(tol) {
             return Ok(start);
         }
-        let (mut lo, mut step) = (start, FIRST_STEP.min(max - start).max(self.opts.resolution));
+        // Upward from a known answer (the whole-tool stage, a raise) the gap is usually
+        // small: start with small steps there.
+        let first = if start > 0.0 { SMALL_STEP } else { FIRST_STEP };
+        let (mut lo, mut step) = (start, first.min(max - start).max(self.opts.resolution));
         let mut hi = if hint > start {
             hint.min(max)
         } else {
@@ -287,6 +297,7 @@ fn tilt_pass(t: &mut PassTilt<'_>) -> Result<PassResult, FiveAxisError> {
         for i in (0..n).filter(|&i| dirty[i]) {
             let g = pose_gouge(t.design, t.table, &poses, i, &strict);
             t.evaluations += 1;
+            t.whole_tool_evaluations += 1;
             depth[i] = g.depth;
             if g.gouges(t.opts.gouge.tolerance) {
                 let a = t.search(i, alphas[i], alphas[i], Neighbours::Fixed(&poses))?;
@@ -367,10 +378,11 @@ pub fn gouge_free_tilt(
                 opts,
                 pass,
                 evaluations: 0,
+                whole_tool_evaluations: 0,
                 strict: false,
             };
             let r = tilt_pass(&mut t)?;
-            Ok((r, t.evaluations))
+            Ok((r, [t.evaluations, t.whole_tool_evaluations]))
         })
         .collect::<Result<Vec<_>, FiveAxisError>>()?;
     let mut report = TiltReport {
@@ -386,7 +398,8 @@ pub fn gouge_free_tilt(
             raised,
             worst,
         } = r;
-        report.evaluations += evals;
+        report.evaluations += evals[0];
+        report.whole_tool_evaluations += evals[1];
         report.raised += raised;
         report.worst_depth = report.worst_depth.max(worst);
         for (i, a) in alphas.iter().enumerate() {
@@ -579,6 +592,7 @@ mod tests {
             opts: &o,
             pass: 1,
             evaluations: 0,
+            whole_tool_evaluations: 0,
             strict: false,
         };
         let mut checked = 0;

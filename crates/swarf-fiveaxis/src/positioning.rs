@@ -107,6 +107,8 @@ pub struct PositioningReport {
     pub gouges: Vec<GougeSpot>,
     /// Gouge checks evaluated (gouge-free method).
     pub evaluations: usize,
+    /// Of these, with the whole tool and the design's edges.
+    pub whole_tool_evaluations: usize,
     /// Poses raised after smoothing (gouge-free method).
     pub raised: usize,
     /// Largest turn of the tool axis per mm of feed, degrees/mm.
@@ -178,6 +180,7 @@ pub fn position(
             report.alpha_range_deg = [lo.to_degrees(), t.max_alpha.to_degrees()];
             report.max_alpha_at = t.max_alpha_at;
             report.evaluations = t.evaluations;
+            report.whole_tool_evaluations = t.whole_tool_evaluations;
             report.raised = t.raised;
             report.max_axis_rate_deg_per_mm = t.max_axis_rate.to_degrees();
             check(&design, cutter, &passes, &gouge, &mut report);
@@ -236,6 +239,7 @@ fn report(
         worst_depth: f64::NEG_INFINITY,
         gouges: Vec::new(),
         evaluations: 0,
+        whole_tool_evaluations: 0,
         raised: 0,
         max_axis_rate_deg_per_mm: max_axis_rate(passes).to_degrees(),
     }
