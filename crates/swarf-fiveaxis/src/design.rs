@@ -55,7 +55,7 @@ impl DesignSurface {
         }
     }
 
-    /// Points along every patch edge ([`EDGE_SAMPLES`] per edge): where section planes
+    /// Points along every patch edge (`EDGE_SAMPLES` per edge): where section planes
     /// pass a thin corner of the design's XY shadow without a sample in it, the
     /// gouge check tests these directly.
     pub fn boundary(&self) -> &[swarf_geom::Point3] {

@@ -18,7 +18,7 @@
 //! `DC = r (Delta C x N) / |Delta C x N|`, `N` the insert-plane normal, the lower of the
 //! two roots; `velocity_iterations` fixed-point steps then move the reference to the
 //! point itself, so that the exact condition `n . v(p) = 0` holds. The profile point
-//! with normal angle `psi*` is found by [`crate::profile_point::locate_angle`] (arcs,
+//! with normal angle `psi*` is found by `locate_angle` in `profile_point` (arcs,
 //! corners, and the rim of a flat bottom: the generating circle of radius `R` of
 //! §3.3). A bottom cone follows the same rule, which is §5.4.4: when the motion's angle
 //! above the tool's `X-Y` plane exceeds `theta_start`, `psi*` passes the cone's normal and

@@ -17,8 +17,9 @@
 
 use crate::gencurve::{CurveOptions, Half, PoseCurve};
 use crate::profile_point::{ProfileTable, full_radius_height};
+use crate::sections::Sections;
 use swarf_geom::mesh::XyIndex;
-use swarf_geom::{GeomError, MeshBuilder, Point3, TriMesh};
+use swarf_geom::{GeomError, MeshBuilder, Point3, TriMesh, Vec3};
 use swarf_tool::{Pose, Profile, Segment};
 
 /// Twice a triangle's area below which it is dropped from the mesh (mm^2).
@@ -75,6 +76,35 @@ impl SweptSurface {
     /// point, `None` where the tool never passed.
     pub fn heights(&self, points: &[Point3]) -> Vec<Option<f64>> {
         points.iter().map(|p| self.height(p.x, p.y)).collect()
+    }
+
+    /// The machined surface on the vertical plane `k` of `sections`, sampled every
+    /// `step` mm along it across the surface's extent: the section profile the thesis
+    /// compares with measurements (points where the tool never passed are left out).
+    ///
+    /// # Units
+    /// mm.
+    pub fn section(&self, sections: &Sections, k: i64, step: f64) -> Vec<Point3> {
+        let b = self.mesh.aabb();
+        if b.is_empty() || !(step.is_finite() && step > 0.0) {
+            return Vec::new();
+        }
+        let n = sections.normal;
+        let along = Vec3::new(-n.y, n.x, 0.0);
+        let origin = n * sections.value(k);
+        let corners =
+            [b.min.x, b.max.x].map(|x| [b.min.y, b.max.y].map(|y| along.x * x + along.y * y));
+        let flat = corners.iter().flatten();
+        let t0 = flat.clone().fold(f64::INFINITY, |a, &t| a.min(t));
+        let t1 = flat.fold(f64::NEG_INFINITY, |a, &t| a.max(t));
+        let count = ((t1 - t0) / step).ceil().min(1e7) as usize;
+        (0..=count)
+            .filter_map(|j| {
+                let t = t0 + j as f64 * step;
+                let (x, y) = (origin.x + t * along.x, origin.y + t * along.y);
+                self.height(x, y).map(|z| Point3::new(x, y, z))
+            })
+            .collect()
     }
 }
 
@@ -178,7 +208,6 @@ fn add_cap(b: &mut MeshBuilder, profile: &Profile, pose: &Pose, top: f64) -> Res
 #[cfg(test)]
 mod tests {
     use super::*;
-    use swarf_geom::Vec3;
     use swarf_tool::Cutter;
 
     #[test]
@@ -208,6 +237,26 @@ mod tests {
         assert!(s.height(0.0, 20.0).is_none());
         assert!(s.height(6.0, 5.0).is_none());
         assert!(!s.mesh.is_empty());
-        let _ = Vec3::z();
+        // The section y = 5.3 across the pass is the tool's profile; x = 1 along it is
+        // flat from the first to the last pose.
+        let across = Sections::along(0.0, 5.3).unwrap();
+        let prof = s.section(&across, 1, 0.25);
+        assert!(
+            prof.iter()
+                .all(|p| (p.y - 5.3).abs() < 1e-12 && p.x.abs() <= 5.0 + 1e-9)
+        );
+        assert!(prof.len() >= 38, "{}", prof.len());
+        let along = Sections::along(std::f64::consts::FRAC_PI_2, 1.0).unwrap();
+        let flat = s.section(&along, -1, 0.5);
+        let within: Vec<_> = flat
+            .iter()
+            .filter(|p| (0.0..=10.0).contains(&p.y))
+            .collect();
+        assert!(
+            within
+                .iter()
+                .all(|p| p.z.abs() < 1e-9 && (p.x - 1.0).abs() < 1e-12)
+        );
+        assert!(within.len() >= 20, "{}", within.len());
     }
 }
