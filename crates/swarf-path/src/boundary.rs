@@ -12,7 +12,7 @@
 //! tool near its contact, so the measure errs toward more material), and the material
 //! at a point is where the ray along its normal first enters one of those capsules.
 //! Stretches of an edge above `h` (by more than the schedules' own modelling error of
-//! a fraction of a percent, [`COVERED_SLACK`]), widened by one coverage radius each
+//! a fraction of a percent, `COVERED_SLACK`), widened by one coverage radius each
 //! way, become passes along the edge, cut last. Points under another patch are
 //! skipped.
 

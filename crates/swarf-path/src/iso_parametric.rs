@@ -16,7 +16,7 @@
 //! The report's predicted scallop is the local model's scallop for the actual
 //! interval at every sample of both paths; the side-step range is that of
 //! `|B . S_v| dv`. The path on the far boundary is left out when the tools of the one
-//! before already leave at most `h` all along it ([`IsoSetup::covers`]). On a part of several patches each patch is planned in turn and
+//! before already leave at most `h` all along it (`IsoSetup::covers`). On a part of several patches each patch is planned in turn and
 //! CC points under another patch are skipped ([`crate::envelope`]).
 
 use crate::error::PathError;

@@ -27,7 +27,7 @@
 //!   point lies exactly on the plane and the surface; the forward stepper samples it
 //!   at the chordal tolerance. Pieces under another patch (the part's upper envelope,
 //!   [`crate::envelope`]) are trimmed; the pieces of one plane, from all patches, are
-//!   ordered along `F` and joined across small gaps ([`crate::ordering`]).
+//!   ordered along `F` and joined across small gaps (the `ordering` module).
 //! - The last plane, at the part's far extent, is left out when the tools of the one
 //!   before already leave at most `h` all along it.
 
