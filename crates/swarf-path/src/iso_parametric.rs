@@ -21,7 +21,7 @@
 
 use crate::error::PathError;
 use crate::forward_step::{Sample, sample_curve};
-use crate::iso_setup::{IsoSetup, SideGeom};
+use crate::iso_setup::{IsoSetup, SideGeom, fit_interval};
 use crate::job::{Job, ParamDir, StartSide};
 use crate::ordering::Row;
 use crate::plan::{Plan, PlanReport, Uncovered};
@@ -33,10 +33,6 @@ const FALLBACK_SAMPLES: usize = 33;
 /// Smallest parameter interval between paths, relative to the parameter range; a
 /// smaller one means the surface is degenerate there.
 const MIN_PARAM_STEP_REL: f64 = 1e-9;
-/// Iterations fitting the interval to the allowed side step.
-const FIT_ITERATIONS: usize = 8;
-/// The fitted interval uses the allowed side step to within this fraction (below).
-const FIT_SLACK: f64 = 1e-4;
 
 /// Distance across the path between two paths at one station.
 struct Crossing {
@@ -166,21 +162,12 @@ impl<'s, 'a> IsoParam<'s, 'a> {
     ) -> Option<(f64, Vec<Vec<Sample>>)> {
         let clamp = |x: f64| if sign > 0.0 { x.min(end) } else { x.max(end) };
         let stations = self.stations(runs);
-        let mut ds = self.param_step(s, &stations)?;
-        for _ in 0..FIT_ITERATIONS {
-            let ratio = self
-                .crossings(&stations, s, clamp(s + sign * ds))
+        let first = self.param_step(s, &stations)?;
+        let ds = fit_interval(first, |ds| {
+            self.crossings(&stations, s, clamp(s + sign * ds))
                 .map(|c| c.across / c.allowed)
-                .fold(0.0, f64::max);
-            if ratio.is_nan() || ratio <= 0.0 || (ratio <= 1.0 && ratio > 1.0 - FIT_SLACK) {
-                break;
-            }
-            ds /= if ratio > 1.0 {
-                ratio * (1.0 + FIT_SLACK / 2.0)
-            } else {
-                ratio
-            };
-        }
+                .fold(0.0, f64::max)
+        });
         let next = clamp(s + sign * ds);
         for c in self.crossings(&stations, s, next) {
             figures.add_step(c.across, c.scallop);

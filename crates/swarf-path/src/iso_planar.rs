@@ -34,7 +34,7 @@
 use crate::error::PathError;
 use crate::forward_step::sample_curve;
 use crate::iso_parametric::Figures;
-use crate::iso_setup::IsoSetup;
+use crate::iso_setup::{IsoSetup, fit_interval};
 use crate::job::{Job, StartSide};
 use crate::ordering::Row;
 use crate::plan::{Plan, PlanReport};
@@ -48,10 +48,6 @@ const EDGE_INSET: f64 = 1e-4;
 const EXTENT_SURVEY: usize = 129;
 /// Newton steps pulling an interpolated parameter point back onto the plane.
 const PULL_BACK_STEPS: usize = 4;
-/// Iterations fitting the plane spacing to the allowed side step.
-const FIT_ITERATIONS: usize = 8;
-/// The fitted spacing uses the allowed side step to within this fraction (below).
-const FIT_SLACK: f64 = 1e-4;
 
 /// Plans iso-planar finishing of `part` (all patches: the upper envelope).
 ///
@@ -245,26 +241,18 @@ impl IsoPlanar<'_, '_> {
             .map(|g| g.side.step * self.normal.dot(&g.side.side).abs())
             .filter(|d| *d > 0.0)
             .fold(f64::INFINITY, f64::min);
-        let mut dm = if first.is_finite() {
+        let start = if first.is_finite() {
             first
         } else {
             self.setup.side.step(0.0, 0.0)
         };
-        for _ in 0..FIT_ITERATIONS {
-            let ratio = geom
-                .iter()
+        let dm = fit_interval(start, |dm| {
+            geom.iter()
                 .filter_map(|g| self.crossing(g, m + sign * dm))
                 .map(|c| c.across / c.allowed)
-                .fold(0.0, f64::max);
-            if ratio.is_nan() || ratio <= 0.0 || (ratio <= 1.0 && ratio > 1.0 - FIT_SLACK) {
-                break;
-            }
-            dm /= if ratio > 1.0 {
-                ratio * (1.0 + FIT_SLACK / 2.0)
-            } else {
-                ratio
-            };
-        }
+                .fold(0.0, f64::max)
+        });
+        let dm = if dm > 0.0 { dm } else { start };
         for c in geom.iter().filter_map(|g| self.crossing(g, m + sign * dm)) {
             figures.add_step(c.across, c.scallop);
         }

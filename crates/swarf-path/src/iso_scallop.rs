@@ -20,10 +20,22 @@
 //!   from such points the next cross-section leaves at once and they are dropped;
 //! - **split**: the points that are dropped cut the next path into pieces, each
 //!   followed on its own;
+//! - **turn**: where neighbouring points get very different steps (a cutter whose
+//!   effective radius jumps with the tilt), steps are shortened so that the step
+//!   changes by at most [`MAX_OFFSET_SLOPE`] per unit length along the path;
 //! - **fold**: on the concave side of a bend the offset curve loops back (the classic
 //!   swallowtail); points that do not advance along the path are removed (at a path's
 //!   end on a side edge, the interior points beyond the end point instead, so that
 //!   the path keeps reaching the edge).
+//!
+//! Cutters other than the ball: the effective cutting radius of a flat or bull end
+//! mill ([`crate::side_step`]) falls steeply with the tilt (a flat bottom turning level
+//! gives tens of millimetres, a few degrees of tilt a few), so neighbouring points
+//! would get very different steps and the path family would fold over itself. Each
+//! patch is therefore planned as for a ball of the least effective radius over the
+//! tilts the patch has (surveyed on a grid; a margin of one survey step in tilt),
+//! which is conservative: the scallop stays below `h`, at the price of closer paths
+//! on level regions.
 //!
 //! Planning ends when no point is left: the surface is covered up to its boundary.
 //! Paths keep the direction of travel of the first one; zigzag reverses every other
@@ -39,7 +51,7 @@ use crate::iso_setup::IsoSetup;
 use crate::job::{Job, ParamDir, StartSide};
 use crate::ordering::Row;
 use crate::plan::{Plan, PlanReport, Uncovered};
-use crate::scallop_step::{Next, NextPoint, Station, next_point};
+use crate::scallop_step::{Next, NextPoint, Station, next_point, point_at_offset};
 use crate::toolpath::Pass;
 use rayon::prelude::*;
 use swarf_geom::Part;
@@ -48,6 +60,9 @@ use swarf_geom::Part;
 pub const STATION_SPACING: f64 = 1.0;
 /// Most rows planned on one patch (a guard against a path that stops advancing).
 const MAX_ROWS: usize = 100_000;
+/// Largest change of the side step per unit length along a path (dimensionless;
+/// see `limit_turning`).
+const MAX_OFFSET_SLOPE: f64 = 0.5;
 /// A next point must advance along the path by this much over the last one kept, mm.
 const MIN_ADVANCE: f64 = 1e-6;
 
@@ -82,6 +97,8 @@ struct IsoScallop<'s, 'a> {
     map: ClMap<'a>,
     first: Vec<[f64; 2]>,
     inward: [f64; 2],
+    /// Effective cutting radius used on this patch (module doc), mm.
+    radius: f64,
 }
 
 impl<'s, 'a> IsoScallop<'s, 'a> {
@@ -99,11 +116,13 @@ impl<'s, 'a> IsoScallop<'s, 'a> {
                 (vec![[u, v0], [u, v1]], [if min { 1.0 } else { -1.0 }, 0.0])
             }
         };
+        let radius = setup.side.least_radius_up_to(max_tilt(map.patch()));
         IsoScallop {
             setup,
             map,
             first,
             inward,
+            radius,
         }
     }
 
@@ -227,19 +246,58 @@ impl<'s, 'a> IsoScallop<'s, 'a> {
                 let tangent = (chord - normal * normal.dot(&chord)).try_normalize(0.0)?;
                 let side = sign * normal.cross(&tangent);
                 let kappa = tool_side_curvature(&d, &side)?;
-                let tilt = side.z.abs().atan2(normal.z);
                 Some(Station {
                     uv,
                     d,
                     normal,
                     tangent,
                     side,
-                    step: self.setup.side.step(kappa, tilt),
-                    radius: self.setup.side.effective_radius(tilt),
+                    step: self.setup.side.step_for_radius(self.radius, kappa),
+                    radius: self.radius,
                     end: i == 0 || i == last,
                 })
             })
             .collect()
+    }
+
+    /// Shortens steps so that the side offset changes along the path by at most
+    /// [`MAX_OFFSET_SLOPE`] per unit length: the least Lipschitz envelope of the
+    /// offsets over each run of points, and the points re-placed at it. Shorter steps
+    /// keep the scallop below `h`; without this, a cutter whose effective radius jumps
+    /// with the tilt (a flat bottom turning level) gives neighbouring stations very
+    /// different steps, the next path turns across the side direction and the family
+    /// folds back over itself.
+    fn limit_turning(&self, stations: &[Station], next: &mut [Next]) {
+        let offset = |st: &Station, q: &NextPoint| st.side.dot(&(q.point - st.d.point));
+        let mut w: Vec<Option<f64>> = stations
+            .iter()
+            .zip(next.iter())
+            .map(|(st, q)| match q {
+                Next::Point(q) => Some(offset(st, q)),
+                _ => None,
+            })
+            .collect();
+        let gap = |a: usize, b: usize| (stations[a].d.point - stations[b].d.point).norm();
+        for i in 1..w.len() {
+            if let (Some(prev), Some(cur)) = (w[i - 1], w[i]) {
+                w[i] = Some(cur.min(prev + MAX_OFFSET_SLOPE * gap(i - 1, i)));
+            }
+        }
+        for i in (0..w.len().saturating_sub(1)).rev() {
+            if let (Some(after), Some(cur)) = (w[i + 1], w[i]) {
+                w[i] = Some(cur.min(after + MAX_OFFSET_SLOPE * gap(i, i + 1)));
+            }
+        }
+        let patch = self.map.patch();
+        next.par_iter_mut()
+            .zip(stations.par_iter().zip(w.par_iter()))
+            .for_each(|(q, (st, w))| {
+                if let (Next::Point(p), Some(w)) = (*q, *w)
+                    && w < offset(st, &p) * (1.0 - 1e-9)
+                {
+                    *q = point_at_offset(patch, st, w).map_or(Next::Skip, Next::Point);
+                }
+            });
     }
 
     /// The next CC curves from `path`: one per run of points that were not dropped.
@@ -247,10 +305,11 @@ impl<'s, 'a> IsoScallop<'s, 'a> {
         let stations = self.stations(path, sign);
         let patch = self.map.patch();
         let side = &self.setup.side;
-        let next: Vec<Next> = stations
+        let mut next: Vec<Next> = stations
             .par_iter()
             .map(|st| next_point(patch, side, st))
             .collect();
+        self.limit_turning(&stations, &mut next);
         let mut curves = Vec::new();
         let mut current: Vec<NextPoint> = Vec::new();
         let mut beside: Option<NextPoint> = None;
@@ -290,6 +349,29 @@ impl<'s, 'a> IsoScallop<'s, 'a> {
             .map(|c| c.iter().map(|q| q.uv).collect())
             .collect()
     }
+}
+
+/// Survey nodes per direction for a patch's largest tilt.
+const TILT_SURVEY: usize = 33;
+
+/// The largest angle between a normal of `patch` and the tool axis (radians), from a
+/// survey grid.
+fn max_tilt(patch: &swarf_geom::Patch) -> f64 {
+    let [[u0, u1], [v0, v1]] = patch.domain();
+    let n = TILT_SURVEY - 1;
+    let mut worst: f64 = 0.0;
+    for i in 0..=n {
+        for j in 0..=n {
+            let d = patch.derivs(
+                u0 + (u1 - u0) * i as f64 / n as f64,
+                v0 + (v1 - v0) * j as f64 / n as f64,
+            );
+            if let Some(nn) = tool_side_normal(&d) {
+                worst = worst.max(nn.x.hypot(nn.y).atan2(nn.z));
+            }
+        }
+    }
+    worst
 }
 
 #[cfg(test)]
@@ -367,16 +449,20 @@ mod tests {
     }
 
     #[test]
-    fn bull_cutter_plans_with_its_effective_radius() {
+    fn bull_cutter_plans_with_its_least_effective_radius() {
         let h = 0.1;
-        let ball = plan(&cylinder(), &job("ball:d=8", h)).unwrap();
-        let bull = plan(&cylinder(), &job("bull:d=10,r=2", h)).unwrap();
-        // The flat bottom widens the step near the crest (level) and narrows it on
-        // the flanks (tilted across the feed): the side steps spread more.
-        let [b0, b1] = ball.report.side_step_range.unwrap();
-        let [t0, t1] = bull.report.side_step_range.unwrap();
-        assert!(t1 > 1.5 * b1 && t0 < b0, "ball {b0}..{b1}, bull {t0}..{t1}");
+        let part = cylinder();
+        let bull = plan(&part, &job("bull:d=10,r=2", h)).unwrap();
+        // The cylinder tilts up to 30 degrees: the least effective radius up to there,
+        // used as a ball on the convex radius 60, sets the interior side step.
+        let side = crate::side_step::SideStep::new(&"bull:d=10,r=2".parse().unwrap(), h).unwrap();
+        let re = side.least_radius_up_to(max_tilt(&part.patches[0]));
+        assert!(re < 4.0, "{re}");
+        let want = side.step_for_radius(re, -1.0 / 60.0);
+        let [_, top] = bull.report.side_step_range.unwrap();
+        assert!((top - want).abs() < 5e-3 * want, "{top} vs {want}");
         assert!(bull.report.predicted_max_scallop.unwrap() <= h);
         assert_eq!(bull.report.lifted_points, 0);
+        assert!((max_tilt(&part.patches[0]) - 30f64.to_radians()).abs() < 1e-9);
     }
 }

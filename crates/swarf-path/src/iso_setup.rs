@@ -255,3 +255,73 @@ fn ray_sphere(p: &Point3, n: &Vec3, centre: &Point3, r: f64) -> f64 {
     let t = -b - disc.sqrt();
     if t >= 0.0 { t } else { f64::INFINITY }
 }
+
+/// Iterations fitting an interval between paths to the side steps allowed.
+const FIT_ITERATIONS: usize = 40;
+/// A fitted interval uses the allowed side step to within this fraction (below).
+const FIT_SLACK: f64 = 1e-4;
+
+/// The interval between two paths, fitted from the first-order guess `start` so that
+/// `ratio(interval)` (the largest distance across the paths over the side step allowed
+/// there, over all samples) is at most 1 and within [`FIT_SLACK`] of it: scaled by
+/// `1 / ratio` (the distance is nearly proportional to the interval), bisected inside
+/// the bracket once one is known. Returns the largest interval seen with a ratio of
+/// at most 1 (or 0 when nothing is measured: `ratio` returns 0).
+pub fn fit_interval(start: f64, ratio: impl Fn(f64) -> f64) -> f64 {
+    let (mut good, mut bad) = (0.0f64, f64::INFINITY);
+    let mut ds = start;
+    for _ in 0..FIT_ITERATIONS {
+        let r = ratio(ds);
+        if r.is_nan() {
+            bad = bad.min(ds);
+        } else if r <= 1.0 {
+            good = good.max(ds);
+            if r > 1.0 - FIT_SLACK || r <= 0.0 {
+                return ds;
+            }
+        } else {
+            bad = bad.min(ds);
+        }
+        let scaled = if r.is_finite() && r > 0.0 {
+            ds / if r > 1.0 {
+                r * (1.0 + 0.5 * FIT_SLACK)
+            } else {
+                r
+            }
+        } else {
+            0.5 * ds
+        };
+        ds = if scaled > good && scaled < bad {
+            scaled
+        } else if bad.is_finite() {
+            0.5 * (good + bad)
+        } else {
+            scaled
+        };
+    }
+    if good > 0.0 { good } else { ds }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fitted_interval_meets_the_limit_from_either_side() {
+        // Distance across grows like d + d^3 / 10; allowed 1.
+        let ratio = |d: f64| d + d * d * d / 10.0;
+        for start in [0.1, 0.9, 1.0, 3.0, 100.0] {
+            let d = fit_interval(start, ratio);
+            let r = ratio(d);
+            assert!(
+                r <= 1.0 && r > 1.0 - 2.0 * FIT_SLACK,
+                "start {start}: {d} -> {r}"
+            );
+        }
+        // Nothing measured: the start is kept.
+        assert_eq!(fit_interval(2.0, |_| 0.0), 2.0);
+        // A ratio that jumps above the limit past 0.5 (a ridge): stays below it.
+        let d = fit_interval(1.0, |d| if d > 0.5 { 3.0 } else { d });
+        assert!(d <= 0.5 && d > 0.49, "{d}");
+    }
+}

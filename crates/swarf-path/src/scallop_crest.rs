@@ -11,30 +11,23 @@
 //! surface (the midpoint of `P` and `Q`) is the scallop crest, and its distance to the
 //! surface along the normal at its foot (the patch's projection; beyond an edge, the
 //! distance to the tangent plane there, i.e. the surface continued) is the scallop
-//! height. A ball's envelope is exactly its circle; other cutters use the effective
-//! radius of [`crate::side_step`].
+//! height. A ball's envelope is exactly its circle; other cutters use the station's
+//! effective radius for both tools ([`crate::iso_scallop`] takes the least over the
+//! patch's tilts).
 
 use crate::cl_curve::tool_side_normal;
 use crate::scallop_step::Station;
-use crate::side_step::SideStep;
 use swarf_geom::{Patch, Point3, SurfaceDerivs, Vec3};
 
 /// Scallop height between the tool at the station and the tool touching the surface
 /// at `d` (parameters `uv`), in the station's cross-section (module doc), mm;
 /// infinite where the two envelopes do not meet.
-pub fn scallop(
-    patch: &Patch,
-    side: &SideStep,
-    st: &Station,
-    d: &SurfaceDerivs,
-    uv: [f64; 2],
-) -> f64 {
+pub fn scallop(patch: &Patch, st: &Station, d: &SurfaceDerivs, uv: [f64; 2]) -> f64 {
     let Some(n) = tool_side_normal(d) else {
         return f64::INFINITY;
     };
     let t = st.tangent;
-    let tilt = st.side.z.abs().atan2(n.z);
-    let r2 = side.effective_radius(tilt);
+    let r2 = st.radius;
     let c1 = st.d.point + st.radius * st.normal;
     let c2 = d.point + r2 * n;
     let c2 = c2 - (c2 - st.d.point).dot(&t) * t;

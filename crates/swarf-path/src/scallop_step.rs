@@ -120,7 +120,7 @@ pub fn next_point(patch: &Patch, side: &SideStep, st: &Station) -> Next {
         return Next::Covered(None);
     };
     let h = side.h();
-    let eval = |w: f64, guess: [f64; 2]| candidate(patch, side, st, mode, w, guess);
+    let eval = |w: f64, guess: [f64; 2]| candidate(patch, st, mode, w, guess);
     let mut lo = Bound {
         w: 0.0,
         f: -h,
@@ -165,6 +165,17 @@ pub fn next_point(patch: &Patch, side: &SideStep, st: &Station) -> Next {
 /// The cross-section left through a side edge (see [`Next::Skip`]).
 #[derive(Debug, Clone, Copy)]
 struct SideExit;
+
+/// The point at side offset `w` from `st` (a step shorter than the solved one, so
+/// its scallop is at most `h`), or `None` where it cannot be placed (the station is
+/// dropped or the section leaves the patch first).
+pub fn point_at_offset(patch: &Patch, st: &Station, w: f64) -> Option<NextPoint> {
+    let mode = mode(patch, st)?;
+    match candidate(patch, st, mode, w, [f64::NAN; 2])? {
+        Ok(c) if !c.beyond => Some(c.q.with_scallop(c.s)),
+        _ => None,
+    }
+}
 
 /// One end of the root bracket: side offset, `s(w) - h`, the point.
 #[derive(Debug, Clone, Copy)]
@@ -246,7 +257,6 @@ impl NextPoint {
 
 fn candidate(
     patch: &Patch,
-    side: &SideStep,
     st: &Station,
     mode: Mode,
     w: f64,
@@ -295,7 +305,7 @@ fn candidate(
     };
     Some(Ok(Cand {
         q,
-        s: scallop(patch, side, st, &d, uv),
+        s: scallop(patch, st, &d, uv),
         w: st.side.dot(&(d.point - p)),
         beyond,
         normal: tool_side_normal(&d).unwrap_or(st.normal),

@@ -202,10 +202,28 @@ impl SideStep {
             .unwrap_or_else(|| self.table.iter().copied().fold(f64::INFINITY, f64::min))
     }
 
+    /// The least effective cutting radius over tilts from 0 to `tilt` (radians), mm.
+    pub fn least_radius_up_to(&self, tilt: f64) -> f64 {
+        if let Some(r) = self.ball {
+            return r;
+        }
+        let x = (tilt.abs().min(MAX_TILT) / MAX_TILT) * TILT_SAMPLES as f64;
+        let k = ((x.ceil() as usize) + 1).min(TILT_SAMPLES + 1);
+        self.table[..k]
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Side step (surface distance, mm) at signed side curvature `kappa` (1/mm,
     /// positive concave) and `tilt` (radians).
     pub fn step(&self, kappa: f64, tilt: f64) -> f64 {
-        let re = self.effective_radius(tilt);
+        self.step_for_radius(self.effective_radius(tilt), kappa)
+    }
+
+    /// Side step (mm) of the ball model with effective radius `re` (mm) at signed side
+    /// curvature `kappa` (1/mm).
+    pub fn step_for_radius(&self, re: f64, kappa: f64) -> f64 {
         let cap = MAX_STEP_RADII * re;
         ball_step(re, kappa, self.h).map_or(cap, |s| s.min(cap))
     }
