@@ -22,7 +22,7 @@
 //!   followed on its own;
 //! - **turn**: where neighbouring points get very different steps (a cutter whose
 //!   effective radius jumps with the tilt), steps are shortened so that the step
-//!   changes by at most [`MAX_OFFSET_SLOPE`] per unit length along the path;
+//!   changes by at most 0.5 per unit length along the path;
 //! - **fold**: on the concave side of a bend the offset curve loops back (the classic
 //!   swallowtail); points that do not advance along the path are removed (at a path's
 //!   end on a side edge, the interior points beyond the end point instead, so that
