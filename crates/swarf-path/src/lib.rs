@@ -1,7 +1,7 @@
 //! swarf-path: the tool path model (poses, passes, links, feeds), job files, and the
 //! 3-axis finishing strategies that produce tool paths.
 
-pub mod boundary;
+mod boundary;
 pub mod cl_curve;
 pub mod envelope;
 pub mod error;
