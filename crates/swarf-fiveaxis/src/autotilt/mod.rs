@@ -257,7 +257,7 @@ mod tests {
         }
     }
 
-    fn opts(max_alpha_deg: f64) -> TiltOptions {
+    pub(super) fn opts(max_alpha_deg: f64) -> TiltOptions {
         TiltOptions {
             max_alpha: max_alpha_deg.to_radians(),
             tilt: 0.0,
@@ -275,7 +275,7 @@ mod tests {
     }
 
     /// Three passes through the middle of the die, 60 degrees off X, 2 mm steps.
-    fn die_passes(design: &DesignSurface) -> Vec<Vec<Contact>> {
+    pub(super) fn die_passes(design: &DesignSurface) -> Vec<Vec<Contact>> {
         let part = die();
         let dp = DrivePlanes {
             angle: 60f64.to_radians(),

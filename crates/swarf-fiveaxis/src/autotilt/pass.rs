@@ -261,44 +261,10 @@ pub(super) struct PassResult {
 mod tests {
     use super::*;
     use crate::autotilt::gouge_free_tilt;
+    use crate::autotilt::tests::{die_passes, opts};
     use crate::design::tests::die;
-    use crate::drive::{DrivePlanes, drive_plane_passes};
-    use crate::gencurve::CurveOptions;
-    use crate::gouge::GougeOptions;
-    use crate::sections::Sections;
     use swarf_geom::Point3;
     use swarf_tool::Cutter;
-
-    fn opts(max_alpha_deg: f64) -> TiltOptions {
-        TiltOptions {
-            max_alpha: max_alpha_deg.to_radians(),
-            tilt: 0.0,
-            resolution: 0.01f64.to_radians(),
-            max_rate: 0.5f64.to_radians(),
-            gouge: GougeOptions {
-                sections: Sections::along(60f64.to_radians(), 1.0).unwrap(),
-                tolerance: 0.01,
-                curve: CurveOptions::default(),
-                cap_meridians: 96,
-                whole_tool: false,
-            },
-            max_rounds: 50,
-        }
-    }
-
-    /// Three passes through the middle of the die, 60 degrees off X, 2 mm steps.
-    fn die_passes(design: &DesignSurface) -> Vec<Vec<Contact>> {
-        let part = die();
-        let dp = DrivePlanes {
-            angle: 60f64.to_radians(),
-            cross_feed: 3.5,
-            step: 2.0,
-            zigzag: true,
-        };
-        let all = drive_plane_passes(design, &part.control_box(), &dp).unwrap();
-        let mid = all.len() / 2;
-        all[mid - 1..=mid + 1].to_vec()
-    }
 
     /// Deepest point of the design above the tool at `pose`, over a dense grid of the
     /// tool's lower surface (independent of generating curves and sections).
