@@ -9,27 +9,12 @@
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::drive::{DrivePlanes, drive_plane_passes};
 use swarf_fiveaxis::positioning::{Positioning, position};
-use swarf_geom::{Part, Patch, Point3};
+use swarf_geom::{Part, Point3};
 use swarf_path::{Contact, Pass};
 use swarf_tool::Cutter;
 
 fn die() -> Part {
-    let pts = [
-        [-99.4, 0.0, 12.1],
-        [-54.95, 0.0, 24.6],
-        [-4.9, 0.0, 43.8],
-        [-99.4, -65.65, -13.3],
-        [-54.95, -65.65, -7.625],
-        [-4.9, -65.65, 2.8],
-        [-99.4, -103.2, 37.5],
-        [-54.95, -103.2, 39.3],
-        [-4.9, -103.2, 49.8],
-    ];
-    let points = pts.iter().map(|p| Point3::new(p[0], p[1], p[2])).collect();
-    Part {
-        name: "die".into(),
-        patches: vec![Patch::bezier([2, 2], points).unwrap()],
-    }
+    swarf_io::builtin_part("die").expect("the built-in die part loads")
 }
 
 fn cc(part: &Part) -> Vec<Vec<Contact>> {

@@ -11,7 +11,7 @@ use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::machine::kinematics::Joints;
 use swarf_fiveaxis::post::{FeedMode, PostOptions, write_gcode_5x};
 use swarf_fiveaxis::{FiveAxisError, incline_pass};
-use swarf_geom::{Part, Patch, Point3, Vec3};
+use swarf_geom::{Part, Vec3};
 use swarf_path::{Feeds, Linking, Toolpath};
 use swarf_tool::{Cutter, Pose};
 
@@ -28,22 +28,7 @@ const MACHINES: [(&str, &str); 3] = [
 ];
 
 fn die() -> Part {
-    let pts = [
-        [-99.4, 0.0, 12.1],
-        [-54.95, 0.0, 24.6],
-        [-4.9, 0.0, 43.8],
-        [-99.4, -65.65, -13.3],
-        [-54.95, -65.65, -7.625],
-        [-4.9, -65.65, 2.8],
-        [-99.4, -103.2, 37.5],
-        [-54.95, -103.2, 39.3],
-        [-4.9, -103.2, 49.8],
-    ];
-    let points = pts.iter().map(|p| Point3::new(p[0], p[1], p[2])).collect();
-    Part {
-        name: "die".into(),
-        patches: vec![Patch::bezier([2, 2], points).unwrap()],
-    }
+    swarf_io::builtin_part("die").expect("the built-in die part loads")
 }
 
 /// Three inclined passes over the die (lead 10 degrees, tilt 5), 3 mm steps.
