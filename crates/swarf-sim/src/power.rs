@@ -139,55 +139,27 @@ impl PowerPatch {
     /// mm, and mm per unit parameter.
     #[inline]
     pub fn eval1(&self, u: f64, v: f64) -> (Point3, Vec3, Vec3) {
+        // Constant degrees let the inlined loops unroll for the common cases.
         match self.degree {
-            [3, 3] => self.eval1_n::<3, 3>(u, v),
-            [2, 2] => self.eval1_n::<2, 2>(u, v),
-            [1, 1] => self.eval1_n::<1, 1>(u, v),
-            [3, 2] => self.eval1_n::<3, 2>(u, v),
-            [2, 3] => self.eval1_n::<2, 3>(u, v),
-            _ => self.eval1_any(u, v),
+            [3, 3] => self.eval1_deg(u, v, 3, 3),
+            [2, 2] => self.eval1_deg(u, v, 2, 2),
+            [1, 1] => self.eval1_deg(u, v, 1, 1),
+            [3, 2] => self.eval1_deg(u, v, 3, 2),
+            [2, 3] => self.eval1_deg(u, v, 2, 3),
+            [p, q] => self.eval1_deg(u, v, p, q),
         }
     }
 
-    /// [`PowerPatch::eval1`] for degrees known at compile time (loops unrolled).
+    /// [`PowerPatch::eval1`] with the degrees `p`, `q` passed in (inlined, so constant
+    /// degrees unroll).
     #[inline(always)]
-    fn eval1_n<const P: usize, const Q: usize>(&self, u: f64, v: f64) -> (Point3, Vec3, Vec3) {
-        let (su, s, wu) = self.locate(0, u);
-        let (sv, t, wv) = self.locate(1, v);
-        let spans_v = self.breaks[1].len() - 1;
-        let base = (su * spans_v + sv) * (P + 1) * (Q + 1);
-        let c = &self.coef[base..base + (P + 1) * (Q + 1)];
-        horner::<P, Q>(c, s, t, wu, wv)
-    }
-
-    /// [`PowerPatch::eval1`] for any degrees.
-    fn eval1_any(&self, u: f64, v: f64) -> (Point3, Vec3, Vec3) {
-        let [p, q] = self.degree;
+    fn eval1_deg(&self, u: f64, v: f64, p: usize, q: usize) -> (Point3, Vec3, Vec3) {
         let (su, s, wu) = self.locate(0, u);
         let (sv, t, wv) = self.locate(1, v);
         let spans_v = self.breaks[1].len() - 1;
         let base = (su * spans_v + sv) * (p + 1) * (q + 1);
         let c = &self.coef[base..base + (p + 1) * (q + 1)];
-        let mut h = [0.0; 4];
-        let mut hs = [0.0; 4];
-        let mut ht = [0.0; 4];
-        for l in (0..=q).rev() {
-            let mut a = [0.0; 4];
-            let mut da = [0.0; 4];
-            for k in (0..=p).rev() {
-                let ck = c[k * (q + 1) + l];
-                for d in 0..4 {
-                    da[d] = da[d] * s + a[d];
-                    a[d] = a[d] * s + ck[d];
-                }
-            }
-            for d in 0..4 {
-                ht[d] = ht[d] * t + h[d];
-                h[d] = h[d] * t + a[d];
-                hs[d] = hs[d] * t + da[d];
-            }
-        }
-        finish(h, hs, ht, wu, wv)
+        horner(c, p, q, s, t, wu, wv)
     }
 
     /// The parameter domain `[[u0, u1], [v0, v1]]`.
@@ -196,10 +168,12 @@ impl PowerPatch {
     }
 }
 
-/// Horner's rule over a span's coefficients, degrees `P`, `Q`.
+/// Horner's rule over a span's coefficients, degrees `p`, `q`.
 #[inline(always)]
-fn horner<const P: usize, const Q: usize>(
+fn horner(
     c: &[[f64; 4]],
+    p: usize,
+    q: usize,
     s: f64,
     t: f64,
     wu: f64,
@@ -208,11 +182,11 @@ fn horner<const P: usize, const Q: usize>(
     let mut h = [0.0; 4];
     let mut hs = [0.0; 4];
     let mut ht = [0.0; 4];
-    for l in (0..=Q).rev() {
+    for l in (0..=q).rev() {
         let mut a = [0.0; 4];
         let mut da = [0.0; 4];
-        for k in (0..=P).rev() {
-            let ck = c[k * (Q + 1) + l];
+        for k in (0..=p).rev() {
+            let ck = c[k * (q + 1) + l];
             for d in 0..4 {
                 da[d] = da[d] * s + a[d];
                 a[d] = a[d] * s + ck[d];
