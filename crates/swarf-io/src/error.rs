@@ -139,6 +139,16 @@ pub(crate) fn excerpt(text: &str, max: usize) -> String {
     }
 }
 
+/// A TOML parse error of `text` as "line N: message", for readers of TOML files
+/// (jobs, machines) that prefix the file name themselves.
+pub fn toml_message(text: &str, e: &toml::de::Error) -> String {
+    let msg = e.message().trim().to_string();
+    match e.span() {
+        Some(span) => format!("line {}: {msg}", line_of(text, span.start)),
+        None => msg,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -51,6 +51,7 @@ impl Default for JobLinking {
 /// Height of the default clearance plane above the highest CL point, mm.
 pub const DEFAULT_CLEARANCE_MARGIN: f64 = 5.0;
 use serde::{Deserialize, Serialize};
+use swarf_io::error::toml_message;
 use swarf_tool::Cutter;
 
 /// A planning job.
@@ -298,18 +299,6 @@ fn positive(name: &str, v: Option<f64>) -> Result<(), String> {
             Err(format!("{name}: expected a finite number > 0, found {x}"))
         }
         _ => Ok(()),
-    }
-}
-
-/// A TOML error as "line N: message".
-fn toml_message(text: &str, e: &toml::de::Error) -> String {
-    let msg = e.message().trim().to_string();
-    match e.span() {
-        Some(span) => {
-            let line = text[..span.start.min(text.len())].matches('\n').count() + 1;
-            format!("line {line}: {msg}")
-        }
-        None => msg,
     }
 }
 

@@ -52,6 +52,7 @@ pub mod kinematics;
 use crate::error::FiveAxisError;
 use serde::{Deserialize, Serialize};
 use swarf_geom::{Point3, Vec3};
+use swarf_io::error::toml_message;
 
 /// The three machine kinds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -376,18 +377,6 @@ fn prefer(p: Option<&str>, names: [char; 2]) -> Result<Option<(usize, f64)>, Str
             "solution.prefer: expected a rotary axis and a sign such as \"{}+\", found {p:?}",
             names[0]
         )),
-    }
-}
-
-/// A TOML error as "line N: message".
-fn toml_message(text: &str, e: &toml::de::Error) -> String {
-    let msg = e.message().trim().to_string();
-    match e.span() {
-        Some(span) => {
-            let line = text[..span.start.min(text.len())].matches('\n').count() + 1;
-            format!("line {line}: {msg}")
-        }
-        None => msg,
     }
 }
 
