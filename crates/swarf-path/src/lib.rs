@@ -14,6 +14,7 @@ pub mod iso_scallop;
 mod iso_setup;
 pub mod job;
 mod ordering;
+pub mod pass_bound;
 pub mod plan;
 pub mod raster;
 mod raster_double;

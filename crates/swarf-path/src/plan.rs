@@ -2,6 +2,8 @@
 
 use crate::error::PathError;
 use crate::job::{Job, StrategyKind};
+use crate::pass_bound::{Feed, PassBound, pass_bound};
+use crate::side_step::SideStep;
 use crate::toolpath::Toolpath;
 use serde::{Deserialize, Serialize};
 use swarf_geom::{Part, Point3, TriMesh};
@@ -47,6 +49,11 @@ pub struct PlanReport {
     pub max_lift: f64,
     /// Regions left uncovered, with reasons.
     pub uncovered: Vec<Uncovered>,
+    /// Iso strategies: per patch, the least number of full-length passes any pass
+    /// family along the job's feed direction needs at its scallop height, and the
+    /// column that needs them ([`crate::pass_bound`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pass_bound: Vec<PassBound>,
     /// Planning wall time, s (not part of deterministic outputs).
     #[serde(skip)]
     pub elapsed_s: f64,
@@ -80,6 +87,22 @@ impl Plan {
             }
         }
         Some(s)
+    }
+}
+
+/// The pass bound of an iso job on `part` (empty for raster, or without a usable
+/// scallop height: the strategy has already rejected those).
+fn bound_for(job: &Job, part: &Part) -> Vec<PassBound> {
+    let feed = match job.strategy.kind {
+        StrategyKind::Raster => return Vec::new(),
+        StrategyKind::IsoParametric | StrategyKind::IsoScallop => {
+            Feed::Param(job.strategy.direction)
+        }
+        StrategyKind::IsoPlanar => Feed::Plane(job.angle_rad()),
+    };
+    match job.strategy.scallop.map(|h| SideStep::new(&job.tool, h)) {
+        Some(Ok(side)) => pass_bound(part, &side, feed),
+        _ => Vec::new(),
     }
 }
 
@@ -118,6 +141,9 @@ pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
         plan.toolpath.linking = job.linking_for(top);
     }
     plan.report.lifted_points = plan.toolpath.lifted_count();
+    if let PlanInput::Part(part) = input {
+        plan.report.pass_bound = bound_for(job, part);
+    }
     plan.report.elapsed_s = start.elapsed().as_secs_f64();
     Ok(plan)
 }

@@ -84,6 +84,23 @@ fn scallops_stay_below_h_and_iso_scallop_is_the_most_economical() {
             );
         }
     }
+    // The least count of full-length passes (swarf_path::pass_bound): iso-scallop
+    // needs exactly its next whole number, the others no fewer.
+    let bound = &rows[2].plan.report.pass_bound[0];
+    println!(
+        "pass bound {:.3} (column u = {:.4} at {:?})",
+        bound.passes, bound.column, bound.at
+    );
+    assert_eq!(
+        rows[2].plan.toolpath.passes.len(),
+        bound.passes.ceil() as usize
+    );
+    for row in &rows {
+        // Drive planes along x on wave are the curves of constant v.
+        let own = &row.plan.report.pass_bound[0];
+        assert!((own.passes - bound.passes).abs() < 1e-9, "{}", row.name);
+        assert!(row.plan.toolpath.passes.len() as f64 >= bound.passes);
+    }
     let scallop = &rows[2];
     for other in &rows[..2] {
         assert!(
