@@ -13,4 +13,4 @@ pub use csv_writer::write_pose_csv;
 pub use error::NcError;
 pub use gcode_writer::{Dialect, GcodeOptions, write_gcode};
 pub use number::Units;
-pub use read::{Diagnostic, Motion, MotionKind, Program};
+pub use read::{Diagnostic, Kinematics, Motion, MotionKind, Program};

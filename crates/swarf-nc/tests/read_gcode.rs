@@ -61,7 +61,7 @@ fn incremental_inch_and_modal_feed() {
 fn initial_pose_and_chained_starts() {
     let opts = GcodeReadOptions {
         initial: Pose::vertical(Point3::new(0.0, 0.0, 50.0)),
-        block_delete: false,
+        ..GcodeReadOptions::default()
     };
     let p = parse_gcode("G21 G90\nG0 X5\nG1 Z1 F100\nM2\n", "t.ngc", &opts).unwrap();
     assert_eq!(p.motions[0].start.cl, Point3::new(0.0, 0.0, 50.0));
@@ -139,7 +139,7 @@ fn each_bad_input_names_line_and_column() {
             "G21\nG0 X1 A10\n",
             2,
             7,
-            "five-axis programs need a machine file; not supported yet",
+            "five-axis programs need the machine's kinematics: give a machine file (swarf verify --machine FILE)",
         ),
         ("G21\nG0 X1 Y2 C-5\n", 2, 10, "rotary axis word C"),
         ("G21 G0 X1.2.3\n", 1, 12, "bad number"),
@@ -213,7 +213,8 @@ fn a_program_that_stops_keeps_earlier_motions() {
     assert_eq!((stop.line, stop.column), (6, 8));
     assert_eq!(
         p.located(stop),
-        "t.ngc:6:8: rotary axis word B: five-axis programs need a machine file; not supported yet"
+        "t.ngc:6:8: rotary axis word B: five-axis programs need the machine's kinematics: give a \
+         machine file (swarf verify --machine FILE)"
     );
 }
 

@@ -84,6 +84,10 @@ pub enum Action {
     Inch,
     /// Millimetres (G21).
     Mm,
+    /// Inverse-time feed (G93): `F` on each feed block is 1 / its time in minutes.
+    InverseTime,
+    /// Units-per-minute feed (G94); sets the feed rate to 0, as LinuxCNC does.
+    UnitsPerMinute,
     /// Tool length offset on (G43): program coordinates are the tool tip.
     LengthOffset,
     /// Dwell (G4), no motion.
@@ -145,11 +149,8 @@ pub fn g_code(code10: u32) -> Option<(Group, Effect)> {
         910 => (Gr::Distance, Run(A::Incremental)),
         901 => (Gr::ArcDistance, Run(A::ArcAbsolute)),
         911 => (Gr::ArcDistance, Run(A::ArcIncremental)),
-        930 => (
-            Gr::FeedMode,
-            Refuse("inverse-time feed (G93) is not supported"),
-        ),
-        940 => (Gr::FeedMode, Run(A::Nothing)),
+        930 => (Gr::FeedMode, Run(A::InverseTime)),
+        940 => (Gr::FeedMode, Run(A::UnitsPerMinute)),
         950 => (
             Gr::FeedMode,
             Refuse("feed per revolution (G95) is not supported"),
@@ -274,7 +275,11 @@ mod tests {
             g_code(901),
             Some((Group::ArcDistance, Effect::Run(Action::ArcAbsolute)))
         );
-        for refused in [410, 420, 810, 830, 920, 280, 550, 930, 50] {
+        assert_eq!(
+            g_code(930),
+            Some((Group::FeedMode, Effect::Run(Action::InverseTime)))
+        );
+        for refused in [410, 420, 810, 830, 920, 280, 550, 950, 50] {
             assert!(
                 matches!(g_code(refused), Some((_, Effect::Refuse(_)))),
                 "G{refused}"

@@ -12,8 +12,13 @@
 //!   get a warning (a Fanuc control may read `X10` as 0.010 mm).
 //! - The first motion starts at [`GcodeReadOptions::initial`] (the tip at the origin,
 //!   as `rs274` assumes).
+//! - Rotary axis words need [`GcodeReadOptions::kinematics`] (a machine file):
+//!   [`crate::read::kinematics`] for how the axes become poses over the part, and
+//!   [`crate::read::feed`] for G93 inverse-time and G94 feeds.
 
 use crate::error::NcError;
+use crate::read::axes::Axes;
+use crate::read::kinematics::{DEFAULT_KINEMATICS_TOL, Kinematics};
 use crate::read::lexer::lex_line;
 use crate::read::modal::{Flow, Interpreter};
 use crate::read::program::{Diagnostic, Program};
@@ -21,36 +26,63 @@ use swarf_geom::Point3;
 use swarf_tool::Pose;
 
 /// Options of the G-code reader.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GcodeReadOptions {
-    /// Where the tool is when the program starts; mm.
+#[derive(Debug, Clone, Copy)]
+pub struct GcodeReadOptions<'k> {
+    /// Where the tool is when the program starts; mm. With kinematics only the tip
+    /// counts: the rotary axes start at 0.
     pub initial: Pose,
     /// The block delete switch: when on, lines starting with `/` are skipped.
     pub block_delete: bool,
+    /// The machine's forward kinematics, for five-axis programs: program coordinates
+    /// are then machine axes and rotary words are read. `None`: program coordinates
+    /// are the tool tip in the part frame and rotary words are refused.
+    pub kinematics: Option<&'k dyn Kinematics>,
+    /// Chordal tolerance of the motions a five-axis move is split into, mm.
+    pub kinematics_tol: f64,
 }
 
-impl Default for GcodeReadOptions {
-    /// Tip at the origin, axis +Z; block delete off (LinuxCNC's defaults).
+impl Default for GcodeReadOptions<'_> {
+    /// Tip at the origin, axis +Z; block delete off (LinuxCNC's defaults); no
+    /// kinematics.
     fn default() -> Self {
         GcodeReadOptions {
             initial: Pose::vertical(Point3::origin()),
             block_delete: false,
+            kinematics: None,
+            kinematics_tol: DEFAULT_KINEMATICS_TOL,
         }
+    }
+}
+
+impl PartialEq for GcodeReadOptions<'_> {
+    /// Equal values, and the same kinematics object (or none on both sides).
+    fn eq(&self, other: &Self) -> bool {
+        let same = match (self.kinematics, other.kinematics) {
+            (None, None) => true,
+            (Some(a), Some(b)) => std::ptr::addr_eq(a, b),
+            _ => false,
+        };
+        same && self.initial == other.initial
+            && self.block_delete == other.block_delete
+            && self.kinematics_tol == other.kinematics_tol
     }
 }
 
 /// Reads G-code text.
 ///
 /// Errors inside the program (an unknown or unsupported word, an arc whose radius does
-/// not match its end point, a feed move without feed, rotary axis words, a malformed
-/// number ...) stop the reading: the result is `Ok` with the motions before the error
-/// and [`Program::stopped`] set, so that a verifier can still report on them.
+/// not match its end point, a feed move without feed, rotary axis words without
+/// kinematics, a malformed number ...) stop the reading: the result is `Ok` with the
+/// motions before the error and [`Program::stopped`] set, so that a verifier can still
+/// report on them.
 ///
 /// # Units
-/// The program's units (G20/G21) are converted: motions in mm, feeds in mm/min.
+/// The program's units (G20/G21) are converted: motions in mm, feeds in mm/min of the
+/// tool tip over the part.
 ///
 /// # Errors
-/// [`NcError::Unreadable`] when the text is not a program at all (binary data).
+/// [`NcError::Unreadable`] when the text is not a program at all (binary data);
+/// [`NcError::InvalidOption`] when `opts.kinematics_tol` is not a positive length.
 ///
 /// # Example
 /// ```
@@ -64,8 +96,18 @@ impl Default for GcodeReadOptions {
 pub fn parse_gcode(text: &str, source: &str, opts: &GcodeReadOptions) -> Result<Program, NcError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     check_text(text, source)?;
+    if !(opts.kinematics_tol.is_finite() && opts.kinematics_tol > 0.0) {
+        return Err(NcError::InvalidOption {
+            field: "kinematics_tol",
+            message: format!(
+                "expected a finite length > 0 mm, found {}",
+                opts.kinematics_tol
+            ),
+        });
+    }
     let mut program = Program::new(source);
-    let mut machine = Interpreter::new(opts.initial);
+    let axes = Axes::new(&opts.initial, opts.kinematics, opts.kinematics_tol);
+    let mut machine = Interpreter::with_axes(axes);
     let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
     let mut opened = false;
     let mut started = false;

@@ -3,19 +3,28 @@
 //! rapid, circular and helical) in mm and mm/min in the part frame, with the source
 //! line of each, and warnings for what was read but not simulated.
 //!
+//! Five-axis G-code (`X Y Z` and two rotary words, G93 or G94 feeds) is read with a
+//! machine's forward kinematics ([`Kinematics`], given in
+//! [`GcodeReadOptions::kinematics`]); APT CL and pose CSV are in the part frame
+//! already and need none.
+//!
 //! Reading has two kinds of failure. A file that cannot be read at all (missing, not
 //! text, an unknown extension, a pose CSV without its header) is an `Err`
 //! ([`NcError`]). An error inside a program (an unknown word, an arc whose radius does
-//! not match its end point, a rotary axis word ...) stops the reading at that line:
+//! not match its end point, a rotary axis word without kinematics ...) stops the
+//! reading at that line:
 //! the result is `Ok`, holds the motions before the error, and sets
 //! [`Program::stopped`] to the diagnostic (line, column, message), so that a verifier
 //! can still write its partial report and then fail.
 
 pub mod arc;
+pub mod axes;
 pub mod cl;
 pub mod cl_record;
 pub mod codes;
+pub mod feed;
 pub mod gcode;
+pub mod kinematics;
 pub mod lexer;
 pub mod modal;
 pub mod pose_csv;
@@ -25,6 +34,7 @@ pub mod words;
 
 pub use cl::parse_cl;
 pub use gcode::{GcodeReadOptions, parse_gcode};
+pub use kinematics::{AxisPosition, Kinematics};
 pub use pose_csv::parse_pose_csv;
 pub use program::{Diagnostic, Motion, MotionKind, Program};
 
@@ -56,7 +66,8 @@ impl ProgramFormat {
 }
 
 /// Reads the program at `path`, choosing the reader by extension: G-code (with
-/// [`GcodeReadOptions::default`]), APT CL or pose CSV. Text that is not valid UTF-8
+/// [`GcodeReadOptions::default`]), APT CL or pose CSV; [`read_program_with`] takes
+/// the G-code reader's options (a machine's kinematics). Text that is not valid UTF-8
 /// is read with the bad bytes replaced (they can only sit in comments of a valid
 /// program; elsewhere the reader reports them with their line and column).
 ///
@@ -71,6 +82,19 @@ impl ProgramFormat {
 /// file cannot be read, [`NcError::Unreadable`] when it is not a program of its
 /// format at all.
 pub fn read_program(path: &Path) -> Result<Program, NcError> {
+    read_program_with(path, &GcodeReadOptions::default())
+}
+
+/// [`read_program`] with `gcode` as the G-code reader's options (APT CL and pose CSV
+/// do not use them).
+///
+/// # Units
+/// Motions in mm, feeds in mm/min, whatever units the file uses.
+///
+/// # Errors
+/// As [`read_program`]; [`NcError::InvalidOption`] for a G-code program when
+/// `gcode.kinematics_tol` is not a positive length.
+pub fn read_program_with(path: &Path, gcode: &GcodeReadOptions) -> Result<Program, NcError> {
     let source = path.display().to_string();
     let format = ProgramFormat::of(path).ok_or_else(|| NcError::UnknownFormat {
         path: source.clone(),
@@ -81,7 +105,7 @@ pub fn read_program(path: &Path) -> Result<Program, NcError> {
     })?;
     let text = String::from_utf8_lossy(&bytes);
     match format {
-        ProgramFormat::Gcode => parse_gcode(&text, &source, &GcodeReadOptions::default()),
+        ProgramFormat::Gcode => parse_gcode(&text, &source, gcode),
         ProgramFormat::Cl => parse_cl(&text, &source),
         ProgramFormat::PoseCsv => parse_pose_csv(&text, &source),
     }

@@ -11,10 +11,16 @@
 //! Program coordinates are the tool tip in the part frame: the reader assumes the
 //! control applies the tool length (G43 H, or the tool table) so that the programmed
 //! point is the tip, and that the work offset (G54) puts the part frame where the
-//! program's zero is.
+//! program's zero is. With a machine's kinematics the program coordinates are the
+//! machine's axes (`X Y Z` and two rotary words, in degrees, absolute in G90 and
+//! incremental in G91, not scaled by G20), turned into part-frame motions by
+//! [`crate::read::axes`]. Feeds follow G93/G94 as [`crate::read::feed`] describes.
 
 use crate::read::arc::{ArcRequest, CenterWords, MM_PER_INCH, Plane, arc_center};
+use crate::read::axes::Axes;
 use crate::read::codes::Action;
+use crate::read::feed::BlockFeed;
+use crate::read::kinematics::{AxisPosition, DEFAULT_KINEMATICS_TOL};
 use crate::read::lexer::{Block, Word};
 use crate::read::program::{Diagnostic, Motion, MotionKind};
 use crate::read::warnings::Warnings;
@@ -36,21 +42,25 @@ pub enum Flow {
 }
 
 /// The modal state and what has been read so far.
-pub struct Interpreter {
+pub struct Interpreter<'k> {
     /// Motions emitted so far.
     pub motions: Vec<Motion>,
     /// Warnings so far.
     pub warnings: Warnings,
-    /// Tip position, mm, and tool axis.
-    pose: Pose,
+    /// Axis positions and the tool's pose.
+    axes: Axes<'k>,
     motion: Option<Action>,
     plane: Plane,
     absolute: bool,
     ijk_absolute: bool,
     inch: bool,
     units_seen: bool,
-    /// Feed, mm/min.
+    /// Feed in G94, mm/min.
     feed: f64,
+    /// Feed in G94 for moves of the rotary axes alone, degrees/min.
+    rotary_feed: f64,
+    /// G93 inverse-time feed mode.
+    inverse_time: bool,
     selected_tool: Option<u32>,
     active_tool: Option<u32>,
     /// An `O` program number was read: numbers without a decimal point are suspicious.
@@ -58,14 +68,21 @@ pub struct Interpreter {
     fanuc_warned: bool,
 }
 
-impl Interpreter {
-    /// A machine at `initial`, in G17 G21 G90 G91.1 G94 with no motion mode and no feed
-    /// (LinuxCNC's start-up state).
+impl Interpreter<'static> {
+    /// A three-axis machine at `initial`, in G17 G21 G90 G91.1 G94 with no motion mode
+    /// and no feed (LinuxCNC's start-up state).
     pub fn new(initial: Pose) -> Self {
+        Interpreter::with_axes(Axes::new(&initial, None, DEFAULT_KINEMATICS_TOL))
+    }
+}
+
+impl<'k> Interpreter<'k> {
+    /// A machine whose axes start at `axes`, otherwise as [`Interpreter::new`].
+    pub fn with_axes(axes: Axes<'k>) -> Self {
         Interpreter {
             motions: Vec::new(),
             warnings: Warnings::default(),
-            pose: initial,
+            axes,
             motion: None,
             plane: Plane::Xy,
             absolute: true,
@@ -73,6 +90,8 @@ impl Interpreter {
             inch: false,
             units_seen: false,
             feed: 0.0,
+            rotary_feed: 0.0,
+            inverse_time: false,
             selected_tool: None,
             active_tool: None,
             fanuc: false,
@@ -99,7 +118,8 @@ impl Interpreter {
             self.block_mode(&parsed),
             Some(Action::ArcCw | Action::ArcCcw)
         );
-        parsed.check_letters(is_arc, line, &mut self.warnings)?;
+        let rotary = self.axes.rotary_letters();
+        parsed.check_letters(is_arc, rotary, line, &mut self.warnings)?;
         self.machine_words(&parsed, line)?;
         self.set_modes(&parsed);
         self.motion_words(&parsed, line)?;
@@ -115,13 +135,23 @@ impl Interpreter {
         }
     }
 
-    /// F, S, T, M6 and G4, in that order.
+    /// Feed mode, F, S, T, M6 and G4, in that order. In G93 the F word belongs to its
+    /// block's motion ([`Interpreter::block_feed`]).
     fn machine_words(&mut self, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
-        if let Some(f) = parsed.get('F') {
-            if f.value < 0.0 {
-                return Err(Diagnostic::new(line, f.column, "negative feed rate F"));
-            }
+        if parsed.has_g(Action::InverseTime).is_some() {
+            self.inverse_time = true;
+        }
+        if parsed.has_g(Action::UnitsPerMinute).is_some() {
+            self.inverse_time = false;
+            self.feed = 0.0;
+            self.rotary_feed = 0.0;
+        }
+        if let Some(f) = parsed.get('F').filter(|f| f.value < 0.0) {
+            return Err(Diagnostic::new(line, f.column, "negative feed rate F"));
+        }
+        if let Some(f) = parsed.get('F').filter(|_| !self.inverse_time) {
             self.feed = f.value * self.scale();
+            self.rotary_feed = f.value;
             let to_inch = parsed.has_g(Action::Inch).is_some();
             let to_mm = parsed.has_g(Action::Mm).is_some();
             if (to_inch && !self.inch) || (to_mm && self.inch) {
@@ -196,7 +226,8 @@ impl Interpreter {
     fn motion_words(&mut self, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
         let mode = self.block_mode(parsed);
         self.motion = mode;
-        let axes: Vec<Word> = ['X', 'Y', 'Z']
+        let rotary = self.axes.rotary_letters().unwrap_or(['X'; 2]);
+        let axes: Vec<Word> = ['X', 'Y', 'Z', rotary[0], rotary[1]]
             .iter()
             .filter_map(|&l| parsed.get(l))
             .collect();
@@ -228,53 +259,77 @@ impl Interpreter {
                 "no G20/G21 before the first motion: assuming millimetres (G21)",
             );
         }
-        let end = self.end_point(parsed);
+        let end = self.end_position(parsed);
         let kind = match mode {
             Action::Rapid => MotionKind::Rapid,
             Action::Linear => MotionKind::Linear,
             _ => self.arc_kind(parsed, mode == Action::ArcCw, &end, line, column)?,
         };
-        if kind != MotionKind::Rapid && self.feed <= 0.0 {
+        let feed = self.block_feed(kind, parsed, line, column)?;
+        let motions = self.axes.move_to(kind, end, feed, line);
+        self.motions.extend(motions);
+        Ok(())
+    }
+
+    /// How the feed of a motion block is given (see [`crate::read::feed`]).
+    ///
+    /// # Errors
+    /// A feed move in G94 with no feed rate; in G93, one without an F word or with F0.
+    fn block_feed(
+        &self,
+        kind: MotionKind,
+        parsed: &Words,
+        line: usize,
+        column: usize,
+    ) -> Result<BlockFeed, Diagnostic> {
+        if kind == MotionKind::Rapid {
+            return Ok(BlockFeed::Rapid);
+        }
+        if self.inverse_time {
+            return match parsed.get('F') {
+                Some(f) if f.value > 0.0 => Ok(BlockFeed::InverseTime(f.value)),
+                Some(f) => Err(Diagnostic::new(
+                    line,
+                    f.column,
+                    "F0 in inverse-time feed mode (G93): the block would never end",
+                )),
+                None => Err(Diagnostic::new(
+                    line,
+                    column,
+                    "F word missing on a feed move in inverse-time mode (G93): every G1, \
+                     G2 and G3 block needs its own F (1 / minutes)",
+                )),
+            };
+        }
+        if self.feed <= 0.0 {
             return Err(Diagnostic::new(
                 line,
                 column,
                 "feed move with zero feed rate: program F before the first G1, G2 or G3",
             ));
         }
-        let straight = matches!(kind, MotionKind::Rapid | MotionKind::Linear);
-        if straight && end == self.pose.cl {
-            return Ok(());
-        }
-        let next = Pose {
-            cl: end,
-            axis: self.pose.axis,
-        };
-        self.motions.push(Motion {
-            kind,
-            start: self.pose,
-            end: next,
-            feed: if kind == MotionKind::Rapid {
-                0.0
-            } else {
-                self.feed
-            },
-            line,
-        });
-        self.pose = next;
-        Ok(())
+        Ok(BlockFeed::PerMinute {
+            linear: self.feed,
+            rotary: self.rotary_feed,
+        })
     }
 
-    /// End point of the block's motion, mm.
-    fn end_point(&self, parsed: &Words) -> Point3 {
-        let mut end = self.pose.cl;
-        for (k, letter) in ['X', 'Y', 'Z'].into_iter().enumerate() {
+    /// The axis position at the end of the block's motion: mm, and radians for the
+    /// rotary axes (whose words are degrees, not scaled by G20).
+    fn end_position(&self, parsed: &Words) -> AxisPosition {
+        let mut end = *self.axes.position();
+        let rotary = self.axes.rotary_letters();
+        let letters = ['X', 'Y', 'Z']
+            .into_iter()
+            .chain(rotary.into_iter().flatten());
+        for (k, letter) in letters.enumerate() {
             if let Some(w) = parsed.get(letter) {
-                let v = w.value * self.scale();
-                end[k] = if self.absolute {
-                    v
+                let v = if k < 3 {
+                    w.value * self.scale()
                 } else {
-                    self.pose.cl[k] + v
+                    w.value.to_radians()
                 };
+                end[k] = if self.absolute { v } else { end[k] + v };
             }
         }
         end
@@ -284,7 +339,7 @@ impl Interpreter {
         &self,
         parsed: &Words,
         clockwise: bool,
-        end: &Point3,
+        end: &AxisPosition,
         line: usize,
         column: usize,
     ) -> Result<MotionKind, Diagnostic> {
@@ -333,8 +388,8 @@ impl Interpreter {
         let request = ArcRequest {
             plane,
             clockwise,
-            start: Point3::from(self.pose.cl.coords / scale),
-            end: Point3::from(end.coords / scale),
+            start: xyz(self.axes.position()) / scale,
+            end: xyz(end) / scale,
             center,
             ijk_absolute: self.ijk_absolute,
             inch: self.inch,
@@ -376,12 +431,17 @@ impl Interpreter {
     }
 }
 
+/// The `X Y Z` of an axis position.
+fn xyz(p: &AxisPosition) -> Point3 {
+    Point3::new(p[0], p[1], p[2])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::read::lexer::lex_line;
 
-    fn run(lines: &[&str]) -> (Interpreter, Option<Diagnostic>) {
+    fn run(lines: &[&str]) -> (Interpreter<'static>, Option<Diagnostic>) {
         let mut machine = Interpreter::new(Pose::vertical(Point3::origin()));
         for (i, text) in lines.iter().enumerate() {
             let block = lex_line(text, i + 1).unwrap();
@@ -423,6 +483,19 @@ mod tests {
             panic!("{:?}", m.motions[1]);
         };
         assert_eq!(center, Point3::new(10.0, 0.0, 0.0));
+    }
+
+    #[test]
+    fn inverse_time_on_three_axes_as_rs274_reads_it() {
+        // rs274 -g: SET_FEED_RATE(20) for the 2 mm line at F10, 31.4159 for the half
+        // circle of radius 2 at F5; G0 needs no F.
+        let (m, err) = run(&["G21 G93", "G1 X2 F10", "G0 X0", "G2 X4 I2 F5"]);
+        assert!(err.is_none(), "{err:?}");
+        assert!((m.motions[0].feed - 20.0).abs() < 1e-12);
+        assert_eq!(m.motions[1].feed, 0.0);
+        assert!((m.motions[2].feed - 10.0 * std::f64::consts::PI).abs() < 1e-12);
+        let (_, err) = run(&["G21 G93", "G1 X2 F10", "X3"]);
+        assert_eq!(err.map(|d| (d.line, d.column)), Some((3, 1)));
     }
 
     #[test]

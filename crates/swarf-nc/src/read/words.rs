@@ -1,7 +1,12 @@
 //! Sorting a lexed block's words before execution: G and M codes looked up in the
 //! code table ([`crate::read::codes`]), refused or warned about there; two codes of
 //! one modal group, or one letter twice, refused as LinuxCNC does; letters swarf
-//! cannot simulate (rotary and U/V/W axes, `E`) refused and unused ones warned about.
+//! cannot simulate (U/V/W axes, `E`) refused and unused ones warned about.
+//!
+//! Rotary axis words (`A`, `B`, `C`) need the machine's kinematics
+//! ([`crate::read::kinematics`]): without them they are refused with a pointer to
+//! `swarf verify --machine`; with them, a letter the machine does not have is refused
+//! naming the machine's letters, and rotary words on an arc (G2/G3) are refused.
 
 use crate::read::codes::{Action, Effect, Group, g_code, m_code};
 use crate::read::lexer::{Block, Word};
@@ -121,13 +126,16 @@ impl Words {
     }
 
     /// Refuses letters swarf cannot simulate and warns about unused ones; `is_arc`:
-    /// the block runs in G2/G3 mode (so I, J, K, R and P have a use).
+    /// the block runs in G2/G3 mode (so I, J, K, R and P have a use); `rotary`: the
+    /// machine's rotary axis letters when the reader has its kinematics.
     ///
     /// # Errors
-    /// At the word: A/B/C (five-axis), U/V/W, E, and I/J/K/R outside arc mode.
+    /// At the word: A/B/C without kinematics, a rotary letter the machine does not
+    /// have, rotary words on an arc, U/V/W, E, and I/J/K/R outside arc mode.
     pub fn check_letters(
         &self,
         is_arc: bool,
+        rotary: Option<[char; 2]>,
         line: usize,
         warnings: &mut Warnings,
     ) -> Result<(), Diagnostic> {
@@ -139,11 +147,7 @@ impl Words {
                 |message: String| warnings.push(Diagnostic::new(line, w.column, message));
             let l = w.letter;
             match l {
-                'A' | 'B' | 'C' => {
-                    return err(format!(
-                        "rotary axis word {l}: five-axis programs need a machine file; not supported yet"
-                    ));
-                }
+                'A' | 'B' | 'C' => rotary_word(l, is_arc, rotary).or_else(err)?,
                 'U' | 'V' | 'W' => {
                     return err(format!("{l} axis word: only X, Y and Z axes are supported"));
                 }
@@ -162,6 +166,23 @@ impl Words {
             }
         }
         Ok(())
+    }
+}
+
+/// Whether the rotary word `l` can be simulated (see the module docs).
+fn rotary_word(l: char, is_arc: bool, rotary: Option<[char; 2]>) -> Result<(), String> {
+    match rotary {
+        None => Err(format!(
+            "rotary axis word {l}: five-axis programs need the machine's kinematics: give a \
+             machine file (swarf verify --machine FILE)"
+        )),
+        Some([a, b]) if l != a && l != b => Err(format!(
+            "rotary axis word {l}: the machine's rotary axes are {a} and {b}"
+        )),
+        Some(_) if is_arc => Err(format!(
+            "rotary axis word {l} on an arc (G2/G3): arcs with rotary motion are not supported"
+        )),
+        Some(_) => Ok(()),
     }
 }
 
@@ -224,7 +245,7 @@ mod tests {
         let check = |text: &str, is_arc: bool| {
             let (words, _) = sort(text);
             let mut warnings = Warnings::default();
-            let result = words.unwrap().check_letters(is_arc, 7, &mut warnings);
+            let result = words.unwrap().check_letters(is_arc, None, 7, &mut warnings);
             (result.err().map(|d| d.column), warnings.finish().len())
         };
         assert_eq!(check("X1 I2", false), (Some(4), 0));
@@ -233,5 +254,32 @@ mod tests {
         assert_eq!(check("G4 P2", false), (None, 0));
         assert_eq!(check("X1 W2", false), (Some(4), 0));
         assert_eq!(check("G43 H1 D2", false), (None, 1));
+    }
+
+    #[test]
+    fn rotary_letters_need_and_match_the_machine() {
+        let check = |text: &str, is_arc: bool, rotary: Option<[char; 2]>| {
+            let (words, _) = sort(text);
+            let mut warnings = Warnings::default();
+            words
+                .unwrap()
+                .check_letters(is_arc, rotary, 7, &mut warnings)
+                .map_err(|d| (d.column, d.message))
+        };
+        let e = check("X1 A2", false, None).unwrap_err();
+        assert_eq!(e.0, 4);
+        assert!(e.1.contains("--machine"), "{}", e.1);
+        assert!(check("X1 A2 C3", false, Some(['A', 'C'])).is_ok());
+        let e = check("X1 B2", false, Some(['A', 'C'])).unwrap_err();
+        assert_eq!(e.0, 4);
+        assert!(
+            e.1.contains("B: the machine's rotary axes are A and C"),
+            "{}",
+            e.1
+        );
+        let e = check("X1 I1 C2", true, Some(['A', 'C'])).unwrap_err();
+        assert_eq!(e.0, 7);
+        assert!(e.1.contains("on an arc"), "{}", e.1);
+        assert!(check("X1 I1", true, Some(['A', 'C'])).is_ok());
     }
 }
