@@ -4,7 +4,6 @@
 //! - [`inclined`]: inclined-tool (Sturz) positioning along CC paths (§7.3.1, eqs. 7.1-7.4).
 //! - [`autotilt`]: the smallest gouge-free lead at every CC point, smoothed (§7.3).
 //! - [`positioning`]: both as a job's `positioning` table asks, with gouge reports.
-//! - [`drive`]: CC paths on drive planes at a fixed cross feed (the thesis's experiments).
 //!
 //! Swept surfaces and gouges (thesis 000 ch. 3, 5, 7):
 //! - [`motion`]: the velocity field of the tool at a pose of a path.
@@ -12,6 +11,9 @@
 //! - [`profile_point`]: profile points by normal direction, arc length and height.
 //! - [`swept`]: the machined surface as a mesh of generating curves, sampled by height.
 //! - [`sections`], [`design`], [`gouge`]: sectioning gouge detection (§7.2).
+//!
+//! Jobs:
+//! - [`job`]: positioning a planned job's CC paths, its linking, machines and post.
 //!
 //! Machines and output:
 //! - [`machine`]: machine files, forward and inverse kinematics, rotary continuity.
@@ -26,6 +28,7 @@ pub mod error;
 pub mod gencurve;
 pub mod gouge;
 pub mod inclined;
+pub mod job;
 pub mod machine;
 pub mod motion;
 pub mod positioning;

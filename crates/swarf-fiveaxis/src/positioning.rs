@@ -10,8 +10,11 @@
 //! (`sections` mm apart): the fixed lead reports where it gouges (it is the user's
 //! choice, as in the thesis's first experiments), the gouge-free method raises the lead
 //! until nothing does ([`crate::autotilt`]) and fails where it cannot.
+//!
+//! The job-file form, [`Positioning`], is plain data defined with the job in
+//! [`swarf_path::job`] (re-exported here).
 
-use crate::autotilt::{TiltOptions, gouge_free_tilt};
+use crate::autotilt::{TiltOptions, TiltReport, gouge_free_tilt};
 use crate::design::DesignSurface;
 use crate::error::FiveAxisError;
 use crate::gencurve::CurveOptions;
@@ -19,55 +22,16 @@ use crate::gouge::{GougeOptions, check_pass};
 use crate::inclined::incline_pass;
 use crate::profile_point::ProfileTable;
 use crate::sections::Sections;
-use serde::{Deserialize, Serialize};
+use rayon::current_num_threads;
+use serde::Serialize;
 use swarf_geom::Part;
 use swarf_path::{Contact, Pass};
 use swarf_tool::{Cutter, Pose};
 
+pub use swarf_path::job::Positioning;
+
 /// Largest number of gouging poses listed in a report (the count is always given).
 pub const MAX_LISTED_GOUGES: usize = 100;
-
-fn default_sections() -> f64 {
-    1.0
-}
-
-fn default_rate() -> f64 {
-    0.5
-}
-
-/// How a job places the tool on its CC paths (degrees and mm).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "method", rename_all = "kebab-case", deny_unknown_fields)]
-pub enum Positioning {
-    /// A fixed lead angle for the whole path.
-    Inclined {
-        /// Lead angle, degrees.
-        alpha: f64,
-        /// Side tilt, degrees.
-        #[serde(default)]
-        tilt: f64,
-        /// Section spacing of the gouge report, mm.
-        #[serde(default = "default_sections")]
-        sections: f64,
-    },
-    /// The smallest gouge-free lead at every point, smoothed.
-    GougeFree {
-        /// Largest lead allowed, degrees.
-        max_alpha: f64,
-        /// Section spacing, mm.
-        #[serde(default = "default_sections")]
-        sections: f64,
-        /// Side tilt, degrees.
-        #[serde(default)]
-        tilt: f64,
-        /// Largest change of the lead per mm of feed, degrees/mm.
-        #[serde(default = "default_rate")]
-        max_rate: f64,
-        /// Gouge tolerance, mm (default: the job's strategy tolerance).
-        #[serde(default)]
-        tolerance: Option<f64>,
-    },
-}
 
 /// A gouging pose.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -128,6 +92,25 @@ pub fn position(
     positioning: &Positioning,
     tolerance: f64,
 ) -> Result<(Vec<Pass>, PositioningReport), FiveAxisError> {
+    position_with_progress(cutter, part, cc, positioning, tolerance, &|_, _| {})
+}
+
+/// [`position`], calling `progress(done, total)` as passes are finished (from the
+/// calling thread; `total` is the number of passes).
+///
+/// # Errors
+/// As [`position`].
+pub fn position_with_progress(
+    cutter: &Cutter,
+    part: &Part,
+    cc: &[Vec<Contact>],
+    positioning: &Positioning,
+    tolerance: f64,
+    progress: &dyn Fn(usize, usize),
+) -> Result<(Vec<Pass>, PositioningReport), FiveAxisError> {
+    positioning
+        .validate()
+        .map_err(|(field, message)| FiveAxisError::parameter(field, message))?;
     let design = DesignSurface::new(part);
     let angle = mean_direction(cc);
     match *positioning {
@@ -136,8 +119,6 @@ pub fn position(
             tilt,
             sections,
         } => {
-            angle_in("positioning.alpha", alpha, 0.0)?;
-            angle_in("positioning.tilt", tilt.abs(), 0.0)?;
             let gouge = gouge_options(angle, sections, tolerance)?;
             let passes = cc
                 .iter()
@@ -147,6 +128,7 @@ pub fn position(
             let mut report = report("inclined", &passes, &gouge, angle);
             report.alpha_range_deg = [alpha, alpha];
             check(&design, cutter, &passes, &gouge, &mut report);
+            progress(cc.len(), cc.len());
             Ok((passes, report))
         }
         Positioning::GougeFree {
@@ -156,14 +138,6 @@ pub fn position(
             max_rate,
             tolerance: own,
         } => {
-            angle_in("positioning.max_alpha", max_alpha, f64::MIN_POSITIVE)?;
-            angle_in("positioning.tilt", tilt.abs(), 0.0)?;
-            if !(max_rate.is_finite() && max_rate > 0.0) {
-                return Err(FiveAxisError::parameter(
-                    "positioning.max_rate",
-                    format!("expected a rate > 0 degrees per mm, found {max_rate}"),
-                ));
-            }
             let gouge = gouge_options(angle, sections, own.unwrap_or(tolerance))?;
             let opts = TiltOptions {
                 max_alpha: max_alpha.to_radians(),
@@ -173,7 +147,7 @@ pub fn position(
                 gouge,
                 max_rounds: 50,
             };
-            let (passes, t) = gouge_free_tilt(cutter, &design, cc, &opts)?;
+            let (passes, t) = tilt_in_chunks(cutter, &design, cc, &opts, progress)?;
             let mut report = report("gouge-free", &passes, &gouge, angle);
             let flat = t.alphas.iter().flatten().copied();
             let lo = flat.clone().fold(f64::INFINITY, f64::min);
@@ -189,14 +163,89 @@ pub fn position(
     }
 }
 
-fn angle_in(field: &str, v: f64, lo: f64) -> Result<(), FiveAxisError> {
-    if v.is_finite() && v >= lo && v < 90.0 {
-        Ok(())
-    } else {
-        Err(FiveAxisError::parameter(
-            field,
-            format!("expected an angle in [0, 90) degrees, found {v}"),
-        ))
+/// [`gouge_free_tilt`] on chunks of passes (a few per thread, so that progress can
+/// be shown), merged in pass order; pass indices in reports and errors are those of
+/// `cc`.
+fn tilt_in_chunks(
+    cutter: &Cutter,
+    design: &DesignSurface,
+    cc: &[Vec<Contact>],
+    opts: &TiltOptions,
+    progress: &dyn Fn(usize, usize),
+) -> Result<(Vec<Pass>, TiltReport), FiveAxisError> {
+    let chunk = 2 * current_num_threads().max(1);
+    let mut passes = Vec::with_capacity(cc.len());
+    let mut all = TiltReport {
+        worst_depth: f64::NEG_INFINITY,
+        ..TiltReport::default()
+    };
+    for (c, part) in cc.chunks(chunk).enumerate() {
+        let first = c * chunk;
+        let (p, t) = gouge_free_tilt(cutter, design, part, opts).map_err(|e| offset(e, first))?;
+        if t.max_alpha > all.max_alpha || passes.is_empty() {
+            all.max_alpha = t.max_alpha;
+            all.max_alpha_at = [t.max_alpha_at[0] + first, t.max_alpha_at[1]];
+        }
+        all.evaluations += t.evaluations;
+        all.whole_tool_evaluations += t.whole_tool_evaluations;
+        all.raised += t.raised;
+        all.worst_depth = all.worst_depth.max(t.worst_depth);
+        all.max_axis_rate = all.max_axis_rate.max(t.max_axis_rate);
+        all.searched.extend(t.searched);
+        all.alphas.extend(t.alphas);
+        passes.extend(p);
+        progress(passes.len(), cc.len());
+    }
+    Ok((passes, all))
+}
+
+/// `e` with its pass index moved by `first` (a chunk's errors count from its start).
+fn offset(e: FiveAxisError, first: usize) -> FiveAxisError {
+    match e {
+        FiveAxisError::Positioning {
+            pass,
+            index,
+            message,
+        } => FiveAxisError::Positioning {
+            pass: pass + first,
+            index,
+            message,
+        },
+        FiveAxisError::NoGougeFreeTilt {
+            pass,
+            index,
+            cc,
+            max_alpha_deg,
+            depth,
+            at,
+            half,
+        } => FiveAxisError::NoGougeFreeTilt {
+            pass: pass + first,
+            index,
+            cc,
+            max_alpha_deg,
+            depth,
+            at,
+            half,
+        },
+        FiveAxisError::Unreachable {
+            pass,
+            index,
+            axis,
+            message,
+        } => FiveAxisError::Unreachable {
+            pass: pass + first,
+            index,
+            axis,
+            message,
+        },
+        FiveAxisError::InvalidParameter { field, message } if field.starts_with("pass ") => {
+            let k = field[5..]
+                .parse::<usize>()
+                .map_or(field.clone(), |k| format!("pass {}", k + first));
+            FiveAxisError::InvalidParameter { field: k, message }
+        }
+        other => other,
     }
 }
 
@@ -319,40 +368,29 @@ pub fn mean_direction(cc: &[Vec<Contact>]) -> f64 {
 mod tests {
     use super::*;
 
-    #[derive(Deserialize)]
-    struct Job {
-        positioning: Positioning,
-    }
-
     #[test]
-    fn job_tables_parse() {
-        let j: Job = toml::from_str(r#"positioning = { method = "inclined", alpha = 3 }"#).unwrap();
-        assert_eq!(
-            j.positioning,
-            Positioning::Inclined {
-                alpha: 3.0,
-                tilt: 0.0,
-                sections: 1.0
-            }
+    fn chunk_errors_count_passes_from_the_start() {
+        let e = FiveAxisError::NoGougeFreeTilt {
+            pass: 1,
+            index: 7,
+            cc: [1.0, 2.0, 3.0],
+            max_alpha_deg: 2.0,
+            depth: 0.5,
+            at: [0.0; 3],
+            half: "back",
+        };
+        let moved = offset(e, 8).to_string();
+        assert!(
+            moved.starts_with("pass 9, point 7 (CC [1.0, 2.0, 3.0])"),
+            "{moved}"
         );
-        let j: Job = toml::from_str(
-            r#"positioning = { method = "gouge-free", max_alpha = 15, sections = 1.0 }"#,
-        )
-        .unwrap();
-        assert!(matches!(
-            j.positioning,
-            Positioning::GougeFree {
-                max_alpha: 15.0,
-                ..
-            }
-        ));
-        for bad in [
-            r#"positioning = { method = "tilted", alpha = 3 }"#,
-            r#"positioning = { method = "inclined", alpha = 3, beta = 2 }"#,
-            r#"positioning = { method = "gouge-free" }"#,
-        ] {
-            assert!(toml::from_str::<Job>(bad).is_err(), "{bad}");
-        }
+        let short = FiveAxisError::parameter("pass 2", "a pass needs two points");
+        assert_eq!(
+            offset(short, 4).to_string(),
+            "pass 6: a pass needs two points"
+        );
+        let other = FiveAxisError::parameter("positioning.alpha", "bad");
+        assert_eq!(offset(other.clone(), 4), other);
     }
 
     #[test]

@@ -30,6 +30,13 @@
 //!   ordered along `F` and joined across small gaps (the `ordering` module).
 //! - The last plane, at the part's far extent, is left out when the tools of the one
 //!   before already leave at most `h` all along it.
+//!
+//! **Fixed cross feed.** With `strategy.stepover = s` instead of a scallop limit (the
+//! "cross feed 3.5 mm" of thesis 000 ch. 8) the planes are exactly `s` apart:
+//! `floor(W / s) + 1` planes centred in the part's extent `W` along `M` (the same
+//! margin, under `s / 2`, on both sides), cut from the `start` side. The scallop
+//! figures are then the side-step model's prediction for that spacing
+//! ([`crate::iso_setup`]); there are no boundary passes.
 
 use crate::error::PathError;
 use crate::forward_step::sample_curve;
@@ -106,6 +113,9 @@ impl IsoPlanar<'_, '_> {
             let (row, _) = self.row(0.5 * (lo + hi))?;
             return Ok(vec![row]);
         }
+        if let Some(step) = self.setup.job.strategy.stepover {
+            return self.fixed_rows(lo + EDGE_INSET, hi - EDGE_INSET, step, figures);
+        }
         let (mut m, end, sign) = match self.setup.job.strategy.start {
             StartSide::Min => (lo + EDGE_INSET, hi - EDGE_INSET, 1.0),
             StartSide::Max => (hi - EDGE_INSET, lo + EDGE_INSET, -1.0),
@@ -131,6 +141,39 @@ impl IsoPlanar<'_, '_> {
                 (m - dm).max(end)
             };
         }
+    }
+
+    /// Rows on planes exactly `step` apart, centred in `[lo, hi]` (module doc).
+    fn fixed_rows(
+        &self,
+        lo: f64,
+        hi: f64,
+        step: f64,
+        figures: &mut Figures,
+    ) -> Result<Vec<Row>, PathError> {
+        let n = ((hi - lo) / step).floor();
+        let first = lo + 0.5 * ((hi - lo) - n * step);
+        let mut planes: Vec<f64> = (0..=n as usize).map(|k| first + k as f64 * step).collect();
+        let sign = match self.setup.job.strategy.start {
+            StartSide::Min => 1.0,
+            StartSide::Max => {
+                planes.reverse();
+                -1.0
+            }
+        };
+        let mut rows = Vec::with_capacity(planes.len());
+        for (k, &m) in planes.iter().enumerate() {
+            let (row, stations) = self.row(m)?;
+            if k + 1 < planes.len() {
+                let geom: Vec<_> = stations
+                    .iter()
+                    .filter_map(|s| self.geometry(s, sign))
+                    .collect();
+                self.record(&geom, m + sign * step, figures);
+            }
+            rows.push(row);
+        }
+        Ok(rows)
     }
 
     /// `[min, max]` of `M . x` over the part, from a survey of every patch.
@@ -253,10 +296,15 @@ impl IsoPlanar<'_, '_> {
                 .fold(0.0, f64::max)
         });
         let dm = if dm > 0.0 { dm } else { start };
-        for c in geom.iter().filter_map(|g| self.crossing(g, m + sign * dm)) {
+        self.record(&geom, m + sign * dm, figures);
+        dm
+    }
+
+    /// Side steps and predicted scallops from the stations `geom` to the plane `next`.
+    fn record(&self, geom: &[Geometry<'_>], next: f64, figures: &mut Figures) {
+        for c in geom.iter().filter_map(|g| self.crossing(g, next)) {
             figures.add_step(c.across, c.scallop);
         }
-        dm
     }
 
     /// Frame and side geometry at a station; `side` turned toward the next plane.
@@ -418,6 +466,61 @@ mod tests {
         }
         let pred = plan.report.predicted_max_scallop.unwrap();
         assert!(pred <= 0.3 * (1.0 + 1e-3), "{pred}");
+    }
+
+    /// A fixed cross feed on a plane: drive planes exactly `s` apart and centred in the
+    /// part, in start-side order, and the closed-form ball scallop predicted.
+    #[test]
+    fn fixed_stepover_on_a_plane() {
+        let p = |x: f64, y: f64| swarf_geom::Point3::new(x, y, 1.0);
+        let plane = Patch::bezier(
+            [1, 1],
+            vec![p(0.0, 0.0), p(0.0, 10.0), p(20.0, 0.0), p(20.0, 10.0)],
+        )
+        .unwrap();
+        let part = Part {
+            name: "plane".into(),
+            patches: vec![plane],
+        };
+        let with = |extra: &str| {
+            Job::parse(
+                &format!(
+                    "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 1.5\ntolerance = 0.01\nangle = 0\n{extra}\n"
+                ),
+                "job.toml",
+            )
+            .unwrap()
+        };
+        for (extra, first) in [("", 0.5), ("start = \"max\"", 9.5)] {
+            let plan = plan(&part, &with(extra)).unwrap();
+            let ys: Vec<f64> = plan
+                .toolpath
+                .passes
+                .iter()
+                .map(|pass| {
+                    let y = pass.points[0].contact.unwrap().point.y;
+                    for q in &pass.points {
+                        assert!((q.contact.unwrap().point.y - y).abs() < 1e-9);
+                    }
+                    y
+                })
+                .collect();
+            assert_eq!(ys.len(), 7, "{ys:?}");
+            let sign = if first < 5.0 { 1.0 } else { -1.0 };
+            for (k, y) in ys.iter().enumerate() {
+                assert!((y - (first + sign * 1.5 * k as f64)).abs() < 1e-9, "{ys:?}");
+            }
+            let h = 4.0 - (16.0f64 - 0.25 * 1.5 * 1.5).sqrt();
+            let pred = plan.report.predicted_max_scallop.unwrap();
+            assert!((pred - h).abs() < 1e-9, "{pred} vs {h}");
+            let [a, b] = plan.report.side_step_range.unwrap();
+            assert!((a - 1.5).abs() < 1e-9 && (b - 1.5).abs() < 1e-9);
+        }
+        let both = Job::parse(
+            "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 1.5\nscallop = 0.1\n",
+            "job.toml",
+        );
+        assert!(both.unwrap_err().to_string().contains("strategy.stepover"));
     }
 
     #[test]

@@ -3,6 +3,12 @@
 //! (boundary passes where the rows leave too much on an edge, whole-part gouge check,
 //! joining and ordering rows, the report).
 //!
+//! A fixed `strategy.stepover` (iso-planar) replaces the scallop limit: the side-step
+//! model then takes the height a ball of the tool's radius leaves at that stepover on
+//! a plane ([`nominal_scallop`]) and serves the predicted-scallop figures only (exact
+//! for a ball, the effective-radius approximation of [`crate::side_step`] otherwise),
+//! and no boundary passes are added: the cross feed is what the job asked for.
+//!
 //! Side geometry (paper 004, iso-parametric section): at a CC point with unit normal
 //! `N` (toward the tool) and unit path tangent `T`, the side direction is
 //! `B = N x T`; the side step follows from the normal curvature along `B`
@@ -69,13 +75,24 @@ impl<'a> IsoSetup<'a> {
     /// `strategy.tolerance`; [`PathError::NoPath`] for a part without patches;
     /// [`PathError::Geom`] when the part cannot be tessellated.
     pub fn new(part: &'a Part, job: &'a Job) -> Result<IsoSetup<'a>, PathError> {
-        let h = job
-            .strategy
-            .scallop
-            .ok_or_else(|| PathError::InvalidParameter {
-                field: "strategy.scallop".into(),
-                message: "required by the iso strategies (scallop height limit, mm)".into(),
-            })?;
+        let h = match (job.strategy.scallop, job.strategy.stepover) {
+            (Some(h), _) => h,
+            (None, Some(step)) => nominal_scallop(job.tool.radius(), step).ok_or_else(|| {
+                PathError::InvalidParameter {
+                    field: "strategy.stepover".into(),
+                    message: format!(
+                        "expected 0 < stepover < tool diameter {} mm, found {step} mm",
+                        2.0 * job.tool.radius()
+                    ),
+                }
+            })?,
+            (None, None) => {
+                return Err(PathError::InvalidParameter {
+                    field: "strategy.scallop".into(),
+                    message: "required by the iso strategies (scallop height limit, mm)".into(),
+                });
+            }
+        };
         let side = SideStep::new(&job.tool, h)?;
         if part.patches.is_empty() {
             return Err(PathError::NoPath(format!(
@@ -180,9 +197,11 @@ impl<'a> IsoSetup<'a> {
                 self.job.strategy.kind, self.part.name
             )));
         }
-        let extra = boundary_passes(self, &rows);
-        if !extra.is_empty() {
-            rows.push(extra);
+        if self.job.strategy.stepover.is_none() {
+            let extra = boundary_passes(self, &rows);
+            if !extra.is_empty() {
+                rows.push(extra);
+            }
         }
         let stats = self.gouge.apply(&mut rows);
         if stats.lifted == total {
@@ -238,6 +257,16 @@ impl<'a> IsoSetup<'a> {
             )
         })
     }
+}
+
+/// The scallop a ball of radius `r` leaves on a plane between passes `step` apart,
+/// `r - sqrt(r^2 - step^2 / 4)` (mm): the side-step model's height for a fixed
+/// stepover, which it uses for the predicted-scallop figures only. `None` unless
+/// `0 < step < 2 r`.
+pub fn nominal_scallop(r: f64, step: f64) -> Option<f64> {
+    (step.is_finite() && step > 0.0 && step < 2.0 * r)
+        .then(|| r - (r * r - 0.25 * step * step).sqrt())
+        .filter(|h| *h > 0.0)
 }
 
 /// First `t >= 0` where `p + t n` (unit `n`) is inside the sphere; 0 when `p` is.

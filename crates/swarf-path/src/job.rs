@@ -23,8 +23,32 @@
 //! summary = "wave-iso-scallop.json"
 //! ```
 //!
-//! Lengths in the job are mm; angles are degrees (converted to radians here, at the
-//! input edge).
+//! Five-axis jobs add a `positioning` table (how the tool is placed on the CC paths of
+//! the strategy, thesis 000 §7.3) and, for G-code, a machine:
+//!
+//! ```toml
+//! positioning = { method = "inclined", alpha = 3, sections = 1.0 }    # fixed lead
+//! # positioning = { method = "gouge-free", max_alpha = 25, max_rate = 0.5 }
+//!
+//! [strategy]
+//! kind = "iso-planar"
+//! stepover = 3.5                 # fixed cross feed between drive planes, mm
+//! angle = 60
+//!
+//! [output]
+//! machine = "builtin:xyzac-trunnion"  # or a machine file relative to the job file
+//! feed_mode = "inverse-time"          # G93 (default) or "units-per-minute" (G94)
+//! tool_length = 120                   # mm, machines with head axes
+//! gcode = "die.ngc"
+//! cl = "die.cl"                       # APT CL and pose CSV carry the tool axis
+//! ```
+//!
+//! A tilted tool path is never written as 3-axis G-code: a `positioning` with a
+//! `gcode` output needs `output.machine`. A machine without a positioning writes the
+//! 3-axis path (vertical tool) as five-axis G-code.
+//!
+//! Lengths in the job are mm; angles are degrees (converted to radians where they are
+//! used, at the input edge).
 
 use crate::error::PathError;
 use crate::toolpath::{Feeds, Linking};
@@ -68,6 +92,9 @@ pub struct Job {
     pub tool: Cutter,
     /// Strategy and its parameters.
     pub strategy: StrategyParams,
+    /// Five-axis positioning of the strategy's CC paths (none: a vertical tool).
+    #[serde(default)]
+    pub positioning: Option<Positioning>,
     /// Feeds and speeds.
     #[serde(default)]
     pub feeds: Feeds,
@@ -125,7 +152,9 @@ pub struct StrategyParams {
     /// Scallop height limit h, mm (side step from it). Required unless `stepover` is given.
     #[serde(default)]
     pub scallop: Option<f64>,
-    /// Fixed side step instead of a scallop limit, mm (raster only).
+    /// Fixed side step instead of a scallop limit, mm: the distance between raster
+    /// lines, or between the drive planes of iso-planar (the "cross feed" of thesis
+    /// 000 ch. 8; then the planes are not spaced by a scallop limit).
     #[serde(default)]
     pub stepover: Option<f64>,
     /// Chordal tolerance along a pass (and gouge tolerance), mm.
@@ -181,6 +210,147 @@ pub struct Output {
     /// G-code dialect: "linuxcnc" or "fanuc".
     #[serde(default)]
     pub dialect: OutputDialect,
+    /// Machine for five-axis G-code: a machine file relative to the job file, or
+    /// `builtin:NAME` for a machine shipped with swarf (`builtin:xyzac-trunnion`, ...).
+    #[serde(default)]
+    pub machine: Option<String>,
+    /// Feeds of five-axis G-code: "inverse-time" (G93) or "units-per-minute" (G94).
+    #[serde(default)]
+    pub feed_mode: OutputFeedMode,
+    /// Spindle gauge line to tool tip, mm (machines with head axes).
+    #[serde(default)]
+    pub tool_length: Option<f64>,
+}
+
+/// Feed mode of five-axis G-code (mirrors the five-axis post's, which sits above
+/// this crate).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OutputFeedMode {
+    /// G93: `F` is the inverse of each move's time.
+    #[default]
+    InverseTime,
+    /// G94: `F` in length units per minute.
+    UnitsPerMinute,
+}
+
+fn default_sections() -> f64 {
+    1.0
+}
+
+fn default_rate() -> f64 {
+    0.5
+}
+
+/// How a job places the tool on its CC paths (degrees and mm; thesis 000 §7.3). Both
+/// methods report the sectioning gouge check on planes `sections` mm apart, parallel
+/// to the passes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "method", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum Positioning {
+    /// A fixed lead angle for the whole path.
+    Inclined {
+        /// Lead angle, degrees.
+        alpha: f64,
+        /// Side tilt, degrees.
+        #[serde(default)]
+        tilt: f64,
+        /// Section spacing of the gouge report, mm.
+        #[serde(default = "default_sections")]
+        sections: f64,
+    },
+    /// The smallest gouge-free lead at every point, smoothed.
+    GougeFree {
+        /// Largest lead allowed, degrees.
+        max_alpha: f64,
+        /// Section spacing, mm.
+        #[serde(default = "default_sections")]
+        sections: f64,
+        /// Side tilt, degrees.
+        #[serde(default)]
+        tilt: f64,
+        /// Largest change of the lead per mm of feed, degrees/mm.
+        #[serde(default = "default_rate")]
+        max_rate: f64,
+        /// Gouge tolerance, mm (default: the job's strategy tolerance).
+        #[serde(default)]
+        tolerance: Option<f64>,
+    },
+}
+
+impl Positioning {
+    /// Checks the ranges the TOML types cannot express; the error names the field
+    /// (`positioning.alpha`, ...) and says what was expected.
+    ///
+    /// # Errors
+    /// `(field, message)` for the first value out of range.
+    pub fn validate(&self) -> Result<(), (&'static str, String)> {
+        let angle = |field: &'static str, v: f64, lo_open: bool| {
+            let ok = v.is_finite() && v < 90.0 && if lo_open { v > 0.0 } else { v >= 0.0 };
+            let range = if lo_open { "(0, 90)" } else { "[0, 90)" };
+            if ok {
+                Ok(())
+            } else {
+                Err((
+                    field,
+                    format!("expected an angle in {range} degrees, found {v}"),
+                ))
+            }
+        };
+        let spacing = |v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err((
+                    "positioning.sections",
+                    format!("expected a section spacing > 0 mm, found {v}"),
+                ))
+            }
+        };
+        match *self {
+            Positioning::Inclined {
+                alpha,
+                tilt,
+                sections,
+            } => {
+                angle("positioning.alpha", alpha, false)?;
+                angle("positioning.tilt", tilt.abs(), false)?;
+                spacing(sections)
+            }
+            Positioning::GougeFree {
+                max_alpha,
+                sections,
+                tilt,
+                max_rate,
+                tolerance,
+            } => {
+                angle("positioning.max_alpha", max_alpha, true)?;
+                angle("positioning.tilt", tilt.abs(), false)?;
+                spacing(sections)?;
+                if !(max_rate.is_finite() && max_rate > 0.0) {
+                    return Err((
+                        "positioning.max_rate",
+                        format!("expected a rate > 0 degrees per mm, found {max_rate}"),
+                    ));
+                }
+                match tolerance {
+                    Some(t) if !(t.is_finite() && t >= 0.0) => Err((
+                        "positioning.tolerance",
+                        format!("expected a tolerance >= 0 mm, found {t}"),
+                    )),
+                    _ => Ok(()),
+                }
+            }
+        }
+    }
+
+    /// The method's name as the job file spells it.
+    pub fn method(&self) -> &'static str {
+        match self {
+            Positioning::Inclined { .. } => "inclined",
+            Positioning::GougeFree { .. } => "gouge-free",
+        }
+    }
 }
 
 /// Output length units (mirrors the NC crate's, which sits below this one).
@@ -234,11 +404,28 @@ impl Job {
                 "strategy: expected `scallop` (scallop height limit, mm) or `stepover` (mm)".into(),
             );
         }
-        if s.stepover.is_some() && s.kind != StrategyKind::Raster {
-            return Err(
-                "strategy.stepover: only the raster strategy takes a fixed stepover; use `scallop`"
-                    .into(),
-            );
+        match (s.kind, s.scallop, s.stepover) {
+            (StrategyKind::Raster, _, _) | (_, _, None) => {}
+            (StrategyKind::IsoPlanar, Some(_), Some(_)) => {
+                return Err(
+                    "strategy.stepover: give either `scallop` (plane spacing from a scallop limit) or `stepover` (a fixed cross feed), not both"
+                        .into(),
+                );
+            }
+            (StrategyKind::IsoPlanar, None, Some(step)) => {
+                let d = 2.0 * self.tool.radius();
+                if step >= d {
+                    return Err(format!(
+                        "strategy.stepover: {step} mm is not smaller than the tool diameter {d} mm"
+                    ));
+                }
+            }
+            (_, _, Some(_)) => {
+                return Err(
+                    "strategy.stepover: only the raster and iso-planar strategies take a fixed stepover; use `scallop`"
+                        .into(),
+                );
+            }
         }
         if let Some(h) = s.scallop {
             let r = self.tool.radius();
@@ -271,7 +458,26 @@ impl Job {
             return Err("linking.clearance: expected a finite height in mm".into());
         }
         positive("linking.approach", Some(self.linking.approach))?;
-        Ok(())
+        self.validate_five_axis()
+    }
+
+    /// The positioning's ranges and the outputs a five-axis job can write.
+    fn validate_five_axis(&self) -> Result<(), String> {
+        if let Some(p) = &self.positioning {
+            p.validate()
+                .map_err(|(field, message)| format!("{field}: {message}"))?;
+        }
+        let o = &self.output;
+        if self.positioning.is_some() && o.gcode.is_some() && o.machine.is_none() {
+            return Err(
+                "output.machine: a tilted tool path needs a machine file for G-code (e.g. machine = \"builtin:xyzac-trunnion\"); or drop output.gcode (output.cl and output.csv carry the tool axis)"
+                    .into(),
+            );
+        }
+        if o.machine.as_deref().is_some_and(str::is_empty) {
+            return Err("output.machine: expected a machine file or builtin:NAME".into());
+        }
+        positive("output.tool_length", o.tool_length)
     }
 
     /// The linking for a path whose highest CL point is at `top_z`: the job's
@@ -363,6 +569,150 @@ gcode = "a.ngc"
         for (text, want) in cases {
             let e = Job::parse(&text, "job.toml").unwrap_err().to_string();
             assert!(e.starts_with("job.toml: "), "{e}");
+            assert!(e.contains(want), "want {want:?} in {e}");
+        }
+    }
+
+    const FIVE: &str = r#"
+part = "builtin:die"
+tool = "bull:d=38.1,r=6.35"
+positioning = { method = "inclined", alpha = 3 }
+[strategy]
+kind = "iso-planar"
+stepover = 3.5
+angle = 60
+[output]
+machine = "builtin:xyzac-trunnion"
+gcode = "die.ngc"
+cl = "die.cl"
+"#;
+
+    #[test]
+    fn positioning_tables_parse() {
+        let job = Job::parse(FIVE, "die.toml").unwrap();
+        assert_eq!(
+            job.positioning,
+            Some(Positioning::Inclined {
+                alpha: 3.0,
+                tilt: 0.0,
+                sections: 1.0
+            })
+        );
+        assert_eq!(job.strategy.stepover, Some(3.5));
+        assert_eq!(
+            job.output.machine.as_deref(),
+            Some("builtin:xyzac-trunnion")
+        );
+        assert_eq!(job.output.feed_mode, OutputFeedMode::InverseTime);
+        let auto = FIVE.replace(
+            r#"{ method = "inclined", alpha = 3 }"#,
+            r#"{ method = "gouge-free", max_alpha = 15, sections = 0.5 }"#,
+        );
+        let job = Job::parse(&auto, "die.toml").unwrap();
+        assert_eq!(
+            job.positioning,
+            Some(Positioning::GougeFree {
+                max_alpha: 15.0,
+                sections: 0.5,
+                tilt: 0.0,
+                max_rate: 0.5,
+                tolerance: None
+            })
+        );
+        assert_eq!(job.positioning.map(|p| p.method()), Some("gouge-free"));
+        let g94 = FIVE.replace(
+            "gcode = ",
+            "feed_mode = \"units-per-minute\"\ntool_length = 120\ngcode = ",
+        );
+        let job = Job::parse(&g94, "die.toml").unwrap();
+        assert_eq!(job.output.feed_mode, OutputFeedMode::UnitsPerMinute);
+        assert_eq!(job.output.tool_length, Some(120.0));
+        // A machine without positioning (a vertical tool in five-axis words), and a
+        // positioning with CL output only: both fine.
+        let vertical = FIVE.replace("positioning = { method = \"inclined\", alpha = 3 }", "");
+        assert!(
+            Job::parse(&vertical, "die.toml")
+                .unwrap()
+                .positioning
+                .is_none()
+        );
+        let cl_only = FIVE
+            .replace("machine = \"builtin:xyzac-trunnion\"", "")
+            .replace("gcode = \"die.ngc\"", "");
+        assert!(Job::parse(&cl_only, "die.toml").is_ok());
+    }
+
+    #[test]
+    fn bad_five_axis_jobs_name_the_field() {
+        let inclined = r#"{ method = "inclined", alpha = 3 }"#;
+        let cases = [
+            (FIVE.replace("alpha = 3", "alpha = 95"), "positioning.alpha"),
+            (FIVE.replace("alpha = 3", "alpha = -1"), "positioning.alpha"),
+            (
+                FIVE.replace("alpha = 3", "alpha = 3, tilt = 91"),
+                "positioning.tilt",
+            ),
+            (
+                FIVE.replace("alpha = 3", "alpha = 3, sections = 0"),
+                "positioning.sections",
+            ),
+            (
+                FIVE.replace(inclined, r#"{ method = "gouge-free", max_alpha = 0 }"#),
+                "positioning.max_alpha",
+            ),
+            (
+                FIVE.replace(
+                    inclined,
+                    r#"{ method = "gouge-free", max_alpha = 15, max_rate = -1 }"#,
+                ),
+                "positioning.max_rate",
+            ),
+            (
+                FIVE.replace(
+                    inclined,
+                    r#"{ method = "gouge-free", max_alpha = 15, tolerance = -0.1 }"#,
+                ),
+                "positioning.tolerance",
+            ),
+            // Unknown method, unknown key, missing field: the TOML line.
+            (FIVE.replace("\"inclined\"", "\"tilted\""), "line 4"),
+            (FIVE.replace("alpha = 3", "alpha = 3, beta = 2"), "beta"),
+            (
+                FIVE.replace(inclined, r#"{ method = "gouge-free" }"#),
+                "max_alpha",
+            ),
+            (
+                FIVE.replace("machine = \"builtin:xyzac-trunnion\"", ""),
+                "output.machine: a tilted tool path needs a machine file for G-code",
+            ),
+            (
+                FIVE.replace("machine = \"builtin:xyzac-trunnion\"", "machine = \"\""),
+                "output.machine",
+            ),
+            (
+                FIVE.replace("gcode = ", "feed_mode = \"g93\"\ngcode = "),
+                "line 11: unknown variant `g93`, expected `inverse-time`",
+            ),
+            (
+                FIVE.replace("gcode = ", "tool_length = -5\ngcode = "),
+                "output.tool_length",
+            ),
+            (
+                FIVE.replace("stepover = 3.5", "stepover = 40"),
+                "strategy.stepover",
+            ),
+            (
+                FIVE.replace("stepover = 3.5", "stepover = 3.5\nscallop = 0.1"),
+                "strategy.stepover",
+            ),
+            (
+                FIVE.replace("iso-planar", "iso-scallop"),
+                "strategy.stepover",
+            ),
+        ];
+        for (text, want) in cases {
+            let e = Job::parse(&text, "die.toml").unwrap_err().to_string();
+            assert!(e.starts_with("die.toml: "), "{e}");
             assert!(e.contains(want), "want {want:?} in {e}");
         }
     }
