@@ -48,6 +48,7 @@
 
 pub mod joints;
 pub mod kinematics;
+pub mod reader;
 
 use crate::error::FiveAxisError;
 use serde::{Deserialize, Serialize};
