@@ -5,7 +5,9 @@
 //!    (the 3-axis gouge lift moves a pose's tip, never its contact). A point without
 //!    a contact (a bridge across a gap between two pieces of a row, placed by a
 //!    vertical drop) splits its pass there; runs of fewer than two contacts are
-//!    dropped, as no feed direction can be taken from them ([`cc_paths`]).
+//!    dropped, as no feed direction can be taken from them ([`cc_paths`]). A contact
+//!    within [`MIN_CC_GAP`] of the one before replaces it (section curves can end in
+//!    two samples a few 1e-13 mm apart, whose chord gives no feed direction).
 //! 2. **Positioning** ([`crate::positioning`]): the inclined tool or the gouge-free
 //!    lead, with the sectioning gouge report. The positioned passes replace the
 //!    3-axis ones, in the same order and directions (zigzag kept).
@@ -55,15 +57,26 @@ pub const BUILTIN_MACHINES: [(&str, &str); 3] = [
     ),
 ];
 
+/// Consecutive contacts closer than this are merged by [`cc_paths`], mm.
+pub const MIN_CC_GAP: f64 = 1e-6;
+
 /// The contacts of every pass of `toolpath`, split where a point has none (module
 /// doc); runs of fewer than two contacts are left out.
 pub fn cc_paths(toolpath: &Toolpath) -> Vec<Vec<Contact>> {
     let mut out = Vec::new();
     for pass in &toolpath.passes {
-        let mut run = Vec::new();
+        let mut run: Vec<Contact> = Vec::new();
         for p in &pass.points {
             match p.contact {
-                Some(c) => run.push(c),
+                Some(c) => {
+                    if let Some(last) = run.last_mut()
+                        && (c.point - last.point).norm() < MIN_CC_GAP
+                    {
+                        *last = c;
+                    } else {
+                        run.push(c);
+                    }
+                }
                 None => {
                     if run.len() > 1 {
                         out.push(std::mem::take(&mut run));
@@ -269,6 +282,12 @@ mod tests {
             passes: vec![
                 pass(&[true, true, false, false, true, true, true]),
                 pass(&[true, false, true]),
+                Pass {
+                    points: [0.0, 1.0, 1.0 + 1e-9, 2.0, 2.0 + 1e-13]
+                        .into_iter()
+                        .map(|x| point(x, true))
+                        .collect(),
+                },
             ],
             feeds: Default::default(),
             linking: Default::default(),
@@ -278,7 +297,14 @@ mod tests {
             .iter()
             .map(|r| r.iter().map(|c| c.point.x).collect())
             .collect();
-        assert_eq!(xs, vec![vec![0.0, 1.0], vec![4.0, 5.0, 6.0]]);
+        assert_eq!(
+            xs,
+            vec![
+                vec![0.0, 1.0],
+                vec![4.0, 5.0, 6.0],
+                vec![0.0, 1.0 + 1e-9, 2.0 + 1e-13]
+            ]
+        );
     }
 
     /// The clearance clears a tilted bull `d = 20, r = 4`: the lowest point of the

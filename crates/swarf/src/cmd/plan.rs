@@ -1,10 +1,17 @@
-//! `swarf plan JOB.toml`: plan a job and write its outputs.
+//! `swarf plan JOB.toml`: plan a job and write its outputs. A five-axis job (a
+//! `positioning` table) is positioned after the 3-axis plan of its CC paths, and
+//! written as five-axis G-code for `output.machine` (see `swarf_fiveaxis::job`).
 
 use crate::load::{Model, load_model};
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
+use swarf_fiveaxis::job::{load_machine, position_plan, write_job_gcode};
+use swarf_fiveaxis::machine::Machine;
+use swarf_fiveaxis::positioning::PositioningReport;
 use swarf_nc::{Dialect, GcodeOptions, Units};
-use swarf_path::job::{OutputDialect, OutputUnits};
+use swarf_path::job::{OutputDialect, OutputUnits, Positioning};
 use swarf_path::plan::{Plan, PlanInput};
 use swarf_path::{Job, motion_stats};
 
@@ -30,8 +37,8 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
-/// Loads the job's part, plans it and writes every requested output under `out_dir`.
-/// Returns the JSON summary.
+/// Loads the job's part, plans it (and positions it, for a five-axis job) and writes
+/// every requested output under `out_dir`. Returns the JSON summary.
 pub fn plan_job(job: &Job, job_dir: &Path, out_dir: &Path) -> Result<serde_json::Value> {
     let part_arg = if job.part.starts_with("builtin:") || Path::new(&job.part).is_absolute() {
         job.part.clone()
@@ -39,7 +46,13 @@ pub fn plan_job(job: &Job, job_dir: &Path, out_dir: &Path) -> Result<serde_json:
         job_dir.join(&job.part).display().to_string()
     };
     let model = load_model(&part_arg)?;
-    let (name, plan) = match &model {
+    let machine = job
+        .output
+        .machine
+        .as_deref()
+        .map(|spec| load_machine(spec, job_dir))
+        .transpose()?;
+    let (name, mut plan) = match &model {
         Model::Patches(part) => (
             part.name.clone(),
             swarf_path::plan::plan(job, PlanInput::Part(part))?,
@@ -49,7 +62,58 @@ pub fn plan_job(job: &Job, job_dir: &Path, out_dir: &Path) -> Result<serde_json:
             swarf_path::plan::plan(job, PlanInput::Mesh(mesh))?,
         ),
     };
-    write_outputs(job, &name, &plan, out_dir)
+    let positioning = match (&model, &job.positioning) {
+        (_, None) => None,
+        (Model::Patches(part), Some(_)) => {
+            let start = std::time::Instant::now();
+            let bar = PassBar::new();
+            let report = position_plan(job, part, &mut plan, &|done, total| bar.set(done, total))?;
+            bar.finish();
+            plan.report.elapsed_s += start.elapsed().as_secs_f64();
+            report
+        }
+        (Model::Mesh { .. }, Some(_)) => {
+            bail!("positioning: five-axis positioning needs a parametric part (.toml), not a mesh")
+        }
+    };
+    write_outputs(
+        job,
+        &name,
+        &plan,
+        machine.as_ref(),
+        positioning.as_ref(),
+        out_dir,
+    )
+}
+
+/// A progress bar over passes on stderr, hidden when stderr is not a terminal.
+struct PassBar(ProgressBar);
+
+impl PassBar {
+    fn new() -> PassBar {
+        let target = if std::io::stderr().is_terminal() {
+            ProgressDrawTarget::stderr()
+        } else {
+            ProgressDrawTarget::hidden()
+        };
+        let bar = ProgressBar::with_draw_target(None, target);
+        if let Ok(style) =
+            ProgressStyle::with_template("{msg:>16} [{bar:40}] {pos}/{len} passes {eta}")
+        {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar.set_message("positioning");
+        PassBar(bar)
+    }
+
+    fn set(&self, done: usize, total: usize) {
+        self.0.set_length(total as u64);
+        self.0.set_position(done as u64);
+    }
+
+    fn finish(&self) {
+        self.0.finish_and_clear();
+    }
 }
 
 fn units(job: &Job) -> Units {
@@ -63,6 +127,8 @@ fn write_outputs(
     job: &Job,
     part_name: &str,
     plan: &Plan,
+    machine: Option<&Machine>,
+    positioning: Option<&PositioningReport>,
     out_dir: &Path,
 ) -> Result<serde_json::Value> {
     let moves = plan.toolpath.moves();
@@ -70,23 +136,34 @@ fn write_outputs(
     let strategy = serde_json::to_value(job.strategy.kind)?;
     let strategy = strategy.as_str().unwrap_or("?").to_string();
     let out = |rel: &str| out_dir.join(rel);
-    if let Some(rel) = &job.output.gcode {
-        let opts = GcodeOptions {
-            dialect: match job.output.dialect {
-                OutputDialect::Linuxcnc => Dialect::Linuxcnc,
-                OutputDialect::Fanuc => Dialect::Fanuc,
-            },
-            units: units(job),
-            comments: vec![
-                format!("swarf {}", env!("CARGO_PKG_VERSION")),
-                format!("part {part_name}"),
-                format!("tool {}", job.tool),
-                format!("strategy {strategy}"),
-            ],
-            ..GcodeOptions::default()
-        };
-        let text = swarf_nc::write_gcode(&moves, &job.feeds, &opts)?;
-        swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+    let mut comments = vec![
+        format!("swarf {}", env!("CARGO_PKG_VERSION")),
+        format!("part {part_name}"),
+        format!("tool {}", job.tool),
+        format!("strategy {strategy}"),
+    ];
+    if let Some(p) = &job.positioning {
+        comments.push(format!("positioning {}", describe(p)));
+    }
+    match (&job.output.gcode, machine) {
+        (Some(rel), Some(m)) => {
+            let text = write_job_gcode(job, m, &plan.toolpath, comments)?;
+            swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+        }
+        (Some(rel), None) => {
+            let opts = GcodeOptions {
+                dialect: match job.output.dialect {
+                    OutputDialect::Linuxcnc => Dialect::Linuxcnc,
+                    OutputDialect::Fanuc => Dialect::Fanuc,
+                },
+                units: units(job),
+                comments,
+                ..GcodeOptions::default()
+            };
+            let text = swarf_nc::write_gcode(&moves, &job.feeds, &opts)?;
+            swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+        }
+        (None, _) => {}
     }
     if let Some(rel) = &job.output.cl {
         let text = swarf_nc::write_cl(&moves, &job.feeds, &job.tool, part_name, units(job))?;
@@ -99,7 +176,7 @@ fn write_outputs(
     if let (Some(rel), Some(text)) = (&job.output.double_contacts, plan.double_contacts_csv()) {
         swarf_io::write_atomic(&out(rel), text.as_bytes())?;
     }
-    let summary = serde_json::json!({
+    let mut summary = serde_json::json!({
         "job": job.name,
         "part": part_name,
         "tool": job.tool.to_string(),
@@ -113,9 +190,35 @@ fn write_outputs(
         "lifted_points": plan.toolpath.lifted_count(),
         "report": plan.report,
     });
+    if let Some(m) = machine {
+        summary["machine"] = serde_json::json!(m.name);
+    }
+    if let Some(p) = positioning {
+        summary["positioning"] = serde_json::to_value(p)?;
+    }
     if let Some(rel) = &job.output.summary {
         let text = serde_json::to_string_pretty(&summary)? + "\n";
         swarf_io::write_atomic(&out(rel), text.as_bytes())?;
     }
     Ok(summary)
+}
+
+/// The positioning as one line for the G-code header (degrees, mm).
+fn describe(p: &Positioning) -> String {
+    match *p {
+        Positioning::Inclined {
+            alpha,
+            tilt,
+            sections,
+        } => format!("inclined, lead {alpha} deg, tilt {tilt} deg, sections {sections} mm"),
+        Positioning::GougeFree {
+            max_alpha,
+            sections,
+            tilt,
+            max_rate,
+            ..
+        } => format!(
+            "gouge-free, lead <= {max_alpha} deg, <= {max_rate} deg/mm, tilt {tilt} deg, sections {sections} mm"
+        ),
+    }
 }

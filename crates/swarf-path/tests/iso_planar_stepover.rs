@@ -1,0 +1,82 @@
+//! Iso-planar with a fixed cross feed (`strategy.stepover`, the "cross feed 3.5 mm" of
+//! thesis 000 ch. 8): planes exactly the stepover apart, centred in the part, the
+//! closed-form ball scallop predicted; and pass ends without stubs.
+
+use swarf_geom::{Part, Patch};
+use swarf_path::Job;
+use swarf_path::iso_planar::plan;
+
+/// A fixed cross feed on a plane: drive planes exactly `s` apart and centred in the
+/// part, in start-side order, and the closed-form ball scallop predicted.
+#[test]
+fn fixed_stepover_on_a_plane() {
+    let p = |x: f64, y: f64| swarf_geom::Point3::new(x, y, 1.0);
+    let plane = Patch::bezier(
+        [1, 1],
+        vec![p(0.0, 0.0), p(0.0, 10.0), p(20.0, 0.0), p(20.0, 10.0)],
+    )
+    .unwrap();
+    let part = Part {
+        name: "plane".into(),
+        patches: vec![plane],
+    };
+    let with = |extra: &str| {
+        Job::parse(
+            &format!(
+                "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 1.5\ntolerance = 0.01\nangle = 0\n{extra}\n"
+            ),
+            "job.toml",
+        )
+        .unwrap()
+    };
+    for (extra, first) in [("", 0.5), ("start = \"max\"", 9.5)] {
+        let plan = plan(&part, &with(extra)).unwrap();
+        let ys: Vec<f64> = plan
+            .toolpath
+            .passes
+            .iter()
+            .map(|pass| {
+                let y = pass.points[0].contact.unwrap().point.y;
+                for q in &pass.points {
+                    assert!((q.contact.unwrap().point.y - y).abs() < 1e-9);
+                }
+                y
+            })
+            .collect();
+        assert_eq!(ys.len(), 7, "{ys:?}");
+        let sign = if first < 5.0 { 1.0 } else { -1.0 };
+        for (k, y) in ys.iter().enumerate() {
+            assert!((y - (first + sign * 1.5 * k as f64)).abs() < 1e-9, "{ys:?}");
+        }
+        let h = 4.0 - (16.0f64 - 0.25 * 1.5 * 1.5).sqrt();
+        let pred = plan.report.predicted_max_scallop.unwrap();
+        assert!((pred - h).abs() < 1e-9, "{pred} vs {h}");
+        let [a, b] = plan.report.side_step_range.unwrap();
+        assert!((a - 1.5).abs() < 1e-9 && (b - 1.5).abs() < 1e-9);
+    }
+    let both = Job::parse(
+        "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 1.5\nscallop = 0.1\n",
+        "job.toml",
+    );
+    assert!(both.unwrap_err().to_string().contains("strategy.stepover"));
+}
+
+/// Sections of the die end on its patch edges and corners, where the section
+/// polyline can end in two samples 1e-13 mm apart: no pass keeps such a stub.
+#[test]
+fn pass_ends_have_no_stubs() {
+    let part = swarf_io::builtin_part("die").unwrap();
+    let job = Job::parse(
+        "part = \"x\"\ntool = \"bull:d=38.1,r=6.35\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 10\nangle = 60\n",
+        "job.toml",
+    )
+    .unwrap();
+    let plan = plan(&part, &job).unwrap();
+    assert!(plan.toolpath.passes.len() > 10);
+    for pass in &plan.toolpath.passes {
+        for w in pass.points.windows(2) {
+            let (a, b) = (w[0].contact.unwrap(), w[1].contact.unwrap());
+            assert!((b.point - a.point).norm() > 1e-6, "{a:?} {b:?}");
+        }
+    }
+}
