@@ -345,6 +345,36 @@ mod tests {
         assert!(low <= top + 5.0 + 10.0 * a.sin(), "{low} vs {top}");
     }
 
+    /// The 3-axis gouge lift moves a pose's tip, not its contact: positioning gets
+    /// the CC points as planned (a ball in the crease of the concave edge part, where
+    /// it is lifted: tip = contact + r n - r z, raised by the lift).
+    #[test]
+    fn lifted_points_keep_their_contacts() {
+        let part = swarf_io::builtin_part("edge-concave").unwrap();
+        let job = Job::parse(
+            "part = \"x\"\ntool = \"ball:d=16\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 4\nangle = 90\n",
+            "job.toml",
+        )
+        .unwrap();
+        let plan = swarf_path::plan(&job, swarf_path::PlanInput::Part(&part)).unwrap();
+        let lifted: Vec<_> = plan
+            .toolpath
+            .passes
+            .iter()
+            .flat_map(|p| &p.points)
+            .filter(|p| p.lifted > 1e-3)
+            .collect();
+        assert!(lifted.len() > 5, "{}", lifted.len());
+        for p in lifted {
+            let c = p.contact.unwrap();
+            let planned = c.point + 8.0 * c.normal - 8.0 * Vec3::z();
+            let tip = p.pose.cl - p.lifted * Vec3::z();
+            assert!((tip - planned).norm() < 1e-9, "{tip} vs {planned}");
+            let on = part.patches[c.face].eval(c.uv[0], c.uv[1]);
+            assert!((on - c.point).norm() < 1e-9);
+        }
+    }
+
     #[test]
     fn machines_resolve_and_head_machines_need_a_tool_length() {
         let dir = Path::new(".");

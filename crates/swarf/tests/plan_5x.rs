@@ -1,0 +1,255 @@
+//! `swarf plan` on five-axis jobs (thesis 000 ch. 8 on die.toml, with a wide cross
+//! feed so that it runs in seconds): the G-code for the A/C trunnion is accepted by
+//! LinuxCNC's `rs274` (when installed; required when `SWARF_REQUIRE_REFERENCES=1`) and
+//! its canonical moves, through the machine's forward kinematics, are the APT CL's
+//! poses; the CL carries the tilted axes (at the lead angle from the surface normal at
+//! each CC point, to 1e-6 rad); the summary holds the positioning report; bad
+//! five-axis jobs fail with the field or the place.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use swarf_fiveaxis::machine::Machine;
+use swarf_fiveaxis::machine::kinematics::Joints;
+use swarf_geom::{Point3, Vec3};
+
+fn swarf(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_swarf"))
+        .args(args)
+        .output()
+        .expect("the swarf binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("swarf-5x-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn machine_text() -> String {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    std::fs::read_to_string(root.join("machines/xyzac-trunnion.toml")).unwrap()
+}
+
+/// Die, bull R 12.7 r 6.35, 60 degrees off X, cross feed 20 mm; the machine file
+/// beside the job.
+fn job(positioning: &str) -> String {
+    format!(
+        r#"name = "die, five-axis test"
+part = "builtin:die"
+tool = "bull:d=38.1,r=6.35"
+positioning = {positioning}
+[strategy]
+kind = "iso-planar"
+stepover = 20
+tolerance = 0.01
+angle = 60
+[feeds]
+feed = 150
+spindle = 1200
+[output]
+machine = "trunnion.toml"
+feed_mode = "inverse-time"
+gcode = "die.ngc"
+cl = "die.cl"
+summary = "die.json"
+"#
+    )
+}
+
+fn plan(dir: &Path, text: &str) -> Output {
+    std::fs::write(dir.join("trunnion.toml"), machine_text()).unwrap();
+    let path = dir.join("job.toml");
+    std::fs::write(&path, text).unwrap();
+    swarf(&["plan", path.to_str().unwrap()])
+}
+
+/// The feed `GOTO` poses of an APT CL file (those not after `RAPID`).
+fn cl_feed_poses(text: &str) -> Vec<(Point3, Vec3)> {
+    let mut out = Vec::new();
+    let mut rapid = false;
+    for line in text.lines() {
+        if line == "RAPID" {
+            rapid = true;
+        } else if let Some(args) = line.strip_prefix("GOTO/") {
+            let v: Vec<f64> = args.split(',').map(|s| s.parse().unwrap()).collect();
+            assert_eq!(v.len(), 6, "{line}");
+            if !rapid {
+                out.push((Point3::new(v[0], v[1], v[2]), Vec3::new(v[3], v[4], v[5])));
+            }
+            rapid = false;
+        }
+    }
+    out
+}
+
+/// `rs274 -g` on `program`: the machine positions of its `STRAIGHT_FEED` lines, or
+/// `None` when rs274 is not installed.
+fn rs274_feeds(program: &Path) -> Option<Vec<Joints>> {
+    if !Path::new("/usr/bin/rs274").exists() {
+        assert!(
+            std::env::var("SWARF_REQUIRE_REFERENCES").as_deref() != Ok("1"),
+            "rs274 is required but not installed"
+        );
+        return None;
+    }
+    let out = Command::new("/usr/bin/rs274")
+        .arg("-g")
+        .arg(program)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(out.status.success(), "rs274 failed:\n{text}");
+    let mut feeds = Vec::new();
+    for line in text.lines().filter(|l| !l.trim().is_empty()) {
+        let t = line.trim_start();
+        let numbered = t
+            .split(' ')
+            .next()
+            .is_some_and(|n| n.parse::<u32>().is_ok());
+        assert!(
+            numbered && t.contains("N..... "),
+            "rs274 complained: {line}"
+        );
+        if let Some(args) = line.split("STRAIGHT_FEED(").nth(1) {
+            let v: Vec<f64> = args
+                .trim_end_matches(')')
+                .split(',')
+                .map(|s| s.trim().parse().unwrap())
+                .collect();
+            feeds.push(Joints {
+                linear: Vec3::new(v[0], v[1], v[2]),
+                // A and C: the words of this machine.
+                rotary: [v[3].to_radians(), v[5].to_radians()],
+            });
+        }
+    }
+    Some(feeds)
+}
+
+/// The same job planned in-process: the positioned passes with their contacts.
+fn positioned(text: &str) -> Vec<swarf_path::Pass> {
+    let job = swarf_path::Job::parse(text, "job.toml").unwrap();
+    let part = swarf_io::builtin_part("die").unwrap();
+    let mut plan = swarf_path::plan(&job, swarf_path::PlanInput::Part(&part)).unwrap();
+    swarf_fiveaxis::job::position_plan(&job, &part, &mut plan, &|_, _| {}).unwrap();
+    plan.toolpath.passes
+}
+
+#[test]
+fn inclined_die_job_writes_checked_five_axis_outputs() {
+    let dir = temp_dir("inclined");
+    let text = job(r#"{ method = "inclined", alpha = 6, sections = 2.0 }"#);
+    let o = plan(&dir, &text);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("die.json")).unwrap()).unwrap();
+    let poses = summary["poses"].as_u64().unwrap() as usize;
+    let p = &summary["positioning"];
+    assert_eq!(p["method"], "inclined");
+    assert_eq!(p["poses"].as_u64(), Some(poses as u64));
+    assert_eq!(p["alpha_range_deg"], serde_json::json!([6.0, 6.0]));
+    assert!(p["gouging_poses"].as_u64().is_some() && p["worst_depth"].is_number());
+    assert!(summary["machine"].as_str().unwrap().contains("trunnion"));
+    // The CL carries the tilted axes: 6 degrees from the normal at each CC point.
+    let cl = cl_feed_poses(&std::fs::read_to_string(dir.join("die.cl")).unwrap());
+    let passes = positioned(&text);
+    let points: Vec<_> = passes.iter().flat_map(|p| &p.points).collect();
+    assert_eq!(cl.len(), poses);
+    assert_eq!(points.len(), poses);
+    let alpha = 6f64.to_radians();
+    let mut tilted_from_z = 0.0f64;
+    for ((cl_point, axis), p) in cl.iter().zip(&points) {
+        let normal = p.contact.unwrap().normal;
+        assert!(
+            (axis.angle(&normal) - alpha).abs() < 1e-6,
+            "{axis:?} {normal:?}"
+        );
+        assert!((cl_point - p.pose.cl).norm() < 1e-5);
+        tilted_from_z = tilted_from_z.max(axis.angle(&Vec3::z()));
+    }
+    assert!(tilted_from_z > 20f64.to_radians(), "{tilted_from_z}");
+    // rs274 accepts the G-code; its feeds are the CL's poses, one per pose.
+    let ngc = std::fs::read_to_string(dir.join("die.ngc")).unwrap();
+    for want in [
+        "G93",
+        "(positioning inclined, lead 6 deg",
+        "(machine A/C trunnion",
+    ] {
+        assert!(ngc.contains(want), "{want}");
+    }
+    if let Some(feeds) = rs274_feeds(&dir.join("die.ngc")) {
+        assert_eq!(feeds.len(), poses);
+        let m = Machine::parse(&machine_text(), "trunnion").unwrap();
+        for (j, (cl_point, axis)) in feeds.iter().zip(&cl) {
+            let pose = m.forward(j, 0.0);
+            assert!((pose.cl - cl_point).norm() < 2e-3, "{pose:?} vs {cl_point}");
+            assert!((pose.axis - axis).norm() < 1e-5, "{pose:?} vs {axis}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn gouge_free_die_job_has_no_gouging_pose() {
+    let dir = temp_dir("auto");
+    let o = plan(
+        &dir,
+        &job(r#"{ method = "gouge-free", max_alpha = 25, sections = 1.0 }"#),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("die.json")).unwrap()).unwrap();
+    let p = &summary["positioning"];
+    assert_eq!(p["method"], "gouge-free");
+    assert_eq!(p["gouging_poses"].as_u64(), Some(0));
+    assert!(p["worst_depth"].as_f64().unwrap() <= 0.01);
+    let [lo, hi] = [0, 1].map(|k| p["alpha_range_deg"][k].as_f64().unwrap());
+    assert!(0.0 <= lo && lo < hi && hi < 25.0, "{lo} {hi}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bad_five_axis_jobs_fail_with_the_field_or_the_place() {
+    let dir = temp_dir("bad");
+    // No gouge-free lead up to 2 degrees: the pass, the point and the CC point.
+    let o = plan(
+        &dir,
+        &job(r#"{ method = "gouge-free", max_alpha = 2, sections = 1.0 }"#),
+    );
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(
+        e.contains("no gouge-free lead angle up to max_alpha = 2") && e.contains("(CC ["),
+        "{e}"
+    );
+    assert!(e.contains("pass ") && e.contains(", point "), "{e}");
+    // A tilted path with G-code and no machine.
+    let text =
+        job(r#"{ method = "inclined", alpha = 6 }"#).replace("machine = \"trunnion.toml\"\n", "");
+    let o = plan(&dir, &text);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("output.machine"), "{}", stderr(&o));
+    // A machine file that is not there, and an unreachable pose.
+    let text =
+        job(r#"{ method = "inclined", alpha = 6 }"#).replace("trunnion.toml\"", "lathe.toml\"");
+    let o = plan(&dir, &text);
+    assert!(stderr(&o).contains("lathe.toml"), "{}", stderr(&o));
+    std::fs::write(
+        dir.join("tight.toml"),
+        machine_text().replace("limits = [-30, 120]", "limits = [-5, 5]"),
+    )
+    .unwrap();
+    let text =
+        job(r#"{ method = "inclined", alpha = 6 }"#).replace("trunnion.toml\"", "tight.toml\"");
+    let path = dir.join("tight-job.toml");
+    std::fs::write(&path, text).unwrap();
+    let o = swarf(&["plan", path.to_str().unwrap()]);
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(e.contains("pass 0, point ") && e.contains("axis A"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
