@@ -7,24 +7,20 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use swarf_fiveaxis::autotilt::{TiltOptions, gouge_free_tilt};
 use swarf_fiveaxis::design::DesignSurface;
-use swarf_fiveaxis::drive::{DrivePlanes, drive_plane_passes};
 use swarf_fiveaxis::gouge::{GougeOptions, pose_gouge};
+use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::profile_point::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
+use swarf_geom::Part;
+use swarf_path::{Contact, Job};
 use swarf_tool::{Cutter, Pose};
 
 fn bench(c: &mut Criterion) {
     let part = swarf_io::builtin_part("die").expect("die");
     let design = DesignSurface::new(&part);
     let angle = 60f64.to_radians();
-    let dp = DrivePlanes {
-        angle,
-        cross_feed: 3.5,
-        step: 1.0,
-        zigzag: true,
-    };
-    let cc = drive_plane_passes(&design, &part.control_box(), &dp).expect("passes");
+    let cc = die_cc(&part, "bull:d=38.1,r=6.35", 60.0, 3.5, 0.002);
     let cutter: Cutter = "bull:d=38.1,r=6.35".parse().expect("tool");
     let profile = cutter.profile();
     let table = ProfileTable::new(&profile);
@@ -67,3 +63,14 @@ criterion_group! {
     targets = bench
 }
 criterion_main!(benches);
+
+/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
+/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
+fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
+    let text = format!(
+        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
+         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
+    );
+    let job = Job::parse(&text, "die job").expect("job");
+    planned_cc_paths(&job, part).expect("CC paths")
+}

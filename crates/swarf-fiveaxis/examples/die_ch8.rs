@@ -7,8 +7,8 @@
 
 use std::time::Instant;
 use swarf_fiveaxis::design::DesignSurface;
-use swarf_fiveaxis::drive::{DrivePlanes, drive_plane_passes};
 use swarf_fiveaxis::gouge::{GougeOptions, pose_gouge};
+use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport, position};
 use swarf_fiveaxis::post::{PostOptions, write_gcode_5x};
@@ -16,7 +16,8 @@ use swarf_fiveaxis::profile_point::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
-use swarf_path::{Feeds, Linking, Pass, Toolpath};
+use swarf_geom::Part;
+use swarf_path::{Contact, Feeds, Job, Linking, Pass, Toolpath};
 use swarf_tool::{Cutter, Pose};
 
 fn show(name: &str, r: &PositioningReport, secs: f64) {
@@ -83,16 +84,10 @@ fn main() {
         .unwrap_or_else(|| "bull:d=38.1,r=6.35".into());
     let part = swarf_io::builtin_part("die").expect("built-in die");
     let design = DesignSurface::new(&part);
-    let dp = DrivePlanes {
-        angle: angle.to_radians(),
-        cross_feed: 3.5,
-        step: 1.0,
-        zigzag: true,
-    };
-    let cc = drive_plane_passes(&design, &part.control_box(), &dp).expect("passes");
+    let cc = die_cc(&part, &spec, angle, 3.5, 0.01);
     let cutter: Cutter = spec.parse().expect("tool");
     println!(
-        "die.toml, {spec}, feed {angle} deg off X, cross feed 3.5 mm, 1 mm steps: {} passes, {} poses; \
+        "die.toml, {spec}, feed {angle} deg off X, cross feed 3.5 mm, chordal tolerance 0.01 mm: {} passes, {} poses; \
          sections 1 mm parallel to the feed, tolerance 0.01 mm",
         cc.len(),
         cc.iter().map(Vec::len).sum::<usize>()
@@ -175,4 +170,15 @@ fn write_outputs(dir: &std::path::Path, cutter: &Cutter, passes: Vec<Pass>) {
         SweptSurface::new(&cutter.profile(), &poses, &CurveOptions::default()).expect("swept");
     swarf_io::write_stl(&dir.join("die-auto-machined.stl"), &swept.mesh, "die auto").expect("stl");
     println!("wrote {}", dir.display());
+}
+
+/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
+/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
+fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
+    let text = format!(
+        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
+         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
+    );
+    let job = Job::parse(&text, "die job").expect("job");
+    planned_cc_paths(&job, part).expect("CC paths")
 }

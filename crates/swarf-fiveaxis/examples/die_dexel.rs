@@ -8,14 +8,15 @@
 use std::time::Instant;
 use swarf_fiveaxis::CurveOptions;
 use swarf_fiveaxis::design::DesignSurface;
-use swarf_fiveaxis::drive::{DrivePlanes, drive_plane_passes};
 use swarf_fiveaxis::gouge::{GougeOptions, check_pass};
+use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::positioning::{Positioning, position};
 use swarf_fiveaxis::profile_point::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
-use swarf_geom::Point3;
+use swarf_geom::{Part, Point3};
 use swarf_nc::read::{Motion, MotionKind};
+use swarf_path::{Contact, Job};
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, SimTool, StockInit, simulate};
 use swarf_tool::{Cutter, Pose};
 
@@ -79,7 +80,7 @@ fn main() {
     let part = swarf_io::builtin_part("die").expect("built-in die");
     let design = DesignSurface::new(&part);
     let cutter: Cutter = "bull:d=38.1,r=6.35".parse().expect("tool");
-    let passes = plan(&part, &design, &cutter, auto, alpha);
+    let passes = plan(&part, &cutter, auto, alpha);
     let flagged = flagged_poses(&design, &cutter, &passes);
     println!("sectioning flags {} poses", flagged.len());
     let t = Instant::now();
@@ -122,20 +123,8 @@ fn main() {
 }
 
 /// The die's passes with the fixed lead `alpha` or the automatic one.
-fn plan(
-    part: &swarf_geom::Part,
-    design: &DesignSurface,
-    cutter: &Cutter,
-    auto: bool,
-    alpha: f64,
-) -> Vec<Vec<Pose>> {
-    let dp = DrivePlanes {
-        angle: 60f64.to_radians(),
-        cross_feed: 3.5,
-        step: 1.0,
-        zigzag: true,
-    };
-    let cc = drive_plane_passes(design, &part.control_box(), &dp).expect("passes");
+fn plan(part: &swarf_geom::Part, cutter: &Cutter, auto: bool, alpha: f64) -> Vec<Vec<Pose>> {
+    let cc = die_cc(part, "bull:d=38.1,r=6.35", 60.0, 3.5, 0.002);
     let p = if auto {
         Positioning::GougeFree {
             max_alpha: 25.0,
@@ -213,4 +202,15 @@ fn compare(r: &Run<'_>, x: f64) {
          dexel deepest below design {gouge:.4} mm, {gouged} cells gouged, {unflagged} of them \
          under no flagged pose; dexel {t_dx:.2} s"
     );
+}
+
+/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
+/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
+fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
+    let text = format!(
+        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
+         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
+    );
+    let job = Job::parse(&text, "die job").expect("job");
+    planned_cc_paths(&job, part).expect("CC paths")
 }

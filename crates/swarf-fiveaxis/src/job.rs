@@ -38,7 +38,7 @@ use std::path::Path;
 use swarf_geom::Part;
 use swarf_nc::{Dialect, Units};
 use swarf_path::job::{OutputDialect, OutputFeedMode, OutputUnits};
-use swarf_path::{Contact, Job, Linking, Pass, Plan, Toolpath};
+use swarf_path::{Contact, Job, Linking, Pass, PathError, Plan, PlanInput, Toolpath};
 use swarf_tool::Cutter;
 
 /// The machine files shipped with swarf (`machines/*.toml`), by built-in name.
@@ -90,6 +90,16 @@ pub fn cc_paths(toolpath: &Toolpath) -> Vec<Vec<Contact>> {
         }
     }
     out
+}
+
+/// The CC paths of `job`'s 3-axis plan on `part` ([`cc_paths`] of its passes): what
+/// [`position_plan`] positions, for callers that position them themselves.
+///
+/// # Errors
+/// The planning errors of [`swarf_path::plan`].
+pub fn planned_cc_paths(job: &Job, part: &Part) -> Result<Vec<Vec<Contact>>, PathError> {
+    let plan = swarf_path::plan(job, PlanInput::Part(part))?;
+    Ok(cc_paths(&plan.toolpath))
 }
 
 /// Positions the planned passes of `plan` as `job.positioning` asks (module doc) and

@@ -23,7 +23,6 @@
 
 pub mod autotilt;
 pub mod design;
-pub mod drive;
 pub mod error;
 pub mod gencurve;
 pub mod gouge;

@@ -1,16 +1,16 @@
 //! Thesis 000 ch. 8 on die.toml (its eq. 6.1): the inclined tool at alpha = 3 and 6
 //! degrees and the automatic gouge-free lead, with a toroidal cutter R = 12.7, r = 6.35
 //! (`bull:d=38.1,r=6.35`), feed 60 degrees off X, cross feed 3.5 mm. To keep the test
-//! fast it runs five passes across the part with 2 mm steps; `examples/die_ch8.rs` runs
-//! the full experiment. Gouges found by sectioning are confirmed by a dense
-//! independent check (the tool's signed distance to design points), and the automatic
-//! method's result is checked gouge-free by the same independent check.
+//! fast it runs five iso-planar passes across the part (cross feed 7 mm, steps of
+//! about 2 mm); `examples/die_ch8.rs` runs the full experiment. Gouges found by
+//! sectioning are confirmed by a dense independent check (the tool's signed distance
+//! to design points), and the automatic method's result is checked gouge-free by the
+//! same independent check.
 
-use swarf_fiveaxis::design::DesignSurface;
-use swarf_fiveaxis::drive::{DrivePlanes, drive_plane_passes};
+use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::positioning::{Positioning, position};
 use swarf_geom::{Part, Point3};
-use swarf_path::{Contact, Pass};
+use swarf_path::{Contact, Job, Pass};
 use swarf_tool::Cutter;
 
 fn die() -> Part {
@@ -18,14 +18,7 @@ fn die() -> Part {
 }
 
 fn cc(part: &Part) -> Vec<Vec<Contact>> {
-    let design = DesignSurface::new(part);
-    let dp = DrivePlanes {
-        angle: 60f64.to_radians(),
-        cross_feed: 7.0,
-        step: 2.0,
-        zigzag: true,
-    };
-    let all = drive_plane_passes(&design, &part.control_box(), &dp).unwrap();
+    let all = die_cc(part, "bull:d=38.1,r=6.35", 60.0, 7.0, 0.005);
     // Five passes across the part, the last one along the corner at (-4.9, -103.2).
     let n = all.len();
     [1, n / 4, n / 2, 3 * n / 4, n - 2]
@@ -99,4 +92,15 @@ fn fixed_leads_gouge_and_the_automatic_lead_does_not() {
     // under 2 micrometres).
     let pen = penetration(&part, &cutter, &pa, 1);
     assert!(pen <= tol + 0.002, "independent check: {pen} mm");
+}
+
+/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
+/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
+fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
+    let text = format!(
+        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
+         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
+    );
+    let job = Job::parse(&text, "die job").expect("job");
+    planned_cc_paths(&job, part).expect("CC paths")
 }

@@ -5,14 +5,13 @@
 
 use std::path::Path;
 use std::process::Command;
-use swarf_fiveaxis::design::DesignSurface;
-use swarf_fiveaxis::drive::{DrivePlanes, drive_plane_passes};
+use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::machine::kinematics::Joints;
 use swarf_fiveaxis::post::{FeedMode, PostOptions, write_gcode_5x};
 use swarf_fiveaxis::{FiveAxisError, incline_pass};
 use swarf_geom::{Part, Vec3};
-use swarf_path::{Feeds, Linking, Toolpath};
+use swarf_path::{Contact, Feeds, Job, Linking, Toolpath};
 use swarf_tool::{Cutter, Pose};
 
 const MACHINES: [(&str, &str); 3] = [
@@ -31,18 +30,11 @@ fn die() -> Part {
     swarf_io::builtin_part("die").expect("the built-in die part loads")
 }
 
-/// Three inclined passes over the die (lead 10 degrees, tilt 5), 3 mm steps.
+/// Three inclined passes over the die (lead 10 degrees, tilt 5), iso-planar at a 19 mm cross feed.
 fn toolpath() -> Toolpath {
     let part = die();
-    let design = DesignSurface::new(&part);
-    let dp = DrivePlanes {
-        angle: 60f64.to_radians(),
-        cross_feed: 20.0,
-        step: 3.0,
-        zigzag: true,
-    };
     let cutter: Cutter = "bull:d=20,r=4".parse().unwrap();
-    let cc = drive_plane_passes(&design, &part.control_box(), &dp).unwrap();
+    let cc = die_cc(&part, "bull:d=20,r=4", 60.0, 19.0, 0.05);
     let passes = cc
         .iter()
         .take(3)
@@ -199,4 +191,15 @@ fn unreachable_poses_name_the_pass_point_and_axis() {
     let m = Machine::parse(&small, "small").unwrap();
     let e = write_gcode_5x(&m, &tp, &PostOptions::default()).unwrap_err();
     assert!(e.to_string().contains("axis X"), "{e}");
+}
+
+/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
+/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
+fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
+    let text = format!(
+        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
+         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
+    );
+    let job = Job::parse(&text, "die job").expect("job");
+    planned_cc_paths(&job, part).expect("CC paths")
 }

@@ -5,8 +5,7 @@
 //! back (tip to the printed precision, axis to 1e-4 rad), and the G93 feeds read back
 //! are the programmed feeds wherever the feed, not a rotary speed limit, set the time.
 
-use swarf_fiveaxis::design::DesignSurface;
-use swarf_fiveaxis::drive::{DrivePlanes, drive_plane_passes};
+use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::machine::kinematics::Joints;
 use swarf_fiveaxis::machine::reader::MachineKinematics;
@@ -14,7 +13,7 @@ use swarf_fiveaxis::positioning::{Positioning, position};
 use swarf_fiveaxis::post::{FeedMode, PostOptions, solve_moves, write_gcode_5x};
 use swarf_geom::Part;
 use swarf_nc::read::{GcodeReadOptions, Program, parse_gcode};
-use swarf_path::{Feeds, Linking, Move, MoveKind, Toolpath};
+use swarf_path::{Contact, Feeds, Job, Linking, Move, MoveKind, Toolpath};
 use swarf_tool::{Cutter, Pose};
 
 const MACHINES: [(&str, &str); 3] = [
@@ -46,14 +45,7 @@ fn die() -> Part {
 /// Three passes across the die at a fixed lead of 6 degrees (thesis 000 §8.2 cutter).
 fn toolpath() -> Toolpath {
     let part = die();
-    let design = DesignSurface::new(&part);
-    let dp = DrivePlanes {
-        angle: 60f64.to_radians(),
-        cross_feed: 7.0,
-        step: 2.0,
-        zigzag: true,
-    };
-    let all = drive_plane_passes(&design, &part.control_box(), &dp).unwrap();
+    let all = die_cc(&part, "bull:d=38.1,r=6.35", 60.0, 7.0, 0.005);
     let n = all.len();
     let cc: Vec<_> = [n / 4, n / 2, 3 * n / 4]
         .iter()
@@ -263,4 +255,15 @@ fn every_pose_and_inverse_time_feed_reads_back_on_every_machine() {
             assert!((a.cl - b.cl).norm() < 1e-9 && (a.axis - b.axis).norm() < 1e-12);
         }
     }
+}
+
+/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
+/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
+fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
+    let text = format!(
+        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
+         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
+    );
+    let job = Job::parse(&text, "die job").expect("job");
+    planned_cc_paths(&job, part).expect("CC paths")
 }

@@ -80,3 +80,40 @@ fn pass_ends_have_no_stubs() {
         }
     }
 }
+
+/// The thesis's drive planes on the die: 60 degrees off X, cross feed 3.5 mm. Every
+/// pass lies on its plane, consecutive planes are exactly 3.5 mm apart, passes
+/// alternate direction (zigzag), and every CC point is on the design with its normal
+/// up.
+#[test]
+fn die_drive_planes_at_the_thesis_cross_feed() {
+    let part = swarf_io::builtin_part("die").unwrap();
+    let job = Job::parse(
+        "part = \"x\"\ntool = \"bull:d=38.1,r=6.35\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 3.5\nangle = 60\n",
+        "job.toml",
+    )
+    .unwrap();
+    let plan = plan(&part, &job).unwrap();
+    let passes = &plan.toolpath.passes;
+    assert!(passes.len() > 30, "{}", passes.len());
+    let a = 60f64.to_radians();
+    let (n, f) = ([-a.sin(), a.cos()], [a.cos(), a.sin()]);
+    let mut offsets = Vec::new();
+    for (k, pass) in passes.iter().enumerate() {
+        let cs: Vec<_> = pass.points.iter().map(|p| p.contact.unwrap()).collect();
+        let m = n[0] * cs[0].point.x + n[1] * cs[0].point.y;
+        for c in &cs {
+            assert!((n[0] * c.point.x + n[1] * c.point.y - m).abs() < 1e-6);
+            assert!(c.normal.z > 0.0 && (c.normal.norm() - 1.0).abs() < 1e-9);
+            let on = part.patches[c.face].eval(c.uv[0], c.uv[1]);
+            assert!((on - c.point).norm() < 1e-9);
+        }
+        let (first, last) = (cs[0].point, cs[cs.len() - 1].point);
+        let along = f[0] * (last.x - first.x) + f[1] * (last.y - first.y);
+        assert_eq!(along > 0.0, k % 2 == 0, "pass {k}");
+        offsets.push(m);
+    }
+    for w in offsets.windows(2) {
+        assert!((w[1] - w[0] - 3.5).abs() < 1e-6, "{offsets:?}");
+    }
+}

@@ -242,7 +242,6 @@ fn check_options(o: &TiltOptions) -> Result<(), FiveAxisError> {
 mod tests {
     use super::*;
     use crate::design::tests::die;
-    use crate::drive::{DrivePlanes, drive_plane_passes};
     use crate::gencurve::CurveOptions;
     use crate::sections::Sections;
 
@@ -274,16 +273,15 @@ mod tests {
         }
     }
 
-    /// Three passes through the middle of the die, 60 degrees off X, 2 mm steps.
-    pub(super) fn die_passes(design: &DesignSurface) -> Vec<Vec<Contact>> {
-        let part = die();
-        let dp = DrivePlanes {
-            angle: 60f64.to_radians(),
-            cross_feed: 3.5,
-            step: 2.0,
-            zigzag: true,
-        };
-        let all = drive_plane_passes(design, &part.control_box(), &dp).unwrap();
+    /// Three passes through the middle of the die: iso-planar, 60 degrees off X,
+    /// cross feed 3.5 mm, steps of about 2 mm (chordal tolerance 0.005 mm).
+    pub(super) fn die_passes() -> Vec<Vec<Contact>> {
+        let job = swarf_path::Job::parse(
+            "part = \"builtin:die\"\ntool = \"bull:d=38.1,r=6.35\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 3.5\ntolerance = 0.005\nangle = 60\n",
+            "die.toml",
+        )
+        .unwrap();
+        let all = crate::job::planned_cc_paths(&job, &die()).unwrap();
         let mid = all.len() / 2;
         all[mid - 1..=mid + 1].to_vec()
     }
@@ -291,7 +289,7 @@ mod tests {
     #[test]
     fn too_small_a_max_alpha_is_an_error_naming_the_point() {
         let design = DesignSurface::new(&die());
-        let passes = die_passes(&design);
+        let passes = die_passes();
         let cutter: Cutter = "bull:d=38.1,r=6.35".parse().unwrap();
         let e = gouge_free_tilt(&cutter, &design, &passes[..1], &opts(2.0)).unwrap_err();
         match &e {

@@ -285,7 +285,7 @@ mod tests {
     #[test]
     fn searched_alpha_is_within_a_tenth_of_a_degree_of_brute_force() {
         let design = DesignSurface::new(&die());
-        let passes = die_passes(&design);
+        let passes = die_passes();
         let cutter: Cutter = "bull:d=38.1,r=6.35".parse().unwrap();
         let profile = cutter.profile();
         let o = opts(25.0);
@@ -316,9 +316,13 @@ mod tests {
         let mut checked = 0;
         for i in [n / 5, n / 3, n / 2, 2 * n / 3, 4 * n / 5] {
             let a = report.searched[1][i];
-            // Monotone at a quarter-degree scale: every smaller alpha gouges.
+            // Every alpha more than a tenth of a degree smaller gouges (sampled at a
+            // quarter-degree scale): the answer is within a tenth of the smallest
+            // gouge-free alpha (the predicate is not monotone to the resolution: on
+            // iso-planar passes a few hundredths of a degree below an answer can be
+            // free again).
             let mut b = 0.0;
-            while b < a - o.resolution {
+            while b < a - tenth {
                 let g = pt.check(i, b, Neighbours::SameAlpha).unwrap();
                 assert!(g.gouges(o.gouge.tolerance), "point {i}: {b} free below {a}");
                 b += 0.25f64.to_radians();
