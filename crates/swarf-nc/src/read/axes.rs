@@ -8,6 +8,11 @@
 //! motions between the poses of [`Kinematics::path`], all with the block's source line
 //! and one tip feed ([`crate::read::feed`]); an arc (G2, G3, which cannot move rotary
 //! axes) is carried rigidly into the part frame by [`arc_in_part_frame`].
+//!
+//! A program does not say where the machine stands before it, so the path of its
+//! first move is unknown whatever the kinematics: the first block that moves becomes
+//! one straight motion to its end, as in a three-axis program (a simulator then only
+//! places the tool there).
 
 use crate::read::feed::BlockFeed;
 use crate::read::kinematics::{AxisPosition, Kinematics, arc_in_part_frame, home_position};
@@ -22,6 +27,8 @@ pub struct Axes<'k> {
     tol: f64,
     position: AxisPosition,
     pose: Pose,
+    /// A block has moved the axes: the path of the next one is known.
+    moved: bool,
 }
 
 impl<'k> Axes<'k> {
@@ -44,6 +51,7 @@ impl<'k> Axes<'k> {
             tol,
             position,
             pose,
+            moved: false,
         }
     }
 
@@ -77,8 +85,9 @@ impl<'k> Axes<'k> {
     ) -> Vec<Motion> {
         let from = self.position;
         let poses = match (kind, self.kinematics) {
+            (MotionKind::Rapid | MotionKind::Linear, Some(_)) if to == from => Vec::new(),
             (MotionKind::Arc { .. }, _) | (_, None) => vec![self.end_pose(&to)],
-            (_, Some(_)) if to == from => Vec::new(),
+            (_, Some(_)) if !self.moved => vec![self.end_pose(&to)],
             (_, Some(k)) => k.path(&from, &to, self.tol),
         };
         let kind = match (kind, self.kinematics) {
@@ -132,6 +141,7 @@ impl<'k> Axes<'k> {
         for m in &mut motions {
             m.feed = feed;
         }
+        self.moved |= !motions.is_empty();
         self.position = to;
         self.pose = motions.last().map_or_else(|| self.end_pose(&to), |m| m.end);
         motions

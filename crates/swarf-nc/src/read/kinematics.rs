@@ -217,6 +217,9 @@ mod tests {
     fn incremental_rotary_words_in_degrees_whatever_the_units() {
         let p = read("G20 G91 G94 F10\nG1 X1 A10\nA10 C-5\nM30\n");
         assert!(p.stopped.is_none(), "{:?}", p.stopped);
+        // Where the axes stood before the program is unknown, so is the path of the
+        // first block: one motion to its end.
+        assert_eq!(p.motions.iter().filter(|m| m.line == 2).count(), 1);
         // The axes start where the tip is at the part's origin: X Y Z = TABLE.origin.
         let want = TABLE.pose(&[5.0 + 25.4, -3.0, 2.0, deg(20.0), deg(-5.0)]);
         let end = p.motions.last().unwrap().end;

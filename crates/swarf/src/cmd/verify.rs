@@ -2,6 +2,13 @@
 //! and measure it against the design; writes `report.json`, `flagged.csv`,
 //! `deviation.png` and `toolpath.png`. A program that stops mid-way still gets its
 //! partial report, then the command fails.
+//!
+//! Five-axis G-code (`X Y Z` and two rotary words) needs the machine it was posted
+//! for: `--machine FILE` (or `builtin:NAME`) and, for machines with head axes,
+//! `--tool-length MM`. The G-code's axis positions then go through the machine's
+//! forward kinematics into part-frame poses ([`read_with_machine`]). APT CL and pose
+//! CSV programs are in the part frame already: `--machine` is not needed for them, and
+//! is ignored with a note.
 
 use crate::load::{Model, load_model};
 use anyhow::{Context, Result, bail};
@@ -9,7 +16,10 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use swarf_nc::read::{Program, read_program};
+use swarf_fiveaxis::job::load_machine;
+use swarf_fiveaxis::machine::reader::MachineKinematics;
+use swarf_fiveaxis::machine::{Machine, MachineKind};
+use swarf_nc::read::{GcodeReadOptions, Program, ProgramFormat, read_program, read_program_with};
 use swarf_sim::report::{ReportContext, flagged_csv, json_report, text_summary};
 use swarf_sim::{Design, Progress, StockSpec, Verification, VerifyOptions};
 use swarf_tool::Cutter;
@@ -26,6 +36,14 @@ pub struct Args {
     /// Tool spec, e.g. ball:d=8 (default: the program's CUTTER record).
     #[arg(long)]
     tool: Option<String>,
+    /// Machine file (TOML) or builtin:NAME for five-axis G-code: the program's X Y Z
+    /// and rotary words are this machine's axes (not needed for APT CL or pose CSV).
+    #[arg(long)]
+    machine: Option<String>,
+    /// Tool length from the spindle gauge line to the tip, mm (machines with head
+    /// axes, whose programs position the head).
+    #[arg(long, requires = "machine")]
+    tool_length: Option<f64>,
     #[command(flatten)]
     sim: SimArgs,
     /// Output directory.
@@ -214,7 +232,31 @@ impl Progress for Bars {
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
     let model = load_model(&args.part)?;
-    let program = read_program(&args.program)?;
+    let opts = args.sim.options(0.01, 0.0, 5000.0, false)?;
+    let machine = match &args.machine {
+        Some(spec) if ProgramFormat::of(&args.program) == Some(ProgramFormat::Gcode) => {
+            Some(machine_arg(spec)?)
+        }
+        Some(spec) => {
+            eprintln!(
+                "note: --machine {spec} ignored: {} is not G-code, its poses are in the \
+                 part frame already",
+                args.program.display()
+            );
+            None
+        }
+        None => None,
+    };
+    let tool_length = match (&machine, args.tool_length) {
+        (Some(m), None) if m.kind != MachineKind::TableTable => bail!(
+            "--tool-length: the machine {:?} has head axes: give the tool length from the \
+             spindle gauge line to the tip, in mm",
+            m.name
+        ),
+        (_, length) => length.unwrap_or(0.0),
+    };
+    let sample_tol = opts.sample_tol.unwrap_or(0.25 * opts.tol);
+    let program = read_with_machine(&args.program, machine.as_ref(), tool_length, sample_tol)?;
     let cutter = match (&args.tool, &program.tool) {
         (Some(spec), _) => spec
             .parse::<Cutter>()
@@ -225,7 +267,6 @@ pub fn run(args: &Args) -> Result<()> {
             program.source
         ),
     };
-    let opts = args.sim.options(0.01, 0.0, 5000.0, false)?;
     let ctx = context(&args.part, &program, &cutter, &opts);
     let v = verify_and_write(&model, &program, &cutter, &opts, &args.out, "", &ctx)?;
     print!("{}", text_summary(&v, &ctx));
@@ -234,6 +275,44 @@ pub fn run(args: &Args) -> Result<()> {
         bail!("the program stopped at {stop}; the report covers the motions before it");
     }
     Ok(())
+}
+
+/// Reads the program at `path`; a G-code program through `machine`'s forward
+/// kinematics when given (five-axis moves split into motions within `tol` of the tool
+/// tip's path), with a tool `tool_length` long from the gauge line to the tip
+/// (machines with head axes). APT CL and pose CSV programs are read as they are.
+///
+/// # Units
+/// mm.
+///
+/// # Errors
+/// A program file that cannot be read; a tool length that is not a length.
+pub fn read_with_machine(
+    path: &Path,
+    machine: Option<&Machine>,
+    tool_length: f64,
+    tol: f64,
+) -> Result<Program> {
+    let Some(machine) = machine else {
+        return Ok(read_program(path)?);
+    };
+    let kinematics = MachineKinematics::new(machine.clone(), tool_length)?;
+    let opts = GcodeReadOptions {
+        kinematics: Some(&kinematics),
+        kinematics_tol: tol,
+        ..GcodeReadOptions::default()
+    };
+    Ok(read_program_with(path, &opts)?)
+}
+
+/// The machine `--machine` names: `builtin:NAME` or a machine file.
+fn machine_arg(spec: &str) -> Result<Machine> {
+    if spec.starts_with("builtin:") {
+        return Ok(load_machine(spec, Path::new(""))?);
+    }
+    let text = std::fs::read_to_string(spec)
+        .with_context(|| format!("--machine {spec}: cannot read the machine file"))?;
+    Ok(Machine::parse(&text, spec)?)
 }
 
 /// What the report says about the inputs.
@@ -341,6 +420,8 @@ mod tests {
             part: part.display().to_string(),
             program: program.to_path_buf(),
             tool: Some("ball:d=6".into()),
+            machine: None,
+            tool_length: None,
             sim: SimArgs {
                 deviation: None,
                 ..SimArgs::for_tests(0.05)
