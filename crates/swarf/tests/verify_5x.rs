@@ -132,6 +132,7 @@ fn gcode_through_the_machine_verifies_like_the_cl_data() {
     // where C turns fast, which moves boundary cells only.
     for what in ["gouge", "excess"] {
         let (a, b) = (&g["deviation"][what], &c["deviation"][what]);
+        eprintln!("{what}: G-code {a}\n{what}: CL     {b}");
         assert_eq!(a["regions"], b["regions"], "{what}: {a} vs {b}");
         assert!(near(&a["cells"], &b["cells"], 0.01), "{what}: {a} vs {b}");
         assert!(

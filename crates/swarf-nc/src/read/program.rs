@@ -102,8 +102,10 @@ pub struct Motion {
     pub start: Pose,
     /// Pose where the motion ends.
     pub end: Pose,
-    /// Feed rate, mm/min; 0 for rapids, and 0 for cutting moves whose feed the file
-    /// does not give (APT CL without `FEDRAT`, pose CSV without `# feed=`).
+    /// Feed rate of the tool tip over the part, mm/min; 0 for rapids, for cutting
+    /// moves whose feed the file does not give (APT CL without `FEDRAT`, pose CSV
+    /// without `# feed=`) and for five-axis blocks that turn the tool about its tip
+    /// (see [`crate::read::feed`]).
     pub feed: f64,
     /// 1-based source line of the block or record that commanded the motion.
     pub line: usize,
