@@ -10,11 +10,21 @@
 //! already has that of the next pass start), so the rotary axes turn only on the rapid
 //! at the clearance plane.
 //!
+//! **Between poses.** Moving its axes linearly, such a control would run the tool tip
+//! over the part on a curve, not along the chord between two poses that the tool path
+//! (and its APT CL) states: on the die's 2 mm steps, where C turns 7 degrees a step,
+//! up to 0.15 mm off. Every move that turns a rotary axis (cutting moves, and the
+//! links that turn the axes at the clearance plane) is therefore written as as many
+//! blocks as keep the tip within [`PostOptions::path_tol`] of the chord and the axis
+//! within [`PostOptions::path_angle_tol`] of the great circle ([`subdivide`]): the
+//! motion a tool-centre-point control would make. [`post_5x`] reports how many
+//! blocks that added and the deviations before and after.
+//!
 //! Feeds: with [`FeedMode::InverseTime`] (G93) every `G1` carries `F = 1 / t`, `t` the
-//! move's time in minutes: the tool tip's path length in the part frame over the feed
-//! rate, or the largest rotary step over `rotary_feed` when that is longer (a turn on
-//! the spot), so that the tip moves over the part at the programmed feed whatever the
-//! machine axes do. With [`FeedMode::UnitsPerMinute`] (G94) `F` is the feed rate, which
+//! block's time in minutes: the length of the tool tip's path over the part in that
+//! block over the feed rate, or the largest rotary step over `rotary_feed` when that
+//! is longer (a turn on the spot), so that the tip moves over the part at the
+//! programmed feed whatever the machine axes do. With [`FeedMode::UnitsPerMinute`] (G94) `F` is the feed rate, which
 //! LinuxCNC applies to the `X Y Z` motion of the machine, not to the tip over the part.
 //!
 //! Table-table machines program the tool tip (`G43 H` tool length compensation);
@@ -23,15 +33,19 @@
 //! Layout otherwise as the 3-axis post of swarf-nc: `%`, comments, modal line, tool
 //! change, spindle, moves with only changed words, `M5`, `M30`, `%`.
 
+pub mod subdivide;
+
 use crate::error::FiveAxisError;
 use crate::machine::joints::solve_pass;
 use crate::machine::kinematics::Joints;
 use crate::machine::{Machine, MachineKind};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
+use subdivide::{PathTol, Subdivided, subdivide};
 use swarf_nc::number::{Units, format_decimal};
 use swarf_nc::{Dialect, NcError};
 use swarf_path::{Move, MoveKind, Toolpath};
+use swarf_tool::Pose;
 
 /// Decimal places of rotary words, degrees.
 const ANGLE_DECIMALS: usize = 4;
@@ -66,7 +80,21 @@ pub struct PostOptions {
     pub tool_length: f64,
     /// Rotary speed for moves that only turn, degrees per minute.
     pub rotary_feed: f64,
+    /// Largest distance of the tool tip from the planned chord between two poses while
+    /// the machine moves its axes linearly, mm (module doc); `f64::INFINITY` writes one
+    /// block per move.
+    pub path_tol: f64,
+    /// Largest angle of the tool axis from the planned great circle between two poses,
+    /// radians; `f64::INFINITY` for any.
+    pub path_angle_tol: f64,
 }
+
+/// Default [`PostOptions::path_tol`]: the default chordal tolerance of jobs, mm.
+pub const DEFAULT_PATH_TOL: f64 = 0.01;
+
+/// Default [`PostOptions::path_angle_tol`], 0.05 degrees, radians: at the edge of a
+/// cutter of radius 12 mm the axis error moves the cutting point by 0.01 mm.
+pub const DEFAULT_PATH_ANGLE_TOL: f64 = 0.05 * std::f64::consts::PI / 180.0;
 
 impl Default for PostOptions {
     fn default() -> Self {
@@ -79,8 +107,64 @@ impl Default for PostOptions {
             feed_mode: FeedMode::InverseTime,
             tool_length: 0.0,
             rotary_feed: 3600.0,
+            path_tol: DEFAULT_PATH_TOL,
+            path_angle_tol: DEFAULT_PATH_ANGLE_TOL,
         }
     }
+}
+
+/// What the subdivision between poses did to a program (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PostReport {
+    /// Moves inside passes (cutting).
+    pub cutting: Stray,
+    /// Link moves (approach, retract, the rapids between passes).
+    pub links: Stray,
+}
+
+/// How far one kind of move strays from the planned motion, and the blocks inserted to
+/// bring it back.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Stray {
+    /// Moves.
+    pub moves: usize,
+    /// Blocks inserted between the moves' poses.
+    pub inserted: usize,
+    /// Moves written at the bound of [`subdivide::MAX_BLOCKS`] blocks, still beyond
+    /// the tolerances.
+    pub at_bound: usize,
+    /// Largest distance of the tip from its chord with one block per move, mm.
+    pub unsplit_tip: f64,
+    /// Largest angle of the axis from its great circle with one block per move,
+    /// radians.
+    pub unsplit_angle: f64,
+    /// Largest distance of the tip from its chord in the written blocks, mm.
+    pub tip: f64,
+    /// Largest angle of the axis from its great circle in the written blocks, radians.
+    pub angle: f64,
+}
+
+impl Stray {
+    fn add(&mut self, s: &Subdivided) {
+        self.moves += 1;
+        self.inserted += s.blocks.len() - 1;
+        self.at_bound += usize::from(s.at_bound);
+        self.unsplit_tip = self.unsplit_tip.max(s.unsplit.tip);
+        self.unsplit_angle = self.unsplit_angle.max(s.unsplit.angle);
+        for b in &s.blocks {
+            self.tip = self.tip.max(b.deviation.tip);
+            self.angle = self.angle.max(b.deviation.angle);
+        }
+    }
+}
+
+/// A five-axis program and what its subdivision did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Post5x {
+    /// The G-code.
+    pub gcode: String,
+    /// The subdivision between poses.
+    pub report: PostReport,
 }
 
 /// The machine axis positions at the end of every move of `moves =
@@ -169,27 +253,46 @@ fn check_travel(m: &Machine, j: &Joints, pass: usize) -> Result<(), FiveAxisErro
 /// Moves and feeds in mm and mm/min; converted to `opts.units`; angles in degrees.
 ///
 /// # Errors
-/// [`FiveAxisError::Unreachable`] for poses the machine cannot reach;
-/// [`FiveAxisError::Nc`] for non-finite values or a bad program number;
-/// [`FiveAxisError::InvalidParameter`] for a non-positive rotary feed or tool length
-/// that is not finite.
+/// As [`post_5x`].
 pub fn write_gcode_5x(
     m: &Machine,
     toolpath: &Toolpath,
     opts: &PostOptions,
 ) -> Result<String, FiveAxisError> {
+    post_5x(m, toolpath, opts).map(|p| p.gcode)
+}
+
+/// Writes `toolpath` as a five-axis G-code program for machine `m` (module doc), with
+/// the report of the blocks inserted between poses.
+///
+/// # Units
+/// Moves and feeds in mm and mm/min; converted to `opts.units`; angles in degrees.
+///
+/// # Errors
+/// [`FiveAxisError::Unreachable`] for poses the machine cannot reach (those of the
+/// tool path, or between two of them);
+/// [`FiveAxisError::Nc`] for non-finite values or a bad program number;
+/// [`FiveAxisError::InvalidParameter`] for a non-positive rotary feed or path
+/// tolerance, or a tool length that is not finite.
+pub fn post_5x(
+    m: &Machine,
+    toolpath: &Toolpath,
+    opts: &PostOptions,
+) -> Result<Post5x, FiveAxisError> {
     check_options(opts)?;
     let moves = toolpath.moves();
     let joints = solve_moves(m, toolpath, &moves, opts.tool_length)?;
-    let mut out = String::with_capacity(moves.len() * 48 + 512);
+    let (blocks, report) = blocks(m, &moves, &joints, opts)?;
+    let mut out = String::with_capacity(blocks.len() * 48 + 512);
     header(&mut out, m, toolpath, opts);
     let names = m.rotary_names();
     let letters = ['X', 'Y', 'Z', names[0], names[1]];
     let mut modal: [Option<String>; 5] = Default::default();
     let mut motion = None;
     let mut feed_word: Option<String> = None;
-    let mut prev: Option<(&Move, &Joints)> = None;
-    for (index, (mv, j)) in moves.iter().zip(&joints).enumerate() {
+    let mut prev: Option<&Joints> = None;
+    for (index, b) in blocks.iter().enumerate() {
+        let j = &b.joints;
         let values = [
             opts.units.from_mm(j.linear.x),
             opts.units.from_mm(j.linear.y),
@@ -218,41 +321,94 @@ pub fn write_gcode_5x(
             }
         }
         if words.is_empty() {
-            prev = Some((mv, j));
+            prev = Some(j);
             continue;
         }
-        if motion != Some(mv.kind) {
-            out.push_str(if mv.kind == MoveKind::Rapid {
+        if motion != Some(b.kind) {
+            out.push_str(if b.kind == MoveKind::Rapid {
                 "G0 "
             } else {
                 "G1 "
             });
-            motion = Some(mv.kind);
+            motion = Some(b.kind);
         }
         out.push_str(&words);
-        if mv.kind == MoveKind::Feed {
-            let f = feed(mv, j, prev, opts, index)?;
+        if b.kind == MoveKind::Feed {
+            let f = feed(b, prev, opts, index)?;
             if opts.feed_mode == FeedMode::InverseTime || feed_word.as_deref() != Some(f.as_str()) {
                 push_word(&mut out, 'F', &f);
                 feed_word = Some(f);
             }
         }
         out.push('\n');
-        prev = Some((mv, j));
+        prev = Some(j);
     }
     out.push_str("M5\nM30\n%\n");
-    Ok(out)
+    Ok(Post5x { gcode: out, report })
 }
 
-/// The `F` word of a feed move (module doc).
+/// One block to write: a move, or a piece of one.
+struct Written {
+    kind: MoveKind,
+    /// The move's feed, mm/min.
+    feed: f64,
+    joints: Joints,
+    /// Length of the tip's path over the part from the previous block's end, mm.
+    length: f64,
+}
+
+/// The moves as blocks, subdivided between poses (module doc). Errors between two
+/// poses name the pass and point of the move's end (for links, the last pass point
+/// before them).
+fn blocks(
+    m: &Machine,
+    moves: &[Move],
+    joints: &[Joints],
+    opts: &PostOptions,
+) -> Result<(Vec<Written>, PostReport), FiveAxisError> {
+    let tol = PathTol {
+        tip: opts.path_tol,
+        angle: opts.path_angle_tol,
+    };
+    let mut report = PostReport::default();
+    let mut out = Vec::with_capacity(moves.len());
+    let (mut pass, mut point) = (0, 0);
+    let mut from: Option<(&Pose, &Joints)> = None;
+    for (mv, j) in moves.iter().zip(joints) {
+        if let Some(k) = mv.pass {
+            point = if k == pass { point + 1 } else { 1 };
+            pass = k;
+        }
+        let written = |joints: Joints, length: f64| Written {
+            kind: mv.kind,
+            feed: mv.feed,
+            joints,
+            length,
+        };
+        let Some(start) = from.replace((&mv.to, j)) else {
+            out.push(written(*j, 0.0));
+            continue;
+        };
+        let s = subdivide(m, start, (&mv.to, j), opts.tool_length, &tol, pass, point)?;
+        match mv.pass {
+            Some(_) => report.cutting.add(&s),
+            None => report.links.add(&s),
+        }
+        for b in &s.blocks {
+            out.push(written(b.joints, b.deviation.length));
+        }
+    }
+    Ok((out, report))
+}
+
+/// The `F` word of a feed block (module doc).
 fn feed(
-    mv: &Move,
-    j: &Joints,
-    prev: Option<(&Move, &Joints)>,
+    b: &Written,
+    prev: Option<&Joints>,
     opts: &PostOptions,
     index: usize,
 ) -> Result<String, FiveAxisError> {
-    if !(mv.feed.is_finite() && mv.feed > 0.0) {
+    if !(b.feed.is_finite() && b.feed > 0.0) {
         return Err(NcError::NonFinite {
             index,
             what: "feed",
@@ -261,17 +417,16 @@ fn feed(
     }
     match opts.feed_mode {
         FeedMode::UnitsPerMinute => Ok(format_decimal(
-            opts.units.from_mm(mv.feed),
+            opts.units.from_mm(b.feed),
             opts.units.decimals().min(3),
         )),
         FeedMode::InverseTime => {
-            let (length, turn) = prev.map_or((0.0, 0.0), |(p, pj)| {
-                let turn = (0..2)
-                    .map(|k| (j.rotary[k] - pj.rotary[k]).abs().to_degrees())
-                    .fold(0.0, f64::max);
-                ((mv.to.cl - p.to.cl).norm(), turn)
+            let turn = prev.map_or(0.0, |p| {
+                (0..2)
+                    .map(|k| (b.joints.rotary[k] - p.rotary[k]).abs().to_degrees())
+                    .fold(0.0, f64::max)
             });
-            let minutes = (length / mv.feed).max(turn / opts.rotary_feed).max(1e-7);
+            let minutes = (b.length / b.feed).max(turn / opts.rotary_feed).max(1e-7);
             Ok(format_decimal((1.0 / minutes).max(1e-4), 4))
         }
     }
@@ -301,6 +456,17 @@ fn check_options(o: &PostOptions) -> Result<(), FiveAxisError> {
                 o.rotary_feed
             ),
         ));
+    }
+    for (field, v) in [
+        ("path_tol", o.path_tol),
+        ("path_angle_tol", o.path_angle_tol),
+    ] {
+        if v.is_nan() || v <= 0.0 {
+            return Err(FiveAxisError::parameter(
+                field,
+                format!("expected a tolerance > 0 (or infinity for none), found {v}"),
+            ));
+        }
     }
     if !o.tool_length.is_finite() {
         return Err(FiveAxisError::parameter(

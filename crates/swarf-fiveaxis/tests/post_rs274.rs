@@ -1,7 +1,8 @@
 //! Five-axis G-code for the three example machines, read back by LinuxCNC's `rs274 -g`
 //! (when installed; required when `SWARF_REQUIRE_REFERENCES=1`): the interpreter accepts
 //! every program, and its canonical moves, turned back into part-frame poses by our
-//! forward kinematics, are the tool path's poses to the printed precision.
+//! forward kinematics, are the tool path's poses to the printed precision, with the
+//! blocks the post inserts between them on the chords (within `path_tol`).
 
 use std::path::Path;
 use std::process::Command;
@@ -10,8 +11,8 @@ use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::machine::kinematics::Joints;
 use swarf_fiveaxis::post::{FeedMode, PostOptions, write_gcode_5x};
 use swarf_fiveaxis::{FiveAxisError, incline_pass};
-use swarf_geom::{Part, Vec3};
-use swarf_path::{Contact, Feeds, Job, Linking, Toolpath};
+use swarf_geom::{Part, Point3, Vec3};
+use swarf_path::{Contact, Feeds, Job, Linking, Move, Toolpath};
 use swarf_tool::{Cutter, Pose};
 
 const MACHINES: [(&str, &str); 3] = [
@@ -140,38 +141,106 @@ fn rs274_reads_back_the_poses_on_every_machine() {
             };
             let motions = canonical(&out, m.rotary_names());
             assert!(motions.len() > 20, "{name}: {} motions", motions.len());
-            // Each canonical position is the next move's pose (moves that change no word
-            // are not written); positions printed to 1e-4 mm and 1e-4 degrees.
-            let mut k = 0;
-            let mut prev: Option<(Pose, Joints)> = None;
-            for (j, rate, feed) in &motions {
-                let p = m.forward(j, tool_length);
-                while k < moves.len() && (moves[k].to.cl - p.cl).norm() > 2e-3 {
-                    k += 1;
-                }
-                assert!(k < moves.len(), "{name}: a canonical move matches no pose");
-                assert!((moves[k].to.axis - p.axis).norm() < 1e-5, "{name}: axis");
-                if *feed
-                    && mode == FeedMode::InverseTime
-                    && let Some((q, qj)) = prev
-                {
-                    // rs274 turns F (1/min) into F times the X Y Z length of the block;
-                    // we wrote F = feed / length of the tip's path over the part.
-                    let part = (p.cl - q.cl).norm();
-                    let machine = (j.linear - qj.linear).norm();
-                    if part > 0.5 && machine > 0.5 {
-                        let expected = moves[k].feed * machine / part;
-                        assert!(
-                            (rate - expected).abs() < 1e-3 * expected,
-                            "{name}: feed rate {rate} vs {expected}"
-                        );
-                    }
-                }
-                prev = Some((p, *j));
-            }
-            assert_eq!(k, moves.len() - 1, "{name}: the last move");
+            let inserted = check_motions(name, &m, &moves, &motions, &opts);
+            assert!(inserted > 0, "{name}: no block inserted");
         }
     }
+}
+
+/// Each canonical position is the next move's pose (moves that change no word are not
+/// written), or a block the post inserted before it: on the chord from the previous
+/// move's pose within `path_tol`, the axis on the great circle within
+/// `path_angle_tol`; positions printed to 1e-4 mm and 1e-4 degrees. In G93, rs274's
+/// feed rate is F times the block's `X Y Z` length, and F the tip's path length over
+/// the part over the feed. Returns the number of inserted blocks.
+fn check_motions(
+    name: &str,
+    m: &Machine,
+    moves: &[Move],
+    motions: &[(Joints, f64, bool)],
+    opts: &PostOptions,
+) -> usize {
+    let close =
+        |p: &Pose, q: &Pose| (p.cl - q.cl).norm() <= 2e-3 && (p.axis - q.axis).norm() < 1e-5;
+    let mut k: Option<usize> = None;
+    let mut inserted = 0;
+    let mut prev: Option<Joints> = None;
+    for (j, rate, feed) in motions {
+        let p = m.forward(j, opts.tool_length);
+        // Moves the post left out end where the one before them did.
+        while let Some(i) =
+            k.filter(|&i| i + 1 < moves.len() && close(&moves[i + 1].to, &moves[i].to))
+        {
+            k = Some(i + 1);
+        }
+        let next = k.map_or(0, |i| i + 1);
+        assert!(
+            next < moves.len(),
+            "{name}: a canonical move after the last pose"
+        );
+        if close(&p, &moves[next].to) {
+            k = Some(next);
+        } else {
+            let Some(i) = k else {
+                panic!("{name}: the first canonical move is not the first pose");
+            };
+            let (a, b) = (&moves[i].to, &moves[next].to);
+            let off = off_chord(&p.cl, &a.cl, &b.cl);
+            assert!(
+                off <= opts.path_tol + 2e-3,
+                "{name}: {off} mm off the chord"
+            );
+            let n = a.axis.cross(&b.axis).normalize();
+            let angle = p.axis.dot(&n).abs().asin();
+            assert!(
+                angle <= opts.path_angle_tol + 1e-5,
+                "{name}: axis {angle} rad off"
+            );
+            inserted += 1;
+        }
+        if *feed
+            && opts.feed_mode == FeedMode::InverseTime
+            && let Some(q) = prev
+        {
+            let path = path_length(m, &q, j, opts.tool_length);
+            let machine = (j.linear - q.linear).norm();
+            if path > 0.5 && machine > 0.5 {
+                let expected = moves[next].feed * machine / path;
+                assert!(
+                    (rate - expected).abs() < 1e-3 * expected,
+                    "{name}: feed rate {rate} vs {expected}"
+                );
+            }
+        }
+        prev = Some(*j);
+    }
+    assert_eq!(k, Some(moves.len() - 1), "{name}: the last move");
+    inserted
+}
+
+/// Distance from `p` to the segment `a b`.
+fn off_chord(p: &Point3, a: &Point3, b: &Point3) -> f64 {
+    let d = b - a;
+    let t = ((p - a).dot(&d) / d.norm_squared().max(1e-300)).clamp(0.0, 1.0);
+    (p - (a + d * t)).norm()
+}
+
+/// Length of the tip's path over the part while the machine moves its axes linearly
+/// from `a` to `b` (a fine polyline of the forward kinematics).
+fn path_length(m: &Machine, a: &Joints, b: &Joints, tool_length: f64) -> f64 {
+    let n = 200;
+    let at = |k: usize| {
+        let t = k as f64 / n as f64;
+        let j = Joints {
+            linear: a.linear + (b.linear - a.linear) * t,
+            rotary: [
+                a.rotary[0] + (b.rotary[0] - a.rotary[0]) * t,
+                a.rotary[1] + (b.rotary[1] - a.rotary[1]) * t,
+            ],
+        };
+        m.forward(&j, tool_length).cl
+    };
+    (1..=n).map(|k| (at(k) - at(k - 1)).norm()).sum()
 }
 
 #[test]

@@ -300,19 +300,87 @@ fn check_linear(
 /// # Units
 /// mm, radians.
 pub fn joint_path(m: &Machine, a: &Joints, b: &Joints, tool_length: f64, tol: f64) -> Vec<Pose> {
-    let at = |t: f64| {
-        let j = Joints {
-            linear: a.linear + (b.linear - a.linear) * t,
-            rotary: [
-                a.rotary[0] + (b.rotary[0] - a.rotary[0]) * t,
-                a.rotary[1] + (b.rotary[1] - a.rotary[1]) * t,
-            ],
-        };
-        m.forward(&j, tool_length)
-    };
+    let at = |t: f64| m.forward(&lerp(a, b, t), tool_length);
     let mut out = Vec::new();
     split(&at, 0.0, 1.0, at(0.0), at(1.0), tol.max(1e-9), 12, &mut out);
     out
+}
+
+/// The axis position at `t` of the straight joint-space move `a -> b` (every axis
+/// linear in `t`, as a control without tool-centre-point management moves them).
+pub fn lerp(a: &Joints, b: &Joints, t: f64) -> Joints {
+    Joints {
+        linear: a.linear + (b.linear - a.linear) * t,
+        rotary: [
+            a.rotary[0] + (b.rotary[0] - a.rotary[0]) * t,
+            a.rotary[1] + (b.rotary[1] - a.rotary[1]) * t,
+        ],
+    }
+}
+
+/// The machine axes for one `pose` near the axis position `near` (a pose between two
+/// solved ones, module doc): the branch and the turns of each angle nearest to
+/// `near`'s; within `singular_cone` of the pole, `near`'s left angle and the right
+/// angle solved for it, as [`solve_pass`] does on a run of singular poses.
+///
+/// # Units
+/// mm, radians.
+///
+/// # Errors
+/// [`FiveAxisError::Unreachable`] naming `pass`, `index` and the axis: no rotary
+/// setting gives the orientation, or an angle or `X Y Z` is outside its limits.
+pub fn solve_near(
+    m: &Machine,
+    pose: &Pose,
+    near: &Joints,
+    tool_length: f64,
+    pass: usize,
+    index: usize,
+) -> Result<Joints, FiveAxisError> {
+    let o = m.orientation(&pose.axis);
+    let p = near.rotary;
+    let rotary = if o.off_singular < m.singular_cone.sin() {
+        let mut v = [0.0; 2];
+        v[o.left] = p[o.left];
+        v[o.right] = unwrap_near(m.right_for_left(&pose.axis, p[o.left]), p[o.right]);
+        v
+    } else {
+        o.branches
+            .iter()
+            .flatten()
+            .map(|c| [unwrap_near(c[0], p[0]), unwrap_near(c[1], p[1])])
+            .min_by(|a, b| step(a, &p).total_cmp(&step(b, &p)))
+            .ok_or_else(|| FiveAxisError::Unreachable {
+                pass,
+                index,
+                axis: "orientation".into(),
+                message: format!(
+                    "no setting of {} and {} points the tool along {:?} between two \
+                     reachable poses",
+                    m.rotary[0].name, m.rotary[1].name, pose.axis
+                ),
+            })?
+    };
+    for (k, r) in m.rotary.iter().enumerate() {
+        if let Some([lo, hi]) = r.limits
+            && !(rotary[k] >= lo && rotary[k] <= hi)
+        {
+            return Err(FiveAxisError::Unreachable {
+                pass,
+                index,
+                axis: r.name.to_string(),
+                message: format!(
+                    "{:.4} degrees, between two reachable poses, is outside the limits [{}, {}]",
+                    rotary[k].to_degrees(),
+                    lo.to_degrees(),
+                    hi.to_degrees()
+                ),
+            });
+        }
+    }
+    let linear = m.linear_for(&pose.cl, &rotary, tool_length);
+    check_linear(m, &linear, pass, index)?;
+    Ok(Joints { linear, rotary })
 }
 
 #[allow(clippy::too_many_arguments)]
