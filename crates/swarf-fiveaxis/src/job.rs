@@ -239,6 +239,7 @@ pub fn post_options(
             OutputFeedMode::UnitsPerMinute => FeedMode::UnitsPerMinute,
         },
         tool_length,
+        path_tol: job.strategy.tolerance,
         ..PostOptions::default()
     })
 }
