@@ -16,7 +16,7 @@
 //! up to 0.15 mm off. Every move that turns a rotary axis (cutting moves, and the
 //! links that turn the axes at the clearance plane) is therefore written as as many
 //! blocks as keep the tip within [`PostOptions::path_tol`] of the chord and the axis
-//! within [`PostOptions::path_angle_tol`] of the great circle ([`subdivide`]): the
+//! within [`PostOptions::path_angle_tol`] of the great circle ([`subdivide()`]): the
 //! motion a tool-centre-point control would make. [`post_5x`] reports how many
 //! blocks that added and the deviations before and after.
 //!
@@ -41,7 +41,8 @@ use crate::machine::kinematics::Joints;
 use crate::machine::{Machine, MachineKind};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
-use subdivide::{PathTol, Subdivided, subdivide};
+use subdivide::{PathTol, subdivide};
+pub use subdivide::{PostReport, Stray};
 use swarf_nc::number::{Units, format_decimal};
 use swarf_nc::{Dialect, NcError};
 use swarf_path::{Move, MoveKind, Toolpath};
@@ -109,51 +110,6 @@ impl Default for PostOptions {
             rotary_feed: 3600.0,
             path_tol: DEFAULT_PATH_TOL,
             path_angle_tol: DEFAULT_PATH_ANGLE_TOL,
-        }
-    }
-}
-
-/// What the subdivision between poses did to a program (module doc).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct PostReport {
-    /// Moves inside passes (cutting).
-    pub cutting: Stray,
-    /// Link moves (approach, retract, the rapids between passes).
-    pub links: Stray,
-}
-
-/// How far one kind of move strays from the planned motion, and the blocks inserted to
-/// bring it back.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Stray {
-    /// Moves.
-    pub moves: usize,
-    /// Blocks inserted between the moves' poses.
-    pub inserted: usize,
-    /// Moves written at the bound of [`subdivide::MAX_BLOCKS`] blocks, still beyond
-    /// the tolerances.
-    pub at_bound: usize,
-    /// Largest distance of the tip from its chord with one block per move, mm.
-    pub unsplit_tip: f64,
-    /// Largest angle of the axis from its great circle with one block per move,
-    /// radians.
-    pub unsplit_angle: f64,
-    /// Largest distance of the tip from its chord in the written blocks, mm.
-    pub tip: f64,
-    /// Largest angle of the axis from its great circle in the written blocks, radians.
-    pub angle: f64,
-}
-
-impl Stray {
-    fn add(&mut self, s: &Subdivided) {
-        self.moves += 1;
-        self.inserted += s.blocks.len() - 1;
-        self.at_bound += usize::from(s.at_bound);
-        self.unsplit_tip = self.unsplit_tip.max(s.unsplit.tip);
-        self.unsplit_angle = self.unsplit_angle.max(s.unsplit.angle);
-        for b in &s.blocks {
-            self.tip = self.tip.max(b.deviation.tip);
-            self.angle = self.angle.max(b.deviation.angle);
         }
     }
 }

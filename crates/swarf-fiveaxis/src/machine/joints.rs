@@ -25,7 +25,11 @@
 //! **Joint motion.** Without tool-centre-point control a G1 block moves every axis
 //! linearly from one position to the next. [`joint_path`] gives the part-frame poses of
 //! that motion, subdivided until the tip's path is within a chordal tolerance of the
-//! straight lines between them (for verifying programs of any CAM system).
+//! straight lines between them (for verifying programs of any CAM system). The post
+//! goes the other way: it writes poses between two solved ones (on the chord, the axis
+//! on the great circle) so that this motion stays on the chord, each solved by
+//! [`solve_near`] near the straight joint-space motion at the same fraction of the move
+//! (same branch, same turns; near the pole, the left angle of that motion).
 
 use super::Machine;
 use super::kinematics::{Joints, Orientation};

@@ -101,6 +101,51 @@ pub struct Subdivided {
     pub at_bound: bool,
 }
 
+/// What the subdivision between poses did to a program ([`super`] module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PostReport {
+    /// Moves inside passes (cutting).
+    pub cutting: Stray,
+    /// Link moves (approach, retract, the rapids between passes).
+    pub links: Stray,
+}
+
+/// How far one kind of move strays from the planned motion, and the blocks inserted to
+/// bring it back.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Stray {
+    /// Moves.
+    pub moves: usize,
+    /// Blocks inserted between the moves' poses.
+    pub inserted: usize,
+    /// Moves written at the bound of [`MAX_BLOCKS`] blocks, still beyond
+    /// the tolerances.
+    pub at_bound: usize,
+    /// Largest distance of the tip from its chord with one block per move, mm.
+    pub unsplit_tip: f64,
+    /// Largest angle of the axis from its great circle with one block per move,
+    /// radians.
+    pub unsplit_angle: f64,
+    /// Largest distance of the tip from its chord in the written blocks, mm.
+    pub tip: f64,
+    /// Largest angle of the axis from its great circle in the written blocks, radians.
+    pub angle: f64,
+}
+
+impl Stray {
+    pub(crate) fn add(&mut self, s: &Subdivided) {
+        self.moves += 1;
+        self.inserted += s.blocks.len() - 1;
+        self.at_bound += usize::from(s.at_bound);
+        self.unsplit_tip = self.unsplit_tip.max(s.unsplit.tip);
+        self.unsplit_angle = self.unsplit_angle.max(s.unsplit.angle);
+        for b in &s.blocks {
+            self.tip = self.tip.max(b.deviation.tip);
+            self.angle = self.angle.max(b.deviation.angle);
+        }
+    }
+}
+
 /// The deviation of the joint-linear motion `a -> b` from the chord and great circle
 /// between its ends (module doc).
 ///
