@@ -308,6 +308,7 @@ fn off_arc(v: &Vec3, a: &Vec3, b: &Vec3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
     use std::f64::consts::PI;
 
     /// An A/C table with both axes through the origin (the A tilts about X, the C
@@ -454,6 +455,56 @@ continuous = true
         let s = subdivide(&m, (&pa, &ja), (&pc, &jc), 0.0, &tol, 0, 0).unwrap();
         assert!(s.at_bound);
         assert_eq!(s.blocks.len(), MAX_BLOCKS);
+    }
+
+    const MACHINES: [&str; 3] = [
+        include_str!("../../../../machines/xyzac-trunnion.toml"),
+        include_str!("../../../../machines/xyzbc-head.toml"),
+        include_str!("../../../../machines/xyzbc-table-head.toml"),
+    ];
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+        /// On every machine, the blocks of a move between two random poses (away from
+        /// the singular cone, where the axis is only near the plan) end on the
+        /// planned motion, and 64 samples of each block's joint-linear motion (an
+        /// independent, finer measure) stay within the tolerances.
+        #[test]
+        fn blocks_keep_the_tip_on_the_chord_on_every_machine(
+            which in 0usize..3,
+            x in -60.0..60.0f64, y in -60.0..60.0f64, z in 0.0..40.0f64,
+            dx in -4.0..4.0f64, dy in -4.0..4.0f64, dz in -2.0..2.0f64,
+            az in -3.1..3.1f64, tilt in 0.05..0.7f64,
+            d_az in -0.5..0.5f64, d_tilt in -0.04..0.1f64,
+        ) {
+            let m = Machine::parse(MACHINES[which], "m").unwrap();
+            let tool_length = 80.0;
+            let pa = on_cone(az, tilt, 0.0, 0.0);
+            let pa = Pose { cl: Point3::new(x, y, z), axis: pa.axis };
+            let pb = on_cone(az + d_az, tilt + d_tilt, 0.0, 0.0);
+            let pb = Pose { cl: pa.cl + Vec3::new(dx, dy, dz), axis: pb.axis };
+            let js = crate::machine::joints::solve_pass(&m, &[pa, pb], None, tool_length, 0).unwrap();
+            let tol = PathTol { tip: 0.01, angle: 0.05f64.to_radians() };
+            let s = subdivide(&m, (&pa, &js[0]), (&pb, &js[1]), tool_length, &tol, 0, 0).unwrap();
+            prop_assert!(!s.at_bound);
+            let n = s.blocks.len();
+            let mut prev = js[0];
+            for (k, b) in s.blocks.iter().enumerate() {
+                let t = (k + 1) as f64 / n as f64;
+                let f = m.forward(&b.joints, tool_length);
+                prop_assert!((f.cl - (pa.cl + (pb.cl - pa.cl) * t)).norm() < 1e-9);
+                prop_assert!((f.axis - slerp(&pa.axis, &pb.axis, t)).norm() < 1e-9);
+                let fa = m.forward(&prev, tool_length);
+                for i in 1..64 {
+                    let q = m.forward(&lerp(&prev, &b.joints, i as f64 / 64.0), tool_length);
+                    let tip = off_segment(&q.cl, &fa.cl, &f.cl);
+                    let angle = off_arc(&q.axis, &fa.axis, &f.axis);
+                    prop_assert!(tip <= tol.tip * 1.02, "block {k}/{n}: {tip}");
+                    prop_assert!(angle <= tol.angle * 1.02, "block {k}/{n}: {angle}");
+                }
+                prev = b.joints;
+            }
+        }
     }
 
     #[test]
