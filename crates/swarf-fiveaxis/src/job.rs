@@ -13,14 +13,13 @@
 //!    3-axis ones, in the same order and directions (zigzag kept).
 //! 3. **Linking** ([`linking`]). A tool tilted by `alpha` from `+z` reaches at most
 //!    `R sin(alpha)` below its tip (`R` the largest cutting radius: every profile
-//!    point has `z >= 0` and `rho <= R`), and its cutting part up to the full radius,
-//!    at height `z_R` on the profile, at most `z_R cos(alpha) + R sin(alpha)` above
-//!    it. The design under a pose lies below the tool, so the part and the material
-//!    the passes touch are below `top = max over poses of (tip z + z_R cos(alpha) +
-//!    R sin(alpha))`. Retracts and rapids carry the tool at the orientation of a pass
-//!    end; with the tip at `top + max over pass ends of R sin(alpha)` the whole tool is
-//!    above `top`. The job's clearance is raised to that height when below it; by
-//!    default it is that height plus [`swarf_path::job::DEFAULT_CLEARANCE_MARGIN`].
+//!    point has `z >= 0` and `rho <= R`). The part lies below the top of its control
+//!    box (the patches are in the convex hull of their control points). Retracts and
+//!    rapids carry the tool at the orientation of a pass end; with the tip at `top +
+//!    max over pass ends of R sin(alpha)`, `top` the higher of the part's top and the
+//!    highest tip, the whole tool is above the part. The job's clearance is raised to
+//!    that height when below it; by default it is that height plus
+//!    [`swarf_path::job::DEFAULT_CLEARANCE_MARGIN`].
 //! 4. **Post** ([`write_job_gcode`]): the machine named by `output.machine`
 //!    ([`load_machine`]: a file relative to the job file, or `builtin:NAME` for the
 //!    machines shipped in `machines/`), G93 or G94, the tool length for machines with
@@ -39,7 +38,6 @@ use swarf_geom::Part;
 use swarf_nc::{Dialect, Units};
 use swarf_path::job::{OutputDialect, OutputFeedMode, OutputUnits};
 use swarf_path::{Contact, Job, Linking, Pass, PathError, Plan, PlanInput, Toolpath};
-use swarf_tool::Cutter;
 
 /// The machine files shipped with swarf (`machines/*.toml`), by built-in name.
 pub const BUILTIN_MACHINES: [(&str, &str); 3] = [
@@ -134,7 +132,7 @@ pub fn position_plan(
         job.strategy.tolerance,
         progress,
     )?;
-    plan.toolpath.linking = linking(job, &passes);
+    plan.toolpath.linking = linking(job, part, &passes);
     plan.toolpath.passes = passes;
     plan.report.lifted_points = 0;
     plan.report.max_lift = 0.0;
@@ -142,34 +140,22 @@ pub fn position_plan(
     Ok(Some(report))
 }
 
-/// The linking of positioned `passes` (module doc).
-pub fn linking(job: &Job, passes: &[Pass]) -> Linking {
-    let (below, above) = reach(&job.tool);
-    let top = passes
+/// The linking of positioned `passes` on `part` (module doc).
+pub fn linking(job: &Job, part: &Part, passes: &[Pass]) -> Linking {
+    let r = job.tool.radius();
+    let tips = passes
         .iter()
         .flat_map(|p| &p.points)
-        .map(|p| p.pose.cl.z + above(p.pose.axis.z))
+        .map(|p| p.pose.cl.z)
         .fold(f64::NEG_INFINITY, f64::max);
-    let drop = passes
+    let top = part.control_box().max.z.max(tips);
+    let below = passes
         .iter()
         .flat_map(|p| [p.points.first(), p.points.last()])
         .flatten()
-        .map(|p| below(p.pose.axis.z))
+        .map(|p| r * (1.0 - p.pose.axis.z.clamp(-1.0, 1.0).powi(2)).sqrt())
         .fold(0.0, f64::max);
-    job.linking_for(top + drop)
-}
-
-/// How far the tool reaches below and above its tip, as functions of the axis's `z`
-/// component `cos(alpha)` (module doc).
-fn reach(cutter: &Cutter) -> (impl Fn(f64) -> f64, impl Fn(f64) -> f64) {
-    let profile = cutter.profile();
-    let r = profile.radius();
-    let z_r = profile.height_at_radius(r).unwrap_or(profile.length());
-    let sin = |cos: f64| (1.0 - cos.clamp(-1.0, 1.0).powi(2)).sqrt();
-    (
-        move |cos: f64| r * sin(cos),
-        move |cos: f64| z_r * cos.max(0.0) + r * sin(cos),
-    )
+    job.linking_for(top + below)
 }
 
 /// The machine `spec` names: `builtin:NAME` (one of [`BUILTIN_MACHINES`]) or a
@@ -318,42 +304,52 @@ mod tests {
         );
     }
 
-    /// The clearance clears a tilted bull `d = 20, r = 4`: the lowest point of the
-    /// tool at the clearance plane is 5 mm above the highest point of its cutting part
-    /// (up to the corner's top) at the pose, both sampled on the profile in the plane
-    /// of the tilt, and no more than the bound's slack (`R sin(alpha)`) higher.
+    /// The clearance clears a tilted bull `d = 20, r = 4` over a plane at z = 20: the
+    /// lowest point of the tool at the clearance plane (sampled on its profile in the
+    /// plane of the tilt) is 5 mm above the part, and no more than the bound's slack
+    /// (`R sin(alpha)`) higher.
     #[test]
-    fn clearance_is_above_the_whole_tilted_tool() {
+    fn clearance_is_above_the_part_under_the_whole_tilted_tool() {
         let job = Job::parse(
             "part = \"x\"\ntool = \"bull:d=20,r=4\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 2\n",
             "job.toml",
         )
         .unwrap();
+        let p = |x: f64, y: f64| Point3::new(x, y, 20.0);
+        let part = Part {
+            name: "plane".into(),
+            patches: vec![
+                swarf_geom::Patch::bezier(
+                    [1, 1],
+                    vec![p(0.0, 0.0), p(0.0, 9.0), p(9.0, 0.0), p(9.0, 9.0)],
+                )
+                .unwrap(),
+            ],
+        };
         let a = 30f64.to_radians();
         let axis = Vec3::new(a.sin(), 0.0, a.cos());
-        let pose = Pose {
-            cl: Point3::new(0.0, 0.0, 10.0),
-            axis,
+        let at = |z: f64| {
+            PathPoint::new(Pose {
+                cl: Point3::new(0.0, 0.0, z),
+                axis,
+            })
         };
-        let passes = vec![Pass {
-            points: vec![PathPoint::new(pose), PathPoint::new(pose)],
-        }];
-        let l = linking(&job, &passes);
         let profile = job.tool.profile();
-        let (mut top, mut low) = (f64::NEG_INFINITY, f64::INFINITY);
-        for k in 0..=2000 {
-            let (q, _) = profile.point_at(k as f64 / 2000.0);
-            if q.z > 4.0 + 1e-9 {
-                continue;
-            }
-            for side in [-1.0, 1.0] {
-                let dz = q.z * a.cos() + side * q.rho * a.sin();
-                top = top.max(10.0 + dz);
-                low = low.min(l.clearance + dz);
-            }
+        let lowest = |tip: f64| {
+            (0..=2000)
+                .map(|k| profile.point_at(k as f64 / 2000.0).0)
+                .map(|q| tip + q.z * a.cos() - q.rho * a.sin())
+                .fold(f64::INFINITY, f64::min)
+        };
+        for (tip, top) in [(10.0, 20.0), (30.0, 30.0)] {
+            let passes = vec![Pass {
+                points: vec![at(tip), at(tip)],
+            }];
+            let l = linking(&job, &part, &passes);
+            let low = lowest(l.clearance);
+            assert!(low >= top + 5.0 - 1e-9, "{low} vs {top}");
+            assert!(low <= top + 5.0 + 10.0 * a.sin(), "{low} vs {top}");
         }
-        assert!(low >= top + 5.0 - 1e-9, "{low} vs {top}");
-        assert!(low <= top + 5.0 + 10.0 * a.sin(), "{low} vs {top}");
     }
 
     /// The 3-axis gouge lift moves a pose's tip, not its contact: positioning gets

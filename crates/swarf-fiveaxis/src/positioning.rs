@@ -23,6 +23,7 @@ use crate::inclined::incline_pass;
 use crate::profile_point::ProfileTable;
 use crate::sections::Sections;
 use rayon::current_num_threads;
+use rayon::prelude::*;
 use serde::Serialize;
 use swarf_geom::Part;
 use swarf_path::{Contact, Pass};
@@ -294,7 +295,7 @@ fn report(
     }
 }
 
-/// The sectioning check of every pose, into the report.
+/// The sectioning check of every pose (passes in parallel), into the report.
 fn check(
     design: &DesignSurface,
     cutter: &Cutter,
@@ -308,13 +309,16 @@ fn check(
         whole_tool: true,
         ..*g
     };
+    let checked: Vec<_> = passes
+        .par_iter()
+        .map(|pass| {
+            let poses: Vec<Pose> = pass.points.iter().map(|p| p.pose).collect();
+            check_pass(design, &table, &poses, g)
+        })
+        .collect();
     let mut spots = Vec::new();
-    for (k, pass) in passes.iter().enumerate() {
-        let poses: Vec<Pose> = pass.points.iter().map(|p| p.pose).collect();
-        for (i, pg) in check_pass(design, &table, &poses, g)
-            .into_iter()
-            .enumerate()
-        {
+    for (k, pass) in checked.into_iter().enumerate() {
+        for (i, pg) in pass.into_iter().enumerate() {
             r.worst_depth = r.worst_depth.max(pg.depth);
             if pg.gouges(g.tolerance) {
                 spots.push(GougeSpot {

@@ -1,8 +1,8 @@
 //! `swarf plan` on five-axis jobs (thesis 000 ch. 8 on die.toml, with a wide cross
 //! feed so that it runs in seconds): the G-code for the A/C trunnion is accepted by
 //! LinuxCNC's `rs274` (when installed; required when `SWARF_REQUIRE_REFERENCES=1`) and
-//! its canonical moves, through the machine's forward kinematics, are the APT CL's
-//! poses; the CL carries the tilted axes (at the lead angle from the surface normal at
+//! its canonical feeds, through the machine's forward kinematics, reach the APT CL's
+//! poses in order (with the post's extra blocks on the chords between them); the CL carries the tilted axes (at the lead angle from the surface normal at
 //! each CC point, to 1e-6 rad); the summary holds the positioning report; bad
 //! five-axis jobs fail with the field or the place.
 
@@ -182,13 +182,29 @@ fn inclined_die_job_writes_checked_five_axis_outputs() {
         assert!(ngc.contains(want), "{want}");
     }
     if let Some(feeds) = rs274_feeds(&dir.join("die.ngc")) {
-        assert_eq!(feeds.len(), poses);
+        // Every pose is a feed end, in order; the post's extra blocks (where a rotary
+        // axis turns) keep the tip on the chord between two poses (path_tol 0.01 mm).
         let m = Machine::parse(&machine_text(), "trunnion").unwrap();
-        for (j, (cl_point, axis)) in feeds.iter().zip(&cl) {
+        let mut k = 0;
+        for j in &feeds {
             let pose = m.forward(j, 0.0);
-            assert!((pose.cl - cl_point).norm() < 2e-3, "{pose:?} vs {cl_point}");
-            assert!((pose.axis - axis).norm() < 1e-5, "{pose:?} vs {axis}");
+            let on = |i: usize| (pose.cl - cl[i].0).norm() < 2e-3;
+            if k < cl.len() && on(k) {
+                assert!(
+                    (pose.axis - cl[k].1).norm() < 1e-5,
+                    "{pose:?} vs {:?}",
+                    cl[k]
+                );
+                k += 1;
+            } else {
+                assert!(k > 0 && k < cl.len(), "a feed before or after the poses");
+                let (a, b) = (cl[k - 1].0, cl[k].0);
+                let t = ((pose.cl - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+                let off = (pose.cl - (a + t * (b - a))).norm();
+                assert!(off < 0.01 + 2e-3, "{off} mm off the chord before pose {k}");
+            }
         }
+        assert_eq!(k, poses, "every pose is reached, in order");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -7,10 +7,16 @@
 //!    G-code, APT CL, pose CSV and JSON summaries.
 //! 3. Verifies each program on a dexel stock and prints paper 004's Table 1 for our
 //!    tool paths (`compare.md`, `compare.json`, deviation and tool path pictures).
+//! 4. Thesis 000 ch. 8 on die.toml: the toroidal cutter R = 12.7, r = 6.35 fed 60
+//!    degrees off X at a cross feed of 3.5 mm, inclined at alpha = 3 and 6 degrees and
+//!    with the automatic gouge-free lead; each planned (five-axis G-code for the A/C
+//!    trunnion, APT CL, summary with the sectioning gouge report) and verified on a
+//!    dexel stock through its CL (`die/die.md`, pictures beside it).
 //!
-//! The jobs are embedded so that the demo needs no files; their parts are built-in.
+//! The jobs are embedded so that the demo needs no files; their parts and machine are
+//! built-in.
 
-use super::compare::{compare_jobs, markdown};
+use super::compare::{compare_all, compare_jobs, five_axis_markdown, markdown};
 use super::inspect::{patch_text, summarise_patch};
 use super::verify::SimArgs;
 use anyhow::{Context, Result};
@@ -47,8 +53,25 @@ const JOBS: [(&str, &str); 4] = [
     ),
 ];
 
+/// Thesis 000 ch. 8 on the die (`jobs/die-*.toml`).
+const DIE_JOBS: [(&str, &str); 3] = [
+    (
+        "die-inclined-3.toml",
+        include_str!("../../../../jobs/die-inclined-3.toml"),
+    ),
+    (
+        "die-inclined-6.toml",
+        include_str!("../../../../jobs/die-inclined-6.toml"),
+    ),
+    (
+        "die-gouge-free.toml",
+        include_str!("../../../../jobs/die-gouge-free.toml"),
+    ),
+];
+
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
+    let start = std::time::Instant::now();
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("{}: cannot create the output directory", args.out.display()))?;
     println!("== parts");
@@ -76,7 +99,39 @@ pub fn run(args: &Args) -> Result<()> {
     let compare_dir = args.out.join("compare");
     let rows = compare_jobs(&paths, &SimArgs::default(), &compare_dir)?;
     print!("{}", markdown(&rows));
-    println!("\nall results in {}", args.out.display());
+    println!("\n== five-axis (thesis 000 ch. 8 on die.toml), verified by dexel through the APT CL");
+    die(&args.out, &jobs_dir)?;
+    println!(
+        "\nall results in {} ({:.1} s)",
+        args.out.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// Plans and verifies the die jobs into `out/die` and prints their table.
+fn die(out: &Path, jobs_dir: &Path) -> Result<()> {
+    let mut paths = Vec::new();
+    for (name, text) in DIE_JOBS {
+        let path = jobs_dir.join(name);
+        swarf_io::write_atomic(&path, text.as_bytes())?;
+        paths.push(path);
+    }
+    let dir = out.join("die");
+    let (_, rows) = compare_all(&paths, &SimArgs::default(), &dir)?;
+    let table = five_axis_markdown(&rows);
+    swarf_io::write_atomic(&dir.join("die.md"), table.as_bytes())?;
+    print!("{table}");
+    for r in &rows {
+        println!(
+            "{}: planned in {:.1} s, verified in {:.1} s",
+            r.job, r.planning_s, r.verify_s
+        );
+    }
+    println!(
+        "pictures: {}/die-*.deviation.png, die-*.toolpath.png",
+        dir.display()
+    );
     Ok(())
 }
 

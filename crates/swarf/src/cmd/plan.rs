@@ -40,12 +40,7 @@ pub fn run(args: &Args) -> Result<()> {
 /// Loads the job's part, plans it (and positions it, for a five-axis job) and writes
 /// every requested output under `out_dir`. Returns the JSON summary.
 pub fn plan_job(job: &Job, job_dir: &Path, out_dir: &Path) -> Result<serde_json::Value> {
-    let part_arg = if job.part.starts_with("builtin:") || Path::new(&job.part).is_absolute() {
-        job.part.clone()
-    } else {
-        job_dir.join(&job.part).display().to_string()
-    };
-    let model = load_model(&part_arg)?;
+    let model = load_model(&part_arg(job, job_dir))?;
     let machine = job
         .output
         .machine
@@ -84,6 +79,16 @@ pub fn plan_job(job: &Job, job_dir: &Path, out_dir: &Path) -> Result<serde_json:
         positioning.as_ref(),
         out_dir,
     )
+}
+
+/// The job's part as a `load_model` argument: built-in or absolute as given, else
+/// relative to the job's directory.
+pub fn part_arg(job: &Job, job_dir: &Path) -> String {
+    if job.part.starts_with("builtin:") || Path::new(&job.part).is_absolute() {
+        job.part.clone()
+    } else {
+        job_dir.join(&job.part).display().to_string()
+    }
 }
 
 /// A progress bar over passes on stderr, hidden when stderr is not a terminal.
