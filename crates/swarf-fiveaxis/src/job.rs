@@ -94,7 +94,7 @@ pub fn cc_paths(toolpath: &Toolpath) -> Vec<Vec<Contact>> {
 /// [`position_plan`] positions, for callers that position them themselves.
 ///
 /// # Errors
-/// The planning errors of [`swarf_path::plan`].
+/// The planning errors of [`swarf_path::plan()`].
 pub fn planned_cc_paths(job: &Job, part: &Part) -> Result<Vec<Vec<Contact>>, PathError> {
     let plan = swarf_path::plan(job, PlanInput::Part(part))?;
     Ok(cc_paths(&plan.toolpath))

@@ -38,7 +38,8 @@
 //! `floor(W / s) + 1` planes centred in the part's extent `W` along `M` (the same
 //! margin, under `s / 2`, on both sides), cut from the `start` side. The scallop
 //! figures are then the side-step model's prediction for that spacing
-//! ([`crate::iso_setup`]); there are no boundary passes.
+//! (`iso_setup`: a ball of the tool radius at that stepover); there are no boundary
+//! passes.
 
 use crate::error::PathError;
 use crate::forward_step::{Sample, point_segment_distance, sample_curve};
