@@ -3,6 +3,7 @@
 //! Positioning (thesis 000 ch. 7):
 //! - [`inclined`]: inclined-tool (Sturz) positioning along CC paths (§7.3.1, eqs. 7.1-7.4).
 //! - [`autotilt`]: the smallest gouge-free lead at every CC point, smoothed (§7.3).
+//! - [`lead_bound`]: the least lead the design's curvature along the feed allows (ch. 7-8).
 //! - [`positioning`]: both as a job's `positioning` table asks, with gouge reports.
 //!
 //! Swept surfaces and gouges (thesis 000 ch. 3, 5, 7):
@@ -28,6 +29,7 @@ pub mod gencurve;
 pub mod gouge;
 pub mod inclined;
 pub mod job;
+pub mod lead_bound;
 pub mod machine;
 pub mod motion;
 pub mod positioning;

@@ -9,7 +9,9 @@
 //! gouge check ([`crate::gouge`]) on planes parallel to the passes' mean direction
 //! (`sections` mm apart): the fixed lead reports where it gouges (it is the user's
 //! choice, as in the thesis's first experiments), the gouge-free method raises the lead
-//! until nothing does ([`crate::autotilt`]) and fails where it cannot.
+//! until nothing does ([`crate::autotilt`]) and fails where it cannot. Both report the
+//! least lead the design's curvature along the feed allows at the CC points
+//! ([`crate::lead_bound`]): no positioning of the tool can use less.
 //!
 //! The job-file form, [`Positioning`], is plain data defined with the job in
 //! [`swarf_path::job`] (re-exported here).
@@ -20,6 +22,7 @@ use crate::error::FiveAxisError;
 use crate::gencurve::CurveOptions;
 use crate::gouge::{GougeOptions, check_pass};
 use crate::inclined::incline_pass;
+use crate::lead_bound::lead_bound;
 use crate::profile_point::ProfileTable;
 use crate::sections::Sections;
 use rayon::current_num_threads;
@@ -78,6 +81,18 @@ pub struct PositioningReport {
     pub raised: usize,
     /// Largest turn of the tool axis per mm of feed, degrees/mm.
     pub max_axis_rate_deg_per_mm: f64,
+    /// The least lead any positioning can have on these CC paths from the design's
+    /// curvature along the feed, degrees ([`crate::lead_bound`]; 90 where the tool
+    /// cannot fit). `None` for a cutter without a torus bottom (cones), with a side
+    /// tilt, or without a CC point on a patch.
+    pub local_lead_bound_deg: Option<f64>,
+    /// The CC point where that bound is reached, mm.
+    pub local_lead_bound_at: Option<[f64; 3]>,
+    /// The design's concave radius of curvature along the feed there, mm (`None` where
+    /// no CC point is concave along the feed).
+    pub local_lead_bound_radius: Option<f64>,
+    /// CC points where no lead fits (concave radius along the feed below `R + r`).
+    pub local_lead_unfit: usize,
 }
 
 /// Places the tool on the CC paths `cc` of `part` (module doc). `tolerance` is the
@@ -114,7 +129,7 @@ pub fn position_with_progress(
         .map_err(|(field, message)| FiveAxisError::parameter(field, message))?;
     let design = DesignSurface::new(part);
     let angle = mean_direction(cc);
-    match *positioning {
+    let (passes, mut report) = match *positioning {
         Positioning::Inclined {
             alpha,
             tilt,
@@ -130,7 +145,7 @@ pub fn position_with_progress(
             report.alpha_range_deg = [alpha, alpha];
             check(&design, cutter, &passes, &gouge, &mut report);
             progress(cc.len(), cc.len());
-            Ok((passes, report))
+            (passes, report)
         }
         Positioning::GougeFree {
             max_alpha,
@@ -159,8 +174,25 @@ pub fn position_with_progress(
             report.raised = t.raised;
             report.max_axis_rate_deg_per_mm = t.max_axis_rate.to_degrees();
             check(&design, cutter, &passes, &gouge, &mut report);
-            Ok((passes, report))
+            (passes, report)
         }
+    };
+    let tilted = match *positioning {
+        Positioning::Inclined { tilt, .. } | Positioning::GougeFree { tilt, .. } => tilt != 0.0,
+    };
+    if !tilted {
+        fill_lead_bound(cutter, part, cc, &mut report);
+    }
+    Ok((passes, report))
+}
+
+/// The local lead bound of the CC paths ([`lead_bound`]) into the report.
+fn fill_lead_bound(cutter: &Cutter, part: &Part, cc: &[Vec<Contact>], r: &mut PositioningReport) {
+    if let Some(b) = lead_bound(cutter, part, cc) {
+        r.local_lead_bound_deg = Some(b.lead.to_degrees());
+        r.local_lead_bound_at = Some([b.at.x, b.at.y, b.at.z]);
+        r.local_lead_bound_radius = b.radius.is_finite().then_some(b.radius);
+        r.local_lead_unfit = b.unfit;
     }
 }
 
@@ -292,6 +324,10 @@ fn report(
         whole_tool_evaluations: 0,
         raised: 0,
         max_axis_rate_deg_per_mm: max_axis_rate(passes).to_degrees(),
+        local_lead_bound_deg: None,
+        local_lead_bound_at: None,
+        local_lead_bound_radius: None,
+        local_lead_unfit: 0,
     }
 }
 

@@ -17,8 +17,9 @@
 //! footprint, so they default to cells of [`FIVE_AXIS_CELL`] mm and motions sampled
 //! within [`FIVE_AXIS_SAMPLE_TOL`] mm (`--cell`, `--sample-tol` override both), and
 //! they get a second table (`compare-5x.md`, [`five_axis_markdown`]): the lead angle
-//! range, the sectioning gouge report of the plan, the dexel's gouges and scallops,
-//! and the planning time (thesis 000 ch. 8).
+//! range, the least lead the design's curvature along the feed allows
+//! ([`swarf_fiveaxis::lead_bound`]), the sectioning gouge report of the plan, the
+//! dexel's gouges and scallops, and the planning time (thesis 000 ch. 8).
 
 use super::plan::{part_arg, plan_job};
 use super::verify::{SimArgs, context, verify_and_write};
@@ -91,6 +92,13 @@ pub struct FiveAxisRow {
     pub method: String,
     /// Smallest and largest lead angle, degrees.
     pub alpha_range_deg: [f64; 2],
+    /// The least lead the design's curvature along the feed allows, degrees (`None`
+    /// when the plan gives none: a cone, a side tilt).
+    pub local_lead_bound_deg: Option<f64>,
+    /// Where that bound is reached, mm.
+    pub local_lead_bound_at: Option<[f64; 3]>,
+    /// CC points where no lead fits the design's curvature.
+    pub local_lead_unfit: usize,
     /// Poses.
     pub poses: usize,
     /// Poses the sectioning check finds gouging.
@@ -272,13 +280,15 @@ fn five_axis_row(c: &Checked) -> Option<FiveAxisRow> {
     let s = &c.v.deviation.summary;
     let num = |v: &serde_json::Value| v.as_f64().unwrap_or(f64::NAN);
     let count = |v: &serde_json::Value| v.as_u64().unwrap_or(0) as usize;
-    let at = p["gouges"][0]["at"]
-        .as_array()
-        .map(|a| [0, 1, 2].map(|k| num(&a[k])));
+    let point = |v: &serde_json::Value| v.as_array().map(|a| [0, 1, 2].map(|k| num(&a[k])));
+    let at = point(&p["gouges"][0]["at"]);
     Some(FiveAxisRow {
         job: c.name.clone(),
         method: p["method"].as_str().unwrap_or("?").to_string(),
         alpha_range_deg: [num(&p["alpha_range_deg"][0]), num(&p["alpha_range_deg"][1])],
+        local_lead_bound_deg: p["local_lead_bound_deg"].as_f64(),
+        local_lead_bound_at: point(&p["local_lead_bound_at"]),
+        local_lead_unfit: count(&p["local_lead_unfit"]),
         poses: count(&p["poses"]),
         gouging_poses: count(&p["gouging_poses"]),
         sectioning_worst_mm: num(&p["worst_depth"]),
@@ -301,8 +311,8 @@ fn five_axis_row(c: &Checked) -> Option<FiveAxisRow> {
 /// The five-axis table in Markdown.
 pub fn five_axis_markdown(rows: &[FiveAxisRow]) -> String {
     let mut t = String::from(
-        "| job | lead angle | gouging poses (sectioning) | deepest (sectioning) | gouge (dexel) | scallop max / median crest | mean deviation | passes | cutting length | planning |\n\
-         |---|---|---|---|---|---|---|---|---|---|\n",
+        "| job | lead angle | least lead from curvature | gouging poses (sectioning) | deepest (sectioning) | gouge (dexel) | scallop max / median crest | mean deviation | passes | cutting length | planning |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     let mm = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.3} mm"));
     for r in rows {
@@ -312,6 +322,7 @@ pub fn five_axis_markdown(rows: &[FiveAxisRow]) -> String {
         } else {
             format!("{lo:.2}-{hi:.2} deg")
         };
+        let least = least_lead(r);
         let worst = match r.sectioning_at {
             Some([x, y, z]) if r.gouging_poses > 0 => format!(
                 "{:.3} mm at ({x:.1}, {y:.1}, {z:.1})",
@@ -329,7 +340,7 @@ pub fn five_axis_markdown(rows: &[FiveAxisRow]) -> String {
         };
         let _ = writeln!(
             t,
-            "| {}{} | {alpha} | {} of {} | {worst} | {dexel} | {} / {} | {} | {} | {:.0} mm | {:.1} s |",
+            "| {}{} | {alpha} | {least} | {} of {} | {worst} | {dexel} | {} / {} | {} | {} | {:.0} mm | {:.1} s |",
             r.job,
             if r.incomplete { " (incomplete)" } else { "" },
             r.gouging_poses,
@@ -345,12 +356,29 @@ pub fn five_axis_markdown(rows: &[FiveAxisRow]) -> String {
     if let Some(r) = rows.first() {
         let _ = writeln!(
             t,
-            "\nsectioning: the plan's gouge check (depth below the design, negative: clearance); \
+            "\nleast lead from curvature: the largest over the CC points of asin(R / (rho - r)), \
+             rho the design's concave radius of curvature along the feed, R the tool's axis to \
+             insert centre, r its insert radius: with less lead the back of the tool enters the \
+             design there, whatever the positioning.\n\
+             sectioning: the plan's gouge check (depth below the design, negative: clearance); \
              dexel: cells of {} mm, motions sampled within {} mm, deviation along the design normals",
             r.cell_mm, r.sample_tol_mm
         );
     }
     t
+}
+
+/// The least-lead cell of a five-axis row.
+fn least_lead(r: &FiveAxisRow) -> String {
+    match (r.local_lead_bound_deg, r.local_lead_bound_at) {
+        (Some(_), _) if r.local_lead_unfit > 0 => format!(
+            "none: the tool does not fit the curvature at {} CC points",
+            r.local_lead_unfit
+        ),
+        (Some(d), Some([x, y, _])) => format!("{d:.2} deg at ({x:.1}, {y:.1})"),
+        (Some(d), None) => format!("{d:.2} deg"),
+        (None, _) => "-".to_string(),
+    }
 }
 
 /// The table in Markdown.
@@ -416,6 +444,9 @@ mod tests {
             job: "die, inclined tool, alpha = 3".into(),
             method: "inclined".into(),
             alpha_range_deg: [3.0, 3.0],
+            local_lead_bound_deg: Some(12.951),
+            local_lead_bound_at: Some([-4.9, -74.76, 28.14]),
+            local_lead_unfit: 0,
             poses: 1498,
             gouging_poses: 1386,
             sectioning_worst_mm: 6.2349,
@@ -443,9 +474,33 @@ mod tests {
             scallop_mm: [Some(0.074), Some(0.014)],
             ..row.clone()
         };
-        let t = five_axis_markdown(&[row, auto]);
-        assert!(t.contains("| die, inclined tool, alpha = 3 | 3.00 deg | 1386 of 1498 | 6.235 mm at (-12.5, -99.7, 37.8) | 4.620 mm, 38934 cells (1 regions) | - / - | -3.201 mm | 39 | 3063 mm | 1.1 s |"), "{t}");
-        assert!(t.contains("| die, automatic | 0.06-14.86 deg | 0 of 1498 | 0.009 mm | none | 0.074 mm / 0.014 mm |"), "{t}");
+        let cone = FiveAxisRow {
+            job: "cone".into(),
+            local_lead_bound_deg: None,
+            ..row.clone()
+        };
+        let tight = FiveAxisRow {
+            job: "tight".into(),
+            local_lead_bound_deg: Some(90.0),
+            local_lead_unfit: 12,
+            ..row.clone()
+        };
+        let t = five_axis_markdown(&[row, auto, cone, tight]);
+        assert!(t.contains("| cone | 3.00 deg | - | 1386 of 1498 |"), "{t}");
+        assert!(
+            t.contains(
+                "| tight | 3.00 deg | none: the tool does not fit the curvature at 12 CC points |"
+            ),
+            "{t}"
+        );
+        assert!(
+            t.contains(
+                "least lead from curvature: the largest over the CC points of asin(R / (rho - r))"
+            ),
+            "{t}"
+        );
+        assert!(t.contains("| die, inclined tool, alpha = 3 | 3.00 deg | 12.95 deg at (-4.9, -74.8) | 1386 of 1498 | 6.235 mm at (-12.5, -99.7, 37.8) | 4.620 mm, 38934 cells (1 regions) | - / - | -3.201 mm | 39 | 3063 mm | 1.1 s |"), "{t}");
+        assert!(t.contains("| die, automatic | 0.06-14.86 deg | 12.95 deg at (-4.9, -74.8) | 0 of 1498 | 0.009 mm | none | 0.074 mm / 0.014 mm |"), "{t}");
         assert!(
             t.contains("cells of 0.5 mm, motions sampled within 0.1 mm"),
             "{t}"
