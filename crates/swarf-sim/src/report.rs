@@ -135,15 +135,16 @@ pub fn text_summary(v: &Verification, ctx: &ReportContext) -> String {
         .unwrap_or_default();
     let _ = writeln!(
         t,
-        "gouge: {} cells in {} regions{worst}",
-        s.gouge.cells, s.gouge.regions
+        "gouge: {} in {}{worst}",
+        count(s.gouge.cells, "cell"),
+        count(s.gouge.regions, "region")
     );
     let _ = writeln!(
         t,
-        "excess (> {:.4} mm): {} cells in {} regions, worst {:.4} mm",
+        "excess (> {:.4} mm): {} in {}, worst {:.4} mm",
         s.allowed_excess + s.tol,
-        s.excess.cells,
-        s.excess.regions,
+        count(s.excess.cells, "cell"),
+        count(s.excess.regions, "region"),
         s.excess.worst
     );
     if let (Some(lo), Some(hi), Some(max)) = (s.scallop.p05, s.scallop.p95, s.scallop.max) {
@@ -172,6 +173,15 @@ pub fn text_summary(v: &Verification, ctx: &ReportContext) -> String {
     t
 }
 
+/// `n` and `noun`, plural (`noun` + "s") unless `n` is 1: `1 region`, `3 regions`.
+pub fn count(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
 /// Seconds as `1h02'03"` or `12'34"`.
 pub fn clock(seconds: f64) -> String {
     let s = seconds.max(0.0).round() as u64;
@@ -192,5 +202,12 @@ mod tests {
         assert_eq!(clock(1520.0), "25'20\"");
         assert_eq!(clock(3723.4), "1h02'03\"");
         assert_eq!(clock(-3.0), "0'00\"");
+    }
+
+    #[test]
+    fn counts_agree_with_their_number() {
+        assert_eq!(count(1, "region"), "1 region");
+        assert_eq!(count(0, "region"), "0 regions");
+        assert_eq!(count(37707, "cell"), "37707 cells");
     }
 }
