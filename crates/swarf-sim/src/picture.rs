@@ -27,6 +27,8 @@ const OFF_PART: Rgb = [225, 225, 225];
 const NO_MATERIAL: Rgb = [120, 120, 120];
 /// Labelled gouge rings.
 const LABELLED: usize = 8;
+/// Radius of a gouge ring, px (drawn 2 px wide).
+const RING: f64 = 9.0;
 
 /// Diverging colour for `t` in `[-1, 1]`: red (below the design) - white - blue
 /// (above), the ColorBrewer RdBu ramp.
@@ -91,15 +93,17 @@ pub fn deviation_png(v: &Verification, title: &str) -> Result<Vec<u8>, SimError>
         c.fill(r[0], r[1], r[2] - 1, r[3] - 1, col);
         c.frame(r[0], r[1], r[2] - 1, r[3] - 1, BLACK);
     }
-    let mut marks = Vec::new();
-    for (n, g) in s.gouges.iter().enumerate() {
-        let p = page.map.px(g.at[0], g.at[1]);
-        c.ring(p, 9.0, 2.0, BLACK);
-        if let (true, Some(line)) = (n < LABELLED, g.line) {
-            marks.push((p, format!("L{line}")));
-        }
+    let rings: Vec<[f64; 2]> = (s.gouges.iter())
+        .map(|g| page.map.px(g.at[0], g.at[1]))
+        .collect();
+    for &p in &rings {
+        c.ring(p, RING, 2.0, BLACK);
     }
-    for l in page.marks(&marks) {
+    let marks: Vec<([f64; 2], String)> = (s.gouges.iter().zip(&rings))
+        .take(LABELLED)
+        .filter_map(|(g, &p)| g.line.map(|line| (p, format!("L{line}"))))
+        .collect();
+    for l in page.marks(&marks, &rings, RING + 1.0) {
         c.text(l.at[0], l.at[1], &l.text, SCALE, BLACK);
     }
     c.to_png()

@@ -30,8 +30,6 @@ const MIN_WIDTH: i64 = 640;
 const MIN_ROW: i64 = 320;
 /// Colour bar width, px.
 pub(super) const BAR_W: i64 = 28;
-/// Gap from a gouge mark's centre to its label, px (ring radius 9, 2 px wide, + 2).
-const MARK_GAP: i64 = 12;
 const BLACK: Rgb = [0, 0, 0];
 
 /// What the legend column shows.
@@ -230,27 +228,44 @@ impl Page {
     }
 
     /// Labels `(point, text)` beside marks at picture points, worst first: each
-    /// right, left, above or below its mark, the first place inside the map clear of
-    /// the labels placed before it; a label with no such place is left out.
-    pub(super) fn marks(&self, marks: &[([f64; 2], String)]) -> Vec<Label> {
+    /// right, left, above or below its mark, at the first place inside the map clear
+    /// of the labels placed before it and of every ring of radius `ring` px about
+    /// `rings`, else at the first place clear of those labels only; a label with no
+    /// such place is left out.
+    pub(super) fn marks(
+        &self,
+        marks: &[([f64; 2], String)],
+        rings: &[[f64; 2]],
+        ring: f64,
+    ) -> Vec<Label> {
         let inside = self.map.inside();
+        let r = ring.ceil() as i64;
+        let gap = r + 2;
+        let circles: Vec<Rect> = rings
+            .iter()
+            .map(|p| {
+                let [x, y] = p.map(|v| v.round() as i64);
+                [x - r, y - r, x + r + 1, y + r + 1]
+            })
+            .collect();
         let mut placed: Vec<Label> = Vec::new();
         for (p, text) in marks {
             let ([x, y], w) = (p.map(|v| v.round() as i64), tw(text));
-            let places = [
-                (x + MARK_GAP, y - GLYPH / 2),
-                (x - MARK_GAP - w, y - GLYPH / 2),
-                (x - w / 2, y - MARK_GAP - GLYPH),
-                (x - w / 2, y + MARK_GAP),
-            ];
-            let free = places
-                .into_iter()
-                .map(|(x, y)| Label::new(x, y, text.as_str()))
-                .find(|l| {
-                    within(&l.rect(), &inside)
-                        && placed.iter().all(|q| !overlap(&q.rect(), &l.rect()))
-                });
-            placed.extend(free);
+            let places: Vec<Label> = [
+                (x + gap, y - GLYPH / 2),
+                (x - gap - w, y - GLYPH / 2),
+                (x - w / 2, y - gap - GLYPH),
+                (x - w / 2, y + gap),
+            ]
+            .into_iter()
+            .map(|(x, y)| Label::new(x, y, text.as_str()))
+            .filter(|l| {
+                within(&l.rect(), &inside) && placed.iter().all(|q| !overlap(&q.rect(), &l.rect()))
+            })
+            .collect();
+            let clear = |l: &&Label| circles.iter().all(|c| !overlap(c, &l.rect()));
+            let best = places.iter().find(clear).or(places.first()).cloned();
+            placed.extend(best);
         }
         placed
     }
@@ -391,11 +406,25 @@ mod tests {
         let edge = page.map.px(99.9, 35.0);
         let mut marks: Vec<_> = (0..8).map(|k| (centre, format!("L{k}"))).collect();
         marks.push((edge, "L12345".into()));
-        let placed = page.marks(&marks);
+        let placed = page.marks(&marks, &[], 10.0);
         assert_clear(&page, &placed);
         assert_eq!(placed.len(), 5, "{placed:?}");
         let last = &placed[4];
         assert!(last.rect()[2] < edge[0] as i64, "{last:?}");
+    }
+
+    #[test]
+    fn mark_labels_keep_off_other_rings_while_they_can() {
+        let rect = [0.0, 0.0, 100.0, 70.0];
+        let page = Page::new(&grid(rect, 1.0), rect, "t", &[], &BAR);
+        let [x, y] = page.map.px(50.0, 35.0);
+        let right = [x + 20.0, y];
+        let marks = [([x, y], "L1".to_string())];
+        let placed = page.marks(&marks, &[[x, y], right], 10.0);
+        assert_eq!(placed[0].at, [x as i64 - 12 - 32, y as i64 - 8]);
+        let boxed = [[x, y], right, [x - 30.0, y], [x, y - 30.0], [x, y + 30.0]];
+        let placed = page.marks(&marks, &boxed, 10.0);
+        assert_eq!(placed[0].at, [x as i64 + 12, y as i64 - 8]);
     }
 
     proptest! {
@@ -422,7 +451,8 @@ mod tests {
                     (p, format!("L{line}"))
                 })
                 .collect();
-            let placed = page.marks(&marks);
+            let rings: Vec<[f64; 2]> = marks.iter().map(|m| m.0).collect();
+            let placed = page.marks(&marks, &rings, 10.0);
             assert_clear(&page, &placed);
         }
     }
