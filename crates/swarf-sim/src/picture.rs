@@ -6,6 +6,10 @@
 //!
 //! When a pixel covers several cells it shows the most extreme deviation among them,
 //! so that a gouge one cell wide still shows at any picture size.
+//!
+//! Each picture is laid out before it is drawn (the `page` module places every line
+//! of text as a box: the title and footer wrap, margins grow to fit their labels), so
+//! no text overlaps other text, the map or the legend, or runs off the canvas.
 
 mod map;
 mod page;
