@@ -65,14 +65,20 @@ fn axes_are_normalised_and_kept() {
 
 #[test]
 fn cutter_records() {
-    let flat = read("CUTTER/8\n").tool;
-    assert!(matches!(flat, Some(Cutter::Apt(a)) if a.d == 8.0 && a.r == 0.0));
-    let p = read("UNITS/INCHES\nCUTTER/0.5,0.25,0,0.25,0,0,1.5\n");
-    let Some(Cutter::Apt(a)) = p.tool else {
-        panic!("{:?}", p)
-    };
-    assert_eq!((a.d, a.r), (12.7, 6.35));
-    assert!((a.h - 38.1).abs() < 1e-12);
+    // Untapered APT tools read as the named shapes their jobs wrote.
+    let name = |text: &str| read(text).tool.map(|c| c.to_string());
+    assert_eq!(name("CUTTER/8\n").as_deref(), Some("flat:d=8"));
+    let inch = read("UNITS/INCHES\nCUTTER/0.5,0.25,0,0.25,0,0,1.5\n").tool;
+    assert!(
+        matches!(inch, Some(Cutter::Ball { radius, .. }) if radius == 6.35),
+        "{inch:?}"
+    );
+    assert!(inch.is_some_and(|c| (c.length() - 38.1).abs() < 1e-12));
+    assert_eq!(
+        name("CUTTER/38.100000,6.350000,12.700000,6.350000,0.000000,0.000000,25.400000\n")
+            .as_deref(),
+        Some("bull:d=38.1,r=6.35,length=25.4")
+    );
     // e and f are checked against d, r, alpha, beta to the printed precision
     let bad = read("CUTTER/10,2,3.5,2,0,0,30\nGOTO/0,0,0\n");
     assert!(bad.tool.is_none());

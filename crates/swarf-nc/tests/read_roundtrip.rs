@@ -135,9 +135,10 @@ fn cl_round_trip_with_tilted_axes_and_cutter() {
             );
             assert!((p.motions[0].start.cl - moves[0].to.cl).amax() <= 0.5e-6 * scale + 1e-12);
             assert!(p.warnings.is_empty(), "{:?}", p.warnings);
-            let Some(Cutter::Apt(apt)) = p.tool else {
-                panic!("no APT cutter: {:?}", p.tool);
+            let Some(apt) = p.tool.map(|c| c.to_apt()) else {
+                panic!("no cutter: {:?}", p.tool);
             };
+            assert!(matches!(p.tool, Some(Cutter::Bull { .. })), "{:?}", p.tool);
             let want = cutter.to_apt();
             let pairs = [
                 (apt.d, want.d),

@@ -350,8 +350,25 @@ impl ClReader {
                 ));
             }
         }
-        Ok(Cutter::Apt(apt))
+        Ok(named_shape(&apt, h).unwrap_or(Cutter::Apt(apt)))
     }
+}
+
+/// The named cutter an APT tool without taper is (flat, ball or bull: `alpha = beta =
+/// 0`), so that reports name it as its job did; `None` for tapered tools. `length`:
+/// the record's `h`, if it has one.
+fn named_shape(apt: &Apt, length: Option<f64>) -> Option<Cutter> {
+    if apt.alpha != 0.0 || apt.beta != 0.0 {
+        return None;
+    }
+    let named = if apt.r == 0.0 {
+        Cutter::flat(apt.d, length)
+    } else if (2.0 * apt.r - apt.d).abs() <= swarf_tool::apt::APT_PARAM_TOL {
+        Cutter::ball(apt.d, length)
+    } else {
+        Cutter::bull(apt.d, apt.r, length)
+    };
+    named.ok()
 }
 
 /// The record's fields as numbers; their count must be one of `counts`.

@@ -32,7 +32,7 @@ use std::time::Instant;
 use swarf_nc::read::read_program;
 use swarf_path::Job;
 use swarf_sim::Verification;
-use swarf_sim::report::clock;
+use swarf_sim::report::{clock, count};
 
 /// Default dexel cell for five-axis programs, mm.
 pub const FIVE_AXIS_CELL: f64 = 0.5;
@@ -334,8 +334,10 @@ pub fn five_axis_markdown(rows: &[FiveAxisRow]) -> String {
             "none".to_string()
         } else {
             format!(
-                "{:.3} mm, {} cells ({} regions)",
-                r.dexel_deepest_mm, r.dexel_gouge_cells, r.dexel_gouge_regions
+                "{:.3} mm, {} ({})",
+                r.dexel_deepest_mm,
+                count(r.dexel_gouge_cells, "cell"),
+                count(r.dexel_gouge_regions, "region")
             )
         };
         let _ = writeln!(
@@ -394,7 +396,7 @@ pub fn markdown(rows: &[Row]) -> String {
         };
         let _ = writeln!(
             t,
-            "| {} | {} | {}{} | {} | {} points | {} points ({} regions) | {} | {:.0} mm |",
+            "| {} | {} | {}{} | {} | {} points | {} points ({}) | {} | {:.0} mm |",
             r.job,
             r.strategy,
             clock(r.time_s),
@@ -402,7 +404,7 @@ pub fn markdown(rows: &[Row]) -> String {
             scallop,
             r.remaining_points,
             r.gouge_points,
-            r.gouge_regions,
+            count(r.gouge_regions, "region"),
             r.passes,
             r.cutting_length_mm
         );
@@ -499,7 +501,7 @@ mod tests {
             ),
             "{t}"
         );
-        assert!(t.contains("| die, inclined tool, alpha = 3 | 3.00 deg | 12.95 deg at (-4.9, -74.8) | 1386 of 1498 | 6.235 mm at (-12.5, -99.7, 37.8) | 4.620 mm, 38934 cells (1 regions) | - / - | -3.201 mm | 39 | 3063 mm | 1.1 s |"), "{t}");
+        assert!(t.contains("| die, inclined tool, alpha = 3 | 3.00 deg | 12.95 deg at (-4.9, -74.8) | 1386 of 1498 | 6.235 mm at (-12.5, -99.7, 37.8) | 4.620 mm, 38934 cells (1 region) | - / - | -3.201 mm | 39 | 3063 mm | 1.1 s |"), "{t}");
         assert!(t.contains("| die, automatic | 0.06-14.86 deg | 12.95 deg at (-4.9, -74.8) | 0 of 1498 | 0.009 mm | none | 0.074 mm / 0.014 mm |"), "{t}");
         assert!(
             t.contains("cells of 0.5 mm, motions sampled within 0.1 mm"),
