@@ -13,6 +13,12 @@
 //! path lies on the far boundary. Each path is sampled by the forward stepper
 //! ([`crate::forward_step`]) at the job's chordal tolerance.
 //!
+//! Across a convex ridge (the surface rising from one path's CC point toward the
+//! next and falling beyond it, [`crate::side_step`], "Convex ridges") a flat or bull
+//! end mill touches with facing corners, and the side step allowed there is the
+//! ball step of the corner radius (none for a sharp rim: the side step collapses and
+//! the ridge is reported uncovered).
+//!
 //! The report's predicted scallop is the local model's scallop for the actual
 //! interval at every sample of both paths; the side-step range is that of
 //! `|B . S_v| dv`. The path on the far boundary is left out when the tools of the one
@@ -25,6 +31,7 @@ use crate::iso_setup::{IsoSetup, SideGeom, fit_interval};
 use crate::job::{Job, ParamDir, StartSide};
 use crate::ordering::Row;
 use crate::plan::{Plan, PlanReport, Uncovered};
+use crate::side_step::corners_face;
 use crate::toolpath::Pass;
 use swarf_geom::{Part, Point3, Vec3};
 
@@ -233,17 +240,24 @@ impl<'s, 'a> IsoParam<'s, 'a> {
             let chord = p1 - p0;
             let across = (chord - tangent * tangent.dot(&chord)).norm();
             let side = &self.setup.side;
-            let scallop = match (
-                side.scallop(across, g0.kappa, g0.tilt),
-                side.scallop(across, g1.kappa, g1.tilt),
-            ) {
-                (Some(a), Some(b)) => Some(a.max(b)),
-                _ => None,
-            };
+            let both = |a: Option<f64>, b: Option<f64>| Some(a?.max(b?));
+            if corners_face(&g0.normal, &g1.normal, &chord) {
+                return Some(Crossing {
+                    across,
+                    allowed: side.corner_step(g0.kappa).min(side.corner_step(g1.kappa)),
+                    scallop: both(
+                        side.corner_scallop(across, g0.kappa),
+                        side.corner_scallop(across, g1.kappa),
+                    ),
+                });
+            }
             Some(Crossing {
                 across,
                 allowed: g0.step.min(g1.step),
-                scallop,
+                scallop: both(
+                    side.scallop(across, g0.kappa, g0.tilt),
+                    side.scallop(across, g1.kappa, g1.tilt),
+                ),
             })
         })
     }
@@ -259,7 +273,11 @@ impl<'s, 'a> IsoParam<'s, 'a> {
                 "patch {}, {name} between {s:.6} and {end:.6} (all {other})",
                 self.map.face()
             ),
-            reason: "the side step collapsed: the patch is degenerate there (no normal or no extent across the paths)".into(),
+            reason: if self.setup.side.corner() > 0.0 {
+                "the side step collapsed: the patch is degenerate there (no normal or no extent across the paths)".into()
+            } else {
+                "the side step collapsed: a convex ridge lies between the paths, or the patch is degenerate there; the cutter's sharp rim cuts no ridge between two passes (a ball or bull end mill does)".into()
+            },
         }
     }
 }

@@ -2,37 +2,52 @@
 //! the scallop point; paper 004 fig. 7).
 //!
 //! In the plane through a CC point `P` normal to its path tangent `T`, each tool's
-//! envelope is the circle of its effective radius about its centre: `P + r_e N` for
-//! the tool at `P`, and for the tool touching the surface at `Q` the centre
-//! `Q + r_e' N'` projected into the plane (with the paths' tangents parallel, Feng and
-//! Li's assumption, the swept envelope of the next path cuts the plane in exactly that
-//! circle; where they are not, the true section is an ellipse around it and the true
-//! scallop is smaller). The two circles cross at two points; the one nearer the
+//! envelope is taken as a circle of radius `r` tangent to the surface at its contact:
+//! about `P + r N` for the tool at `P`, and for the tool touching the surface at `Q`
+//! about `Q + r N'` projected into the plane (with the paths' tangents parallel, Feng
+//! and Li's assumption, the swept envelope of the next path cuts the plane in exactly
+//! that circle; where they are not, the true section is an ellipse around it and the
+//! true scallop is smaller). The two circles cross at two points; the one nearer the
 //! surface (the midpoint of `P` and `Q`) is the scallop crest, and its distance to the
 //! surface along the normal at its foot (the patch's projection; beyond an edge, the
 //! distance to the tangent plane there, i.e. the surface continued) is the scallop
-//! height. A ball's envelope is exactly its circle; other cutters use the station's
-//! effective radius for both tools ([`crate::iso_scallop`] takes the least over the
-//! patch's tilts).
+//! height.
+//!
+//! The radius `r` is the station's ([`Station::radius`]: a ball's own radius, exactly
+//! its envelope; for other cutters the effective radius [`crate::iso_scallop`] plans
+//! with), except across a convex ridge, where the tools touch with their corners
+//! facing and the corner radius is used ([`crate::side_step`], "Convex ridges"). A
+//! sharp rim (flat end mill) cuts no ridge between two passes at any step; it keeps
+//! the station's radius here and [`crate::iso_scallop`] reports the ridge uncovered.
 
 use crate::cl_curve::tool_side_normal;
 use crate::scallop_step::Station;
+use crate::side_step::{SideStep, corners_face};
 use swarf_geom::{Patch, Point3, SurfaceDerivs, Vec3};
 
 /// Scallop height between the tool at the station and the tool touching the surface
 /// at `d` (parameters `uv`), in the station's cross-section (module doc), mm;
 /// infinite where the two envelopes do not meet.
-pub fn scallop(patch: &Patch, st: &Station, d: &SurfaceDerivs, uv: [f64; 2]) -> f64 {
+pub fn scallop(
+    patch: &Patch,
+    side: &SideStep,
+    st: &Station,
+    d: &SurfaceDerivs,
+    uv: [f64; 2],
+) -> f64 {
     let Some(n) = tool_side_normal(d) else {
         return f64::INFINITY;
     };
+    let r = radius(side, st, &d.point, &n);
+    if r <= 0.0 {
+        return f64::INFINITY;
+    }
     let t = st.tangent;
-    let r2 = st.radius;
-    let c1 = st.d.point + st.radius * st.normal;
-    let c2 = d.point + r2 * n;
+    let c1 = st.d.point + r * st.normal;
+    let c2 = d.point + r * n;
     let c2 = c2 - (c2 - st.d.point).dot(&t) * t;
     let mid = Point3::from(0.5 * (st.d.point.coords + d.point.coords));
-    let Some(crest) = crest(&c1, st.radius, &c2, r2, &mid) else {
+    let Some(crest) = crest(&c1, r, &c2, r, &mid) else {
         return f64::INFINITY;
     };
     let pr = patch.project_from(&crest, 0.5 * (st.uv[0] + uv[0]), 0.5 * (st.uv[1] + uv[1]));
@@ -40,6 +55,16 @@ pub fn scallop(patch: &Patch, st: &Station, d: &SurfaceDerivs, uv: [f64; 2]) -> 
     // Along the normal at the foot: the distance inside the patch, and the distance to
     // the tangent plane at the edge where the crest lies beyond it.
     tool_side_normal(&below).map_or(pr.distance, |nn| (crest - pr.point).dot(&nn))
+}
+
+/// The circle radius for the station's tool and the tool touching `q` with normal
+/// `n` (module doc).
+fn radius(side: &SideStep, st: &Station, q: &Point3, n: &Vec3) -> f64 {
+    if side.corner() > 0.0 && corners_face(&st.normal, n, &(q - st.d.point)) {
+        side.corner()
+    } else {
+        st.radius
+    }
 }
 
 /// The crossing of two coplanar circles nearest `near`; `None` when they do not meet.
@@ -62,12 +87,14 @@ fn crest(c1: &Point3, r1: f64, c2: &Point3, r2: f64, near: &Point3) -> Option<Po
 }
 
 /// Material left at the surface point `q` (unit normal `normal`, toward the tool) by
-/// the station's tool alone: where the ray along the normal enters its circle.
-pub fn alone(st: &Station, q: &Point3, normal: &Vec3) -> f64 {
-    let centre = st.d.point + st.radius * st.normal;
+/// the station's tool alone: where the ray along the normal enters its circle (of the
+/// corner radius across a convex ridge: module doc).
+pub fn alone(side: &SideStep, st: &Station, q: &Point3, normal: &Vec3) -> f64 {
+    let r = radius(side, st, q, normal);
+    let centre = st.d.point + r * st.normal;
     let m = q - centre;
     let b = m.dot(normal);
-    let cc = m.norm_squared() - st.radius * st.radius;
+    let cc = m.norm_squared() - r * r;
     if cc <= 0.0 {
         return 0.0;
     }

@@ -120,7 +120,7 @@ pub fn next_point(patch: &Patch, side: &SideStep, st: &Station) -> Next {
         return Next::Covered(None);
     };
     let h = side.h();
-    let eval = |w: f64, guess: [f64; 2]| candidate(patch, st, mode, w, guess);
+    let eval = |w: f64, guess: [f64; 2]| candidate(patch, side, st, mode, w, guess);
     let mut lo = Bound {
         w: 0.0,
         f: -h,
@@ -138,7 +138,7 @@ pub fn next_point(patch: &Patch, side: &SideStep, st: &Station) -> Next {
             return Next::Covered(None);
         }
         if c.s <= h && c.beyond {
-            if alone(st, &c.q.point, &c.normal) <= h {
+            if alone(side, st, &c.q.point, &c.normal) <= h {
                 return Next::Covered(Some(c.q.with_scallop(c.s)));
             }
             return Next::Point(c.q.with_scallop(c.s));
@@ -169,9 +169,9 @@ struct SideExit;
 /// The point at side offset `w` from `st` (a step shorter than the solved one, so
 /// its scallop is at most `h`), or `None` where it cannot be placed (the station is
 /// dropped or the section leaves the patch first).
-pub fn point_at_offset(patch: &Patch, st: &Station, w: f64) -> Option<NextPoint> {
+pub fn point_at_offset(patch: &Patch, side: &SideStep, st: &Station, w: f64) -> Option<NextPoint> {
     let mode = mode(patch, st)?;
-    match candidate(patch, st, mode, w, [f64::NAN; 2])? {
+    match candidate(patch, side, st, mode, w, [f64::NAN; 2])? {
         Ok(c) if !c.beyond => Some(c.q.with_scallop(c.s)),
         _ => None,
     }
@@ -257,6 +257,7 @@ impl NextPoint {
 
 fn candidate(
     patch: &Patch,
+    side: &SideStep,
     st: &Station,
     mode: Mode,
     w: f64,
@@ -305,7 +306,7 @@ fn candidate(
     };
     Some(Ok(Cand {
         q,
-        s: scallop(patch, st, &d, uv),
+        s: scallop(patch, side, st, &d, uv),
         w: st.side.dot(&(d.point - p)),
         beyond,
         normal: tool_side_normal(&d).unwrap_or(st.normal),

@@ -5,6 +5,9 @@
 
 #![allow(dead_code)]
 
+pub mod swept;
+
+use rayon::prelude::*;
 use swarf_geom::{Part, Patch, Point3, Vec3};
 use swarf_path::{Pass, Plan};
 use swarf_tool::Cutter;
@@ -156,6 +159,8 @@ pub struct Crests {
     pub heights: Vec<f64>,
     /// Area each crest stands for (station spacing x distance between the passes), mm^2.
     pub weights: Vec<f64>,
+    /// The station and the nearest point of the next pass each crest lies between.
+    pub between: Vec<(Point3, Point3)>,
 }
 
 impl Crests {
@@ -202,7 +207,7 @@ fn cc_line(pass: &Pass) -> Vec<(Point3, [f64; 2])> {
         .collect()
 }
 
-/// Crests of a single-patch plan (module doc).
+/// Crests of a single-patch plan of a ball of radius `r` (module doc).
 pub fn crests(
     plan: &Plan,
     patch: &Patch,
@@ -212,43 +217,89 @@ pub fn crests(
     max_gap: f64,
 ) -> Crests {
     let env = Envelope::new(plan, r);
+    crests_by(
+        plan,
+        patch,
+        &|p, n| env.residual(p, n),
+        spacing,
+        samples,
+        max_gap,
+    )
+}
+
+/// One crest: height, area it stands for, the two points it lies between.
+type Crest = (f64, f64, (Point3, Point3));
+
+/// Golden-section steps refining the largest sample of a crest.
+const CREST_STEPS: usize = 16;
+
+/// Crests of a single-patch plan with the material left measured by `residual` (at a
+/// surface point along its unit normal): the largest of `samples + 1` points across
+/// the gap, refined by golden-section search between the neighbours of the largest
+/// (the crest is a sharp ridge that may lie between samples).
+pub fn crests_by(
+    plan: &Plan,
+    patch: &Patch,
+    residual: &(dyn Fn(&Point3, &Vec3) -> f64 + Sync),
+    spacing: f64,
+    samples: usize,
+    max_gap: f64,
+) -> Crests {
+    let lines: Vec<_> = plan.toolpath.passes.iter().map(cc_line).collect();
+    let per_pair: Vec<Vec<Crest>> = (0..lines.len().saturating_sub(1))
+        .into_par_iter()
+        .map(|k| {
+            let (a, b) = (&lines[k], &lines[k + 1]);
+            if b.len() < 2 {
+                return Vec::new();
+            }
+            stations(a, spacing)
+                .into_iter()
+                .filter_map(|(p, uv)| {
+                    let (q, quv, gap) = nearest_interior(&p, b)?;
+                    if gap > max_gap {
+                        return None;
+                    }
+                    let at = |t: f64| {
+                        let x = p + t * (q - p);
+                        let pr = patch.project_from(
+                            &x,
+                            uv[0] + t * (quv[0] - uv[0]),
+                            uv[1] + t * (quv[1] - uv[1]),
+                        );
+                        let d = patch.derivs(pr.u, pr.v);
+                        let n = d.du.cross(&d.dv).normalize();
+                        residual(&pr.point, &if n.z < 0.0 { -n } else { n })
+                    };
+                    Some((crest_max(&at, samples), spacing * gap, (p, q)))
+                })
+                .collect()
+        })
+        .collect();
     let mut out = Crests {
         heights: Vec::new(),
         weights: Vec::new(),
+        between: Vec::new(),
     };
-    let lines: Vec<_> = plan.toolpath.passes.iter().map(cc_line).collect();
-    for k in 0..lines.len().saturating_sub(1) {
-        let (a, b) = (&lines[k], &lines[k + 1]);
-        if b.len() < 2 {
-            continue;
-        }
-        for (p, uv) in stations(a, spacing) {
-            let Some((q, quv, gap)) = nearest_interior(&p, b) else {
-                continue;
-            };
-            if gap > max_gap {
-                continue;
-            }
-            let crest = (0..=samples)
-                .map(|s| {
-                    let t = s as f64 / samples as f64;
-                    let x = p + t * (q - p);
-                    let pr = patch.project_from(
-                        &x,
-                        uv[0] + t * (quv[0] - uv[0]),
-                        uv[1] + t * (quv[1] - uv[1]),
-                    );
-                    let d = patch.derivs(pr.u, pr.v);
-                    let n = d.du.cross(&d.dv).normalize();
-                    let n = if n.z < 0.0 { -n } else { n };
-                    env.residual(&pr.point, &n)
-                })
-                .fold(0.0, f64::max);
-            out.heights.push(crest);
-            out.weights.push(spacing * gap);
-        }
+    for (h, w, b) in per_pair.into_iter().flatten() {
+        out.heights.push(h);
+        out.weights.push(w);
+        out.between.push(b);
     }
     out
+}
+
+/// Largest of `f` over `[0, 1]`: `samples + 1` samples, the largest refined.
+fn crest_max(f: &impl Fn(f64) -> f64, samples: usize) -> f64 {
+    let ts: Vec<f64> = (0..=samples).map(|s| s as f64 / samples as f64).collect();
+    let vals: Vec<f64> = ts.iter().map(|&t| f(t)).collect();
+    let Some(best) = (0..vals.len()).max_by(|&i, &j| vals[i].total_cmp(&vals[j])) else {
+        return 0.0;
+    };
+    let (a, b) = (ts[best.saturating_sub(1)], ts[(best + 1).min(samples)]);
+    let neg = |t: f64| -f(t);
+    let (a, b) = swept::golden_min(&neg, a, b, CREST_STEPS);
+    vals[best].max(f(0.5 * (a + b)))
 }
 
 /// Points every `spacing` mm along a polyline, with interpolated parameters.
