@@ -2,11 +2,17 @@
 //! included: paper 004's experiment (h = 0.15 mm, tolerance 0.01 mm) and a fine one
 //! (h = 0.01 mm, tolerance 0.001 mm; target under 3 s each on a 2-core machine).
 //!
+//! The pass bound of wave (`swarf_path::pass_bound`, computed by every iso plan) is
+//! timed on its own.
+//!
 //! `cargo bench -p swarf-path --bench iso` (criterion; 10 samples each).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::time::Duration;
+use swarf_path::job::ParamDir;
+use swarf_path::pass_bound::{Feed, pass_bound};
+use swarf_path::side_step::SideStep;
 use swarf_path::{Job, PlanInput};
 
 fn job(kind: &str, h: f64, tol: f64) -> Job {
@@ -30,6 +36,13 @@ fn bench(c: &mut Criterion) {
                 })
             });
         }
+    }
+    for tool in ["ball:d=8", "bull:d=10,r=2"] {
+        let cutter = tool.parse().expect("valid tool");
+        let side = SideStep::new(&cutter, 0.15).expect("valid scallop");
+        group.bench_function(format!("pass bound {tool} h=0.15"), |b| {
+            b.iter(|| black_box(pass_bound(&part, &side, Feed::Param(ParamDir::U))))
+        });
     }
     group.finish();
 }

@@ -44,7 +44,8 @@
 //! breaks into slivers and turns back over covered ground: `bull:d=10,r=2` needed 82
 //! paths (with the steps smoothed over 3 mm; 16 126 mm cutting, scallop 0.1497 mm)
 //! against 80 here, `bull:d=8,r=1` did not finish in minutes. A flat end mill (a
-//! sharp rim) cannot cut a convex ridge between two passes at all.
+//! sharp rim) cannot cut a convex ridge between two passes at all; the ridge is
+//! reported uncovered.
 //!
 //! Planning ends when no point is left: the surface is covered up to its boundary.
 //! Paths keep the direction of travel of the first one; zigzag reverses every other

@@ -512,6 +512,31 @@ mod tests {
         }
     }
 
+    #[test]
+    fn facing_corners_only_across_a_convex_ridge() {
+        let lean = |a: f64| Vec3::new(0.0, a.sin(), a.cos());
+        let toward = Vec3::new(0.0, 2.0, 0.1);
+        // Rising from the first contact toward the second, falling beyond it.
+        assert!(corners_face(&lean(-0.2), &lean(0.1), &toward));
+        // Both on one slope, a valley, or the other way round: no ridge between.
+        assert!(!corners_face(&lean(-0.2), &lean(-0.1), &toward));
+        assert!(!corners_face(&lean(0.2), &lean(0.1), &toward));
+        assert!(!corners_face(&lean(0.2), &lean(-0.1), &toward));
+        assert!(!corners_face(&lean(-0.2), &lean(0.1), &(-toward)));
+        // Across a ridge two bull corners act as balls of the corner radius; a flat
+        // end's rim cuts nothing there.
+        let bull = SideStep::new(&Cutter::bull(10.0, 2.0, None).unwrap(), 0.15).unwrap();
+        assert_eq!(bull.corner(), 2.0);
+        let step = bull.corner_step(-0.02);
+        assert!(close(step, ball_step(2.0, -0.02, 0.15).unwrap(), 1e-12));
+        assert!(close(bull.corner_scallop(step, -0.02).unwrap(), 0.15, 1e-9));
+        let flat = SideStep::new(&Cutter::flat(6.0, None).unwrap(), 0.15).unwrap();
+        assert_eq!((flat.corner(), flat.corner_step(-0.02)), (0.0, 0.0));
+        assert!(flat.corner_scallop(0.1, -0.02).is_none());
+        let ball = SideStep::new(&Cutter::ball(8.0, None).unwrap(), 0.15).unwrap();
+        assert_eq!(ball.corner_step(-0.02), ball.step(-0.02, 0.3));
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(48))]
         #[test]
