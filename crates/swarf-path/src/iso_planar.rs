@@ -20,7 +20,11 @@
 //!   interval: from each sample `P` the point `Q` of the next plane in the cross-section
 //!   normal to `T` (on the surface, `T . Q = T . P`, `M . Q = m + dm`;
 //!   [`crate::section_point`]) must be within the side step allowed at both `P` and
-//!   `Q`.
+//!   `Q`. Where a convex ridge lies between `P` and `Q` (their normals lean toward
+//!   each other), a bull end mill cuts it with its two facing corners, so the corner
+//!   radius sets the step there ([`crate::side_step`], "Convex ridges"). A flat end
+//!   mill has no corner: its ridges between planes are not detected here (a known gap;
+//!   iso-parametric reports them).
 //! - Sections come from [`swarf_geom::Patch::intersect_plane`] on every patch; between
 //!   its samples the CC curve is the straight parameter segment pulled back onto the
 //!   plane (a few Newton steps along the parameter gradient of `M . S`), so every CC
@@ -49,6 +53,7 @@ use crate::job::{Job, StartSide};
 use crate::ordering::Row;
 use crate::plan::{Plan, PlanReport};
 use crate::section_point::{PlaneEq, Solved, two_planes};
+use crate::side_step::corners_face;
 use crate::toolpath::{Pass, PathPoint};
 use swarf_geom::{Part, Patch, Plane, SectionCurve, Vec3};
 
@@ -380,19 +385,33 @@ impl IsoPlanar<'_, '_> {
             return None;
         };
         let q = self.setup.side_at(&d, &g.tangent)?;
-        let across = (d.point - g.d.point).norm();
+        let chord = d.point - g.d.point;
+        let across = chord.norm();
         let side = &self.setup.side;
-        let scallop = match (
-            side.scallop(across, g.side.kappa, g.side.tilt),
-            side.scallop(across, q.kappa, q.tilt),
-        ) {
-            (Some(a), Some(b)) => Some(a.max(b)),
-            _ => None,
-        };
+        let both = |a: Option<f64>, b: Option<f64>| Some(a?.max(b?));
+        // A convex ridge between the planes is cut by the two facing corners of a
+        // bull end mill (side_step, "Convex ridges"), as in iso_parametric. A flat end
+        // mill has no corner to cut it with: its ridges stay a known gap (see the
+        // module doc).
+        if side.corner() > 0.0 && corners_face(&g.side.normal, &q.normal, &chord) {
+            return Some(Crossing {
+                across,
+                allowed: side
+                    .corner_step(g.side.kappa)
+                    .min(side.corner_step(q.kappa)),
+                scallop: both(
+                    side.corner_scallop(across, g.side.kappa),
+                    side.corner_scallop(across, q.kappa),
+                ),
+            });
+        }
         Some(Crossing {
             across,
             allowed: g.side.step.min(q.step),
-            scallop,
+            scallop: both(
+                side.scallop(across, g.side.kappa, g.side.tilt),
+                side.scallop(across, q.kappa, q.tilt),
+            ),
         })
     }
 }

@@ -109,7 +109,7 @@ fn the_swept_oracle_measures_closed_forms() {
     );
 }
 
-/// Bull end mills: iso-parametric and iso-scallop keep the true scallop at most `h`
+/// Bull end mills: the three iso strategies keep the true scallop at most `h`
 /// (the corner radius across wave's convex ridge, `swarf_path::side_step`), and
 /// neither beats the pass bound.
 #[test]
@@ -120,7 +120,7 @@ fn bull_cutters_keep_the_scallop_below_h() {
     );
     for tool in ["bull:d=10,r=2", "bull:d=8,r=1"] {
         let cutter: Cutter = tool.parse().unwrap();
-        for kind in ["iso-parametric", "iso-scallop"] {
+        for kind in ["iso-parametric", "iso-planar", "iso-scallop"] {
             let plan = wave_plan(kind, tool, "");
             let cutting = swarf_path::motion_stats(&plan.toolpath.moves(), 5000.0).cutting_length;
             let measured = swept_crest(&plan, &cutter);
