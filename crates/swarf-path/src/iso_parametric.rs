@@ -296,33 +296,7 @@ mod tests {
     use super::*;
     use crate::side_step::ball_scallop;
     use crate::toolpath::PathPoint;
-    use swarf_geom::{Patch, Point3};
-
-    /// A cylinder z = sqrt(R^2 - y^2) (R = 60) over x in [0, 40], y in [-30, 30],
-    /// as an exact rational quadratic in v (one 60-degree arc) and linear in u.
-    fn cylinder() -> Part {
-        let r = 60.0;
-        let half = 30f64.to_radians();
-        let w = half.cos();
-        let mid = r / w;
-        let mut pts = Vec::new();
-        for x in [0.0, 40.0] {
-            pts.push(Point3::new(x, -r * half.sin(), r * half.cos()));
-            pts.push(Point3::new(x, 0.0, mid));
-            pts.push(Point3::new(x, r * half.sin(), r * half.cos()));
-        }
-        let patch = Patch::new(
-            [1, 2],
-            pts,
-            [None, None],
-            Some(vec![1.0, w, 1.0, 1.0, w, 1.0]),
-        )
-        .unwrap();
-        Part {
-            name: "cylinder".into(),
-            patches: vec![patch],
-        }
-    }
+    use swarf_geom::Point3;
 
     fn job(h: f64) -> Job {
         Job::parse(
@@ -345,7 +319,7 @@ mod tests {
 
     #[test]
     fn cylinder_paths_are_spaced_by_the_exact_convex_step() {
-        let part = cylinder();
+        let part = crate::test_parts::cylinder(1.0);
         let h = 0.1;
         let plan = plan(&part, &job(h)).unwrap();
         let passes = &plan.toolpath.passes;
@@ -373,7 +347,7 @@ mod tests {
 
     #[test]
     fn bad_parameters_name_their_field() {
-        let part = cylinder();
+        let part = crate::test_parts::cylinder(1.0);
         let mut j = job(0.1);
         j.strategy.scallop = None;
         let e = plan(&part, &j).unwrap_err().to_string();

@@ -424,31 +424,6 @@ fn max_tilt(patch: &swarf_geom::Patch) -> f64 {
 mod tests {
     use super::*;
     use crate::side_step::ball_step;
-    use swarf_geom::{Patch, Point3};
-
-    /// A cylinder z = sqrt(R^2 - y^2) (R = 60) over x in [0, 40], y in [-30, 30].
-    fn cylinder() -> Part {
-        let r = 60.0;
-        let half = 30f64.to_radians();
-        let w = half.cos();
-        let mut pts = Vec::new();
-        for x in [0.0, 40.0] {
-            pts.push(Point3::new(x, -r * half.sin(), r * half.cos()));
-            pts.push(Point3::new(x, 0.0, r / w));
-            pts.push(Point3::new(x, r * half.sin(), r * half.cos()));
-        }
-        let patch = Patch::new(
-            [1, 2],
-            pts,
-            [None, None],
-            Some(vec![1.0, w, 1.0, 1.0, w, 1.0]),
-        )
-        .unwrap();
-        Part {
-            name: "cylinder".into(),
-            patches: vec![patch],
-        }
-    }
 
     fn job(tool: &str, h: f64) -> Job {
         Job::parse(
@@ -469,7 +444,7 @@ mod tests {
     #[test]
     fn cylinder_paths_keep_the_exact_step_and_reach_the_far_edge() {
         let h = 0.1;
-        let plan = plan(&cylinder(), &job("ball:d=8", h)).unwrap();
+        let plan = plan(&crate::test_parts::cylinder(1.0), &job("ball:d=8", h)).unwrap();
         let passes = &plan.toolpath.passes;
         let step = ball_step(4.0, -1.0 / 60.0, h).unwrap();
         let deg = (step / 60.0).to_degrees();
@@ -497,7 +472,7 @@ mod tests {
     #[test]
     fn bull_cutter_plans_with_its_least_effective_radius() {
         let h = 0.1;
-        let part = cylinder();
+        let part = crate::test_parts::cylinder(1.0);
         let bull = plan(&part, &job("bull:d=10,r=2", h)).unwrap();
         // The cylinder tilts up to 30 degrees: the least effective radius up to there,
         // used as a ball on the convex radius 60, sets the interior side step.

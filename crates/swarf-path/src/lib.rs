@@ -25,6 +25,8 @@ pub mod scallop_crest;
 pub mod scallop_step;
 pub mod section_point;
 pub mod side_step;
+#[cfg(test)]
+mod test_parts;
 pub mod toolpath;
 mod uncovered;
 

@@ -239,27 +239,7 @@ mod tests {
     use crate::side_step::ball_step;
     use swarf_tool::Cutter;
 
-    const R: f64 = 60.0;
-
-    /// A cylinder z = sqrt(R^2 - y^2) over x in [0, 40], y in [-30, 30] (a 60-degree
-    /// arc): rational quadratic in v, linear in u. `c` reparametrises the arc (weights
-    /// `1, w c, c^2` describe the same arc at another speed).
-    fn cylinder(c: f64) -> Part {
-        let half = 30f64.to_radians();
-        let w = half.cos();
-        let mut pts = Vec::new();
-        for x in [0.0, 40.0] {
-            pts.push(Point3::new(x, -R * half.sin(), R * half.cos()));
-            pts.push(Point3::new(x, 0.0, R / w));
-            pts.push(Point3::new(x, R * half.sin(), R * half.cos()));
-        }
-        let weights = vec![1.0, w * c, c * c, 1.0, w * c, c * c];
-        let patch = Patch::new([1, 2], pts, [None, None], Some(weights)).unwrap();
-        Part {
-            name: "cylinder".into(),
-            patches: vec![patch],
-        }
-    }
+    const R: f64 = crate::test_parts::CYLINDER_RADIUS;
 
     fn side(tool: &str, h: f64) -> SideStep {
         SideStep::new(&tool.parse::<Cutter>().unwrap(), h).unwrap()
@@ -271,7 +251,11 @@ mod tests {
         let arc = R * 60f64.to_radians();
         let want = arc / ball_step(4.0, -1.0 / R, h).unwrap() + 0.5;
         for c in [1.0, 1.7] {
-            let b = &pass_bound(&cylinder(c), &s, Feed::Param(ParamDir::U))[0];
+            let b = &pass_bound(
+                &crate::test_parts::cylinder(c),
+                &s,
+                Feed::Param(ParamDir::U),
+            )[0];
             assert!(
                 (b.passes - want).abs() < 1e-6 * want,
                 "c {c}: {b:?} vs {want}"
@@ -279,11 +263,15 @@ mod tests {
             assert_eq!(b.column_param, "u");
         }
         // Drive planes along x are the same family.
-        let b = &pass_bound(&cylinder(1.0), &s, Feed::Plane(0.0))[0];
+        let b = &pass_bound(&crate::test_parts::cylinder(1.0), &s, Feed::Plane(0.0))[0];
         assert!((b.passes - want).abs() < 1e-6 * want, "{b:?}");
         // Along the arc the side direction is the straight generator (no curvature,
         // no tilt): 40 mm over the flat step.
-        let b = &pass_bound(&cylinder(1.0), &s, Feed::Param(ParamDir::V))[0];
+        let b = &pass_bound(
+            &crate::test_parts::cylinder(1.0),
+            &s,
+            Feed::Param(ParamDir::V),
+        )[0];
         let want = 40.0 / ball_step(4.0, 0.0, h).unwrap() + 0.5;
         assert!((b.passes - want).abs() < 1e-9 * want, "{b:?} vs {want}");
         assert_eq!(b.column_param, "v");

@@ -416,27 +416,6 @@ mod tests {
     use crate::side_step::ball_step;
     use swarf_tool::Cutter;
 
-    /// A cylinder z = sqrt(R^2 - y^2) (R = 60) over x in [0, 40], y in [-30, 30],
-    /// exact rational quadratic in v.
-    fn cylinder() -> Patch {
-        let r = 60.0;
-        let half = 30f64.to_radians();
-        let w = half.cos();
-        let mut pts = Vec::new();
-        for x in [0.0, 40.0] {
-            pts.push(Point3::new(x, -r * half.sin(), r * half.cos()));
-            pts.push(Point3::new(x, 0.0, r / w));
-            pts.push(Point3::new(x, r * half.sin(), r * half.cos()));
-        }
-        Patch::new(
-            [1, 2],
-            pts,
-            [None, None],
-            Some(vec![1.0, w, 1.0, 1.0, w, 1.0]),
-        )
-        .unwrap()
-    }
-
     fn point(n: Next) -> NextPoint {
         match n {
             Next::Point(q) => q,
@@ -464,7 +443,7 @@ mod tests {
 
     #[test]
     fn cylinder_step_matches_the_exact_circle_form() {
-        let p = cylinder();
+        let p = crate::test_parts::cylinder_patch(1.0);
         let side = SideStep::new(&Cutter::ball(8.0, None).unwrap(), 0.15).unwrap();
         let st = station(&p, &side, [0.5, 0.3]);
         let q = point(next_point(&p, &side, &st));
@@ -478,7 +457,7 @@ mod tests {
 
     #[test]
     fn far_edge_clamps_then_drops() {
-        let p = cylinder();
+        let p = crate::test_parts::cylinder_patch(1.0);
         let side = SideStep::new(&Cutter::ball(8.0, None).unwrap(), 0.15).unwrap();
         // About 2 mm from the far edge y = 30: the next point is on the edge.
         let st = station(&p, &side, [0.5, 0.97]);
