@@ -5,7 +5,10 @@
 
 #![allow(dead_code)]
 
+pub mod moves;
 pub mod swept;
+
+use moves::MoveGrid;
 
 use rayon::prelude::*;
 use swarf_geom::{Part, Patch, Point3, Vec3};
@@ -28,58 +31,15 @@ pub fn wave_job(kind: &str, h: f64, tol: f64) -> swarf_path::Job {
 /// Segments of ball centres, bucketed on an XY grid.
 pub struct Envelope {
     r: f64,
-    segs: Vec<(Point3, Point3)>,
-    origin: [f64; 2],
-    cell: f64,
-    dims: [usize; 2],
-    cells: Vec<Vec<u32>>,
+    moves: MoveGrid,
 }
 
 impl Envelope {
     /// The swept envelope of the cutting moves of `plan` for a ball of radius `r`.
     pub fn new(plan: &Plan, r: f64) -> Envelope {
-        let mut segs = Vec::new();
-        for pass in &plan.toolpath.passes {
-            let c: Vec<Point3> = pass
-                .points
-                .iter()
-                .map(|p| p.pose.cl + r * Vec3::z())
-                .collect();
-            if c.len() == 1 {
-                segs.push((c[0], c[0]));
-            }
-            segs.extend(c.windows(2).map(|w| (w[0], w[1])));
-        }
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for (a, b) in &segs {
-            for p in [a, b] {
-                lo = [lo[0].min(p.x), lo[1].min(p.y)];
-                hi = [hi[0].max(p.x), hi[1].max(p.y)];
-            }
-        }
-        let cell = 2.0 * r;
-        let origin = [lo[0] - r, lo[1] - r];
-        let dims = [0, 1].map(|k| ((hi[k] - lo[k] + 2.0 * r) / cell).ceil() as usize + 1);
-        let mut cells = vec![Vec::new(); dims[0] * dims[1]];
-        for (k, (a, b)) in segs.iter().enumerate() {
-            let ix = |v: f64, ax: usize| {
-                (((v - origin[ax]) / cell).floor().max(0.0) as usize).min(dims[ax] - 1)
-            };
-            let (x0, x1) = (ix(a.x.min(b.x) - r, 0), ix(a.x.max(b.x) + r, 0));
-            let (y0, y1) = (ix(a.y.min(b.y) - r, 1), ix(a.y.max(b.y) + r, 1));
-            for j in y0..=y1 {
-                for i in x0..=x1 {
-                    cells[j * dims[0] + i].push(k as u32);
-                }
-            }
-        }
         Envelope {
             r,
-            segs,
-            origin,
-            cell,
-            dims,
-            cells,
+            moves: MoveGrid::new(plan, r, r, 2.0 * r),
         }
     }
 
@@ -87,13 +47,9 @@ impl Envelope {
     /// to the first swept ball the ray `p + t n` enters (0 when `p` is inside one;
     /// `f64::INFINITY` when no tool passes over it).
     pub fn residual(&self, p: &Point3, n: &Vec3) -> f64 {
-        let i =
-            (((p.x - self.origin[0]) / self.cell).floor().max(0.0) as usize).min(self.dims[0] - 1);
-        let j =
-            (((p.y - self.origin[1]) / self.cell).floor().max(0.0) as usize).min(self.dims[1] - 1);
         let mut best = f64::INFINITY;
-        for &k in &self.cells[j * self.dims[0] + i] {
-            let (a, b) = self.segs[k as usize];
+        for &k in self.moves.near(p.x, p.y) {
+            let (a, b) = self.moves.segs[k as usize];
             best = best.min(ray_capsule(p, n, &a, &b, self.r));
         }
         best.max(0.0)

@@ -10,6 +10,8 @@ use swarf_geom::{Point3, Vec3};
 use swarf_path::Plan;
 use swarf_tool::Cutter;
 
+use super::moves::MoveGrid;
+
 /// Golden-section steps minimising the tool bottom over one move.
 const GOLDEN_STEPS: usize = 32;
 const GOLDEN: f64 = 0.618_033_988_749_894_8;
@@ -80,11 +82,7 @@ thread_local! {
 /// The straight moves of a tool path (CL points), bucketed on an XY grid.
 pub struct Swept {
     bottom: Bottom,
-    segs: Vec<(Point3, Point3)>,
-    origin: [f64; 2],
-    cell: f64,
-    dims: [usize; 2],
-    cells: Vec<Vec<u32>>,
+    moves: MoveGrid,
 }
 
 impl Swept {
@@ -92,60 +90,22 @@ impl Swept {
     pub fn new(plan: &Plan, cutter: &Cutter) -> Swept {
         let bottom = Bottom::of(cutter);
         let r = bottom.radius();
-        let mut segs = Vec::new();
-        for pass in &plan.toolpath.passes {
-            let c: Vec<Point3> = pass.points.iter().map(|p| p.pose.cl).collect();
-            if c.len() == 1 {
-                segs.push((c[0], c[0]));
-            }
-            segs.extend(c.windows(2).map(|w| (w[0], w[1])));
-        }
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for (a, b) in &segs {
-            for p in [a, b] {
-                lo = [lo[0].min(p.x), lo[1].min(p.y)];
-                hi = [hi[0].max(p.x), hi[1].max(p.y)];
-            }
-        }
-        let cell = r;
-        let origin = [lo[0] - r, lo[1] - r];
-        let dims = [0, 1].map(|k| ((hi[k] - lo[k] + 2.0 * r) / cell).ceil() as usize + 1);
-        let mut cells = vec![Vec::new(); dims[0] * dims[1]];
-        let ix = |v: f64, ax: usize| {
-            (((v - origin[ax]) / cell).floor().max(0.0) as usize).min(dims[ax] - 1)
-        };
-        for (k, (a, b)) in segs.iter().enumerate() {
-            let (x0, x1) = (ix(a.x.min(b.x) - r, 0), ix(a.x.max(b.x) + r, 0));
-            let (y0, y1) = (ix(a.y.min(b.y) - r, 1), ix(a.y.max(b.y) + r, 1));
-            for j in y0..=y1 {
-                for i in x0..=x1 {
-                    cells[j * dims[0] + i].push(k as u32);
-                }
-            }
-        }
         Swept {
             bottom,
-            segs,
-            origin,
-            cell,
-            dims,
-            cells,
+            moves: MoveGrid::new(plan, 0.0, r, r),
         }
     }
 
     /// Height of the machined surface at `(x, y)`: the lowest tool bottom over all
     /// moves; infinite where no tool passes.
     pub fn height(&self, x: f64, y: f64) -> f64 {
-        let ix = |v: f64, ax: usize| {
-            (((v - self.origin[ax]) / self.cell).floor().max(0.0) as usize).min(self.dims[ax] - 1)
-        };
-        let cell = &self.cells[ix(y, 1) * self.dims[0] + ix(x, 0)];
+        let cell = self.moves.near(x, y);
         let r = self.bottom.radius();
         LOWER.with(|lower| {
             let mut lower = lower.borrow_mut();
             lower.clear();
             lower.extend(cell.iter().filter_map(|&k| {
-                let (a, b) = self.segs[k as usize];
+                let (a, b) = self.moves.segs[k as usize];
                 let d = xy_distance(x, y, &a, &b);
                 (d <= r + REACH_EPS).then(|| (a.z.min(b.z) + self.bottom.at(d), k))
             }));
@@ -155,7 +115,7 @@ impl Swept {
                 if bound >= best {
                     break;
                 }
-                let (a, b) = self.segs[k as usize];
+                let (a, b) = self.moves.segs[k as usize];
                 best = best.min(self.move_height(x, y, &a, &b));
             }
             best
