@@ -13,8 +13,9 @@ use swarf_fiveaxis::profile_point::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
 use swarf_geom::Part;
-use swarf_path::{Contact, Job};
+use swarf_path::Job;
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::Contact;
 
 fn bench(c: &mut Criterion) {
     let part = swarf_io::builtin_part("die").expect("die");

@@ -17,8 +17,9 @@ use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
 use swarf_geom::Part;
-use swarf_path::{Contact, Feeds, Job, Linking, Pass, Toolpath};
+use swarf_path::Job;
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::{Contact, Feeds, Linking, Pass, Toolpath};
 
 fn show(name: &str, r: &PositioningReport, secs: f64) {
     let worst = r.gouges.first();

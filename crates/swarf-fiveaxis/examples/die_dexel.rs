@@ -16,9 +16,10 @@ use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
 use swarf_geom::{Part, Point3};
 use swarf_nc::read::{Motion, MotionKind};
-use swarf_path::{Contact, Job};
+use swarf_path::Job;
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, SimTool, StockInit, simulate};
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::Contact;
 
 /// Gouge tolerance, mm.
 const TOL: f64 = 0.01;

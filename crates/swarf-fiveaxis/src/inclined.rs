@@ -30,8 +30,8 @@ use crate::error::FiveAxisError;
 use serde::{Deserialize, Serialize};
 use swarf_geom::tol::LENGTH_EPS;
 use swarf_geom::{Point3, Vec3};
-use swarf_path::{Contact, Pass, PathPoint};
 use swarf_tool::{Cutter, Pose, Profile};
+use swarf_toolpath::{Contact, Pass, PathPoint};
 
 /// Lead and tilt angles of the inclined-tool method, radians.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]

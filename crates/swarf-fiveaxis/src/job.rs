@@ -37,7 +37,8 @@ use std::path::Path;
 use swarf_geom::Part;
 use swarf_nc::{Dialect, Units};
 use swarf_path::job::{OutputDialect, OutputFeedMode, OutputUnits};
-use swarf_path::{Contact, Job, Linking, Pass, PathError, Plan, PlanInput, Toolpath};
+use swarf_path::{Job, PathError, Plan, PlanInput};
+use swarf_toolpath::{Contact, Linking, Pass, Toolpath};
 
 /// The machine files shipped with swarf (`machines/*.toml`), by built-in name.
 pub const BUILTIN_MACHINES: [(&str, &str); 3] = [
@@ -249,8 +250,8 @@ pub fn write_job_gcode(
 mod tests {
     use super::*;
     use swarf_geom::{Point3, Vec3};
-    use swarf_path::PathPoint;
     use swarf_tool::Pose;
+    use swarf_toolpath::PathPoint;
 
     fn point(x: f64, contact: bool) -> PathPoint {
         let p = Point3::new(x, 0.0, 1.0);

@@ -51,8 +51,8 @@
 use std::f64::consts::FRAC_PI_2;
 use swarf_geom::tol::LENGTH_EPS;
 use swarf_geom::{Part, Point3, Vec3};
-use swarf_path::Contact;
 use swarf_tool::Cutter;
+use swarf_toolpath::Contact;
 
 /// The bottom of a cutter seen as a torus (module doc).
 #[derive(Debug, Clone, Copy, PartialEq)]

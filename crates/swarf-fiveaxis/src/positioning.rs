@@ -29,8 +29,8 @@ use rayon::current_num_threads;
 use rayon::prelude::*;
 use serde::Serialize;
 use swarf_geom::Part;
-use swarf_path::{Contact, Pass};
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::{Contact, Pass};
 
 pub use swarf_path::job::Positioning;
 

@@ -45,8 +45,8 @@ use subdivide::{PathTol, subdivide};
 pub use subdivide::{PostReport, Stray};
 use swarf_nc::number::{Units, format_decimal};
 use swarf_nc::{Dialect, NcError};
-use swarf_path::{Move, MoveKind, Toolpath};
 use swarf_tool::Pose;
+use swarf_toolpath::{Move, MoveKind, Toolpath};
 
 /// Decimal places of rotary words, degrees.
 const ANGLE_DECIMALS: usize = 4;

@@ -8,9 +8,10 @@ use swarf_fiveaxis::swept::SweptSurface;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
 use swarf_geom::Part;
 use swarf_nc::read::{Motion, MotionKind};
-use swarf_path::{Contact, Job};
+use swarf_path::Job;
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, SimTool, StockInit, simulate};
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::Contact;
 
 #[test]
 fn generating_curves_agree_with_the_dexel_within_3_micrometres() {

@@ -48,9 +48,10 @@ use swarf_fiveaxis::profile_point::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_geom::Part;
 use swarf_nc::read::{Motion, MotionKind, Program};
-use swarf_path::{Contact, Job, Pass};
+use swarf_path::Job;
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::{Contact, Pass};
 
 /// The thesis's toroidal cutter.
 const CUTTER: &str = "bull:d=38.1,r=6.35";

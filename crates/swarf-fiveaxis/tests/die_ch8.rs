@@ -11,8 +11,9 @@ use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::lead_bound::lead_bound;
 use swarf_fiveaxis::positioning::{Positioning, position};
 use swarf_geom::{Part, Point3, Vec3};
-use swarf_path::{Contact, Job, Pass};
+use swarf_path::Job;
 use swarf_tool::Cutter;
+use swarf_toolpath::{Contact, Pass};
 
 fn die() -> Part {
     swarf_io::builtin_part("die").expect("the built-in die part loads")

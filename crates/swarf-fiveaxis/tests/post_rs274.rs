@@ -12,8 +12,9 @@ use swarf_fiveaxis::machine::kinematics::Joints;
 use swarf_fiveaxis::post::{FeedMode, PostOptions, write_gcode_5x};
 use swarf_fiveaxis::{FiveAxisError, incline_pass};
 use swarf_geom::{Part, Point3, Vec3};
-use swarf_path::{Contact, Feeds, Job, Linking, Move, Toolpath};
+use swarf_path::Job;
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::{Contact, Feeds, Linking, Move, Toolpath};
 
 const MACHINES: [(&str, &str); 3] = [
     (

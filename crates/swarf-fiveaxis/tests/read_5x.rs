@@ -20,8 +20,9 @@ use swarf_fiveaxis::post::subdivide::MAX_BLOCKS;
 use swarf_fiveaxis::post::{FeedMode, PostOptions, post_5x};
 use swarf_geom::{Part, Point3, Vec3};
 use swarf_nc::read::{GcodeReadOptions, Program, parse_gcode};
-use swarf_path::{Contact, Feeds, Job, Linking, Move, MoveKind, Toolpath};
+use swarf_path::Job;
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::{Contact, Feeds, Linking, Move, MoveKind, Toolpath};
 
 const MACHINES: [(&str, &str); 3] = [
     (

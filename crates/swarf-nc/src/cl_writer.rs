@@ -6,8 +6,8 @@
 use crate::error::NcError;
 use crate::number::Units;
 use std::fmt::Write as _;
-use swarf_path::{Feeds, Move, MoveKind};
 use swarf_tool::Cutter;
+use swarf_toolpath::{Feeds, Move, MoveKind};
 
 /// Writes `moves` as an APT CL file.
 ///

@@ -7,7 +7,7 @@
 use crate::number::Units;
 use crate::number::format_decimal;
 use std::fmt::Write as _;
-use swarf_path::Toolpath;
+use swarf_toolpath::Toolpath;
 
 /// The cutting poses of `toolpath` as CSV text.
 ///
@@ -29,7 +29,7 @@ pub fn write_pose_csv(toolpath: &Toolpath, units: Units) -> String {
     out
 }
 
-fn write_pass(out: &mut String, pass: &swarf_path::Pass, units: Units) {
+fn write_pass(out: &mut String, pass: &swarf_toolpath::Pass, units: Units) {
     for p in &pass.points {
         let c = p.pose.cl;
         let a = p.pose.axis;

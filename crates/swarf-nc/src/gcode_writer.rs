@@ -10,7 +10,7 @@ use crate::error::NcError;
 use crate::number::{Units, format_decimal};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
-use swarf_path::{Feeds, Move, MoveKind};
+use swarf_toolpath::{Feeds, Move, MoveKind};
 
 /// Control family the program is written for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]

@@ -8,8 +8,8 @@ use swarf_nc::read::{
     GcodeReadOptions, MotionKind, Program, parse_cl, parse_gcode, parse_pose_csv, read_program,
 };
 use swarf_nc::{Dialect, GcodeOptions, NcError, Units, write_cl, write_gcode, write_pose_csv};
-use swarf_path::{Feeds, Linking, Move, MoveKind, Pass, PathPoint, Toolpath};
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::{Feeds, Linking, Move, MoveKind, Pass, PathPoint, Toolpath};
 
 /// Three zigzag passes over a wavy surface; `tilt` leans the axis (five-axis CL).
 fn toolpath(tilt: f64) -> Toolpath {

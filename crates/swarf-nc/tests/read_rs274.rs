@@ -321,8 +321,8 @@ fn radius_mismatch_limits_as_linuxcnc() {
 #[test]
 fn writer_output_matches_rs274_live() {
     use swarf_nc::{Dialect, GcodeOptions, Units, write_gcode};
-    use swarf_path::{Feeds, Linking, Pass, PathPoint, Toolpath};
     use swarf_tool::Pose;
+    use swarf_toolpath::{Feeds, Linking, Pass, PathPoint, Toolpath};
     let passes = (0..3)
         .map(|k| Pass {
             points: (0..5)

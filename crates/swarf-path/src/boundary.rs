@@ -19,9 +19,9 @@
 use crate::forward_step::sample_curve;
 use crate::iso_setup::IsoSetup;
 use crate::ordering::Row;
-use crate::toolpath::Pass;
 use rayon::prelude::*;
 use swarf_geom::{Point3, Vec3};
+use swarf_toolpath::Pass;
 
 /// Edge samples per coverage radius.
 const SAMPLES_PER_RADIUS: f64 = 4.0;

@@ -10,9 +10,9 @@
 //! or faces away from the tool's reach (a horizontal normal under an overhang) has
 //! no CL point.
 
-use crate::toolpath::{Contact, PathPoint};
 use swarf_geom::{Patch, SurfaceDerivs, Vec3};
 use swarf_tool::{Cutter, Pose, Profile};
+use swarf_toolpath::{Contact, PathPoint};
 
 /// Unit normal of `d` turned toward `+z` (the tool side); `None` where the patch is
 /// degenerate. A horizontal normal keeps the patch's orientation.

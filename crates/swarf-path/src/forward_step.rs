@@ -18,8 +18,8 @@
 //! excludes), the curve is cut: a coarse scan finds the defined intervals, their ends
 //! are refined by bisection, and each interval is sampled on its own.
 
-use crate::toolpath::PathPoint;
 use swarf_geom::Point3;
+use swarf_toolpath::PathPoint;
 
 /// Safety factor on the curvature-predicted step (dimensionless).
 const STEP_SAFETY: f64 = 0.9;

@@ -37,11 +37,11 @@
 
 use crate::error::PathError;
 use crate::gouge_ball::BallGouge;
-use crate::toolpath::{Pass, PathPoint};
 use rayon::prelude::*;
 use swarf_geom::Part;
 use swarf_tool::Cutter;
 use swarf_tool::drop::{DropScratch, MeshDropper};
+use swarf_toolpath::{Pass, PathPoint};
 
 /// Tessellation tolerance of the gouge mesh as a fraction of the machining tolerance.
 pub const MESH_FRACTION: f64 = 0.25;

@@ -32,8 +32,8 @@ use crate::job::{Job, ParamDir, StartSide};
 use crate::ordering::Row;
 use crate::plan::{Plan, PlanReport, Uncovered};
 use crate::side_step::corners_face;
-use crate::toolpath::Pass;
 use swarf_geom::{Part, Point3, Vec3};
+use swarf_toolpath::Pass;
 
 /// Uniform samples used for the side step of a path with no reachable point.
 const FALLBACK_SAMPLES: usize = 33;
@@ -295,8 +295,8 @@ fn to_row(runs: &[Vec<Sample>]) -> Row {
 mod tests {
     use super::*;
     use crate::side_step::ball_scallop;
-    use crate::toolpath::PathPoint;
     use swarf_geom::Point3;
+    use swarf_toolpath::PathPoint;
 
     fn job(h: f64) -> Job {
         Job::parse(

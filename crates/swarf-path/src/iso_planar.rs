@@ -54,8 +54,8 @@ use crate::ordering::Row;
 use crate::plan::{Plan, PlanReport};
 use crate::section_point::{PlaneEq, Solved, two_planes};
 use crate::side_step::corners_face;
-use crate::toolpath::{Pass, PathPoint};
 use swarf_geom::{Part, Patch, Plane, SectionCurve, Vec3};
+use swarf_toolpath::{Pass, PathPoint};
 
 /// The first and last planes are moved this far inside the part's extent, mm.
 const EDGE_INSET: f64 = 1e-4;

@@ -63,9 +63,9 @@ use crate::ordering::Row;
 use crate::plan::{Plan, PlanReport, Uncovered};
 use crate::scallop_step::{Next, NextPoint, Station, next_point, point_at_offset};
 use crate::side_step::corners_face;
-use crate::toolpath::Pass;
 use rayon::prelude::*;
 use swarf_geom::{Part, Point3};
+use swarf_toolpath::Pass;
 
 /// Largest distance between stations, mm.
 pub const STATION_SPACING: f64 = 1.0;

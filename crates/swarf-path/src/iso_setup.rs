@@ -25,10 +25,10 @@ use crate::job::Job;
 use crate::ordering::{Joining, Row, order_rows};
 use crate::plan::{Plan, PlanReport};
 use crate::side_step::SideStep;
-use crate::toolpath::{PathPoint, Toolpath};
 use crate::uncovered::{Marked, regions};
 use swarf_geom::{Part, Point3, SurfaceDerivs, Vec3};
 use swarf_tool::drop::DropScratch;
+use swarf_toolpath::{PathPoint, Toolpath};
 
 /// A CC point is hidden under another patch when the envelope (tessellated within the
 /// tolerance) is above it by more than this many tolerances...

@@ -55,7 +55,7 @@ mod positioning;
 pub use positioning::Positioning;
 
 use crate::error::PathError;
-use crate::toolpath::{Feeds, Linking};
+use swarf_toolpath::{Feeds, Linking};
 
 /// Linking as a job gives it: the clearance plane may be left to swarf.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -1,5 +1,5 @@
-//! swarf-path: the tool path model (poses, passes, links, feeds), job files, and the
-//! 3-axis finishing strategies that produce tool paths.
+//! swarf-path: the 3-axis finishing strategies that produce tool paths (the model
+//! they produce is swarf-toolpath's).
 
 mod boundary;
 pub mod cl_curve;
@@ -27,12 +27,8 @@ pub mod section_point;
 pub mod side_step;
 #[cfg(test)]
 mod test_parts;
-pub mod toolpath;
 mod uncovered;
 
 pub use error::PathError;
 pub use job::{Job, StrategyKind, StrategyParams};
 pub use plan::{Plan, PlanInput, PlanReport, plan};
-pub use toolpath::{
-    Contact, Feeds, Linking, MotionStats, Move, MoveKind, Pass, PathPoint, Toolpath, motion_stats,
-};

@@ -12,9 +12,9 @@
 //! Zigzag reverses every other row (pieces and points), so consecutive passes start
 //! near where the previous one ended; one-way keeps every row in its travel order.
 
-use crate::toolpath::{Pass, PathPoint};
 use swarf_geom::Point3;
 use swarf_tool::Pose;
+use swarf_toolpath::{Pass, PathPoint};
 
 /// The pieces of one row, in travel order.
 pub type Row = Vec<Pass>;

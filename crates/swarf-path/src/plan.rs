@@ -4,9 +4,9 @@ use crate::error::PathError;
 use crate::job::{Job, StrategyKind};
 use crate::pass_bound::{Feed, PassBound, pass_bound};
 use crate::side_step::SideStep;
-use crate::toolpath::Toolpath;
 use serde::{Deserialize, Serialize};
 use swarf_geom::{Part, Point3, TriMesh};
+use swarf_toolpath::Toolpath;
 
 /// What a job plans on.
 #[derive(Debug, Clone, Copy)]

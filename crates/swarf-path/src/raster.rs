@@ -34,10 +34,10 @@ use crate::plan::{Plan, PlanReport};
 use crate::raster_frame::Frame;
 use crate::raster_pass::{PassOut, Sampler};
 use crate::raster_step::flat_scallop;
-use crate::toolpath::{Pass, Toolpath};
 use rayon::prelude::*;
 use swarf_geom::TriMesh;
 use swarf_tool::drop::{DropScratch, MeshDropper};
+use swarf_toolpath::{Pass, Toolpath};
 
 /// First sampling step along a pass, as a fraction of the tool radius.
 pub const INIT_STEP_RADII: f64 = 0.25;

@@ -25,10 +25,10 @@
 
 use crate::plan::DoubleContact;
 use crate::raster_double::{TOP_TOL, double_contact, same_plane};
-use crate::toolpath::{Contact, PathPoint};
 use swarf_geom::{Point3, TriMesh, Vec3};
 use swarf_tool::Pose;
 use swarf_tool::drop::{DropResult, DropScratch, MeshDropper};
+use swarf_toolpath::{Contact, PathPoint};
 
 /// The crease between two contacts is located to this along the pass, mm.
 pub const SWITCH_TOL: f64 = 1e-8;

@@ -10,8 +10,9 @@ mod iso_support;
 use iso_support::swept::Swept;
 use iso_support::{crests, crests_by, wave};
 use swarf_geom::{Patch, Point3, Vec3};
-use swarf_path::{Contact, Feeds, Linking, Pass, PathPoint, Plan, PlanInput, Toolpath};
+use swarf_path::{Plan, PlanInput};
 use swarf_tool::Cutter;
+use swarf_toolpath::{Contact, Feeds, Linking, Pass, PathPoint, Toolpath};
 
 const H: f64 = 0.15;
 const TOL: f64 = 0.01;
@@ -122,7 +123,8 @@ fn bull_cutters_keep_the_scallop_below_h() {
         let cutter: Cutter = tool.parse().unwrap();
         for kind in ["iso-parametric", "iso-planar", "iso-scallop"] {
             let plan = wave_plan(kind, tool, "");
-            let cutting = swarf_path::motion_stats(&plan.toolpath.moves(), 5000.0).cutting_length;
+            let cutting =
+                swarf_toolpath::motion_stats(&plan.toolpath.moves(), 5000.0).cutting_length;
             let measured = swept_crest(&plan, &cutter);
             let predicted = plan.report.predicted_max_scallop.unwrap();
             let bound = plan.report.pass_bound[0].passes;

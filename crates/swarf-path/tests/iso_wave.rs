@@ -8,7 +8,8 @@
 mod iso_support;
 
 use iso_support::{crests, max_residual, wave, wave_job};
-use swarf_path::{Plan, PlanInput, motion_stats};
+use swarf_path::{Plan, PlanInput};
+use swarf_toolpath::motion_stats;
 
 const H: f64 = 0.15;
 const TOL: f64 = 0.01;
@@ -126,8 +127,8 @@ fn scallops_stay_below_h_and_iso_scallop_is_the_most_economical() {
 #[test]
 fn the_scallop_oracle_measures_the_closed_form() {
     use swarf_geom::{Part, Patch, Point3, Vec3};
-    use swarf_path::{Contact, Feeds, Linking, Pass, PathPoint, Toolpath};
     use swarf_tool::Pose;
+    use swarf_toolpath::{Contact, Feeds, Linking, Pass, PathPoint, Toolpath};
     let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
     let flat = Patch::bezier(
         [1, 1],

@@ -6,8 +6,8 @@
 
 use swarf_path::job::Job;
 use swarf_path::plan::{Plan, PlanInput, plan};
-use swarf_path::toolpath::MoveKind;
 use swarf_tool::drop::{DropCutter, triangle_drop};
+use swarf_toolpath::MoveKind;
 
 fn wave_plan() -> (swarf_geom::TriMesh, Job, Plan) {
     let part = swarf_io::builtin_part("wave").unwrap();

@@ -131,7 +131,7 @@ fn rs274_feeds(program: &Path) -> Option<Vec<Joints>> {
 }
 
 /// The same job planned in-process: the positioned passes with their contacts.
-fn positioned(text: &str) -> Vec<swarf_path::Pass> {
+fn positioned(text: &str) -> Vec<swarf_toolpath::Pass> {
     let job = swarf_path::Job::parse(text, "job.toml").unwrap();
     let part = swarf_io::builtin_part("die").unwrap();
     let mut plan = swarf_path::plan(&job, swarf_path::PlanInput::Part(&part)).unwrap();

@@ -11,8 +11,9 @@ use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::positioning::{Positioning, position};
 use swarf_fiveaxis::post::{PostOptions, write_gcode_5x};
 use swarf_nc::{Units, write_cl};
-use swarf_path::{Feeds, Job, Linking, Toolpath};
+use swarf_path::Job;
 use swarf_tool::Cutter;
+use swarf_toolpath::{Feeds, Linking, Toolpath};
 
 const CUTTER: &str = "bull:d=38.1,r=6.35";
 

@@ -49,8 +49,8 @@ use crate::profile_point::ProfileTable;
 use pass::{PassResult, PassTilt, tilt_pass};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use swarf_path::{Contact, Pass, PathPoint};
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::{Contact, Pass, PathPoint};
 
 /// Options of the automatic tilt.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -9,8 +9,8 @@ use crate::gouge::{PoseGouge, pose_gouge};
 use crate::inclined::{Inclination, inclined_pose};
 use crate::profile_point::ProfileTable;
 use swarf_geom::Vec3;
-use swarf_path::Contact;
 use swarf_tool::{Pose, Profile};
+use swarf_toolpath::Contact;
 
 /// The first upward step of the bracket search when there is no hint (radians, 1
 /// degree).

@@ -12,8 +12,9 @@ use moves::MoveGrid;
 
 use rayon::prelude::*;
 use swarf_geom::{Part, Patch, Point3, Vec3};
-use swarf_path::{Pass, Plan};
+use swarf_path::Plan;
 use swarf_tool::Cutter;
+use swarf_toolpath::Pass;
 
 /// The built-in wave part (paper 004's experiment).
 pub fn wave() -> Part {

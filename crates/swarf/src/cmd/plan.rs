@@ -11,9 +11,10 @@ use swarf_fiveaxis::job::{load_machine, position_plan, write_job_gcode};
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::positioning::PositioningReport;
 use swarf_nc::{Dialect, GcodeOptions, Units};
+use swarf_path::Job;
 use swarf_path::job::{OutputDialect, OutputUnits, Positioning};
 use swarf_path::plan::{Plan, PlanInput};
-use swarf_path::{Job, motion_stats};
+use swarf_toolpath::motion_stats;
 
 /// Arguments of `swarf plan`.
 #[derive(clap::Args)]
