@@ -6,9 +6,10 @@
 //! `machines/xyzac-trunnion.toml`, as APT CL, and its machined surface as STL.
 
 use std::time::Instant;
+use swarf_app::Job;
+use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, pose_gouge};
-use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport, position};
 use swarf_fiveaxis::post::{PostOptions, write_gcode_5x};
@@ -17,7 +18,6 @@ use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
 use swarf_geom::Part;
-use swarf_path::Job;
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Contact, Feeds, Linking, Pass, Toolpath};
 

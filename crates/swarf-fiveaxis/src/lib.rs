@@ -13,8 +13,8 @@
 //! - [`swept`]: the machined surface as a mesh of generating curves, sampled by height.
 //! - [`sections`], [`design`], [`gouge`]: sectioning gouge detection (§7.2).
 //!
-//! Jobs:
-//! - [`job`]: positioning a planned job's CC paths, its linking, machines and post.
+//! Paths:
+//! - [`cc_paths`]: the CC paths of a planned tool path, and the linking of positioned passes.
 //!
 //! Machines and output:
 //! - [`machine`]: machine files, forward and inverse kinematics, rotary continuity.
@@ -23,12 +23,12 @@
 //! Units: millimetres and radians inside; degrees only in files and reports.
 
 pub mod autotilt;
+pub mod cc_paths;
 pub mod design;
 pub mod error;
 pub mod gencurve;
 pub mod gouge;
 pub mod inclined;
-pub mod job;
 pub mod lead_bound;
 pub mod machine;
 pub mod motion;

@@ -13,8 +13,7 @@
 //! least lead the design's curvature along the feed allows at the CC points
 //! ([`crate::lead_bound`]): no positioning of the tool can use less.
 //!
-//! The job-file form, [`Positioning`], is plain data defined with the job in
-//! [`swarf_path::job`] (re-exported here).
+//! The job-file form, [`Positioning`], is plain data ([`spec`]).
 
 use crate::autotilt::{TiltOptions, TiltReport, gouge_free_tilt};
 use crate::design::DesignSurface;
@@ -32,7 +31,9 @@ use swarf_geom::Part;
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Contact, Pass};
 
-pub use swarf_path::job::Positioning;
+pub mod spec;
+
+pub use spec::Positioning;
 
 /// Largest number of gouging poses listed in a report (the count is always given).
 pub const MAX_LISTED_GOUGES: usize = 100;

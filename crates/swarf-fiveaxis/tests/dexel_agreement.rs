@@ -3,12 +3,12 @@
 //! ch. 6: "both methods are in agreement within 3 um"); the full comparison at x = -20,
 //! -50, -80 mm is `examples/die_dexel.rs`.
 
-use swarf_fiveaxis::job::planned_cc_paths;
+use swarf_app::Job;
+use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::swept::SweptSurface;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
 use swarf_geom::Part;
 use swarf_nc::read::{Motion, MotionKind};
-use swarf_path::Job;
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, SimTool, StockInit, simulate};
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::Contact;

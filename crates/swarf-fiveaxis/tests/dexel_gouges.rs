@@ -39,16 +39,16 @@
 //! where the whole-tool check stops; that pose is flagged deeper on its torus, so the
 //! cell is explained here.
 
+use swarf_app::Job;
+use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::CurveOptions;
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, PoseGouge, check_pass, wall_top};
-use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport, mean_direction, position};
 use swarf_fiveaxis::profile_point::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_geom::Part;
 use swarf_nc::read::{Motion, MotionKind, Program};
-use swarf_path::Job;
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Contact, Pass};

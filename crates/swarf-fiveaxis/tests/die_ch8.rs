@@ -7,11 +7,11 @@
 //! to design points), and the automatic method's result is checked gouge-free by the
 //! same independent check.
 
-use swarf_fiveaxis::job::planned_cc_paths;
+use swarf_app::Job;
+use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::lead_bound::lead_bound;
 use swarf_fiveaxis::positioning::{Positioning, position};
 use swarf_geom::{Part, Point3, Vec3};
-use swarf_path::Job;
 use swarf_tool::Cutter;
 use swarf_toolpath::{Contact, Pass};
 

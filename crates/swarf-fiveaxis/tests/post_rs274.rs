@@ -6,13 +6,13 @@
 
 use std::path::Path;
 use std::process::Command;
-use swarf_fiveaxis::job::planned_cc_paths;
+use swarf_app::Job;
+use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::machine::kinematics::Joints;
 use swarf_fiveaxis::post::{FeedMode, PostOptions, write_gcode_5x};
 use swarf_fiveaxis::{FiveAxisError, incline_pass};
 use swarf_geom::{Part, Point3, Vec3};
-use swarf_path::Job;
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Contact, Feeds, Linking, Move, Toolpath};
 

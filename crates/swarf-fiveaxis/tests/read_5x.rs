@@ -11,7 +11,8 @@
 //! finds the tip well off the chord: the check can fail.
 
 use std::ops::Range;
-use swarf_fiveaxis::job::planned_cc_paths;
+use swarf_app::Job;
+use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::machine::kinematics::Joints;
 use swarf_fiveaxis::machine::reader::MachineKinematics;
@@ -20,7 +21,6 @@ use swarf_fiveaxis::post::subdivide::MAX_BLOCKS;
 use swarf_fiveaxis::post::{FeedMode, PostOptions, post_5x};
 use swarf_geom::{Part, Point3, Vec3};
 use swarf_nc::read::{GcodeReadOptions, Program, parse_gcode};
-use swarf_path::Job;
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Contact, Feeds, Linking, Move, MoveKind, Toolpath};
 

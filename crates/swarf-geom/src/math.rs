@@ -129,6 +129,14 @@ impl Polyline {
     }
 }
 
+/// Degrees for display: `naive` (an angle `rad` in radians, converted to degrees by
+/// the caller) rounded to 1e-9 degree when the rounded value maps back to the same
+/// radians through `back`, so that an angle given as 60 degrees reads 60 again.
+pub fn display_degrees(naive: f64, rad: f64, back: impl Fn(f64) -> f64) -> f64 {
+    let rounded = (naive * 1e9).round() / 1e9;
+    if back(rounded) == rad { rounded } else { naive }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

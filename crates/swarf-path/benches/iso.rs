@@ -10,10 +10,10 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::time::Duration;
-use swarf_path::job::ParamDir;
+use swarf_app::{Job, PlanInput};
+use swarf_path::params::ParamDir;
 use swarf_path::pass_bound::{Feed, pass_bound};
 use swarf_path::side_step::SideStep;
-use swarf_path::{Job, PlanInput};
 
 fn job(kind: &str, h: f64, tol: f64) -> Job {
     let text = format!(
@@ -31,7 +31,7 @@ fn bench(c: &mut Criterion) {
             let job = job(kind, h, tol);
             group.bench_function(format!("{kind} h={h} tol={tol}"), |b| {
                 b.iter(|| {
-                    let plan = swarf_path::plan(&job, PlanInput::Part(&part)).expect("plans");
+                    let plan = swarf_app::plan(&job, PlanInput::Part(&part)).expect("plans");
                     black_box(plan.toolpath.pose_count())
                 })
             });

@@ -2,17 +2,9 @@
 
 use thiserror::Error;
 
-/// What can go wrong when reading a job or planning a tool path.
+/// What can go wrong when planning a tool path.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum PathError {
-    /// A job file is malformed or out of range.
-    #[error("{file}: {message}")]
-    Job {
-        /// The job file.
-        file: String,
-        /// Line and field, and what was expected.
-        message: String,
-    },
     /// A planning parameter is out of range.
     #[error("{field}: {message}")]
     InvalidParameter {

@@ -28,8 +28,8 @@
 use crate::error::PathError;
 use crate::forward_step::{Sample, sample_curve};
 use crate::iso_setup::{IsoSetup, SideGeom, fit_interval};
-use crate::job::{Job, ParamDir, StartSide};
 use crate::ordering::Row;
+use crate::params::{IsoParams, ParamDir, StartSide, StrategyKind};
 use crate::plan::{Plan, PlanReport, Uncovered};
 use crate::side_step::corners_face;
 use swarf_geom::{Part, Point3, Vec3};
@@ -54,8 +54,8 @@ struct Crossing {
 /// [`PathError::InvalidParameter`] naming `strategy.scallop` or `strategy.tolerance`
 /// when out of range; [`PathError::NoPath`] when no CC point can be reached;
 /// [`PathError::Geom`] when the part cannot be tessellated for the gouge check.
-pub fn plan(part: &Part, job: &Job) -> Result<Plan, PathError> {
-    let setup = IsoSetup::new(part, job)?;
+pub fn plan(part: &Part, params: &IsoParams) -> Result<Plan, PathError> {
+    let setup = IsoSetup::new(part, params, StrategyKind::IsoParametric)?;
     let mut rows = Vec::new();
     let mut report = PlanReport::default();
     let mut figures = Figures::default();
@@ -112,7 +112,7 @@ impl<'s, 'a> IsoParam<'s, 'a> {
     fn new(setup: &'s IsoSetup<'a>, face: usize) -> Self {
         let map = setup.cl_map(face);
         let [du, dv] = map.patch().domain();
-        let along_u = setup.job.strategy.direction == ParamDir::U;
+        let along_u = setup.params.direction == ParamDir::U;
         let (t_range, s_range) = if along_u { (du, dv) } else { (dv, du) };
         IsoParam {
             setup,
@@ -128,7 +128,7 @@ impl<'s, 'a> IsoParam<'s, 'a> {
     }
 
     fn plan(&self, rows: &mut Vec<Row>, figures: &mut Figures, report: &mut PlanReport) {
-        let (mut s, end, sign) = match self.setup.job.strategy.start {
+        let (mut s, end, sign) = match self.setup.params.start {
             StartSide::Min => (self.s_range[0], self.s_range[1], 1.0),
             StartSide::Max => (self.s_range[1], self.s_range[0], -1.0),
         };
@@ -264,7 +264,7 @@ impl<'s, 'a> IsoParam<'s, 'a> {
 
     fn collapsed(&self, s: f64) -> Uncovered {
         let (name, other) = if self.along_u { ("v", "u") } else { ("u", "v") };
-        let end = match self.setup.job.strategy.start {
+        let end = match self.setup.params.start {
             StartSide::Min => self.s_range[1],
             StartSide::Max => self.s_range[0],
         };
@@ -294,18 +294,13 @@ fn to_row(runs: &[Vec<Sample>]) -> Row {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::params::Finish;
     use crate::side_step::ball_scallop;
     use swarf_geom::Point3;
     use swarf_toolpath::PathPoint;
 
-    fn job(h: f64) -> Job {
-        Job::parse(
-            &format!(
-                "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"iso-parametric\"\nscallop = {h}\ntolerance = 0.01\n"
-            ),
-            "job.toml",
-        )
-        .unwrap()
+    fn job(h: f64) -> IsoParams {
+        IsoParams::new(Finish::new("ball:d=8".parse().unwrap()), h)
     }
 
     /// The CC point of the pass at its smallest x (passes alternate direction).
@@ -349,14 +344,14 @@ mod tests {
     fn bad_parameters_name_their_field() {
         let part = crate::test_parts::cylinder(1.0);
         let mut j = job(0.1);
-        j.strategy.scallop = None;
+        j.scallop = None;
         let e = plan(&part, &j).unwrap_err().to_string();
         assert!(e.starts_with("strategy.scallop"), "{e}");
-        j.strategy.scallop = Some(5.0);
+        j.scallop = Some(5.0);
         let e = plan(&part, &j).unwrap_err().to_string();
         assert!(e.starts_with("strategy.scallop"), "{e}");
         let mut j = job(0.1);
-        j.strategy.tolerance = -1.0;
+        j.finish.tolerance = -1.0;
         let e = plan(&part, &j).unwrap_err().to_string();
         assert!(e.starts_with("strategy.tolerance"), "{e}");
     }

@@ -49,8 +49,8 @@ use crate::error::PathError;
 use crate::forward_step::{Sample, point_segment_distance, sample_curve};
 use crate::iso_parametric::Figures;
 use crate::iso_setup::{IsoSetup, fit_interval};
-use crate::job::{Job, StartSide};
 use crate::ordering::Row;
+use crate::params::{IsoParams, StartSide, StrategyKind};
 use crate::plan::{Plan, PlanReport};
 use crate::section_point::{PlaneEq, Solved, two_planes};
 use crate::side_step::corners_face;
@@ -72,15 +72,15 @@ const PULL_BACK_STEPS: usize = 4;
 /// [`PathError::InvalidParameter`] naming `strategy.scallop`, `strategy.tolerance` or
 /// `strategy.angle` when out of range; [`PathError::NoPath`] when no drive plane meets
 /// the part or no CC point can be reached; [`PathError::Geom`] when a section fails.
-pub fn plan(part: &Part, job: &Job) -> Result<Plan, PathError> {
-    let setup = IsoSetup::new(part, job)?;
-    let a = job.angle_rad();
+pub fn plan(part: &Part, params: &IsoParams) -> Result<Plan, PathError> {
+    let setup = IsoSetup::new(part, params, StrategyKind::IsoPlanar)?;
+    let a = params.angle;
     if !a.is_finite() {
         return Err(PathError::InvalidParameter {
             field: "strategy.angle".into(),
             message: format!(
                 "expected a finite angle in degrees, found {}",
-                job.strategy.angle
+                crate::params::degrees(params.angle)
             ),
         });
     }
@@ -95,7 +95,8 @@ pub fn plan(part: &Part, job: &Job) -> Result<Plan, PathError> {
     if rows.iter().all(|r| r.is_empty()) {
         return Err(PathError::NoPath(format!(
             "no drive plane at {} degrees meets a reachable point of part {:?}",
-            job.strategy.angle, part.name
+            crate::params::degrees(params.angle),
+            part.name
         )));
     }
     figures.write(&mut report);
@@ -123,10 +124,10 @@ impl IsoPlanar<'_, '_> {
             let (row, _) = self.row(0.5 * (lo + hi))?;
             return Ok(vec![row]);
         }
-        if let Some(step) = self.setup.job.strategy.stepover {
+        if let Some(step) = self.setup.params.stepover {
             return self.fixed_rows(lo + EDGE_INSET, hi - EDGE_INSET, step, figures);
         }
-        let (mut m, end, sign) = match self.setup.job.strategy.start {
+        let (mut m, end, sign) = match self.setup.params.start {
             StartSide::Min => (lo + EDGE_INSET, hi - EDGE_INSET, 1.0),
             StartSide::Max => (hi - EDGE_INSET, lo + EDGE_INSET, -1.0),
         };
@@ -164,7 +165,7 @@ impl IsoPlanar<'_, '_> {
         let n = ((hi - lo) / step).floor();
         let first = lo + 0.5 * ((hi - lo) - n * step);
         let mut planes: Vec<f64> = (0..=n as usize).map(|k| first + k as f64 * step).collect();
-        let sign = match self.setup.job.strategy.start {
+        let sign = match self.setup.params.start {
             StartSide::Min => 1.0,
             StartSide::Max => {
                 planes.reverse();
@@ -456,15 +457,14 @@ struct Crossing {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::params::Finish;
 
-    fn job(text: &str) -> Job {
-        Job::parse(
-            &format!(
-                "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"iso-planar\"\nscallop = 0.3\ntolerance = 0.01\n{text}\n"
-            ),
-            "job.toml",
-        )
-        .unwrap()
+    /// Planes at `angle_deg` from +X, spaced for a scallop of 0.3 mm by a ball d = 8.
+    fn job(angle_deg: f64) -> IsoParams {
+        IsoParams {
+            angle: angle_deg.to_radians(),
+            ..IsoParams::new(Finish::new("ball:d=8".parse().unwrap()), 0.3)
+        }
     }
 
     /// Height of `patch` over `(x, y)` by Newton on the XY map from the best node of a
@@ -498,7 +498,7 @@ mod tests {
     #[test]
     fn sections_cross_the_valley_of_two_patches_on_their_envelope() {
         let part = swarf_io::builtin_part("edge-convex").unwrap();
-        let plan = plan(&part, &job("angle = 90")).unwrap();
+        let plan = plan(&part, &job(90.0)).unwrap();
         let points: Vec<_> = plan
             .toolpath
             .passes
@@ -551,14 +551,18 @@ mod tests {
     #[test]
     fn start_side_and_bad_angle() {
         let part = swarf_io::builtin_part("wave").unwrap();
-        let a = plan(&part, &job("angle = 0\nstart = \"max\"")).unwrap();
+        let max = IsoParams {
+            start: StartSide::Max,
+            ..job(0.0)
+        };
+        let a = plan(&part, &max).unwrap();
         let first = a.toolpath.passes[0].points[0].contact.unwrap().point;
         assert!(first.y > 99.0, "{first:?}");
-        let b = plan(&part, &job("angle = 0")).unwrap();
+        let b = plan(&part, &job(0.0)).unwrap();
         let first = b.toolpath.passes[0].points[0].contact.unwrap().point;
         assert!(first.y < 1.0, "{first:?}");
-        let mut j = job("");
-        j.strategy.angle = f64::NAN;
+        let mut j = job(0.0);
+        j.angle = f64::NAN;
         let e = plan(&part, &j).unwrap_err().to_string();
         assert!(e.starts_with("strategy.angle"), "{e}");
     }

@@ -58,8 +58,8 @@ use crate::error::PathError;
 use crate::forward_step::{Sample, sample_curve};
 use crate::iso_parametric::Figures;
 use crate::iso_setup::IsoSetup;
-use crate::job::{Job, ParamDir, StartSide};
 use crate::ordering::Row;
+use crate::params::{IsoParams, ParamDir, StartSide, StrategyKind};
 use crate::plan::{Plan, PlanReport, Uncovered};
 use crate::scallop_step::{Next, NextPoint, Station, next_point, point_at_offset};
 use crate::side_step::corners_face;
@@ -83,8 +83,8 @@ const MIN_ADVANCE: f64 = 1e-6;
 /// [`PathError::InvalidParameter`] naming `strategy.scallop` or `strategy.tolerance`
 /// when out of range; [`PathError::NoPath`] when no CC point can be reached;
 /// [`PathError::Geom`] when the part cannot be prepared for the gouge check.
-pub fn plan(part: &Part, job: &Job) -> Result<Plan, PathError> {
-    let setup = IsoSetup::new(part, job)?;
+pub fn plan(part: &Part, params: &IsoParams) -> Result<Plan, PathError> {
+    let setup = IsoSetup::new(part, params, StrategyKind::IsoScallop)?;
     let mut rows = Vec::new();
     let mut report = PlanReport::default();
     let mut figures = Figures::default();
@@ -116,8 +116,8 @@ impl<'s, 'a> IsoScallop<'s, 'a> {
     fn new(setup: &'s IsoSetup<'a>, face: usize) -> Self {
         let map = setup.cl_map(face);
         let [[u0, u1], [v0, v1]] = map.patch().domain();
-        let min = setup.job.strategy.start == StartSide::Min;
-        let (first, inward) = match setup.job.strategy.direction {
+        let min = setup.params.start == StartSide::Min;
+        let (first, inward) = match setup.params.direction {
             ParamDir::U => {
                 let v = if min { v0 } else { v1 };
                 (vec![[u0, v], [u1, v]], [0.0, if min { 1.0 } else { -1.0 }])
@@ -423,16 +423,11 @@ fn max_tilt(patch: &swarf_geom::Patch) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::params::Finish;
     use crate::side_step::ball_step;
 
-    fn job(tool: &str, h: f64) -> Job {
-        Job::parse(
-            &format!(
-                "part = \"x\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-scallop\"\nscallop = {h}\ntolerance = 0.01\n"
-            ),
-            "job.toml",
-        )
-        .unwrap()
+    fn job(tool: &str, h: f64) -> IsoParams {
+        IsoParams::new(Finish::new(tool.parse().unwrap()), h)
     }
 
     /// Angle (degrees) of the CC points of a pass around the cylinder axis.

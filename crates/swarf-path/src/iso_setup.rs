@@ -21,8 +21,8 @@ use crate::envelope::Envelope;
 use crate::error::PathError;
 use crate::forward_step::{OUTPUT_ROUNDING, StepOptions};
 use crate::gouge::GougeCheck;
-use crate::job::Job;
 use crate::ordering::{Joining, Row, order_rows};
+use crate::params::{IsoParams, StrategyKind};
 use crate::plan::{Plan, PlanReport};
 use crate::side_step::SideStep;
 use crate::uncovered::{Marked, regions};
@@ -55,8 +55,10 @@ pub struct SideGeom {
 pub struct IsoSetup<'a> {
     /// The part.
     pub part: &'a Part,
-    /// The job.
-    pub job: &'a Job,
+    /// The strategy's parameters.
+    pub params: &'a IsoParams,
+    /// Which iso strategy (for messages).
+    pub kind: StrategyKind,
     /// The side-step model.
     pub side: SideStep,
     /// Forward-step options.
@@ -74,34 +76,38 @@ impl<'a> IsoSetup<'a> {
     /// [`PathError::InvalidParameter`] naming `strategy.scallop` or
     /// `strategy.tolerance`; [`PathError::NoPath`] for a part without patches;
     /// [`PathError::Geom`] when the part cannot be tessellated.
-    pub fn new(part: &'a Part, job: &'a Job) -> Result<IsoSetup<'a>, PathError> {
-        let h = match (job.strategy.scallop, job.strategy.stepover) {
-            (Some(h), _) => h,
-            (None, Some(step)) => nominal_scallop(job.tool.radius(), step).ok_or_else(|| {
-                PathError::InvalidParameter {
-                    field: "strategy.stepover".into(),
-                    message: format!(
-                        "expected 0 < stepover < tool diameter {} mm, found {step} mm",
-                        2.0 * job.tool.radius()
-                    ),
+    pub fn new(
+        part: &'a Part,
+        params: &'a IsoParams,
+        kind: StrategyKind,
+    ) -> Result<IsoSetup<'a>, PathError> {
+        let h =
+            match (params.scallop, params.stepover) {
+                (Some(h), _) => h,
+                (None, Some(step)) => nominal_scallop(params.finish.tool.radius(), step)
+                    .ok_or_else(|| PathError::InvalidParameter {
+                        field: "strategy.stepover".into(),
+                        message: format!(
+                            "expected 0 < stepover < tool diameter {} mm, found {step} mm",
+                            2.0 * params.finish.tool.radius()
+                        ),
+                    })?,
+                (None, None) => {
+                    return Err(PathError::InvalidParameter {
+                        field: "strategy.scallop".into(),
+                        message: "required by the iso strategies (scallop height limit, mm)".into(),
+                    });
                 }
-            })?,
-            (None, None) => {
-                return Err(PathError::InvalidParameter {
-                    field: "strategy.scallop".into(),
-                    message: "required by the iso strategies (scallop height limit, mm)".into(),
-                });
-            }
-        };
-        let side = SideStep::new(&job.tool, h)?;
+            };
+        let side = SideStep::new(&params.finish.tool, h)?;
         if part.patches.is_empty() {
             return Err(PathError::NoPath(format!(
                 "part {:?} has no patches",
                 part.name
             )));
         }
-        let tolerance = job.strategy.tolerance;
-        let gouge = GougeCheck::new(part, &job.tool, tolerance)?;
+        let tolerance = params.finish.tolerance;
+        let gouge = GougeCheck::new(part, &params.finish.tool, tolerance)?;
         let envelope = if part.patches.len() > 1 {
             let mesh = part.tessellate(tolerance)?;
             Some(Envelope::new(
@@ -113,11 +119,12 @@ impl<'a> IsoSetup<'a> {
         };
         Ok(IsoSetup {
             part,
-            job,
+            params,
+            kind,
             side,
             step: StepOptions {
                 tolerance: (tolerance - OUTPUT_ROUNDING).max(0.5 * tolerance),
-                max_step: job.tool.radius(),
+                max_step: params.finish.tool.radius(),
             },
             gouge,
             envelope,
@@ -126,7 +133,7 @@ impl<'a> IsoSetup<'a> {
 
     /// The CC -> CL map of patch `face`.
     pub fn cl_map(&self, face: usize) -> ClMap<'a> {
-        ClMap::new(&self.part.patches[face], face, &self.job.tool)
+        ClMap::new(&self.part.patches[face], face, &self.params.finish.tool)
     }
 
     /// The CL point at `(u, v)` of `map`'s patch, `None` where undefined or hidden
@@ -194,10 +201,10 @@ impl<'a> IsoSetup<'a> {
         if total == 0 {
             return Err(PathError::NoPath(format!(
                 "{:?}: no CC point of part {:?} can be reached by the tool",
-                self.job.strategy.kind, self.part.name
+                self.kind, self.part.name
             )));
         }
-        if self.job.strategy.stepover.is_none() {
+        if self.params.stepover.is_none() {
             let extra = boundary_passes(self, &rows);
             if !extra.is_empty() {
                 rows.push(extra);
@@ -207,7 +214,7 @@ impl<'a> IsoSetup<'a> {
         if stats.lifted == total {
             return Err(PathError::NoPath(format!(
                 "tool {} is too large for any valid position on part {:?}: every CL point had to be lifted off its contact",
-                self.job.tool, self.part.name
+                self.params.finish.tool, self.part.name
             )));
         }
         report.lifted_points = stats.lifted;
@@ -215,11 +222,11 @@ impl<'a> IsoSetup<'a> {
         report.uncovered.extend(self.lifted_regions(&rows));
         let scratch = std::cell::RefCell::new(DropScratch::default());
         let join = Joining {
-            max_gap: 2.0 * self.job.tool.radius(),
+            max_gap: 2.0 * self.params.finish.tool.radius(),
             step: self.step.max_step,
             drop: |x: f64, y: f64| self.gouge.drop_z(x, y, &mut scratch.borrow_mut()),
         };
-        let passes = order_rows(rows, self.job.strategy.zigzag, &join);
+        let passes = order_rows(rows, self.params.finish.zigzag, &join);
         let top = passes
             .iter()
             .flat_map(|p| &p.points)
@@ -228,8 +235,8 @@ impl<'a> IsoSetup<'a> {
         Ok(Plan {
             toolpath: Toolpath {
                 passes,
-                feeds: self.job.feeds,
-                linking: self.job.linking_for(top),
+                feeds: self.params.finish.feeds,
+                linking: self.params.finish.linking.for_top(top),
             },
             report,
             double_contacts: Vec::new(),

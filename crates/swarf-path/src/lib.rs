@@ -12,8 +12,8 @@ pub mod iso_parametric;
 pub mod iso_planar;
 pub mod iso_scallop;
 mod iso_setup;
-pub mod job;
 mod ordering;
+pub mod params;
 pub mod pass_bound;
 pub mod plan;
 pub mod raster;
@@ -30,5 +30,5 @@ mod test_parts;
 mod uncovered;
 
 pub use error::PathError;
-pub use job::{Job, StrategyKind, StrategyParams};
-pub use plan::{Plan, PlanInput, PlanReport, plan};
+pub use params::{Finish, IsoParams, ParamDir, RasterParams, StartSide, StrategyKind};
+pub use plan::{DoubleContact, Plan, PlanReport, Uncovered};

@@ -54,7 +54,7 @@
 //! only save cutting length.
 
 use crate::cl_curve::{tool_side_curvature, tool_side_normal};
-use crate::job::ParamDir;
+use crate::params::ParamDir;
 use crate::side_step::SideStep;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -105,7 +105,7 @@ pub struct PassBound {
 /// # Example
 /// ```
 /// use swarf_geom::{Part, Patch, Point3};
-/// use swarf_path::job::ParamDir;
+/// use swarf_path::params::ParamDir;
 /// use swarf_path::pass_bound::{Feed, pass_bound};
 /// use swarf_path::side_step::{SideStep, ball_step};
 /// // A 40 x 20 mm plane, ball d = 8, h = 0.15: 20 mm / flat step + 1/2 passes.

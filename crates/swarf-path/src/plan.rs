@@ -1,21 +1,9 @@
-//! Planning entry point: runs a job's strategy on a part or a mesh.
+//! What a strategy gives: the tool path and the figures it reports beside it.
 
-use crate::error::PathError;
-use crate::job::{Job, StrategyKind};
-use crate::pass_bound::{Feed, PassBound, pass_bound};
-use crate::side_step::SideStep;
+use crate::pass_bound::PassBound;
 use serde::{Deserialize, Serialize};
-use swarf_geom::{Part, Point3, TriMesh};
+use swarf_geom::Point3;
 use swarf_toolpath::Toolpath;
-
-/// What a job plans on.
-#[derive(Debug, Clone, Copy)]
-pub enum PlanInput<'a> {
-    /// Parametric patches (all strategies; raster runs on their tessellation).
-    Part(&'a Part),
-    /// A triangle mesh (raster only).
-    Mesh(&'a TriMesh),
-}
 
 /// A region a strategy could not cover, and why.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -88,62 +76,4 @@ impl Plan {
         }
         Some(s)
     }
-}
-
-/// The pass bound of an iso job on `part` (empty for raster, or without a usable
-/// scallop height: the strategy has already rejected those).
-fn bound_for(job: &Job, part: &Part) -> Vec<PassBound> {
-    let feed = match job.strategy.kind {
-        StrategyKind::Raster => return Vec::new(),
-        StrategyKind::IsoParametric | StrategyKind::IsoScallop => {
-            Feed::Param(job.strategy.direction)
-        }
-        StrategyKind::IsoPlanar => Feed::Plane(job.angle_rad()),
-    };
-    match job.strategy.scallop.map(|h| SideStep::new(&job.tool, h)) {
-        Some(Ok(side)) => pass_bound(part, &side, feed),
-        _ => Vec::new(),
-    }
-}
-
-/// Plans `job` on `input`.
-///
-/// # Errors
-/// [`PathError::NoPath`] when a strategy cannot make any pass (or an iso strategy is
-/// given a mesh), [`PathError::InvalidParameter`] for parameters the strategy cannot use.
-pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
-    let start = std::time::Instant::now();
-    let mut plan = match (job.strategy.kind, input) {
-        (StrategyKind::Raster, PlanInput::Mesh(mesh)) => crate::raster::plan(mesh, job)?,
-        (StrategyKind::Raster, PlanInput::Part(part)) => {
-            let mesh = part.tessellate(job.strategy.tolerance * 0.1)?;
-            crate::raster::plan(&mesh, job)?
-        }
-        (kind, PlanInput::Mesh(_)) => {
-            return Err(PathError::NoPath(format!(
-                "strategy {kind:?} plans on parametric patches; a mesh part needs strategy \"raster\""
-            )));
-        }
-        (StrategyKind::IsoParametric, PlanInput::Part(part)) => {
-            crate::iso_parametric::plan(part, job)?
-        }
-        (StrategyKind::IsoPlanar, PlanInput::Part(part)) => crate::iso_planar::plan(part, job)?,
-        (StrategyKind::IsoScallop, PlanInput::Part(part)) => crate::iso_scallop::plan(part, job)?,
-    };
-    let top = plan
-        .toolpath
-        .passes
-        .iter()
-        .flat_map(|p| &p.points)
-        .map(|p| p.pose.cl.z)
-        .fold(f64::NEG_INFINITY, f64::max);
-    if top.is_finite() {
-        plan.toolpath.linking = job.linking_for(top);
-    }
-    plan.report.lifted_points = plan.toolpath.lifted_count();
-    if let PlanInput::Part(part) = input {
-        plan.report.pass_bound = bound_for(job, part);
-    }
-    plan.report.elapsed_s = start.elapsed().as_secs_f64();
-    Ok(plan)
 }

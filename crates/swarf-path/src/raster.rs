@@ -29,7 +29,7 @@
 //! `predicted_max_scallop` the exact scallop it leaves on a horizontal plane.
 
 use crate::error::PathError;
-use crate::job::Job;
+use crate::params::RasterParams;
 use crate::plan::{Plan, PlanReport};
 use crate::raster_frame::Frame;
 use crate::raster_pass::{PassOut, Sampler};
@@ -55,21 +55,21 @@ pub const DOUBLE_SEPARATION_RADII: f64 = 0.05;
 /// [`PathError::NoPath`] for an empty mesh, one without finite triangles, or when the
 /// cutter touches the mesh nowhere in the region; [`PathError::InvalidParameter`] for
 /// a stepover wider than the tool or a scallop the tool cannot leave.
-pub fn plan(mesh: &TriMesh, job: &Job) -> Result<Plan, PathError> {
+pub fn plan(mesh: &TriMesh, params: &RasterParams) -> Result<Plan, PathError> {
     if mesh.is_empty() {
         return Err(PathError::NoPath(
             "raster: the mesh has no triangles".into(),
         ));
     }
-    let dropper = MeshDropper::new(mesh, &job.tool);
+    let dropper = MeshDropper::new(mesh, &params.finish.tool);
     if dropper.is_empty() {
         return Err(PathError::NoPath(
             "raster: no triangle of the mesh has finite corners".into(),
         ));
     }
-    let frame = Frame::new(mesh, job, &dropper)?;
+    let frame = Frame::new(mesh, params, &dropper)?;
     let radius = dropper.tool().radius();
-    let tolerance = job.strategy.tolerance;
+    let tolerance = params.finish.tolerance;
     let init_step = INIT_STEP_RADII * radius;
     let sampler = Sampler {
         mesh,
@@ -104,14 +104,14 @@ pub fn plan(mesh: &TriMesh, job: &Job) -> Result<Plan, PathError> {
             pieces.reverse();
             pieces.iter_mut().for_each(|p| p.points.reverse());
         }
-        backwards = job.strategy.zigzag && !backwards;
+        backwards = params.finish.zigzag && !backwards;
         passes.extend(pieces);
     }
     if passes.is_empty() {
         return Err(PathError::NoPath(format!(
             "raster: the cutter {} touches the mesh nowhere inside the {}",
-            job.tool,
-            if job.strategy.boundary.is_some() {
+            params.finish.tool,
+            if params.boundary.is_some() {
                 "boundary"
             } else {
                 "mesh outline"
@@ -119,15 +119,15 @@ pub fn plan(mesh: &TriMesh, job: &Job) -> Result<Plan, PathError> {
         )));
     }
     let report = PlanReport {
-        predicted_max_scallop: flat_scallop(&job.tool, frame.spacing),
+        predicted_max_scallop: flat_scallop(&params.finish.tool, frame.spacing),
         side_step_range: Some([frame.spacing, frame.spacing]),
         ..PlanReport::default()
     };
     Ok(Plan {
         toolpath: Toolpath {
             passes,
-            feeds: job.feeds,
-            linking: job.linking_for(0.0),
+            feeds: params.finish.feeds,
+            linking: params.finish.linking.for_top(0.0),
         },
         report,
         double_contacts,
@@ -137,14 +137,31 @@ pub fn plan(mesh: &TriMesh, job: &Job) -> Result<Plan, PathError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::params::{Finish, StartSide};
     use swarf_geom::Point3;
     use swarf_tool::drop::triangle_drop;
 
-    fn job(tool: &str, strategy: &str) -> Job {
-        let text = format!(
-            "part = \"x.stl\"\ntool = \"{tool}\"\n[strategy]\nkind = \"raster\"\n{strategy}\n"
-        );
-        Job::parse(&text, "job.toml").unwrap()
+    /// Raster parameters for the cutter `tool` with the defaults of a job file and
+    /// no spacing yet.
+    fn raster(tool: &str) -> RasterParams {
+        RasterParams {
+            stepover: None,
+            ..RasterParams::new(Finish::new(tool.parse().unwrap()), 1.0)
+        }
+    }
+
+    fn scallop(tool: &str, h: f64) -> RasterParams {
+        RasterParams {
+            scallop: Some(h),
+            ..raster(tool)
+        }
+    }
+
+    fn stepover(tool: &str, s: f64) -> RasterParams {
+        RasterParams {
+            stepover: Some(s),
+            ..raster(tool)
+        }
     }
 
     fn grid(nx: usize, ny: usize, step: f64, z: impl Fn(f64, f64) -> f64) -> TriMesh {
@@ -164,8 +181,8 @@ mod tests {
 
     /// Every CL point (drops and staircase corners) against every triangle, without
     /// the index: no triangle reaches above it by more than 1e-9.
-    fn assert_gouge_free(mesh: &TriMesh, job: &Job, plan: &Plan) {
-        let tool = swarf_tool::drop::DropCutter::new(&job.tool);
+    fn assert_gouge_free(mesh: &TriMesh, params: &RasterParams, plan: &Plan) {
+        let tool = swarf_tool::drop::DropCutter::new(&params.finish.tool);
         let r = tool.radius();
         for p in plan.toolpath.passes.iter().flat_map(|p| &p.points) {
             let cl = p.pose.cl;
@@ -188,7 +205,7 @@ mod tests {
     #[test]
     fn ball_on_a_plane_steps_evenly_in_zigzag() {
         let mesh = grid(20, 10, 1.0, |x, y| 0.1 * x + 0.05 * y);
-        let j = job("ball:d=4", "scallop = 0.05\ntolerance = 0.01");
+        let j = scallop("ball:d=4", 0.05);
         let plan = plan(&mesh, &j).unwrap();
         let s = 2.0 * (0.05f64 * (4.0 - 0.05)).sqrt();
         let [lo, hi] = plan.report.side_step_range.unwrap();
@@ -224,10 +241,13 @@ mod tests {
     #[test]
     fn boundary_angle_start_and_one_way() {
         let mesh = grid(20, 20, 1.0, |x, y| (0.3 * x).sin() + 0.2 * y);
-        let j = job(
-            "bull:d=6,r=1",
-            "stepover = 1.5\nangle = 90\nstart = \"max\"\nzigzag = false\nboundary = [5, 4, 12, 15]",
-        );
+        let mut j = RasterParams {
+            angle: 90f64.to_radians(),
+            start: StartSide::Max,
+            boundary: Some([5.0, 4.0, 12.0, 15.0]),
+            ..stepover("bull:d=6,r=1", 1.5)
+        };
+        j.finish.zigzag = false;
         let plan = plan(&mesh, &j).unwrap();
         let passes = &plan.toolpath.passes;
         assert_eq!(passes.len(), 6);
@@ -267,7 +287,7 @@ mod tests {
         )
         .unwrap();
         mesh.append(&shifted);
-        let j = job("flat:d=4", "stepover = 2\ntolerance = 0.01");
+        let j = stepover("flat:d=4", 2.0);
         let plan = plan(&mesh, &j).unwrap();
         let rows = plan.toolpath.passes.len();
         assert!(rows >= 8 && rows.is_multiple_of(2), "{rows}");
@@ -311,14 +331,10 @@ mod tests {
         ));
         let mesh = TriMesh::from_triangles(&soup);
         for start in [0.0, 0.013, 0.31] {
-            let j = job(
-                "flat:d=4",
-                &format!(
-                    "stepover = 1.3
-tolerance = 0.01
-boundary = [{start}, 0, 20, 4]"
-                ),
-            );
+            let j = RasterParams {
+                boundary: Some([start, 0.0, 20.0, 4.0]),
+                ..stepover("flat:d=4", 1.3)
+            };
             let plan = plan(&mesh, &j).unwrap();
             for pass in &plan.toolpath.passes {
                 for w in pass.points.windows(2) {
@@ -336,7 +352,7 @@ boundary = [{start}, 0, 20, 4]"
     #[test]
     fn a_ball_in_a_v_groove_records_double_contacts() {
         let mesh = grid(20, 20, 1.0, |_, y| (y - 10.0).abs());
-        let j = job("ball:d=6", "stepover = 1\ntolerance = 0.01");
+        let j = stepover("ball:d=6", 1.0);
         let plan = plan(&mesh, &j).unwrap();
         assert!(!plan.double_contacts.is_empty());
         for d in &plan.double_contacts {
@@ -350,7 +366,10 @@ boundary = [{start}, 0, 20, 4]"
         );
         // Passes across the groove find its crease: one double contact each, at its
         // bottom, where the path now goes down to.
-        let across = job("ball:d=6", "stepover = 2\ntolerance = 0.01\nangle = 90");
+        let across = RasterParams {
+            angle: 90f64.to_radians(),
+            ..stepover("ball:d=6", 2.0)
+        };
         let cross = super::plan(&mesh, &across).unwrap();
         let crossings = cross.toolpath.passes.len();
         assert!(
@@ -378,7 +397,7 @@ boundary = [{start}, 0, 20, 4]"
 
     #[test]
     fn bad_inputs_are_errors() {
-        let j = job("ball:d=8", "scallop = 0.1");
+        let j = scallop("ball:d=8", 0.1);
         let e = plan(&TriMesh::default(), &j).unwrap_err();
         assert!(e.to_string().contains("no triangles"), "{e}");
         let nan = TriMesh::from_triangles(&[[
@@ -388,16 +407,19 @@ boundary = [{start}, 0, 20, 4]"
         ]]);
         assert!(plan(&nan, &j).unwrap_err().to_string().contains("finite"));
         let mesh = grid(4, 4, 1.0, |_, _| 0.0);
-        let e = plan(&mesh, &job("ball:d=8", "stepover = 9")).unwrap_err();
+        let e = plan(&mesh, &stepover("ball:d=8", 9.0)).unwrap_err();
         assert!(e.to_string().contains("strategy.stepover"), "{e}");
         let e = plan(
             &mesh,
-            &job("ball:d=8", "stepover = 1\nboundary = [100, 100, 110, 110]"),
+            &RasterParams {
+                boundary: Some([100.0, 100.0, 110.0, 110.0]),
+                ..stepover("ball:d=8", 1.0)
+            },
         )
         .unwrap_err();
         assert!(e.to_string().contains("nowhere"), "{e}");
         // A tool much larger than the mesh still plans.
-        let big = plan(&mesh, &job("flat:d=40", "stepover = 2")).unwrap();
+        let big = plan(&mesh, &stepover("flat:d=40", 2.0)).unwrap();
         assert!(
             big.toolpath
                 .passes
@@ -409,7 +431,10 @@ boundary = [{start}, 0, 20, 4]"
     #[test]
     fn plans_are_identical_for_any_thread_count() {
         let mesh = grid(30, 20, 0.7, |x, y| (0.2 * x).sin() * (0.3 * y).cos() * 3.0);
-        let j = job("bull:d=6,r=1.5", "scallop = 0.05\nangle = 30");
+        let j = RasterParams {
+            angle: 30f64.to_radians(),
+            ..scallop("bull:d=6,r=1.5", 0.05)
+        };
         let run = |n: usize| {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(n)

@@ -2,7 +2,7 @@
 //! cutting order, and each pass's line clipped to the region (see [`crate::raster`]).
 
 use crate::error::PathError;
-use crate::job::{Job, StartSide};
+use crate::params::{RasterParams, StartSide};
 use crate::raster_pass::Line;
 use crate::raster_step::stepover_for_scallop;
 use swarf_geom::TriMesh;
@@ -33,15 +33,15 @@ impl Frame {
     /// scallop the tool cannot leave.
     pub(crate) fn new(
         mesh: &TriMesh,
-        job: &Job,
+        params: &RasterParams,
         dropper: &MeshDropper,
     ) -> Result<Frame, PathError> {
-        let (sa, ca) = job.angle_rad().sin_cos();
+        let (sa, ca) = params.angle.sin_cos();
         let (d, n) = ([ca, sa], [-sa, ca]);
         let radius = dropper.tool().radius();
-        let stepover = match (job.strategy.stepover, job.strategy.scallop) {
+        let stepover = match (params.stepover, params.scallop) {
             (Some(s), _) => s,
-            (None, Some(h)) => stepover_for_scallop(&job.tool, h)?,
+            (None, Some(h)) => stepover_for_scallop(&params.finish.tool, h)?,
             (None, None) => {
                 return Err(PathError::InvalidParameter {
                     field: "strategy".into(),
@@ -60,7 +60,7 @@ impl Frame {
         }
         let dot = |v: [f64; 2], x: f64, y: f64| v[0] * x + v[1] * y;
         let range = |v: [f64; 2]| -> [f64; 2] {
-            let pts: Vec<[f64; 2]> = match job.strategy.boundary {
+            let pts: Vec<[f64; 2]> = match params.boundary {
                 Some(b) => vec![[b[0], b[1]], [b[2], b[1]], [b[2], b[3]], [b[0], b[3]]],
                 None => finite_xy(mesh),
             };
@@ -87,7 +87,7 @@ impl Frame {
         let mut offsets: Vec<f64> = (0..=k)
             .map(|i| side[0] + width * i as f64 / k as f64)
             .collect();
-        if job.strategy.start == StartSide::Max {
+        if params.start == StartSide::Max {
             offsets.reverse();
         }
         Ok(Frame {
@@ -96,7 +96,7 @@ impl Frame {
             offsets,
             spacing,
             along: [mesh_along[0] - radius, mesh_along[1] + radius],
-            boundary: job.strategy.boundary,
+            boundary: params.boundary,
         })
     }
 

@@ -1,7 +1,8 @@
 //! Bad input to the iso strategies: a clear error naming the field, never a panic.
 
+use swarf_app::{Job, PlanInput};
 use swarf_geom::{Part, Patch, Point3};
-use swarf_path::{Job, PathError, PlanInput};
+use swarf_path::PathError;
 
 fn job(kind: &str, body: &str) -> String {
     format!("part = \"builtin:wave\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"{kind}\"\n{body}\n")
@@ -52,7 +53,7 @@ fn jobs_built_in_code_are_checked_by_the_planners_too() {
         for (spoil, field) in cases {
             let mut j = good.clone();
             spoil(&mut j);
-            let e = swarf_path::plan(&j, PlanInput::Part(&part)).unwrap_err();
+            let e = swarf_app::plan(&j, PlanInput::Part(&part)).unwrap_err();
             assert!(matches!(e, PathError::InvalidParameter { .. }), "{e:?}");
             assert!(
                 e.to_string().starts_with(field),
@@ -94,12 +95,12 @@ fn a_tool_too_large_for_any_position_is_refused() {
             "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"{kind}\"\nscallop = 0.2\ndirection = \"v\"\nangle = 90\n"
         );
         let big = Job::parse(&text, "job").unwrap();
-        let e = swarf_path::plan(&big, PlanInput::Part(&part)).unwrap_err();
+        let e = swarf_app::plan(&big, PlanInput::Part(&part)).unwrap_err();
         assert!(matches!(e, PathError::NoPath(_)), "{kind}: {e:?}");
         assert!(e.to_string().contains("too large"), "{kind}: {e}");
         // A ball that fits plans, unlifted.
         let small = Job::parse(&text.replace("ball:d=8", "ball:d=4"), "job").unwrap();
-        let plan = swarf_path::plan(&small, PlanInput::Part(&part)).unwrap();
+        let plan = swarf_app::plan(&small, PlanInput::Part(&part)).unwrap();
         assert_eq!(plan.report.lifted_points, 0, "{kind}");
     }
 }
@@ -112,7 +113,7 @@ fn meshes_are_refused_by_the_iso_strategies() {
         .unwrap();
     for kind in KINDS {
         let j = Job::parse(&job(kind, "scallop = 0.3"), "job").unwrap();
-        let e = swarf_path::plan(&j, PlanInput::Mesh(&mesh)).unwrap_err();
+        let e = swarf_app::plan(&j, PlanInput::Mesh(&mesh)).unwrap_err();
         assert!(matches!(e, PathError::NoPath(_)), "{kind}: {e:?}");
     }
 }

@@ -9,8 +9,9 @@ mod iso_support;
 
 use iso_support::swept::Swept;
 use iso_support::{crests, crests_by, wave};
+use swarf_app::PlanInput;
 use swarf_geom::{Patch, Point3, Vec3};
-use swarf_path::{Plan, PlanInput};
+use swarf_path::Plan;
 use swarf_tool::Cutter;
 use swarf_toolpath::{Contact, Feeds, Linking, Pass, PathPoint, Toolpath};
 
@@ -26,8 +27,8 @@ fn wave_plan(kind: &str, tool: &str, extra: &str) -> Plan {
     let text = format!(
         "part = \"builtin:wave\"\ntool = \"{tool}\"\n[strategy]\nkind = \"{kind}\"\nscallop = {H}\ntolerance = {TOL}\n{extra}\n"
     );
-    let job = swarf_path::Job::parse(&text, "test job").expect("valid job");
-    swarf_path::plan(&job, PlanInput::Part(&wave())).expect(kind)
+    let job = swarf_app::Job::parse(&text, "test job").expect("valid job");
+    swarf_app::plan(&job, PlanInput::Part(&wave())).expect(kind)
 }
 
 /// Largest crest between adjacent passes of `plan` on wave for `cutter`.

@@ -6,8 +6,8 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use swarf_app::{Job, PlanInput};
 use swarf_nc::{GcodeOptions, Units};
-use swarf_path::{Job, PlanInput};
 
 fn job_path(kind: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../../jobs/wave-{kind}.toml"))
@@ -102,7 +102,7 @@ fn example_jobs_run_in_rs274_and_reproduce_the_csv() {
         assert_eq!(job.strategy.tolerance, 0.01);
         assert_eq!((job.feeds.feed, job.feeds.spindle), (300.0, 1500.0));
         let part = swarf_io::builtin_part("wave").unwrap();
-        let plan = swarf_path::plan(&job, PlanInput::Part(&part)).unwrap();
+        let plan = swarf_app::plan(&job, PlanInput::Part(&part)).unwrap();
         let opts = GcodeOptions {
             comments: vec![
                 "part wave".into(),

@@ -2,8 +2,8 @@
 //! thesis 000 ch. 8): planes exactly the stepover apart, centred in the part, the
 //! closed-form ball scallop predicted; and pass ends without stubs.
 
+use swarf_app::Job;
 use swarf_geom::{Part, Patch};
-use swarf_path::Job;
 use swarf_path::iso_planar::plan;
 
 /// A fixed cross feed on a plane: drive planes exactly `s` apart and centred in the
@@ -30,7 +30,7 @@ fn fixed_stepover_on_a_plane() {
         .unwrap()
     };
     for (extra, first) in [("", 0.5), ("start = \"max\"", 9.5)] {
-        let plan = plan(&part, &with(extra)).unwrap();
+        let plan = plan(&part, &with(extra).iso_params()).unwrap();
         let ys: Vec<f64> = plan
             .toolpath
             .passes
@@ -71,7 +71,7 @@ fn pass_ends_have_no_stubs() {
         "job.toml",
     )
     .unwrap();
-    let plan = plan(&part, &job).unwrap();
+    let plan = plan(&part, &job.iso_params()).unwrap();
     assert!(plan.toolpath.passes.len() > 10);
     for pass in &plan.toolpath.passes {
         for w in pass.points.windows(2) {
@@ -93,7 +93,7 @@ fn die_drive_planes_at_the_thesis_cross_feed() {
         "job.toml",
     )
     .unwrap();
-    let plan = plan(&part, &job).unwrap();
+    let plan = plan(&part, &job.iso_params()).unwrap();
     let passes = &plan.toolpath.passes;
     assert!(passes.len() > 30, "{}", passes.len());
     let a = 60f64.to_radians();

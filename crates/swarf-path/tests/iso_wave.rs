@@ -8,7 +8,8 @@
 mod iso_support;
 
 use iso_support::{crests, max_residual, wave, wave_job};
-use swarf_path::{Plan, PlanInput};
+use swarf_app::PlanInput;
+use swarf_path::Plan;
 use swarf_toolpath::motion_stats;
 
 const H: f64 = 0.15;
@@ -26,7 +27,7 @@ struct Row {
 fn run(kind: &'static str) -> Row {
     let part = wave();
     let job = wave_job(kind, H, TOL);
-    let plan = swarf_path::plan(&job, PlanInput::Part(&part)).expect(kind);
+    let plan = swarf_app::plan(&job, PlanInput::Part(&part)).expect(kind);
     let stats = motion_stats(&plan.toolpath.moves(), job.feeds.rapid);
     Row {
         name: kind,
@@ -185,7 +186,7 @@ fn oblique_drive_planes_leave_no_corner_uncovered() {
     let part = wave();
     let mut job = wave_job("iso-planar", H, TOL);
     job.strategy.angle = 30.0;
-    let plan = swarf_path::plan(&job, PlanInput::Part(&part)).unwrap();
+    let plan = swarf_app::plan(&job, PlanInput::Part(&part)).unwrap();
     let (anywhere, at) = max_residual(&plan, &part, 4.0, 0.5);
     assert!(anywhere <= SLACK * H, "{anywhere} left at {at:?}");
     let c = crests(&plan, &part.patches[0], 4.0, 2.0, 16, 4.0);

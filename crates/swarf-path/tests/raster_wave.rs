@@ -4,8 +4,9 @@
 //! to the end with every feed move. Without `rs274` the second check is skipped,
 //! unless `SWARF_REQUIRE_REFERENCES=1`.
 
-use swarf_path::job::Job;
-use swarf_path::plan::{Plan, PlanInput, plan};
+use swarf_app::Job;
+use swarf_app::{PlanInput, plan};
+use swarf_path::Plan;
 use swarf_tool::drop::{DropCutter, triangle_drop};
 use swarf_toolpath::MoveKind;
 

@@ -22,6 +22,7 @@ use crate::cutter::Cutter;
 use crate::error::ToolError;
 use std::fmt;
 use std::str::FromStr;
+use swarf_geom::math::display_degrees;
 
 /// A named shape of the spec.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -234,17 +235,10 @@ impl FromStr for Cutter {
     }
 }
 
-/// Degrees for display: `rad` in degrees (`naive`), rounded to 1e-9 when the rounded
-/// value maps back to the same radians through `back`.
-fn degrees(naive: f64, rad: f64, back: impl Fn(f64) -> f64) -> f64 {
-    let rounded = (naive * 1e9).round() / 1e9;
-    if back(rounded) == rad { rounded } else { naive }
-}
-
 impl fmt::Display for Cutter {
     /// The canonical spec string.
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let deg = |rad: f64| degrees(rad.to_degrees(), rad, f64::to_radians);
+        let deg = |rad: f64| display_degrees(rad.to_degrees(), rad, f64::to_radians);
         match *self {
             Cutter::Flat { radius, .. } => write!(out, "flat:d={}", 2.0 * radius)?,
             Cutter::Ball { radius, .. } => write!(out, "ball:d={}", 2.0 * radius)?,
@@ -254,7 +248,7 @@ impl fmt::Display for Cutter {
             Cutter::Cone {
                 radius, half_angle, ..
             } => {
-                let angle = degrees(2.0 * half_angle.to_degrees(), half_angle, |x| {
+                let angle = display_degrees(2.0 * half_angle.to_degrees(), half_angle, |x| {
                     (0.5 * x).to_radians()
                 });
                 write!(out, "cone:d={},angle={angle}", 2.0 * radius)?;

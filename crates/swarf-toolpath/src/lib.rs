@@ -108,6 +108,46 @@ impl Default for Linking {
     }
 }
 
+/// Height of the default clearance plane above the highest CL point, mm.
+pub const DEFAULT_CLEARANCE_MARGIN: f64 = 5.0;
+
+/// Linking as a job asks for it: the clearance plane may be left to swarf, which puts
+/// it [`DEFAULT_CLEARANCE_MARGIN`] above the path ([`LinkingSpec::for_top`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LinkingSpec {
+    /// Clearance plane z, mm; default: 5 mm above the highest CL point of the path.
+    pub clearance: Option<f64>,
+    /// Distance above a pass start where the plunge feed begins, mm.
+    pub approach: f64,
+}
+
+impl Default for LinkingSpec {
+    fn default() -> Self {
+        LinkingSpec {
+            clearance: None,
+            approach: Linking::default().approach,
+        }
+    }
+}
+
+impl LinkingSpec {
+    /// The linking for a path whose highest CL point is at `top_z`: the given
+    /// clearance (raised to `top_z` if it is below), else `top_z` plus
+    /// [`DEFAULT_CLEARANCE_MARGIN`].
+    ///
+    /// # Units
+    /// mm.
+    pub fn for_top(&self, top_z: f64) -> Linking {
+        Linking {
+            clearance: self
+                .clearance
+                .map_or(top_z + DEFAULT_CLEARANCE_MARGIN, |c| c.max(top_z)),
+            approach: self.approach,
+        }
+    }
+}
+
 /// A planned tool path: passes, linking and feeds.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Toolpath {

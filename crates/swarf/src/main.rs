@@ -1,10 +1,10 @@
-//! The `swarf` command-line tool: a thin clap layer over the swarf crates.
+//! The `swarf` command-line tool: a thin clap layer over swarf-app.
 //!
 //! Every subcommand lives in its own file under `cmd/`; errors are reported with
 //! their context (file, line, field) and a non-zero exit status.
 
 mod cmd;
-mod load;
+mod progress;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

@@ -132,10 +132,10 @@ fn rs274_feeds(program: &Path) -> Option<Vec<Joints>> {
 
 /// The same job planned in-process: the positioned passes with their contacts.
 fn positioned(text: &str) -> Vec<swarf_toolpath::Pass> {
-    let job = swarf_path::Job::parse(text, "job.toml").unwrap();
+    let job = swarf_app::Job::parse(text, "job.toml").unwrap();
     let part = swarf_io::builtin_part("die").unwrap();
-    let mut plan = swarf_path::plan(&job, swarf_path::PlanInput::Part(&part)).unwrap();
-    swarf_fiveaxis::job::position_plan(&job, &part, &mut plan, &|_, _| {}).unwrap();
+    let mut plan = swarf_app::plan(&job, swarf_app::PlanInput::Part(&part)).unwrap();
+    swarf_app::five_axis::position_plan(&job, &part, &mut plan, &|_, _| {}).unwrap();
     plan.toolpath.passes
 }
 

@@ -6,12 +6,12 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use swarf_fiveaxis::job::planned_cc_paths;
+use swarf_app::Job;
+use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::positioning::{Positioning, position};
 use swarf_fiveaxis::post::{PostOptions, write_gcode_5x};
 use swarf_nc::{Units, write_cl};
-use swarf_path::Job;
 use swarf_tool::Cutter;
 use swarf_toolpath::{Feeds, Linking, Toolpath};
 

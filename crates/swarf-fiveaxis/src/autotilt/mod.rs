@@ -244,6 +244,7 @@ mod tests {
     use crate::design::tests::die;
     use crate::gencurve::CurveOptions;
     use crate::sections::Sections;
+    use swarf_path::params::{Finish, IsoParams};
 
     #[test]
     fn smoothing_is_the_least_envelope_within_the_rate() {
@@ -276,12 +277,16 @@ mod tests {
     /// Three passes through the middle of the die: iso-planar, 60 degrees off X,
     /// cross feed 3.5 mm, steps of about 2 mm (chordal tolerance 0.005 mm).
     pub(super) fn die_passes() -> Vec<Vec<Contact>> {
-        let job = swarf_path::Job::parse(
-            "part = \"builtin:die\"\ntool = \"bull:d=38.1,r=6.35\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 3.5\ntolerance = 0.005\nangle = 60\n",
-            "die.toml",
-        )
-        .unwrap();
-        let all = crate::job::planned_cc_paths(&job, &die()).unwrap();
+        let mut finish = Finish::new("bull:d=38.1,r=6.35".parse().unwrap());
+        finish.tolerance = 0.005;
+        let params = IsoParams {
+            scallop: None,
+            stepover: Some(3.5),
+            angle: 60f64.to_radians(),
+            ..IsoParams::new(finish, 0.0)
+        };
+        let plan = swarf_path::iso_planar::plan(&die(), &params).unwrap();
+        let all = crate::cc_paths::cc_paths(&plan.toolpath);
         let mid = all.len() / 2;
         all[mid - 1..=mid + 1].to_vec()
     }

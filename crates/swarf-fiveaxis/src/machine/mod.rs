@@ -46,6 +46,7 @@
 //! The kinematics are in [`kinematics`] (forward, and inverse by the Paden-Kahan
 //! subproblems), the solution choice along a pass in [`joints`].
 
+mod builtin;
 pub mod joints;
 pub mod kinematics;
 pub mod reader;
@@ -54,6 +55,8 @@ use crate::error::FiveAxisError;
 use serde::{Deserialize, Serialize};
 use swarf_geom::{Point3, Vec3};
 use swarf_io::error::toml_message;
+
+pub use builtin::{BUILTIN_MACHINES, load_machine};
 
 /// The three machine kinds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

@@ -22,11 +22,11 @@ pub fn wave() -> Part {
 }
 
 /// A job on wave for `kind` with scallop `h` and tolerance `tol`, ball d = 8.
-pub fn wave_job(kind: &str, h: f64, tol: f64) -> swarf_path::Job {
+pub fn wave_job(kind: &str, h: f64, tol: f64) -> swarf_app::Job {
     let text = format!(
         "part = \"builtin:wave\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"{kind}\"\nscallop = {h}\ntolerance = {tol}\n[feeds]\nfeed = 300\nspindle = 1500\n"
     );
-    swarf_path::Job::parse(&text, "test job").expect("valid job")
+    swarf_app::Job::parse(&text, "test job").expect("valid job")
 }
 
 /// Segments of ball centres, bucketed on an XY grid.

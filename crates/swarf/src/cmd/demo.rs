@@ -1,26 +1,9 @@
-//! `swarf demo [--out DIR]`: the main job on the built-in shared parts.
-//!
-//! 1. Inspects and tessellates every built-in part (STL within 0.01 mm).
-//! 2. Plans the shipped example jobs (paper 004's experiment on wave.toml: ball r = 4,
-//!    h = 0.15, tolerance 0.01, feed 300, spindle 1500; iso-parametric, iso-planar,
-//!    iso-scallop, and the drop-cutter raster on the tessellated wave), writing their
-//!    G-code, APT CL, pose CSV and JSON summaries.
-//! 3. Verifies each program on a dexel stock and prints paper 004's Table 1 for our
-//!    tool paths (`compare.md`, `compare.json`, deviation and tool path pictures).
-//! 4. Thesis 000 ch. 8 on die.toml: the toroidal cutter R = 12.7, r = 6.35 fed 60
-//!    degrees off X at a cross feed of 3.5 mm, inclined at alpha = 3 and 6 degrees and
-//!    with the automatic gouge-free lead; each planned (five-axis G-code for the A/C
-//!    trunnion, APT CL, summary with the sectioning gouge report) and verified on a
-//!    dexel stock through its CL (`die/die.md`, pictures beside it).
-//!
-//! The jobs are embedded so that the demo needs no files; their parts and machine are
-//! built-in.
+//! `swarf demo [--out DIR]`: the main job on the built-in shared parts
+//! ([`swarf_app::demo`]).
 
-use super::compare::{compare_all, compare_jobs, five_axis_markdown, markdown};
-use super::inspect::{patch_text, summarise_patch};
-use super::verify::SimArgs;
-use anyhow::{Context, Result};
-use std::path::{Path, PathBuf};
+use crate::progress::Bars;
+use anyhow::Result;
+use std::path::PathBuf;
 
 /// Arguments of `swarf demo`.
 #[derive(clap::Args)]
@@ -30,129 +13,9 @@ pub struct Args {
     out: PathBuf,
 }
 
-/// Chordal tolerance of the demo tessellations, mm.
-const DEMO_TOL: f64 = 0.01;
-
-/// The example jobs shipped in `jobs/`.
-const JOBS: [(&str, &str); 4] = [
-    (
-        "wave-iso-parametric.toml",
-        include_str!("../../../../jobs/wave-iso-parametric.toml"),
-    ),
-    (
-        "wave-iso-planar.toml",
-        include_str!("../../../../jobs/wave-iso-planar.toml"),
-    ),
-    (
-        "wave-iso-scallop.toml",
-        include_str!("../../../../jobs/wave-iso-scallop.toml"),
-    ),
-    (
-        "wave-raster.toml",
-        include_str!("../../../../jobs/wave-raster.toml"),
-    ),
-];
-
-/// Thesis 000 ch. 8 on the die (`jobs/die-*.toml`).
-const DIE_JOBS: [(&str, &str); 3] = [
-    (
-        "die-inclined-3.toml",
-        include_str!("../../../../jobs/die-inclined-3.toml"),
-    ),
-    (
-        "die-inclined-6.toml",
-        include_str!("../../../../jobs/die-inclined-6.toml"),
-    ),
-    (
-        "die-gouge-free.toml",
-        include_str!("../../../../jobs/die-gouge-free.toml"),
-    ),
-];
-
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
-    let start = std::time::Instant::now();
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("{}: cannot create the output directory", args.out.display()))?;
-    println!("== parts");
-    tessellate_parts(&args.out)?;
-    println!("\n== tool paths (paper 004 on wave.toml)");
-    let jobs_dir = args.out.join("jobs");
-    let mut paths = Vec::new();
-    for (name, text) in JOBS {
-        let job = swarf_path::Job::parse(text, name)?;
-        let summary = super::plan::plan_job(&job, Path::new("."), &args.out)?;
-        println!(
-            "{name}: {} passes, {:.0} mm cutting, {:.1} min, predicted scallop <= {:.4} mm",
-            summary["passes"],
-            summary["cutting_length_mm"].as_f64().unwrap_or(f64::NAN),
-            summary["estimated_time_s"].as_f64().unwrap_or(f64::NAN) / 60.0,
-            summary["report"]["predicted_max_scallop"]
-                .as_f64()
-                .unwrap_or(f64::NAN),
-        );
-        let path = jobs_dir.join(name);
-        swarf_io::write_atomic(&path, text.as_bytes())?;
-        paths.push(path);
-    }
-    println!("\n== verification (dexel simulation against the design; paper 004, Table 1)");
-    let compare_dir = args.out.join("compare");
-    let rows = compare_jobs(&paths, &SimArgs::default(), &compare_dir)?;
-    print!("{}", markdown(&rows));
-    println!("\n== five-axis (thesis 000 ch. 8 on die.toml), verified by dexel through the APT CL");
-    die(&args.out, &jobs_dir)?;
-    println!(
-        "\nall results in {} ({:.1} s)",
-        args.out.display(),
-        start.elapsed().as_secs_f64()
-    );
-    Ok(())
-}
-
-/// Plans and verifies the die jobs into `out/die` and prints their table.
-fn die(out: &Path, jobs_dir: &Path) -> Result<()> {
-    let mut paths = Vec::new();
-    for (name, text) in DIE_JOBS {
-        let path = jobs_dir.join(name);
-        swarf_io::write_atomic(&path, text.as_bytes())?;
-        paths.push(path);
-    }
-    let dir = out.join("die");
-    let (_, rows) = compare_all(&paths, &SimArgs::default(), &dir)?;
-    let table = five_axis_markdown(&rows);
-    swarf_io::write_atomic(&dir.join("die.md"), table.as_bytes())?;
-    print!("{table}");
-    for r in &rows {
-        println!(
-            "{}: planned in {:.1} s, verified in {:.1} s",
-            r.job, r.planning_s, r.verify_s
-        );
-    }
-    println!(
-        "pictures: {}/die-*.deviation.png, die-*.toolpath.png",
-        dir.display()
-    );
-    Ok(())
-}
-
-fn tessellate_parts(out: &Path) -> Result<()> {
-    for (name, _) in swarf_io::builtin_parts() {
-        let part = swarf_io::builtin_part(name).context("built-in part does not load")?;
-        let summaries = part
-            .patches
-            .iter()
-            .enumerate()
-            .map(|(i, p)| summarise_patch(i, p))
-            .collect::<Result<Vec<_>>>()?;
-        print!("{}", patch_text(&part.name, &summaries));
-        let mesh = part.tessellate(DEMO_TOL)?;
-        let path = out.join(format!("{name}.stl"));
-        swarf_io::write_stl(&path, &mesh, name)?;
-        println!(
-            "  tessellated within {DEMO_TOL} mm: {} triangles -> {}",
-            mesh.triangles.len(),
-            path.display()
-        );
-    }
+    let mut stdout = std::io::stdout();
+    swarf_app::demo::demo(&args.out, &mut stdout, &Bars::default())?;
     Ok(())
 }

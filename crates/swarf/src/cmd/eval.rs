@@ -1,7 +1,7 @@
 //! `swarf eval PART --patch N --uv U,V`: exact evaluation of one patch as JSON.
 
-use crate::load::{load_part, parse_pair};
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
+use swarf_app::load_part;
 
 /// Arguments of `swarf eval`.
 #[derive(clap::Args)]
@@ -52,4 +52,21 @@ pub fn run(args: &Args) -> Result<()> {
     });
     println!("{}", serde_json::to_string(&out)?);
     Ok(())
+}
+
+/// Parses `U,V` into two numbers.
+pub fn parse_pair(text: &str, what: &str) -> Result<[f64; 2]> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() != 2 {
+        bail!("{what}: expected two numbers separated by a comma, found {text:?}");
+    }
+    let mut out = [0.0; 2];
+    for (o, p) in out.iter_mut().zip(&parts) {
+        *o = p
+            .parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .with_context(|| format!("{what}: {p:?} is not a finite number"))?;
+    }
+    Ok(out)
 }

@@ -1,8 +1,8 @@
 //! `swarf tessellate PART --tol T -o part.stl`.
 
-use crate::load::load_part;
 use anyhow::{Result, bail};
 use std::path::PathBuf;
+use swarf_app::load_part;
 
 /// Arguments of `swarf tessellate`.
 #[derive(clap::Args)]

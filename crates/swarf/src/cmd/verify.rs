@@ -1,28 +1,15 @@
 //! `swarf verify --part P --program PROG -o DIR`: simulate a program on a dexel stock
-//! and measure it against the design; writes `report.json`, `flagged.csv`,
-//! `deviation.png` and `toolpath.png`. A program that stops mid-way still gets its
-//! partial report, then the command fails.
-//!
-//! Five-axis G-code (`X Y Z` and two rotary words) needs the machine it was posted
-//! for: `--machine FILE` (or `builtin:NAME`) and, for machines with head axes,
-//! `--tool-length MM`. The G-code's axis positions then go through the machine's
-//! forward kinematics into part-frame poses ([`read_with_machine`]). APT CL and pose
-//! CSV programs are in the part frame already: `--machine` is not needed for them, and
-//! is ignored with a note.
+//! and measure it against the design ([`swarf_app::verify`]); writes `report.json`,
+//! `flagged.csv`, `deviation.png` and `toolpath.png`. A program that stops mid-way
+//! still gets its partial report, then the command fails.
 
-use crate::load::{Model, load_model};
-use anyhow::{Context, Result, bail};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
-use std::sync::Mutex;
-use swarf_fiveaxis::job::load_machine;
-use swarf_fiveaxis::machine::reader::MachineKinematics;
-use swarf_fiveaxis::machine::{Machine, MachineKind};
-use swarf_nc::read::{GcodeReadOptions, Program, ProgramFormat, read_program, read_program_with};
-use swarf_sim::report::{ReportContext, flagged_csv, json_report, text_summary};
-use swarf_sim::{Design, Progress, StockSpec, Verification, VerifyOptions};
-use swarf_tool::Cutter;
+use crate::progress::Bars;
+use anyhow::{Result, bail};
+#[cfg(test)]
+use std::path::Path;
+use std::path::PathBuf;
+use swarf_app::verify::{SimSettings, VerifyRequest, verify_request};
+use swarf_sim::report::text_summary;
 
 /// Arguments of `swarf verify`.
 #[derive(clap::Args)]
@@ -83,302 +70,44 @@ pub struct SimArgs {
     deviation: Option<String>,
 }
 
-impl Default for SimArgs {
-    /// The command-line defaults (for callers such as `swarf demo`).
-    fn default() -> Self {
-        SimArgs {
-            stock: "offset:0.5".into(),
-            cell: None,
-            tol: None,
-            scallop: None,
-            rapid: None,
-            sample_tol: None,
-            max_memory: 4096,
-            deviation: None,
-        }
-    }
-}
-
 impl SimArgs {
-    /// Defaults with cell size `cell`, measuring along the normals (for tests).
-    #[cfg(test)]
-    pub fn for_tests(cell: f64) -> SimArgs {
-        SimArgs {
-            cell: Some(cell),
-            deviation: Some("normal".into()),
-            ..SimArgs::default()
-        }
-    }
-
-    /// Verification options, with the given defaults where an option is absent.
-    pub fn options(
-        &self,
-        tol: f64,
-        scallop: f64,
-        rapid: f64,
-        along_normals: bool,
-    ) -> Result<VerifyOptions> {
-        for (flag, v) in [
-            ("--cell", self.cell),
-            ("--tol", self.tol),
-            ("--sample-tol", self.sample_tol),
-        ] {
-            if let Some(x) = v
-                && !(x.is_finite() && x > 0.0)
-            {
-                bail!("{flag}: expected a finite number > 0 mm, found {x}");
-            }
-        }
-        Ok(VerifyOptions {
+    /// The settings these flags give.
+    pub fn settings(&self) -> SimSettings {
+        SimSettings {
+            stock: self.stock.clone(),
             cell: self.cell,
-            tol: self.tol.unwrap_or(tol),
-            allowed_excess: self.scallop.unwrap_or(scallop),
-            stock: parse_stock(&self.stock)?,
-            max_bytes: self.max_memory.saturating_mul(1 << 20),
+            tol: self.tol,
+            scallop: self.scallop,
+            rapid: self.rapid,
             sample_tol: self.sample_tol,
-            rapid_rate: self.rapid.unwrap_or(rapid),
-            along_normals: self
-                .deviation
-                .as_deref()
-                .map_or(along_normals, |d| d == "normal"),
-            ..VerifyOptions::default()
-        })
-    }
-}
-
-/// Parses `--stock`.
-fn parse_stock(text: &str) -> Result<StockSpec> {
-    let number = |s: &str, what: &str| -> Result<f64> {
-        s.trim()
-            .parse::<f64>()
-            .ok()
-            .filter(|v| v.is_finite())
-            .with_context(|| format!("--stock {text}: {what} {s:?} is not a finite number"))
-    };
-    if text == "box" {
-        return Ok(StockSpec::Box { top: None });
-    }
-    if let Some(top) = text.strip_prefix("box:") {
-        return Ok(StockSpec::Box {
-            top: Some(number(top, "top")?),
-        });
-    }
-    if let Some(a) = text.strip_prefix("offset:") {
-        let allowance = number(a, "allowance")?;
-        if allowance < 0.0 {
-            bail!("--stock {text}: the allowance must be >= 0 mm");
-        }
-        return Ok(StockSpec::Offset { allowance });
-    }
-    let path = Path::new(text);
-    match path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-    {
-        Some(e) if e == "stl" || e == "obj" => Ok(StockSpec::Mesh(swarf_io::read_mesh(path)?)),
-        _ => bail!("--stock {text}: expected box, box:TOP, offset:ALLOWANCE or a .stl / .obj mesh"),
-    }
-}
-
-/// Progress bars on stderr, hidden when stderr is not a terminal.
-pub struct Bars {
-    bar: Mutex<Option<ProgressBar>>,
-}
-
-impl Default for Bars {
-    fn default() -> Self {
-        Bars {
-            bar: Mutex::new(None),
-        }
-    }
-}
-
-impl Progress for Bars {
-    fn begin(&self, stage: &str, total: u64) {
-        let target = if std::io::stderr().is_terminal() {
-            ProgressDrawTarget::stderr()
-        } else {
-            ProgressDrawTarget::hidden()
-        };
-        let bar = ProgressBar::with_draw_target(Some(total), target);
-        if let Ok(style) = ProgressStyle::with_template("{msg:>16} [{bar:40}] {percent:>3}% {eta}")
-        {
-            bar.set_style(style.progress_chars("=> "));
-        }
-        bar.set_message(stage.to_string());
-        if let Ok(mut b) = self.bar.lock() {
-            *b = Some(bar);
-        }
-    }
-
-    fn advance(&self, n: u64) {
-        if let Ok(b) = self.bar.lock()
-            && let Some(bar) = b.as_ref()
-        {
-            bar.inc(n);
-        }
-    }
-
-    fn end(&self) {
-        if let Ok(mut b) = self.bar.lock()
-            && let Some(bar) = b.take()
-        {
-            bar.finish_and_clear();
+            max_memory: self.max_memory,
+            deviation: self.deviation.clone(),
         }
     }
 }
 
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
-    let model = load_model(&args.part)?;
-    let opts = args.sim.options(0.01, 0.0, 5000.0, false)?;
-    let machine = match &args.machine {
-        Some(spec) if ProgramFormat::of(&args.program) == Some(ProgramFormat::Gcode) => {
-            Some(machine_arg(spec)?)
-        }
-        Some(spec) => {
-            eprintln!(
-                "note: --machine {spec} ignored: {} is not G-code, its poses are in the \
-                 part frame already",
-                args.program.display()
-            );
-            None
-        }
-        None => None,
+    let sim = args.sim.settings();
+    let req = VerifyRequest {
+        part: &args.part,
+        program: &args.program,
+        tool: args.tool.as_deref(),
+        machine: args.machine.as_deref(),
+        tool_length: args.tool_length,
+        sim: &sim,
+        out: &args.out,
     };
-    let tool_length = match (&machine, args.tool_length) {
-        (Some(m), None) if m.kind != MachineKind::TableTable => bail!(
-            "--tool-length: the machine {:?} has head axes: give the tool length from the \
-             spindle gauge line to the tip, in mm",
-            m.name
-        ),
-        (_, length) => length.unwrap_or(0.0),
-    };
-    let sample_tol = opts.sample_tol.unwrap_or(0.25 * opts.tol);
-    let program = read_with_machine(&args.program, machine.as_ref(), tool_length, sample_tol)?;
-    let cutter = match (&args.tool, &program.tool) {
-        (Some(spec), _) => spec
-            .parse::<Cutter>()
-            .map_err(|e| anyhow::anyhow!("--tool {spec}: {e}"))?,
-        (None, Some(t)) => *t,
-        (None, None) => bail!(
-            "{}: the program names no cutter (no APT CUTTER record): give the tool with --tool, e.g. --tool ball:d=8",
-            program.source
-        ),
-    };
-    let ctx = context(&args.part, &program, &cutter, &opts);
-    let v = verify_and_write(&model, &program, &cutter, &opts, &args.out, "", &ctx)?;
-    print!("{}", text_summary(&v, &ctx));
+    let done = verify_request(&req, &Bars::default())?;
+    for note in &done.notes {
+        eprintln!("{note}");
+    }
+    print!("{}", text_summary(&done.verification, &done.context));
     println!("reports in {}", args.out.display());
-    if let Some(stop) = &ctx.stopped {
+    if let Some(stop) = &done.context.stopped {
         bail!("the program stopped at {stop}; the report covers the motions before it");
     }
     Ok(())
-}
-
-/// Reads the program at `path`; a G-code program through `machine`'s forward
-/// kinematics when given (five-axis moves split into motions within `tol` of the tool
-/// tip's path), with a tool `tool_length` long from the gauge line to the tip
-/// (machines with head axes). APT CL and pose CSV programs are read as they are.
-///
-/// # Units
-/// mm.
-///
-/// # Errors
-/// A program file that cannot be read; a tool length that is not a length.
-pub fn read_with_machine(
-    path: &Path,
-    machine: Option<&Machine>,
-    tool_length: f64,
-    tol: f64,
-) -> Result<Program> {
-    let Some(machine) = machine else {
-        return Ok(read_program(path)?);
-    };
-    let kinematics = MachineKinematics::new(machine.clone(), tool_length)?;
-    let opts = GcodeReadOptions {
-        kinematics: Some(&kinematics),
-        kinematics_tol: tol,
-        ..GcodeReadOptions::default()
-    };
-    Ok(read_program_with(path, &opts)?)
-}
-
-/// The machine `--machine` names: `builtin:NAME` or a machine file.
-fn machine_arg(spec: &str) -> Result<Machine> {
-    if spec.starts_with("builtin:") {
-        return Ok(load_machine(spec, Path::new(""))?);
-    }
-    let text = std::fs::read_to_string(spec)
-        .with_context(|| format!("--machine {spec}: cannot read the machine file"))?;
-    Ok(Machine::parse(&text, spec)?)
-}
-
-/// What the report says about the inputs.
-pub fn context(
-    part: &str,
-    program: &Program,
-    cutter: &Cutter,
-    opts: &VerifyOptions,
-) -> ReportContext {
-    ReportContext {
-        part: part.to_string(),
-        program: program.source.clone(),
-        tool: cutter.to_string(),
-        stock: opts.stock.describe(),
-        warnings: program
-            .warnings
-            .iter()
-            .map(|w| program.located(w))
-            .collect(),
-        stopped: program.stopped.as_ref().map(|d| program.located(d)),
-    }
-}
-
-/// Verifies and writes `{prefix}report.json`, `{prefix}flagged.csv`,
-/// `{prefix}deviation.png` and `{prefix}toolpath.png` under `out`.
-pub fn verify_and_write(
-    model: &Model,
-    program: &Program,
-    cutter: &Cutter,
-    opts: &VerifyOptions,
-    out: &Path,
-    prefix: &str,
-    ctx: &ReportContext,
-) -> Result<Verification> {
-    let design = match model {
-        Model::Patches(p) => Design::Part(p),
-        Model::Mesh { mesh, .. } => Design::Mesh(mesh),
-    };
-    let bars = Bars::default();
-    let v = swarf_sim::verify(design, program, cutter, opts, &bars)?;
-    std::fs::create_dir_all(out)
-        .with_context(|| format!("{}: cannot create the output directory", out.display()))?;
-    let file = |name: &str| out.join(format!("{prefix}{name}"));
-    let json = serde_json::to_string_pretty(&json_report(&v, ctx))? + "\n";
-    swarf_io::write_atomic(&file("report.json"), json.as_bytes())?;
-    swarf_io::write_atomic(&file("flagged.csv"), flagged_csv(&v).as_bytes())?;
-    let name = Path::new(&ctx.program)
-        .file_name()
-        .map_or(ctx.program.clone(), |n| n.to_string_lossy().into_owned());
-    let mode = if v.along_normals {
-        "normal"
-    } else {
-        "vertical"
-    };
-    let title = format!(
-        "{mode} deviation: {name}, {}, tol {} mm",
-        ctx.tool, v.deviation.summary.tol
-    );
-    swarf_io::write_atomic(
-        &file("deviation.png"),
-        &swarf_sim::picture::deviation_png(&v, &title)?,
-    )?;
-    let title = format!("tool path: {name}, {}", ctx.tool);
-    let png = swarf_sim::picture::toolpath_png(&v, &program.motions, &title)?;
-    swarf_io::write_atomic(&file("toolpath.png"), &png)?;
-    Ok(v)
 }
 
 #[cfg(test)]
@@ -423,8 +152,14 @@ mod tests {
             machine: None,
             tool_length: None,
             sim: SimArgs {
+                stock: "offset:0.5".into(),
+                cell: Some(0.05),
+                tol: None,
+                scallop: None,
+                rapid: None,
+                sample_tol: None,
+                max_memory: 4096,
                 deviation: None,
-                ..SimArgs::for_tests(0.05)
             },
             out: dir.join(out),
         };
@@ -451,21 +186,5 @@ mod tests {
                 .unwrap();
         assert_eq!(report["complete"], serde_json::Value::Bool(false));
         let _ = std::fs::remove_dir_all(&dir);
-    }
-
-    #[test]
-    fn stock_specs() {
-        assert_eq!(parse_stock("box").unwrap(), StockSpec::Box { top: None });
-        assert_eq!(
-            parse_stock("box:12.5").unwrap(),
-            StockSpec::Box { top: Some(12.5) }
-        );
-        assert_eq!(
-            parse_stock("offset:0.5").unwrap(),
-            StockSpec::Offset { allowance: 0.5 }
-        );
-        for bad in ["offset:-1", "offset:x", "box:nan", "cylinder", "stock.step"] {
-            assert!(parse_stock(bad).is_err(), "{bad}");
-        }
     }
 }

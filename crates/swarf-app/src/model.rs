@@ -1,6 +1,7 @@
-//! Resolving the PART arguments: a part file, a mesh file, or a built-in part name.
+//! Resolving a part as a user names it: a part file, a mesh file, or a built-in part
+//! name.
 
-use anyhow::{Context, Result, bail};
+use crate::error::{Result, bail};
 use std::path::Path;
 use swarf_geom::{Part, TriMesh};
 
@@ -9,7 +10,12 @@ pub enum Model {
     /// Patches from a part file or a built-in part.
     Patches(Part),
     /// A triangle mesh from STL or OBJ.
-    Mesh { name: String, mesh: TriMesh },
+    Mesh {
+        /// The file's stem.
+        name: String,
+        /// The triangles.
+        mesh: TriMesh,
+    },
 }
 
 /// Names of the built-in parts, for messages.
@@ -19,6 +25,9 @@ pub fn builtin_names() -> Vec<&'static str> {
 
 /// Loads `arg`: `builtin:NAME` or a bare built-in name (when no such file exists),
 /// a `.toml` part file, or an `.stl` / `.obj` mesh.
+///
+/// # Errors
+/// An unknown built-in name; a file that cannot be read or parsed.
 pub fn load_model(arg: &str) -> Result<Model> {
     let path = Path::new(arg);
     let builtin = arg
@@ -53,6 +62,9 @@ pub fn load_model(arg: &str) -> Result<Model> {
 }
 
 /// Loads a parametric part (refuses meshes with a clear message).
+///
+/// # Errors
+/// As [`load_model`], and a mesh.
 pub fn load_part(arg: &str) -> Result<Part> {
     match load_model(arg)? {
         Model::Patches(p) => Ok(p),
@@ -60,21 +72,4 @@ pub fn load_part(arg: &str) -> Result<Part> {
             bail!("{arg}: this command needs a parametric part (.toml), not a mesh")
         }
     }
-}
-
-/// Parses `U,V` into two numbers.
-pub fn parse_pair(text: &str, what: &str) -> Result<[f64; 2]> {
-    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    if parts.len() != 2 {
-        bail!("{what}: expected two numbers separated by a comma, found {text:?}");
-    }
-    let mut out = [0.0; 2];
-    for (o, p) in out.iter_mut().zip(&parts) {
-        *o = p
-            .parse::<f64>()
-            .ok()
-            .filter(|x| x.is_finite())
-            .with_context(|| format!("{what}: {p:?} is not a finite number"))?;
-    }
-    Ok(out)
 }

@@ -50,37 +50,15 @@
 //! Lengths in the job are mm; angles are degrees (converted to radians where they are
 //! used, at the input edge).
 
-mod positioning;
-
-pub use positioning::Positioning;
-
-use crate::error::PathError;
-use swarf_toolpath::{Feeds, Linking};
-
-/// Linking as a job gives it: the clearance plane may be left to swarf.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct JobLinking {
-    /// Clearance plane z, mm; default: 5 mm above the highest CL point of the path.
-    pub clearance: Option<f64>,
-    /// Distance above a pass start where the plunge feed begins, mm.
-    pub approach: f64,
-}
-
-impl Default for JobLinking {
-    fn default() -> Self {
-        JobLinking {
-            clearance: None,
-            approach: Linking::default().approach,
-        }
-    }
-}
-
-/// Height of the default clearance plane above the highest CL point, mm.
-pub const DEFAULT_CLEARANCE_MARGIN: f64 = 5.0;
+use crate::error::AppError;
 use serde::{Deserialize, Serialize};
+use swarf_fiveaxis::positioning::Positioning;
+use swarf_fiveaxis::post::FeedMode;
 use swarf_io::error::toml_message;
+use swarf_nc::{Dialect, Units};
+use swarf_path::params::{Finish, IsoParams, ParamDir, RasterParams, StartSide, StrategyKind};
 use swarf_tool::Cutter;
+use swarf_toolpath::{Feeds, Linking, LinkingSpec};
 
 /// A planning job.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -104,47 +82,10 @@ pub struct Job {
     pub feeds: Feeds,
     /// Linking between passes.
     #[serde(default)]
-    pub linking: JobLinking,
+    pub linking: LinkingSpec,
     /// Output files.
     #[serde(default)]
     pub output: Output,
-}
-
-/// The finishing strategies.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum StrategyKind {
-    /// Passes along constant-parameter curves of each patch (paper 004).
-    IsoParametric,
-    /// Passes are sections of the part by parallel vertical drive planes (paper 004).
-    IsoPlanar,
-    /// Each pass is placed so that the scallop to the previous one equals h (paper 004).
-    IsoScallop,
-    /// Drop-cutter raster on a triangle mesh (iso-planar for meshes).
-    Raster,
-}
-
-/// Which parameter a pass follows (iso-parametric) or which boundary the first pass
-/// starts on (iso-scallop).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ParamDir {
-    /// Passes run along u (v constant on each pass).
-    #[default]
-    U,
-    /// Passes run along v (u constant on each pass).
-    V,
-}
-
-/// Which end of the side-step range the first pass is on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum StartSide {
-    /// Start at the low end (smallest v, or the lowest drive plane offset).
-    #[default]
-    Min,
-    /// Start at the high end.
-    Max,
 }
 
 /// Strategy parameters. Fields not used by a strategy are ignored by it.
@@ -210,68 +151,34 @@ pub struct Output {
     pub double_contacts: Option<String>,
     /// Output units: "mm" or "inch".
     #[serde(default)]
-    pub units: OutputUnits,
+    pub units: Units,
     /// G-code dialect: "linuxcnc" or "fanuc".
     #[serde(default)]
-    pub dialect: OutputDialect,
+    pub dialect: Dialect,
     /// Machine for five-axis G-code: a machine file relative to the job file, or
     /// `builtin:NAME` for a machine shipped with swarf (`builtin:xyzac-trunnion`, ...).
     #[serde(default)]
     pub machine: Option<String>,
     /// Feeds of five-axis G-code: "inverse-time" (G93) or "units-per-minute" (G94).
     #[serde(default)]
-    pub feed_mode: OutputFeedMode,
+    pub feed_mode: FeedMode,
     /// Spindle gauge line to tool tip, mm (machines with head axes).
     #[serde(default)]
     pub tool_length: Option<f64>,
-}
-
-/// Feed mode of five-axis G-code (mirrors the five-axis post's, which sits above
-/// this crate).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum OutputFeedMode {
-    /// G93: `F` is the inverse of each move's time.
-    #[default]
-    InverseTime,
-    /// G94: `F` in length units per minute.
-    UnitsPerMinute,
-}
-
-/// Output length units (mirrors the NC crate's, which sits below this one).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum OutputUnits {
-    /// Millimetres.
-    #[default]
-    Mm,
-    /// Inches.
-    Inch,
-}
-
-/// G-code dialect (mirrors the NC crate's).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum OutputDialect {
-    /// LinuxCNC.
-    #[default]
-    Linuxcnc,
-    /// Fanuc-style controls.
-    Fanuc,
 }
 
 impl Job {
     /// Parses and validates a job from TOML text; `source` names the file in errors.
     ///
     /// # Errors
-    /// [`PathError::Job`] with the file, line and field for malformed TOML, unknown
+    /// [`AppError::Job`] with the file, line and field for malformed TOML, unknown
     /// keys, bad tools, and out-of-range parameters.
-    pub fn parse(text: &str, source: &str) -> Result<Job, PathError> {
-        let job: Job = toml::from_str(text).map_err(|e| PathError::Job {
+    pub fn parse(text: &str, source: &str) -> Result<Job, AppError> {
+        let job: Job = toml::from_str(text).map_err(|e| AppError::Job {
             file: source.to_string(),
             message: toml_message(text, &e),
         })?;
-        job.validate().map_err(|message| PathError::Job {
+        job.validate().map_err(|message| AppError::Job {
             file: source.to_string(),
             message,
         })?;
@@ -365,22 +272,53 @@ impl Job {
         positive("output.tool_length", o.tool_length)
     }
 
-    /// The linking for a path whose highest CL point is at `top_z`: the job's
-    /// clearance when given (raised to `top_z` if it is below), else `top_z` plus
-    /// [`DEFAULT_CLEARANCE_MARGIN`].
+    /// The linking for a path whose highest CL point is at `top_z`
+    /// ([`LinkingSpec::for_top`]).
     pub fn linking_for(&self, top_z: f64) -> Linking {
-        Linking {
-            clearance: self
-                .linking
-                .clearance
-                .map_or(top_z + DEFAULT_CLEARANCE_MARGIN, |c| c.max(top_z)),
-            approach: self.linking.approach,
-        }
+        self.linking.for_top(top_z)
     }
 
     /// The feed direction angle in radians.
     pub fn angle_rad(&self) -> f64 {
         self.strategy.angle.to_radians()
+    }
+
+    /// What every strategy takes from the job: tool, tolerance, zigzag, feeds,
+    /// linking.
+    pub fn finish(&self) -> Finish {
+        Finish {
+            tool: self.tool,
+            tolerance: self.strategy.tolerance,
+            zigzag: self.strategy.zigzag,
+            feeds: self.feeds,
+            linking: self.linking,
+        }
+    }
+
+    /// The parameters of the iso strategies.
+    pub fn iso_params(&self) -> IsoParams {
+        let s = &self.strategy;
+        IsoParams {
+            finish: self.finish(),
+            scallop: s.scallop,
+            stepover: s.stepover,
+            direction: s.direction,
+            angle: self.angle_rad(),
+            start: s.start,
+        }
+    }
+
+    /// The parameters of the raster strategy.
+    pub fn raster_params(&self) -> RasterParams {
+        let s = &self.strategy;
+        RasterParams {
+            finish: self.finish(),
+            scallop: s.scallop,
+            stepover: s.stepover,
+            angle: self.angle_rad(),
+            start: s.start,
+            boundary: s.boundary,
+        }
     }
 }
 
@@ -454,6 +392,156 @@ gcode = "a.ngc"
         for (text, want) in cases {
             let e = Job::parse(&text, "job.toml").unwrap_err().to_string();
             assert!(e.starts_with("job.toml: "), "{e}");
+            assert!(e.contains(want), "want {want:?} in {e}");
+        }
+    }
+}
+
+#[cfg(test)]
+mod five_axis_tests {
+    use super::*;
+    use swarf_fiveaxis::positioning::Positioning;
+
+    const FIVE: &str = r#"
+part = "builtin:die"
+tool = "bull:d=38.1,r=6.35"
+positioning = { method = "inclined", alpha = 3 }
+[strategy]
+kind = "iso-planar"
+stepover = 3.5
+angle = 60
+[output]
+machine = "builtin:xyzac-trunnion"
+gcode = "die.ngc"
+cl = "die.cl"
+"#;
+
+    #[test]
+    fn positioning_tables_parse() {
+        let job = Job::parse(FIVE, "die.toml").unwrap();
+        assert_eq!(
+            job.positioning,
+            Some(Positioning::Inclined {
+                alpha: 3.0,
+                tilt: 0.0,
+                sections: 1.0
+            })
+        );
+        assert_eq!(job.strategy.stepover, Some(3.5));
+        assert_eq!(
+            job.output.machine.as_deref(),
+            Some("builtin:xyzac-trunnion")
+        );
+        assert_eq!(job.output.feed_mode, FeedMode::InverseTime);
+        let auto = FIVE.replace(
+            r#"{ method = "inclined", alpha = 3 }"#,
+            r#"{ method = "gouge-free", max_alpha = 15, sections = 0.5 }"#,
+        );
+        let job = Job::parse(&auto, "die.toml").unwrap();
+        assert_eq!(
+            job.positioning,
+            Some(Positioning::GougeFree {
+                max_alpha: 15.0,
+                sections: 0.5,
+                tilt: 0.0,
+                max_rate: 0.5,
+                tolerance: None
+            })
+        );
+        assert_eq!(job.positioning.map(|p| p.method()), Some("gouge-free"));
+        let g94 = FIVE.replace(
+            "gcode = ",
+            "feed_mode = \"units-per-minute\"\ntool_length = 120\ngcode = ",
+        );
+        let job = Job::parse(&g94, "die.toml").unwrap();
+        assert_eq!(job.output.feed_mode, FeedMode::UnitsPerMinute);
+        assert_eq!(job.output.tool_length, Some(120.0));
+        // A machine without positioning (a vertical tool in five-axis words), and a
+        // positioning with CL output only: both fine.
+        let vertical = FIVE.replace("positioning = { method = \"inclined\", alpha = 3 }", "");
+        assert!(
+            Job::parse(&vertical, "die.toml")
+                .unwrap()
+                .positioning
+                .is_none()
+        );
+        let cl_only = FIVE
+            .replace("machine = \"builtin:xyzac-trunnion\"", "")
+            .replace("gcode = \"die.ngc\"", "");
+        assert!(Job::parse(&cl_only, "die.toml").is_ok());
+    }
+
+    #[test]
+    fn bad_five_axis_jobs_name_the_field() {
+        let inclined = r#"{ method = "inclined", alpha = 3 }"#;
+        let cases = [
+            (FIVE.replace("alpha = 3", "alpha = 95"), "positioning.alpha"),
+            (FIVE.replace("alpha = 3", "alpha = -1"), "positioning.alpha"),
+            (
+                FIVE.replace("alpha = 3", "alpha = 3, tilt = 91"),
+                "positioning.tilt",
+            ),
+            (
+                FIVE.replace("alpha = 3", "alpha = 3, sections = 0"),
+                "positioning.sections",
+            ),
+            (
+                FIVE.replace(inclined, r#"{ method = "gouge-free", max_alpha = 0 }"#),
+                "positioning.max_alpha",
+            ),
+            (
+                FIVE.replace(
+                    inclined,
+                    r#"{ method = "gouge-free", max_alpha = 15, max_rate = -1 }"#,
+                ),
+                "positioning.max_rate",
+            ),
+            (
+                FIVE.replace(
+                    inclined,
+                    r#"{ method = "gouge-free", max_alpha = 15, tolerance = -0.1 }"#,
+                ),
+                "positioning.tolerance",
+            ),
+            // Unknown method, unknown key, missing field: the TOML line.
+            (FIVE.replace("\"inclined\"", "\"tilted\""), "line 4"),
+            (FIVE.replace("alpha = 3", "alpha = 3, beta = 2"), "beta"),
+            (
+                FIVE.replace(inclined, r#"{ method = "gouge-free" }"#),
+                "max_alpha",
+            ),
+            (
+                FIVE.replace("machine = \"builtin:xyzac-trunnion\"", ""),
+                "output.machine: a tilted tool path needs a machine file for G-code",
+            ),
+            (
+                FIVE.replace("machine = \"builtin:xyzac-trunnion\"", "machine = \"\""),
+                "output.machine",
+            ),
+            (
+                FIVE.replace("gcode = ", "feed_mode = \"g93\"\ngcode = "),
+                "line 11: unknown variant `g93`, expected `inverse-time`",
+            ),
+            (
+                FIVE.replace("gcode = ", "tool_length = -5\ngcode = "),
+                "output.tool_length",
+            ),
+            (
+                FIVE.replace("stepover = 3.5", "stepover = 40"),
+                "strategy.stepover",
+            ),
+            (
+                FIVE.replace("stepover = 3.5", "stepover = 3.5\nscallop = 0.1"),
+                "strategy.stepover",
+            ),
+            (
+                FIVE.replace("iso-planar", "iso-scallop"),
+                "strategy.stepover",
+            ),
+        ];
+        for (text, want) in cases {
+            let e = Job::parse(&text, "die.toml").unwrap_err().to_string();
+            assert!(e.starts_with("die.toml: "), "{e}");
             assert!(e.contains(want), "want {want:?} in {e}");
         }
     }

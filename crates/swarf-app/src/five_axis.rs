@@ -1,0 +1,187 @@
+//! Five-axis jobs: what [`crate::plan_job`] does after the 3-axis plan of a job that
+//! has a `positioning` table or an `output.machine` ([`crate::job`]).
+//!
+//! 1. **CC paths** of the plan ([`swarf_fiveaxis::cc_paths`]).
+//! 2. **Positioning** ([`swarf_fiveaxis::positioning`]): the inclined tool or the
+//!    gouge-free lead, with the sectioning gouge report. The positioned passes replace
+//!    the 3-axis ones, in the same order and directions (zigzag kept), relinked above
+//!    the tilted tool ([`swarf_fiveaxis::cc_paths::linking`]).
+//! 3. **Post** ([`write_job_gcode`]): the machine named by `output.machine`
+//!    ([`load_machine`]: a file relative to the job file, or `builtin:NAME` for the
+//!    machines shipped in `machines/`), G93 or G94, the tool length for machines with
+//!    head axes, through [`write_gcode_5x`].
+//!
+//! The 3-axis plan's figures that describe the vertical tool (its lifts and predicted
+//! scallop) are cleared from a positioned plan's report; the sectioning report says
+//! what the tilted tool does.
+
+use crate::error::Result;
+use crate::job::Job;
+use crate::plan::{PlanInput, plan};
+use swarf_fiveaxis::FiveAxisError;
+use swarf_fiveaxis::cc_paths::{cc_paths, linking};
+use swarf_fiveaxis::machine::{Machine, MachineKind};
+use swarf_fiveaxis::positioning::{PositioningReport, position_with_progress};
+use swarf_fiveaxis::post::{PostOptions, write_gcode_5x};
+use swarf_geom::Part;
+use swarf_path::Plan;
+use swarf_toolpath::{Contact, Toolpath};
+
+#[cfg(doc)]
+use swarf_fiveaxis::machine::load_machine;
+
+/// The CC paths of `job`'s 3-axis plan on `part` ([`cc_paths`] of its passes): what
+/// [`position_plan`] positions, for callers that position them themselves.
+///
+/// # Errors
+/// The planning errors of [`plan()`].
+pub fn planned_cc_paths(job: &Job, part: &Part) -> Result<Vec<Vec<Contact>>> {
+    let plan = plan(job, PlanInput::Part(part))?;
+    Ok(cc_paths(&plan.toolpath))
+}
+
+/// Positions the planned passes of `plan` as `job.positioning` asks (module doc) and
+/// relinks them; `None` (and `plan` untouched) for a job without positioning.
+/// `progress(done, total)` counts passes.
+///
+/// # Errors
+/// [`FiveAxisError::InvalidParameter`] when the plan has no CC path; the errors of
+/// [`position_with_progress`] (a gouge-free lead that cannot be found names the pass,
+/// the point and the CC point).
+pub fn position_plan(
+    job: &Job,
+    part: &Part,
+    plan: &mut Plan,
+    progress: &dyn Fn(usize, usize),
+) -> Result<Option<PositioningReport>, FiveAxisError> {
+    let Some(positioning) = &job.positioning else {
+        return Ok(None);
+    };
+    let cc = cc_paths(&plan.toolpath);
+    if cc.is_empty() {
+        return Err(FiveAxisError::parameter(
+            "positioning",
+            "the strategy gave no pass with two or more contact points to position",
+        ));
+    }
+    let (passes, report) = position_with_progress(
+        &job.tool,
+        part,
+        &cc,
+        positioning,
+        job.strategy.tolerance,
+        progress,
+    )?;
+    plan.toolpath.linking = linking(&job.linking, &job.tool, part, &passes);
+    plan.toolpath.passes = passes;
+    plan.report.lifted_points = 0;
+    plan.report.max_lift = 0.0;
+    plan.report.predicted_max_scallop = None;
+    Ok(Some(report))
+}
+
+/// The five-axis post options for `job` on `machine`, with header `comments`.
+///
+/// # Errors
+/// [`FiveAxisError::InvalidParameter`] naming `output.tool_length` when a machine with
+/// head axes has no tool length.
+pub fn post_options(
+    job: &Job,
+    machine: &Machine,
+    comments: Vec<String>,
+) -> Result<PostOptions, FiveAxisError> {
+    let tool_length = match (machine.kind, job.output.tool_length) {
+        (_, Some(l)) => l,
+        (MachineKind::TableTable, None) => 0.0,
+        (kind, None) => {
+            return Err(FiveAxisError::parameter(
+                "output.tool_length",
+                format!(
+                    "machine {:?} ({kind:?}) turns the head: its kinematics need the tool length (spindle gauge line to tip, mm)",
+                    machine.name
+                ),
+            ));
+        }
+    };
+    Ok(PostOptions {
+        dialect: job.output.dialect,
+        units: job.output.units,
+        comments,
+        feed_mode: job.output.feed_mode,
+        tool_length,
+        path_tol: job.strategy.tolerance,
+        ..PostOptions::default()
+    })
+}
+
+/// `toolpath` as five-axis G-code for `machine`, with the job's post options.
+///
+/// # Errors
+/// As [`post_options`] and [`write_gcode_5x`] (an unreachable pose names the pass,
+/// the point and the axis).
+pub fn write_job_gcode(
+    job: &Job,
+    machine: &Machine,
+    toolpath: &Toolpath,
+    comments: Vec<String>,
+) -> Result<String, FiveAxisError> {
+    let opts = post_options(job, machine, comments)?;
+    write_gcode_5x(machine, toolpath, &opts)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+    use swarf_fiveaxis::machine::load_machine;
+    use swarf_fiveaxis::post::FeedMode;
+    use swarf_geom::Vec3;
+
+    /// The 3-axis gouge lift moves a pose's tip, not its contact: positioning gets
+    /// the CC points as planned (a ball in the crease of the concave edge part, where
+    /// it is lifted: tip = contact + r n - r z, raised by the lift).
+    #[test]
+    fn lifted_points_keep_their_contacts() {
+        let part = swarf_io::builtin_part("edge-concave").unwrap();
+        let job = Job::parse(
+            "part = \"x\"\ntool = \"ball:d=16\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 4\nangle = 90\n",
+            "job.toml",
+        )
+        .unwrap();
+        let plan = crate::plan::plan(&job, PlanInput::Part(&part)).unwrap();
+        let lifted: Vec<_> = plan
+            .toolpath
+            .passes
+            .iter()
+            .flat_map(|p| &p.points)
+            .filter(|p| p.lifted > 1e-3)
+            .collect();
+        assert!(lifted.len() > 5, "{}", lifted.len());
+        for p in lifted {
+            let c = p.contact.unwrap();
+            let planned = c.point + 8.0 * c.normal - 8.0 * Vec3::z();
+            let tip = p.pose.cl - p.lifted * Vec3::z();
+            assert!((tip - planned).norm() < 1e-9, "{tip} vs {planned}");
+            let on = part.patches[c.face].eval(c.uv[0], c.uv[1]);
+            assert!((on - c.point).norm() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn head_machines_need_a_tool_length() {
+        let dir = Path::new(".");
+        let job = Job::parse(
+            "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"iso-planar\"\nscallop = 0.1\n",
+            "job.toml",
+        )
+        .unwrap();
+        let head = load_machine("builtin:xyzbc-head", dir).unwrap();
+        let e = post_options(&job, &head, Vec::new())
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("output.tool_length"), "{e}");
+        let trunnion = load_machine("builtin:xyzac-trunnion", dir).unwrap();
+        let o = post_options(&job, &trunnion, Vec::new()).unwrap();
+        assert_eq!(o.feed_mode, FeedMode::InverseTime);
+    }
+}

@@ -1,0 +1,24 @@
+//! swarf-app: the application layer. It reads job files (the TOML schema, [`job`]),
+//! runs the pipeline plan -> position -> post -> verify ([`plan_job`], [`five_axis`],
+//! [`verify`]), tabulates the comparison of paper 004 and thesis 000 ([`compare`]),
+//! and runs the demo ([`demo`]). It calls the kernel crates; it does not compute
+//! geometry. The `swarf` command line and the Python package are thin layers over it.
+
+pub mod compare;
+pub mod demo;
+pub mod error;
+pub mod five_axis;
+pub mod inspect;
+pub mod job;
+pub mod model;
+pub mod plan;
+pub mod plan_job;
+pub mod report;
+pub mod verify;
+
+pub use error::{AppError, Result};
+pub use job::Job;
+pub use model::{Model, load_model, load_part};
+pub use plan::{PlanInput, plan};
+pub use plan_job::plan_job;
+pub use report::Reporter;

@@ -1,0 +1,82 @@
+//! Planning a job: its strategy's parameters from the job file, the strategy run on
+//! the part (or on its tessellation, for the raster), the clearance plane above the
+//! planned path, and the pass bound of the iso strategies.
+
+use crate::job::Job;
+use swarf_geom::{Part, TriMesh};
+use swarf_path::pass_bound::{Feed, PassBound, pass_bound};
+use swarf_path::side_step::SideStep;
+use swarf_path::{PathError, Plan, StrategyKind};
+
+/// What a job plans on.
+#[derive(Debug, Clone, Copy)]
+pub enum PlanInput<'a> {
+    /// Parametric patches (all strategies; raster runs on their tessellation).
+    Part(&'a Part),
+    /// A triangle mesh (raster only).
+    Mesh(&'a TriMesh),
+}
+
+/// The pass bound of an iso job on `part` (empty for raster, or without a usable
+/// scallop height: the strategy has already rejected those).
+fn bound_for(job: &Job, part: &Part) -> Vec<PassBound> {
+    let feed = match job.strategy.kind {
+        StrategyKind::Raster => return Vec::new(),
+        StrategyKind::IsoParametric | StrategyKind::IsoScallop => {
+            Feed::Param(job.strategy.direction)
+        }
+        StrategyKind::IsoPlanar => Feed::Plane(job.angle_rad()),
+    };
+    match job.strategy.scallop.map(|h| SideStep::new(&job.tool, h)) {
+        Some(Ok(side)) => pass_bound(part, &side, feed),
+        _ => Vec::new(),
+    }
+}
+
+/// Plans `job` on `input`.
+///
+/// # Errors
+/// [`PathError::NoPath`] when a strategy cannot make any pass (or an iso strategy is
+/// given a mesh), [`PathError::InvalidParameter`] for parameters the strategy cannot use.
+pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
+    let start = std::time::Instant::now();
+    let mut plan = match (job.strategy.kind, input) {
+        (StrategyKind::Raster, PlanInput::Mesh(mesh)) => {
+            swarf_path::raster::plan(mesh, &job.raster_params())?
+        }
+        (StrategyKind::Raster, PlanInput::Part(part)) => {
+            let mesh = part.tessellate(job.strategy.tolerance * 0.1)?;
+            swarf_path::raster::plan(&mesh, &job.raster_params())?
+        }
+        (kind, PlanInput::Mesh(_)) => {
+            return Err(PathError::NoPath(format!(
+                "strategy {kind:?} plans on parametric patches; a mesh part needs strategy \"raster\""
+            )));
+        }
+        (StrategyKind::IsoParametric, PlanInput::Part(part)) => {
+            swarf_path::iso_parametric::plan(part, &job.iso_params())?
+        }
+        (StrategyKind::IsoPlanar, PlanInput::Part(part)) => {
+            swarf_path::iso_planar::plan(part, &job.iso_params())?
+        }
+        (StrategyKind::IsoScallop, PlanInput::Part(part)) => {
+            swarf_path::iso_scallop::plan(part, &job.iso_params())?
+        }
+    };
+    let top = plan
+        .toolpath
+        .passes
+        .iter()
+        .flat_map(|p| &p.points)
+        .map(|p| p.pose.cl.z)
+        .fold(f64::NEG_INFINITY, f64::max);
+    if top.is_finite() {
+        plan.toolpath.linking = job.linking_for(top);
+    }
+    plan.report.lifted_points = plan.toolpath.lifted_count();
+    if let PlanInput::Part(part) = input {
+        plan.report.pass_bound = bound_for(job, part);
+    }
+    plan.report.elapsed_s = start.elapsed().as_secs_f64();
+    Ok(plan)
+}

@@ -1,0 +1,169 @@
+//! `plan_job`: a job planned end to end. Loads its part, plans it, positions it for a
+//! five-axis job (a `positioning` table, [`crate::five_axis`]) and writes every
+//! requested output: G-code (three-axis, or five-axis for `output.machine`), APT CL,
+//! pose CSV, double contacts and the JSON summary.
+
+use crate::error::{Result, bail};
+use crate::five_axis::{position_plan, write_job_gcode};
+use crate::job::Job;
+use crate::model::{Model, load_model};
+use crate::plan::{PlanInput, plan};
+use crate::report::Reporter;
+use std::path::Path;
+use swarf_fiveaxis::machine::{Machine, load_machine};
+use swarf_fiveaxis::positioning::{Positioning, PositioningReport};
+use swarf_nc::GcodeOptions;
+use swarf_path::Plan;
+use swarf_toolpath::motion_stats;
+
+/// Loads the job's part, plans it (and positions it, for a five-axis job) and writes
+/// every requested output under `out_dir`. Returns the JSON summary.
+pub fn plan_job(
+    job: &Job,
+    job_dir: &Path,
+    out_dir: &Path,
+    reporter: &dyn Reporter,
+) -> Result<serde_json::Value> {
+    let model = load_model(&part_arg(job, job_dir))?;
+    let machine = job
+        .output
+        .machine
+        .as_deref()
+        .map(|spec| load_machine(spec, job_dir))
+        .transpose()?;
+    let (name, mut plan) = match &model {
+        Model::Patches(part) => (part.name.clone(), plan(job, PlanInput::Part(part))?),
+        Model::Mesh { name, mesh } => (name.clone(), plan(job, PlanInput::Mesh(mesh))?),
+    };
+    let positioning = match (&model, &job.positioning) {
+        (_, None) => None,
+        (Model::Patches(part), Some(_)) => {
+            let start = std::time::Instant::now();
+            let report = position_plan(job, part, &mut plan, &|done, total| {
+                reporter.passes(done, total);
+            });
+            reporter.passes_done();
+            let report = report?;
+            plan.report.elapsed_s += start.elapsed().as_secs_f64();
+            report
+        }
+        (Model::Mesh { .. }, Some(_)) => {
+            bail!("positioning: five-axis positioning needs a parametric part (.toml), not a mesh")
+        }
+    };
+    write_outputs(
+        job,
+        &name,
+        &plan,
+        machine.as_ref(),
+        positioning.as_ref(),
+        out_dir,
+    )
+}
+
+/// The job's part as a `load_model` argument: built-in or absolute as given, else
+/// relative to the job's directory.
+pub fn part_arg(job: &Job, job_dir: &Path) -> String {
+    if job.part.starts_with("builtin:") || Path::new(&job.part).is_absolute() {
+        job.part.clone()
+    } else {
+        job_dir.join(&job.part).display().to_string()
+    }
+}
+
+fn write_outputs(
+    job: &Job,
+    part_name: &str,
+    plan: &Plan,
+    machine: Option<&Machine>,
+    positioning: Option<&PositioningReport>,
+    out_dir: &Path,
+) -> Result<serde_json::Value> {
+    let moves = plan.toolpath.moves();
+    let stats = motion_stats(&moves, job.feeds.rapid);
+    let strategy = serde_json::to_value(job.strategy.kind)?;
+    let strategy = strategy.as_str().unwrap_or("?").to_string();
+    let out = |rel: &str| out_dir.join(rel);
+    let mut comments = vec![
+        format!("swarf {}", env!("CARGO_PKG_VERSION")),
+        format!("part {part_name}"),
+        format!("tool {}", job.tool),
+        format!("strategy {strategy}"),
+    ];
+    if let Some(p) = &job.positioning {
+        comments.push(format!("positioning {}", describe(p)));
+    }
+    match (&job.output.gcode, machine) {
+        (Some(rel), Some(m)) => {
+            let text = write_job_gcode(job, m, &plan.toolpath, comments)?;
+            swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+        }
+        (Some(rel), None) => {
+            let opts = GcodeOptions {
+                dialect: job.output.dialect,
+                units: job.output.units,
+                comments,
+                ..GcodeOptions::default()
+            };
+            let text = swarf_nc::write_gcode(&moves, &job.feeds, &opts)?;
+            swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+        }
+        (None, _) => {}
+    }
+    if let Some(rel) = &job.output.cl {
+        let text = swarf_nc::write_cl(&moves, &job.feeds, &job.tool, part_name, job.output.units)?;
+        swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+    }
+    if let Some(rel) = &job.output.csv {
+        let text = swarf_nc::write_pose_csv(&plan.toolpath, job.output.units);
+        swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+    }
+    if let (Some(rel), Some(text)) = (&job.output.double_contacts, plan.double_contacts_csv()) {
+        swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+    }
+    let mut summary = serde_json::json!({
+        "job": job.name,
+        "part": part_name,
+        "tool": job.tool.to_string(),
+        "strategy": strategy,
+        "passes": plan.toolpath.passes.len(),
+        "poses": plan.toolpath.pose_count(),
+        "cutting_length_mm": stats.cutting_length,
+        "approach_length_mm": stats.approach_length,
+        "rapid_length_mm": stats.rapid_length,
+        "estimated_time_s": stats.time_s,
+        "lifted_points": plan.toolpath.lifted_count(),
+        "report": plan.report,
+    });
+    if let Some(m) = machine {
+        summary["machine"] = serde_json::json!(m.name);
+    }
+    if let Some(p) = positioning {
+        summary["positioning"] = serde_json::to_value(p)?;
+    }
+    if let Some(rel) = &job.output.summary {
+        let text = serde_json::to_string_pretty(&summary)? + "\n";
+        swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+    }
+    Ok(summary)
+}
+
+/// The positioning as one line for the G-code header (degrees, mm).
+fn describe(p: &Positioning) -> String {
+    match *p {
+        Positioning::Inclined {
+            alpha,
+            tilt,
+            sections,
+        } => format!("inclined, lead {alpha} deg, tilt {tilt} deg, sections {sections} mm"),
+        Positioning::GougeFree {
+            max_alpha,
+            sections,
+            tilt,
+            max_rate,
+            ..
+        } => format!(
+            "gouge-free, lead <= {max_alpha} deg, <= {max_rate} deg/mm, tilt {tilt} deg, sections {sections} mm"
+        ),
+    }
+}
