@@ -1,4 +1,4 @@
-//! Five-axis jobs: what [`crate::plan_job`] does after the 3-axis plan of a job that
+//! Five-axis jobs: what [`crate::plan_job()`] does after the 3-axis plan of a job that
 //! has a `positioning` table or an `output.machine` ([`crate::job`]).
 //!
 //! 1. **CC paths** of the plan ([`swarf_fiveaxis::cc_paths`]).

@@ -1,4 +1,4 @@
-//! `swarf plan JOB.toml`: plan a job and write its outputs ([`swarf_app::plan_job`]).
+//! `swarf plan JOB.toml`: plan a job and write its outputs ([`swarf_app::plan_job()`]).
 
 use crate::progress::Bars;
 use anyhow::{Context, Result};
