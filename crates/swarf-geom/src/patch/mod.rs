@@ -207,21 +207,7 @@ impl Patch {
 /// Validates (or, when absent, makes Bezier) knots for direction `dir`.
 fn checked_knots(dir: usize, p: usize, knots: Option<Vec<f64>>) -> Result<Vec<f64>, GeomError> {
     let field = format!("knots_{}", DIR_NAMES[dir]);
-    if p == 0 {
-        return Err(GeomError::patch(
-            "degree",
-            format!("degree_{} must be at least 1, found 0", DIR_NAMES[dir]),
-        ));
-    }
-    if p > MAX_DEGREE {
-        return Err(GeomError::patch(
-            "degree",
-            format!(
-                "degree_{} must be at most {MAX_DEGREE}, found {p}",
-                DIR_NAMES[dir]
-            ),
-        ));
-    }
+    checked_degree(dir, p)?;
     let Some(k) = knots else {
         let mut k = vec![0.0; p + 1];
         k.extend(std::iter::repeat_n(1.0, p + 1));
@@ -275,6 +261,34 @@ fn checked_knots(dir: usize, p: usize, knots: Option<Vec<f64>>) -> Result<Vec<f6
             ),
         ));
     }
+    checked_interior(&field, p, &k)?;
+    Ok(k)
+}
+
+/// Degree `p` of direction `dir` is within 1..=[`MAX_DEGREE`].
+fn checked_degree(dir: usize, p: usize) -> Result<(), GeomError> {
+    if p == 0 {
+        return Err(GeomError::patch(
+            "degree",
+            format!("degree_{} must be at least 1, found 0", DIR_NAMES[dir]),
+        ));
+    }
+    if p > MAX_DEGREE {
+        return Err(GeomError::patch(
+            "degree",
+            format!(
+                "degree_{} must be at most {MAX_DEGREE}, found {p}",
+                DIR_NAMES[dir]
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// No interior knot of the clamped vector `k` (degree `p`) is repeated more than `p`
+/// times.
+fn checked_interior(field: &str, p: usize, k: &[f64]) -> Result<(), GeomError> {
+    let n = k.len();
     let mut i = p + 1;
     while i < n - p - 1 {
         let m = k[i..n - p - 1].iter().take_while(|x| **x == k[i]).count();
@@ -289,7 +303,7 @@ fn checked_knots(dir: usize, p: usize, knots: Option<Vec<f64>>) -> Result<Vec<f6
         }
         i += m;
     }
-    Ok(k)
+    Ok(())
 }
 
 #[cfg(test)]

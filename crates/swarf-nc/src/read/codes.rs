@@ -123,7 +123,7 @@ const OFFSETS: &str = "work offsets other than G54 are not simulated: program co
 /// The G code `code10` (ten times the number: G90.1 is 901).
 pub fn g_code(code10: u32) -> Option<(Group, Effect)> {
     use Action as A;
-    use Effect::{Refuse, Run, Warn};
+    use Effect::{Refuse, Run};
     use Group as Gr;
     let entry = match code10 {
         0 => (Gr::Motion, Run(A::Rapid)),
@@ -165,6 +165,18 @@ pub fn g_code(code10: u32) -> Option<(Group, Effect)> {
             Gr::ToolLength,
             Refuse("dynamic tool length offsets (G43.1, G43.2) are not supported"),
         ),
+        _ => return other_g_code(code10),
+    };
+    Some(entry)
+}
+
+/// The G codes of [`g_code`] outside the motion, plane, distance, feed, units and
+/// compensation groups.
+fn other_g_code(code10: u32) -> Option<(Group, Effect)> {
+    use Action as A;
+    use Effect::{Refuse, Run, Warn};
+    use Group as Gr;
+    let entry = match code10 {
         980 | 990 => (
             Gr::ReturnMode,
             Warn("G98/G99 ignored: they only matter for canned cycles"),

@@ -134,19 +134,8 @@ pub fn parse_gcode(text: &str, source: &str, opts: &GcodeReadOptions) -> Result<
             continue;
         }
         started = true;
-        if block.block_delete {
-            if !delete_warned {
-                delete_warned = true;
-                let what = if opts.block_delete {
-                    "block delete (/) lines are skipped: the block delete switch is on"
-                } else {
-                    "block delete (/) lines run: the block delete switch is off, as LinuxCNC starts"
-                };
-                machine.warnings.push(Diagnostic::new(line, 1, what));
-            }
-            if opts.block_delete {
-                continue;
-            }
+        if block.block_delete && skip_deleted(&mut machine, opts, line, &mut delete_warned) {
+            continue;
         }
         if block.program_number.is_some() {
             machine.fanuc = true;
@@ -166,17 +155,42 @@ pub fn parse_gcode(text: &str, source: &str, opts: &GcodeReadOptions) -> Result<
     if let Some(after) = ended {
         warn_trailing(&mut machine, lines, after);
     } else if program.stopped.is_none() {
-        let last = text.lines().count().max(1);
-        let what = if opened {
-            "the program opens with % but has no closing % (nor M2/M30)"
-        } else {
-            "the program ends without M2/M30 or %: LinuxCNC reports an error here"
-        };
-        machine.warnings.push(Diagnostic::new(last, 1, what));
+        warn_unended(&mut machine, text, opened);
     }
     program.motions = machine.motions;
     program.warnings = machine.warnings.finish();
     Ok(program)
+}
+
+/// Whether a block delete (`/`) line at `line` is skipped (the switch of `opts`);
+/// the first such line warns which way the switch is.
+fn skip_deleted(
+    machine: &mut Interpreter,
+    opts: &GcodeReadOptions,
+    line: usize,
+    warned: &mut bool,
+) -> bool {
+    if !*warned {
+        *warned = true;
+        let what = if opts.block_delete {
+            "block delete (/) lines are skipped: the block delete switch is on"
+        } else {
+            "block delete (/) lines run: the block delete switch is off, as LinuxCNC starts"
+        };
+        machine.warnings.push(Diagnostic::new(line, 1, what));
+    }
+    opts.block_delete
+}
+
+/// A warning at the last line of a program that ends without M2/M30 or `%`.
+fn warn_unended(machine: &mut Interpreter, text: &str, opened: bool) {
+    let last = text.lines().count().max(1);
+    let what = if opened {
+        "the program opens with % but has no closing % (nor M2/M30)"
+    } else {
+        "the program ends without M2/M30 or %: LinuxCNC reports an error here"
+    };
+    machine.warnings.push(Diagnostic::new(last, 1, what));
 }
 
 /// A warning at the first non-blank, non-comment line after the end of the program.
