@@ -1,7 +1,8 @@
 //! swarf-geom: the exact geometric core shared by planning and verification.
 //!
 //! - [`math`]: f64 points and vectors (nalgebra), axis-aligned boxes, planes, polylines.
-//! - [`tol`]: named numeric epsilons, with units, in one place.
+//! - [`tol`]: the numeric epsilons shared across crates, with units; an algorithm's
+//!   own tuning constants live beside it. [`units`]: mm per inch, for the I/O edge.
 //! - [`patch`]: tensor-product Bezier, B-spline and NURBS patches: evaluation, exact
 //!   derivatives, differential geometry, projection, plane sections, tessellation.
 //! - [`part`]: a part as a set of patches (upper-envelope semantics for 3-axis work).
@@ -16,6 +17,7 @@ pub mod part;
 pub mod patch;
 pub mod solve;
 pub mod tol;
+pub mod units;
 
 pub use error::GeomError;
 pub use math::{Aabb, Plane, Point3, Polyline, Vec3};

@@ -14,12 +14,11 @@
 use crate::error::{At, IoError, excerpt, line_of};
 use std::ops::Range;
 use std::path::Path;
+use swarf_geom::units::MM_PER_INCH;
 use swarf_geom::{GeomError, Part, Patch, Point3};
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
-/// mm per inch.
-const MM_PER_INCH: f64 = 25.4;
 /// Keys of the top-level table.
 const TOP_KEYS: [&str; 3] = ["name", "units", "patch"];
 /// Keys of a `[[patch]]` table.

@@ -32,9 +32,8 @@
 
 use std::f64::consts::FRAC_PI_2;
 use swarf_geom::Point3;
+use swarf_geom::units::MM_PER_INCH;
 
-/// mm per inch.
-pub const MM_PER_INCH: f64 = 25.4;
 /// LinuxCNC `RADIUS_TOLERANCE_INCH`: smallest arc radius, and the slack of `R` arcs, in.
 pub const RADIUS_TOLERANCE_INCH: f64 = 0.00005;
 /// LinuxCNC `RADIUS_TOLERANCE_MM` (the inch value converted), mm.

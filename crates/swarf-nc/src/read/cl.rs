@@ -25,11 +25,11 @@
 //! Other unknown records are warnings.
 
 use crate::error::NcError;
-use crate::read::arc::MM_PER_INCH;
 use crate::read::cl_record::{Field, Record, records};
 use crate::read::gcode::check_text;
 use crate::read::program::{Diagnostic, Motion, MotionKind, Program};
 use crate::read::warnings::Warnings;
+use swarf_geom::units::MM_PER_INCH;
 use swarf_geom::{Point3, Vec3};
 use swarf_tool::{Apt, Cutter, Pose};
 

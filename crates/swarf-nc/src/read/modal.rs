@@ -16,7 +16,7 @@
 //! incremental in G91, not scaled by G20), turned into part-frame motions by
 //! [`crate::read::axes`]. Feeds follow G93/G94 as [`crate::read::feed`] describes.
 
-use crate::read::arc::{ArcRequest, CenterWords, MM_PER_INCH, Plane, arc_center};
+use crate::read::arc::{ArcRequest, CenterWords, Plane, arc_center};
 use crate::read::axes::Axes;
 use crate::read::codes::Action;
 use crate::read::feed::BlockFeed;
@@ -25,6 +25,7 @@ use crate::read::lexer::{Block, Word};
 use crate::read::program::{Diagnostic, Motion, MotionKind};
 use crate::read::warnings::Warnings;
 use crate::read::words::Words;
+use swarf_geom::units::MM_PER_INCH;
 use swarf_geom::{Point3, Vec3};
 use swarf_tool::Pose;
 

@@ -27,19 +27,13 @@
 //! Triangles with a non-finite corner are not stored and never touched.
 
 use rayon::prelude::*;
+use swarf_geom::mesh::index::{MAX_CELLS_PER_TRIANGLE, MIN_CELLS, ROW_SLACK};
 use swarf_geom::{Point3, TriMesh};
 
-/// At most this many level-0 cells per stored triangle (plus [`MIN_CELLS`]).
-const MAX_CELLS_PER_TRIANGLE: f64 = 2.0;
-/// Level-0 cell budget floor for small meshes.
-const MIN_CELLS: f64 = 64.0;
 /// Triangles sampled for the median extent.
 const EXTENT_SAMPLES: usize = 65_536;
 /// Smallest chunk of triangles per rayon task while building.
 const PAR_CHUNK: usize = 4096;
-/// Relative slack of the row narrowing of disc scans: far above the rounding of the
-/// band and half-width computations, far below a cell.
-const ROW_SLACK: f64 = 1e-9;
 
 /// A stored triangle's XY box `[x0, y0, x1, y1]` relative to the grid origin and its
 /// highest z, all rounded outward.

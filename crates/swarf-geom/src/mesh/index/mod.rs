@@ -69,9 +69,15 @@ mod build;
 
 use crate::math::Aabb;
 
-/// Relative slack of the row narrowing of disc queries: far above the rounding of
-/// the band and half-width computations (~1e-16 relative), far below a cell.
-const ROW_SLACK: f64 = 1e-9;
+/// Relative slack of the row narrowing of disc queries, here and in the drop grid of
+/// swarf-tool (the same anchor-grid scheme): far above the rounding of the band and
+/// half-width computations (~1e-16 relative), far below a cell.
+pub const ROW_SLACK: f64 = 1e-9;
+/// At most this many level-0 cells per indexed triangle (plus [`MIN_CELLS`]); keeps a
+/// mesh of tiny triangles spread over a huge area from allocating a huge grid.
+pub const MAX_CELLS_PER_TRIANGLE: f64 = 2.0;
+/// Level-0 cell budget floor, so that small meshes still get a useful grid.
+pub const MIN_CELLS: f64 = 64.0;
 
 /// One grid level: square cells of side `cell_size`, `dims` cells in x and y, whose cell
 /// `(i, j)` is global cell `base + j * dims[0] + i`.
