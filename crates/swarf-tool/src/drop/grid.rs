@@ -7,7 +7,9 @@
 //! cell of its box's lower-left corner, and a query scans anchor cells
 //! `cell(q0) - 1 ..= cell(q1)` per axis, one contiguous run per grid row.
 //!
-//! What differs, and why this is not `XyIndex` itself: drop-cutter needs, for every
+//! The layout itself (levels, anchor cells, row narrowing, outward rounding, base
+//! cell, counting sort) is [`swarf_geom::mesh::index::layout`], shared with
+//! `XyIndex`. What differs, and why this is not `XyIndex` itself: drop-cutter needs, for every
 //! candidate, its box (to reject it), its highest z (to prune it against the best
 //! height so far: the tip never rises above a triangle's top) and then its corners.
 //! Here all three sit in entry order: the scan reads 20-byte entries (`f32` box and
@@ -27,11 +29,11 @@
 //! Triangles with a non-finite corner are not stored and never touched.
 
 use rayon::prelude::*;
-use swarf_geom::mesh::index::{MAX_CELLS_PER_TRIANGLE, MIN_CELLS, ROW_SLACK};
+use swarf_geom::mesh::index::layout::{
+    EXTENT_SAMPLES, Level, capped_cell, counting_sort, levels, median_or_area, round_down, round_up,
+};
 use swarf_geom::{Point3, TriMesh};
 
-/// Triangles sampled for the median extent.
-const EXTENT_SAMPLES: usize = 65_536;
 /// Smallest chunk of triangles per rayon task while building.
 const PAR_CHUNK: usize = 4096;
 
@@ -43,47 +45,6 @@ pub(crate) struct Entry {
     pub(crate) zmax: f32,
 }
 
-#[derive(Debug, Clone)]
-struct Level {
-    cell: f64,
-    inv_cell: f64,
-    dims: [usize; 2],
-    base: usize,
-}
-
-impl Level {
-    fn cell(&self, axis: usize, v: f64) -> usize {
-        let c = (v * self.inv_cell).floor();
-        if c >= 1.0 {
-            (c as usize).min(self.dims[axis] - 1)
-        } else {
-            0
-        }
-    }
-
-    fn fits(&self, b: &[f32; 4]) -> bool {
-        (0..2).all(|a| self.cell(a, f64::from(b[a + 2])) <= self.cell(a, f64::from(b[a])) + 1)
-    }
-
-    /// Half-width in x of the disc of `radius` about height `cy` over the band of y
-    /// that boxes anchored in row `j` can occupy, widened by [`ROW_SLACK`]; the whole
-    /// radius for the first and last rows (their bands are open, the cell index being
-    /// clamped).
-    fn row_half_width(&self, j: usize, cy: f64, radius: f64) -> f64 {
-        let slack = ROW_SLACK * (radius + self.cell + cy.abs());
-        if j == 0 || j + 1 >= self.dims[1] {
-            return radius + slack;
-        }
-        let (lo, hi) = (j as f64 * self.cell, (j + 2) as f64 * self.cell);
-        let dy = (lo - cy).max(cy - hi).max(0.0);
-        (radius * radius - dy * dy).max(0.0).sqrt() + slack
-    }
-
-    fn anchor(&self, b: &[f32; 4]) -> usize {
-        self.base + self.cell(1, f64::from(b[1])) * self.dims[0] + self.cell(0, f64::from(b[0]))
-    }
-}
-
 /// Triangles in anchor-cell order with their boxes, tops, corners and mesh indices.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct DropGrid {
@@ -93,16 +54,6 @@ pub(crate) struct DropGrid {
     pub(crate) entries: Vec<Entry>,
     pub(crate) corners: Vec<[Point3; 3]>,
     pub(crate) ids: Vec<u32>,
-}
-
-fn round_down(v: f64) -> f32 {
-    let f = v as f32;
-    if f64::from(f) >= v { f.next_down() } else { f }
-}
-
-fn round_up(v: f64) -> f32 {
-    let f = v as f32;
-    if f64::from(f) <= v { f.next_up() } else { f }
 }
 
 fn finite(c: &[Point3; 3]) -> bool {
@@ -158,7 +109,7 @@ impl DropGrid {
             .with_min_len(PAR_CHUNK)
             .map(|&t| entry(&corners(t as usize), lo))
             .collect();
-        let levels = make_levels(cell_size(&raw, extent), extent);
+        let levels = levels(cell_size(&raw, extent), extent);
         let keys: Vec<u32> = raw
             .par_iter()
             .with_min_len(PAR_CHUNK)
@@ -169,7 +120,7 @@ impl DropGrid {
                     .map_or(0, |l| l.anchor(&e.bbox)) as u32
             })
             .collect();
-        let cells = levels.last().map_or(0, |l| l.base + l.dims[0] * l.dims[1]);
+        let cells = levels.last().map_or(0, Level::end);
         let (offsets, order) = counting_sort(&keys, cells);
         drop(keys);
         let entries = order.par_iter().map(|&i| raw[i as usize]).collect();
@@ -204,7 +155,7 @@ impl DropGrid {
     ///
     /// Each grid row is scanned only over the cells the disc can reach from the band
     /// of heights its anchored boxes occupy (`[j c, (j + 2) c]` for row `j`), widened
-    /// by [`ROW_SLACK`] against rounding: the corners of the disc's bounding square
+    /// by [`swarf_geom::mesh::index::layout::ROW_SLACK`] against rounding: the corners of the disc's bounding square
     /// are skipped.
     #[inline]
     pub(crate) fn for_each_in_disc(
@@ -228,7 +179,9 @@ impl DropGrid {
                 level.cell(1, c[1] + radius),
             ];
             for j in cy[0]..=cy[1] {
-                let w = level.row_half_width(j, c[1], radius);
+                let Some(w) = level.row_half_width(j, c[1], radius) else {
+                    continue;
+                };
                 let cx = [
                     level.cell(0, c[0] - w).saturating_sub(1),
                     level.cell(0, c[0] + w),
@@ -260,72 +213,15 @@ impl DropGrid {
 
 /// Median of the larger XY extent over a strided sample, or the side of the area per
 /// triangle when that is zero; grown until level 0 has at most
-/// [`MAX_CELLS_PER_TRIANGLE`] cells per triangle.
+/// [`swarf_geom::mesh::index::layout::MAX_CELLS_PER_TRIANGLE`] cells per triangle.
 fn cell_size(raw: &[Entry], extent: [f64; 2]) -> f64 {
     let stride = raw.len().div_ceil(EXTENT_SAMPLES).max(1);
-    let mut sizes: Vec<f64> = raw
+    let sizes: Vec<f64> = raw
         .iter()
         .step_by(stride)
         .map(|e| f64::from((e.bbox[2] - e.bbox[0]).max(e.bbox[3] - e.bbox[1])))
         .collect();
-    let mid = sizes.len() / 2;
-    let median = if sizes.is_empty() {
-        0.0
-    } else {
-        *sizes.select_nth_unstable_by(mid, f64::total_cmp).1
-    };
-    let area = extent[0].max(f64::MIN_POSITIVE) * extent[1].max(f64::MIN_POSITIVE);
-    let mut c0 = if median > 0.0 {
-        median
-    } else {
-        (area / raw.len().max(1) as f64)
-            .sqrt()
-            .max(f64::MIN_POSITIVE)
-    };
-    let budget = MAX_CELLS_PER_TRIANGLE * raw.len() as f64 + MIN_CELLS;
-    let cells = |c: f64| (extent[0] / c + 1.0) * (extent[1] / c + 1.0);
-    while cells(c0) > budget {
-        c0 = (c0 * 1.25).max((area / budget).sqrt());
-    }
-    c0
-}
-
-/// Levels from side `c0` up to the first with at most 2 x 2 cells.
-fn make_levels(c0: f64, extent: [f64; 2]) -> Vec<Level> {
-    let mut levels = Vec::new();
-    let (mut base, mut cell) = (0, c0);
-    loop {
-        let dims = extent.map(|e| (e / cell).floor() as usize + 1);
-        levels.push(Level {
-            cell,
-            inv_cell: 1.0 / cell,
-            dims,
-            base,
-        });
-        base += dims[0] * dims[1];
-        if dims[0] <= 2 && dims[1] <= 2 {
-            return levels;
-        }
-        cell *= 2.0;
-    }
-}
-
-/// Stable counting sort by key: CSR offsets and the permutation into key order.
-fn counting_sort(keys: &[u32], cells: usize) -> (Vec<u32>, Vec<u32>) {
-    let mut offsets = vec![0u32; cells + 1];
-    for &k in keys {
-        offsets[k as usize + 1] += 1;
-    }
-    for g in 0..cells {
-        offsets[g + 1] += offsets[g];
-    }
-    let mut cursor = offsets.clone();
-    let mut order = vec![0u32; keys.len()];
-    for (i, &k) in keys.iter().enumerate() {
-        order[cursor[k as usize] as usize] = i as u32;
-        cursor[k as usize] += 1;
-    }
-    (offsets, order)
+    capped_cell(median_or_area(sizes, extent, raw.len()), extent, raw.len())
 }
 
 #[cfg(test)]

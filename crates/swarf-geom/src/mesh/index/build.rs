@@ -6,19 +6,18 @@
 //! of threads. Peak memory while building is about 24 bytes a triangle (keys and
 //! entries) plus the offsets.
 
-use super::{Entry, Level, XyIndex};
+use super::layout::{
+    EXTENT_SAMPLES, Level, capped_cell, counting_sort, levels, median_or_area, round_down, round_up,
+};
+use super::{Entry, XyIndex};
 use crate::math::Aabb;
 use crate::mesh::TriMesh;
 use rayon::prelude::*;
-
-use super::{MAX_CELLS_PER_TRIANGLE, MIN_CELLS};
 
 /// Level-0 cell side over the median triangle XY extent. Bench `mesh_index` (disc
 /// radius 4.5 mm over 0.7 mm triangles) measured 1x, 2x and 4x: 2x was fastest, 1x
 /// pays a row overhead on twice the rows, 4x scans twice the area.
 const CELL_PER_MEDIAN: f64 = 2.0;
-/// Largest number of sampled triangles for the median extent.
-const EXTENT_SAMPLES: usize = 65_536;
 /// Smallest chunk of triangles a rayon task handles while building.
 const PAR_CHUNK: usize = 4096;
 
@@ -58,12 +57,16 @@ impl XyIndex {
             .unwrap_or_else(|| CELL_PER_MEDIAN * median_extent(mesh, origin, extent));
         let c0 = capped_cell(c0, extent, indexed);
         let (keys, levels, cells) = anchor_keys(mesh, origin, extent, c0);
-        let (offsets, mut entries) = counting_sort(&keys, cells);
+        let (offsets, order) = counting_sort(&keys, cells);
         drop(keys);
-        entries
-            .par_iter_mut()
+        let entries = order
+            .par_iter()
             .with_min_len(PAR_CHUNK)
-            .for_each(|e| e.bbox = stored_box(mesh, origin, e.id as usize).unwrap_or([0.0; 4]));
+            .map(|&t| Entry {
+                bbox: stored_box(mesh, origin, t as usize).unwrap_or([0.0; 4]),
+                id: t,
+            })
+            .collect();
         XyIndex {
             origin,
             bounds,
@@ -104,19 +107,6 @@ fn count_finite(mesh: &TriMesh) -> usize {
         .count()
 }
 
-/// `f32` at or below `v`, strictly below when `v` is representable (so that the
-/// rounding of the `f64` subtraction that produced `v` is covered too).
-fn round_down(v: f64) -> f32 {
-    let f = v as f32;
-    if f64::from(f) >= v { f.next_down() } else { f }
-}
-
-/// `f32` strictly above `v` (see [`round_down`]).
-fn round_up(v: f64) -> f32 {
-    let f = v as f32;
-    if f64::from(f) <= v { f.next_up() } else { f }
-}
-
 /// Outward-rounded relative XY box of triangle `t`, `None` when a corner is not finite.
 pub(super) fn stored_box(mesh: &TriMesh, origin: [f64; 2], t: usize) -> Option<[f32; 4]> {
     let c = mesh.triangles[t].map(|k| mesh.vertices[k as usize]);
@@ -137,36 +127,12 @@ pub(super) fn stored_box(mesh: &TriMesh, origin: [f64; 2], t: usize) -> Option<[
 /// a cell from the area per triangle when that median is zero (or nothing is finite).
 fn median_extent(mesh: &TriMesh, origin: [f64; 2], extent: [f64; 2]) -> f64 {
     let stride = mesh.triangles.len().div_ceil(EXTENT_SAMPLES).max(1);
-    let mut sizes: Vec<f64> = (0..mesh.triangles.len())
+    let sizes: Vec<f64> = (0..mesh.triangles.len())
         .step_by(stride)
         .filter_map(|t| stored_box(mesh, origin, t))
         .map(|b| f64::from((b[2] - b[0]).max(b[3] - b[1])))
         .collect();
-    let mid = sizes.len() / 2;
-    let median = if sizes.is_empty() {
-        0.0
-    } else {
-        *sizes.select_nth_unstable_by(mid, f64::total_cmp).1
-    };
-    if median > 0.0 {
-        median
-    } else {
-        let area = extent[0].max(f64::MIN_POSITIVE) * extent[1].max(f64::MIN_POSITIVE);
-        (area / mesh.triangles.len().max(1) as f64)
-            .sqrt()
-            .max(f64::MIN_POSITIVE)
-    }
-}
-
-/// Grows `c0` until level 0 has at most [`MAX_CELLS_PER_TRIANGLE`] cells a triangle.
-fn capped_cell(mut c0: f64, extent: [f64; 2], indexed: usize) -> f64 {
-    let budget = MAX_CELLS_PER_TRIANGLE * indexed as f64 + MIN_CELLS;
-    let cells = |c: f64| (extent[0] / c + 1.0) * (extent[1] / c + 1.0);
-    while cells(c0) > budget {
-        let ideal = ((extent[0] * extent[1]) / budget).sqrt();
-        c0 = (c0 * 1.25).max(ideal);
-    }
-    c0
+    median_or_area(sizes, extent, mesh.triangles.len())
 }
 
 /// The levels (coarsest: every box fits) and each triangle's global anchor cell
@@ -177,24 +143,9 @@ fn anchor_keys(
     extent: [f64; 2],
     c0: f64,
 ) -> (Vec<u32>, Vec<Level>, usize) {
-    let mut levels: Vec<Level> = Vec::new();
-    let mut base = 0;
-    let mut cell = c0;
-    loop {
-        let dims = extent.map(|e| (e / cell).floor() as usize + 1);
-        levels.push(Level {
-            cell_size: cell,
-            inv_cell: 1.0 / cell,
-            dims,
-            base,
-        });
-        base += dims[0] * dims[1];
-        if dims[0] <= 2 && dims[1] <= 2 {
-            break;
-        }
-        cell *= 2.0;
-    }
-    assert!(base < u32::MAX as usize, "XyIndex: too many cells");
+    let mut levels = levels(c0, extent);
+    let total = levels.last().map_or(0, Level::end);
+    assert!(total < u32::MAX as usize, "XyIndex: too many cells");
     let keys: Vec<u32> = (0..mesh.triangles.len())
         .into_par_iter()
         .with_min_len(PAR_CHUNK)
@@ -213,46 +164,13 @@ fn anchor_keys(
         .max()
         .unwrap_or(0);
     levels.truncate(used.max(1));
-    let cells = levels.last().map_or(0, |l| l.base + l.dims[0] * l.dims[1]);
+    let cells = levels.last().map_or(0, Level::end);
     (keys, levels, cells)
-}
-
-/// Stable counting sort of triangle ids by key: CSR offsets and entries holding the
-/// ids, ascending in each cell (boxes left zero); keys `u32::MAX` are dropped.
-fn counting_sort(keys: &[u32], cells: usize) -> (Vec<u32>, Vec<Entry>) {
-    let mut offsets = vec![0u32; cells + 1];
-    for &k in keys.iter().filter(|&&k| k != u32::MAX) {
-        offsets[k as usize + 1] += 1;
-    }
-    for g in 0..cells {
-        offsets[g + 1] += offsets[g];
-    }
-    let mut cursor = offsets.clone();
-    let blank = Entry {
-        bbox: [0.0; 4],
-        id: 0,
-    };
-    let mut entries = vec![blank; offsets[cells] as usize];
-    for (t, &k) in keys.iter().enumerate() {
-        if k != u32::MAX {
-            entries[cursor[k as usize] as usize].id = t as u32;
-            cursor[k as usize] += 1;
-        }
-    }
-    (offsets, entries)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn rounding_is_strictly_outward() {
-        for v in [0.0, 1.0, 0.1, -0.1, 1e-30, 123456.789, -3.0e10, 16777217.0] {
-            assert!(f64::from(round_down(v)) < v, "{v}");
-            assert!(f64::from(round_up(v)) > v, "{v}");
-        }
-    }
 
     /// Same index on one thread and on four, for a mesh spanning many rayon chunks.
     #[test]

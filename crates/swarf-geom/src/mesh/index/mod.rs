@@ -66,80 +66,10 @@
 //! Triangles with a non-finite corner are not indexed and never returned.
 
 mod build;
+pub mod layout;
 
 use crate::math::Aabb;
-
-/// Relative slack of the row narrowing of disc queries, here and in the drop grid of
-/// swarf-tool (the same anchor-grid scheme): far above the rounding of the band and
-/// half-width computations (~1e-16 relative), far below a cell.
-pub const ROW_SLACK: f64 = 1e-9;
-/// At most this many level-0 cells per indexed triangle (plus [`MIN_CELLS`]); keeps a
-/// mesh of tiny triangles spread over a huge area from allocating a huge grid.
-pub const MAX_CELLS_PER_TRIANGLE: f64 = 2.0;
-/// Level-0 cell budget floor, so that small meshes still get a useful grid.
-pub const MIN_CELLS: f64 = 64.0;
-
-/// One grid level: square cells of side `cell_size`, `dims` cells in x and y, whose cell
-/// `(i, j)` is global cell `base + j * dims[0] + i`.
-#[derive(Debug, Clone)]
-struct Level {
-    cell_size: f64,
-    inv_cell: f64,
-    dims: [usize; 2],
-    base: usize,
-}
-
-impl Level {
-    /// Cell column (`axis` 0) or row (1) holding relative coordinate `v` (clamped).
-    /// The cast truncates, which is the floor for the values >= 1 it sees; NaN and
-    /// everything below 1 give cell 0. Monotone in `v`, as the module doc requires.
-    fn cell(&self, axis: usize, v: f64) -> usize {
-        let c = v * self.inv_cell;
-        if c >= 1.0 {
-            (c as usize).min(self.dims[axis] - 1)
-        } else {
-            0
-        }
-    }
-
-    /// True when `b` spans at most two cells in x and in y on this level.
-    fn fits(&self, b: &[f32; 4]) -> bool {
-        (0..2).all(|a| self.cell(a, f64::from(b[a + 2])) <= self.cell(a, f64::from(b[a])) + 1)
-    }
-
-    /// Anchor cells `[first, last]` along `axis` that can hold a box meeting the
-    /// interval `[lo, hi]` (module doc: a box spans at most two cells).
-    fn span(&self, axis: usize, lo: f64, hi: f64) -> [usize; 2] {
-        [self.cell(axis, lo).saturating_sub(1), self.cell(axis, hi)]
-    }
-
-    /// Half-width in x of the disc of radius `r` about y = `cy` over the band of y that
-    /// boxes anchored in row `j` can occupy (`[j c, (j + 2) c)`, unbounded at the edge
-    /// rows where coordinates are clamped), widened by [`ROW_SLACK`]; `None` when the
-    /// disc misses the band.
-    fn row_half_width(&self, j: usize, cy: f64, r: f64) -> Option<f64> {
-        let c = self.cell_size;
-        let slack = ROW_SLACK * (cy.abs() + r + (j + 3) as f64 * c);
-        let lo = if j == 0 {
-            f64::NEG_INFINITY
-        } else {
-            j as f64 * c - slack
-        };
-        let hi = if j + 2 >= self.dims[1] {
-            f64::INFINITY
-        } else {
-            (j + 2) as f64 * c + slack
-        };
-        let dy = (lo - cy).max(cy - hi).max(0.0);
-        (dy <= r).then(|| (r * r - dy * dy).max(0.0).sqrt() + slack)
-    }
-
-    /// Global id of the anchor cell of `b`.
-    fn anchor(&self, b: &[f32; 4]) -> usize {
-        let [i, j] = [0, 1].map(|a| self.cell(a, f64::from(b[a])));
-        self.base + j * self.dims[0] + i
-    }
-}
+use layout::Level;
 
 /// Spatial index over the XY bounding boxes of a mesh's triangles.
 ///
