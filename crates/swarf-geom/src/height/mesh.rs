@@ -2,7 +2,7 @@
 //! [`XyIndex`] returns around the query point, the highest (upper envelope) or the
 //! lowest (lower envelope) kept.
 
-use super::triangle::{Lattice, cover, vertical_hit};
+use super::triangle::{Lattice, cover, query_rect, vertical_hit};
 use crate::math::{Point3, Vec3};
 use crate::mesh::{TriMesh, XyIndex};
 use rayon::prelude::*;
@@ -40,7 +40,8 @@ impl<'a> MeshHeights<'a> {
     /// The heights of every triangle above or below `(x, y)`, reduced by `pick`.
     fn reduce(&self, x: f64, y: f64, pick: fn(f64, f64) -> f64) -> Option<f64> {
         let mut best: Option<f64> = None;
-        self.index.for_each_in_rect([x, y], [x, y], |t| {
+        let (lo, hi) = query_rect(x, y);
+        self.index.for_each_in_rect(lo, hi, |t| {
             if let Some(z) = vertical_hit(&self.mesh.triangle(t as usize), x, y) {
                 best = Some(best.map_or(z, |b| pick(b, z)));
             }
@@ -93,8 +94,8 @@ impl<'a> MeshHeights<'a> {
             return;
         }
         let mut best = vec![(f64::NAN, u32::MAX); (j1 - j0 + 1) * nx];
-        let lo = [grid.x(0), grid.y(j0)];
-        let hi = [grid.x(nx - 1), grid.y(j1)];
+        let (lo, _) = query_rect(grid.x(0), grid.y(j0));
+        let (_, hi) = query_rect(grid.x(nx - 1), grid.y(j1));
         self.index.for_each_in_rect(lo, hi, |t| {
             let tri = self.mesh.triangle(t as usize);
             let p = tri.map(|q| [q.x, q.y, q.z]);

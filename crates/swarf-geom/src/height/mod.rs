@@ -39,7 +39,8 @@
 //!
 //! # Meshes ([`MeshHeights`])
 //!
-//! The vertical hit of each triangle the XY index returns at `(x, y)`
+//! The vertical hit of each triangle the XY index returns at `(x, y)` (asked for a
+//! rectangle [`QUERY_SLACK`] wide around it)
 //! ([`vertical_hit`]: barycentric weights with a closed inside test, [`triangle`]),
 //! the highest kept (the lowest for a lower envelope, e.g. a swept surface seen from
 //! below). Grids of queries scan-convert each triangle over a band of rows
@@ -66,7 +67,7 @@ pub use newton::{
 };
 pub use part::PartHeights;
 pub use seed::{MAX_SAMPLES, MIN_SAMPLES, SAMPLE_SPACING};
-pub use triangle::{INSIDE_EPS, Lattice, barycentric, cover, vertical_hit};
+pub use triangle::{INSIDE_EPS, Lattice, QUERY_SLACK, barycentric, cover, vertical_hit};
 
 /// How the height of a point of the upper envelope was found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -2,7 +2,7 @@
 
 use super::newton::{Ray, vertical_ray};
 use super::seed::{Guess, NO_GUESS, Samples, keep_top_two};
-use super::triangle::{Lattice, barycentric, cover};
+use super::triangle::{Lattice, barycentric, cover, query_rect};
 use super::{Height, HeightStatus};
 use crate::error::GeomError;
 use crate::math::{Aabb, Vec3};
@@ -62,7 +62,8 @@ impl PartHeights {
     pub fn at(&self, x: f64, y: f64) -> Option<Height> {
         let s = &self.samples;
         let mut pair = [NO_GUESS; 2];
-        s.index.for_each_in_rect([x, y], [x, y], |t| {
+        let (lo, hi) = query_rect(x, y);
+        s.index.for_each_in_rect(lo, hi, |t| {
             let p = s.corners(t);
             if let Some(w) = barycentric(&p, x, y) {
                 keep_top_two(&mut pair, s.guess(t, &p, w));
@@ -99,8 +100,8 @@ impl PartHeights {
         }
         let s = &self.samples;
         let mut best = vec![[NO_GUESS; 2]; (j1 - j0 + 1) * nx];
-        let lo = [grid.x(0), grid.y(j0)];
-        let hi = [grid.x(nx - 1), grid.y(j1)];
+        let (lo, _) = query_rect(grid.x(0), grid.y(j0));
+        let (_, hi) = query_rect(grid.x(nx - 1), grid.y(j1));
         s.index.for_each_in_rect(lo, hi, |t| {
             let p = s.corners(t);
             cover(grid, j0, j1, &p, |k, w| {

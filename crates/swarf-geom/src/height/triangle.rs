@@ -15,6 +15,21 @@ use crate::math::Point3;
 /// Barycentric weights down to this (negative, dimensionless) still count as inside.
 pub const INSIDE_EPS: f64 = 1e-12;
 
+/// Half-width of the rectangle around a query point that the XY index is asked for,
+/// mm: the closed inside test reaches [`INSIDE_EPS`] of a triangle's size past its
+/// edges, where the index's stored boxes (exact near the index origin) may not reach;
+/// 1e-9 mm covers that for triangles up to 1000 mm.
+pub const QUERY_SLACK: f64 = 1e-9;
+
+/// The rectangle `[min, max]` to ask the XY index for around `(x, y)`.
+#[inline]
+pub(super) fn query_rect(x: f64, y: f64) -> ([f64; 2], [f64; 2]) {
+    (
+        [x - QUERY_SLACK, y - QUERY_SLACK],
+        [x + QUERY_SLACK, y + QUERY_SLACK],
+    )
+}
+
 /// A regular lattice of query points (e.g. the cell centres of a Z-map): column `i`
 /// at `x(i)`, row `j` at `y(j)`, both increasing, stored row-major.
 pub trait Lattice {
