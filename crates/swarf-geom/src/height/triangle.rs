@@ -93,7 +93,8 @@ pub fn vertical_hit(tri: &[Point3; 3], x: f64, y: f64) -> Option<f64> {
 }
 
 /// Calls `hit(index_in_band, weights)` for every point of rows `j0..=j1` of `grid`
-/// that lies in the XY projection of `tri`; `index_in_band = (j - j0) * nx + i`.
+/// that lies in the XY projection of `tri`, by the same closed test as
+/// [`barycentric`]; `index_in_band = (j - j0) * nx + i`.
 ///
 /// # Units
 /// mm.
@@ -112,7 +113,12 @@ pub fn cover(
     let xhi = a[0].max(b[0]).max(c[0]);
     let ylo = a[1].min(b[1]).min(c[1]);
     let yhi = a[1].max(b[1]).max(c[1]);
-    let (Some((i0, i1)), Some((r0, r1))) = (grid.columns(xlo, xhi), grid.rows(ylo, yhi)) else {
+    // The inside test reaches a hair past the exact box (module doc): scan its
+    // neighbourhood too, so a grid point gets the same answer as a point query.
+    let (lo, _) = query_rect(xlo, ylo);
+    let (_, hi) = query_rect(xhi, yhi);
+    let (Some((i0, i1)), Some((r0, r1))) = (grid.columns(lo[0], hi[0]), grid.rows(lo[1], hi[1]))
+    else {
         return;
     };
     let nx = grid.nx();
