@@ -37,9 +37,9 @@ fn warped() -> (Patch, impl Fn(f64, f64) -> [f64; 3]) {
         let x: f64 = (0..4).map(|i| bu[i] * xs[i]).sum();
         let y: f64 = (0..4).map(|j| bv[j] * ys[j]).sum();
         let mut z = 0.0;
-        for i in 0..4 {
-            for j in 0..4 {
-                z += bu[i] * bv[j] * zc(i, j);
+        for (i, bi) in bu.iter().enumerate() {
+            for (j, bj) in bv.iter().enumerate() {
+                z += bi * bj * zc(i, j);
             }
         }
         [x, y, z]
