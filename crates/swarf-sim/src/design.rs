@@ -5,7 +5,7 @@
 //! This is a grid-filling adapter over the one height-field query of the geometry
 //! kernel, [`swarf_geom::height`] (its module doc has the derivation): exact Newton on
 //! the patches of a parametric part, seeded from their sample triangles, or vertical
-//! ray casts on a mesh. Rows are taken in bands of [`BAND_ROWS`], in parallel; each
+//! ray casts on a mesh. Rows are taken in bands of `BAND_ROWS` (16), in parallel; each
 //! band scan-converts the triangles the XY index gives for it. Cells where Newton met
 //! a singular Jacobian (a vertical tangent plane) keep the sampled height and are
 //! counted in [`DesignField::approximate`]. Cells outside every patch's projection are
