@@ -19,7 +19,7 @@ use swarf_toolpath::Contact;
 
 fn bench(c: &mut Criterion) {
     let part = swarf_io::builtin_part("die").expect("die");
-    let design = DesignSurface::new(&part);
+    let design = DesignSurface::new(&part).expect("design");
     let angle = 60f64.to_radians();
     let cc = die_cc(&part, "bull:d=38.1,r=6.35", 60.0, 3.5, 0.002);
     let cutter: Cutter = "bull:d=38.1,r=6.35".parse().expect("tool");

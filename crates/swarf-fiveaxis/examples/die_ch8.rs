@@ -84,7 +84,7 @@ fn main() {
         .cloned()
         .unwrap_or_else(|| "bull:d=38.1,r=6.35".into());
     let part = swarf_io::builtin_part("die").expect("built-in die");
-    let design = DesignSurface::new(&part);
+    let design = DesignSurface::new(&part).expect("design");
     let cc = die_cc(&part, &spec, angle, 3.5, 0.01);
     let cutter: Cutter = spec.parse().expect("tool");
     println!(
@@ -169,7 +169,7 @@ fn write_outputs(dir: &std::path::Path, cutter: &Cutter, passes: Vec<Pass>) {
         .collect();
     let swept =
         SweptSurface::new(&cutter.profile(), &poses, &CurveOptions::default()).expect("swept");
-    swarf_io::write_stl(&dir.join("die-auto-machined.stl"), &swept.mesh, "die auto").expect("stl");
+    swarf_io::write_stl(&dir.join("die-auto-machined.stl"), swept.mesh(), "die auto").expect("stl");
     println!("wrote {}", dir.display());
 }
 

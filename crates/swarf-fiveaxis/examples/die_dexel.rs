@@ -79,7 +79,7 @@ fn main() {
         sections = vec![-20.0, -50.0, -80.0];
     }
     let part = swarf_io::builtin_part("die").expect("built-in die");
-    let design = DesignSurface::new(&part);
+    let design = DesignSurface::new(&part).expect("design");
     let cutter: Cutter = "bull:d=38.1,r=6.35".parse().expect("tool");
     let passes = plan(&part, &cutter, auto, alpha);
     let flagged = flagged_poses(&design, &cutter, &passes);

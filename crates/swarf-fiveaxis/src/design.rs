@@ -3,38 +3,18 @@
 //! on the comparison sections are substituted in the surface equation and then gouging
 //! is checked based on the difference of the z values").
 //!
-//! For a patch `S(u, v)` and a query `(x, y)`, Newton's method solves
-//! `S_xy(u, v) = (x, y)` with the 2x2 Jacobian `[S_u.xy, S_v.xy]`, parameters clamped
-//! into the domain. It starts from the `(u, v)` of the nearest node of a sample grid,
-//! found through a lookup table over the patch's XY box (each table cell holds the grid
-//! node nearest its centre). A query whose clamped answer misses `(x, y)` by more than
-//! [`XY_MATCH`] lies outside the patch's XY shadow. With several patches the height is
-//! the highest (the part's upper envelope, `../shared/parts/README.md`).
+//! The heights are the part's upper envelope from the one height-field query of the
+//! geometry kernel ([`swarf_geom::height`]: Newton on `S_xy(u, v) = (x, y)` to 1e-10
+//! mm, seeded from sample triangles), the same query the dexel verifier fills its
+//! design grid with, so sectioning and verification agree at patch edges. This file
+//! adds the patch edges as points, for the boundary test of the gouge check.
 //!
 //! The comparison is along z, as in the thesis and in the Z-map verifier; it assumes a
-//! design that is a height field over XY (where a patch folds over itself in XY, the
-//! Newton root nearest the start is taken).
+//! design that is a height field over XY.
 
-use swarf_geom::{Part, Patch};
-
-/// A query counts as on the patch when the clamped Newton answer is within this of
-/// `(x, y)` (mm).
-pub const XY_MATCH: f64 = 1e-7;
-/// Newton steps on the XY equations.
-const NEWTON_STEPS: usize = 12;
-/// Nodes of the sample grid per direction and per knot span.
-const NODES_PER_SPAN: usize = 16;
-/// Cells of the start lookup table per direction.
-const LOOKUP: usize = 64;
-
-/// One patch with its start lookup table.
-#[derive(Debug, Clone)]
-struct Indexed {
-    patch: Patch,
-    min: [f64; 2],
-    cell: [f64; 2],
-    starts: Vec<[f64; 2]>,
-}
+use crate::error::FiveAxisError;
+use swarf_geom::height::PartHeights;
+use swarf_geom::{Part, Patch, Point3};
 
 /// Points per patch edge in [`DesignSurface::boundary`].
 const EDGE_SAMPLES: usize = 800;
@@ -42,23 +22,31 @@ const EDGE_SAMPLES: usize = 800;
 /// The design surface of a part as heights over XY.
 #[derive(Debug, Clone)]
 pub struct DesignSurface {
-    patches: Vec<Indexed>,
-    boundary: Vec<swarf_geom::Point3>,
+    heights: PartHeights,
+    patches: Vec<Patch>,
+    boundary: Vec<Point3>,
 }
 
 impl DesignSurface {
     /// Prepares the part's patches for height queries.
-    pub fn new(part: &Part) -> DesignSurface {
-        DesignSurface {
-            patches: part.patches.iter().map(index_patch).collect(),
+    ///
+    /// # Errors
+    /// [`FiveAxisError::InvalidParameter`] (field `part`) for a patch the kernel
+    /// cannot put in power form (it can any valid patch).
+    pub fn new(part: &Part) -> Result<DesignSurface, FiveAxisError> {
+        let heights = PartHeights::new(part)
+            .map_err(|e| FiveAxisError::parameter("part", format!("{}: {e}", part.name)))?;
+        Ok(DesignSurface {
+            heights,
+            patches: part.patches.clone(),
             boundary: part.patches.iter().flat_map(edge_points).collect(),
-        }
+        })
     }
 
     /// Points along every patch edge (`EDGE_SAMPLES` per edge): where section planes
     /// pass a thin corner of the design's XY shadow without a sample in it, the
     /// gouge check tests these directly.
-    pub fn boundary(&self) -> &[swarf_geom::Point3] {
+    pub fn boundary(&self) -> &[Point3] {
         &self.boundary
     }
 
@@ -74,20 +62,17 @@ impl DesignSurface {
     /// The highest patch point above `(x, y)` with its patch and parameters; `None`
     /// outside every patch's XY shadow.
     pub fn locate(&self, x: f64, y: f64) -> Option<Located> {
-        let mut best: Option<Located> = None;
-        for (k, ip) in self.patches.iter().enumerate() {
-            if let Some((z, [u, v])) = ip.height(x, y)
-                && best.is_none_or(|b| z > b.z)
-            {
-                best = Some(Located { z, patch: k, u, v });
-            }
-        }
-        best
+        self.heights.at(x, y).map(|h| Located {
+            z: h.z,
+            patch: h.patch,
+            u: h.uv[0],
+            v: h.uv[1],
+        })
     }
 
     /// The patches, in part order.
     pub fn patch(&self, k: usize) -> Option<&Patch> {
-        self.patches.get(k).map(|ip| &ip.patch)
+        self.patches.get(k)
     }
 }
 
@@ -104,47 +89,7 @@ pub struct Located {
     pub v: f64,
 }
 
-impl Indexed {
-    fn height(&self, x: f64, y: f64) -> Option<(f64, [f64; 2])> {
-        let i = ((x - self.min[0]) / self.cell[0]).floor();
-        let j = ((y - self.min[1]) / self.cell[1]).floor();
-        let n = LOOKUP as f64;
-        if !(i >= -1.0 && i <= n && j >= -1.0 && j <= n) {
-            return None;
-        }
-        let (i, j) = (
-            i.clamp(0.0, n - 1.0) as usize,
-            j.clamp(0.0, n - 1.0) as usize,
-        );
-        let [mut u, mut v] = self.starts[i * LOOKUP + j];
-        let mut z = f64::NAN;
-        let mut miss = f64::INFINITY;
-        for _ in 0..NEWTON_STEPS {
-            let d = self.patch.derivs(u, v);
-            let (rx, ry) = (x - d.point.x, y - d.point.y);
-            z = d.point.z;
-            miss = (rx * rx + ry * ry).sqrt();
-            if miss <= XY_MATCH * 1e-3 {
-                break;
-            }
-            let det = d.du.x * d.dv.y - d.du.y * d.dv.x;
-            if det.abs() < 1e-300 || !det.is_finite() {
-                return None;
-            }
-            let du = (rx * d.dv.y - ry * d.dv.x) / det;
-            let dv = (d.du.x * ry - d.du.y * rx) / det;
-            (u, v) = self.patch.clamp_params(u + du, v + dv);
-        }
-        if miss > XY_MATCH {
-            let p = self.patch.eval(u, v);
-            z = p.z;
-            miss = (x - p.x).hypot(y - p.y);
-        }
-        (miss <= XY_MATCH && z.is_finite()).then_some((z, [u, v]))
-    }
-}
-
-fn edge_points(patch: &Patch) -> Vec<swarf_geom::Point3> {
+fn edge_points(patch: &Patch) -> Vec<Point3> {
     let [[u0, u1], [v0, v1]] = patch.domain();
     let mut out = Vec::with_capacity(4 * EDGE_SAMPLES);
     for k in 0..EDGE_SAMPLES {
@@ -160,53 +105,9 @@ fn edge_points(patch: &Patch) -> Vec<swarf_geom::Point3> {
     out
 }
 
-fn index_patch(patch: &Patch) -> Indexed {
-    let [[u0, u1], [v0, v1]] = patch.domain();
-    let [pu, pv] = patch.degree();
-    let nu = NODES_PER_SPAN * (patch.count()[0] - pu).max(1) + 1;
-    let nv = NODES_PER_SPAN * (patch.count()[1] - pv).max(1) + 1;
-    let mut nodes = Vec::with_capacity(nu * nv);
-    let (mut min, mut max) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for i in 0..nu {
-        for j in 0..nv {
-            let u = u0 + (u1 - u0) * i as f64 / (nu - 1) as f64;
-            let v = v0 + (v1 - v0) * j as f64 / (nv - 1) as f64;
-            let p = patch.eval(u, v);
-            for k in 0..2 {
-                min[k] = min[k].min(p[k]);
-                max[k] = max[k].max(p[k]);
-            }
-            nodes.push(([p.x, p.y], [u, v]));
-        }
-    }
-    let cell = [0, 1].map(|k| ((max[k] - min[k]) / LOOKUP as f64).max(1e-9));
-    let mut starts = vec![[u0, v0]; LOOKUP * LOOKUP];
-    for (slot, start) in starts.iter_mut().enumerate() {
-        let c = [
-            min[0] + cell[0] * ((slot / LOOKUP) as f64 + 0.5),
-            min[1] + cell[1] * ((slot % LOOKUP) as f64 + 0.5),
-        ];
-        let nearest = nodes.iter().min_by(|a, b| {
-            let da = (a.0[0] - c[0]).hypot(a.0[1] - c[1]);
-            let db = (b.0[0] - c[0]).hypot(b.0[1] - c[1]);
-            da.total_cmp(&db)
-        });
-        if let Some(n) = nearest {
-            *start = n.1;
-        }
-    }
-    Indexed {
-        patch: patch.clone(),
-        min,
-        cell,
-        starts,
-    }
-}
-
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use swarf_geom::Point3;
 
     /// The die of thesis 000 eq. 6.1 (`parts/die.toml`).
     pub(crate) fn die() -> Part {
@@ -242,7 +143,7 @@ pub(crate) mod tests {
 
     #[test]
     fn die_heights_match_the_closed_form() {
-        let d = DesignSurface::new(&die());
+        let d = DesignSurface::new(&die()).unwrap();
         for i in 0..=20 {
             for j in 0..=20 {
                 let (u, v) = (i as f64 / 20.0, j as f64 / 20.0);
@@ -275,6 +176,9 @@ pub(crate) mod tests {
             name: "two".into(),
             patches: vec![flat(1.0), flat(2.0)],
         };
-        assert_eq!(DesignSurface::new(&part).height(3.0, 4.0), Some((2.0, 1)));
+        assert_eq!(
+            DesignSurface::new(&part).unwrap().height(3.0, 4.0),
+            Some((2.0, 1))
+        );
     }
 }

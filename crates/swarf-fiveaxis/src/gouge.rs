@@ -373,7 +373,7 @@ mod tests {
     fn flat_bull_on_a_plane_touches_and_a_lowered_one_gouges() {
         let bull = Cutter::bull(10.0, 2.0, Some(20.0)).unwrap();
         let profile = bull.profile();
-        let design = DesignSurface::new(&plane_part(0.0));
+        let design = DesignSurface::new(&plane_part(0.0)).unwrap();
         let poses: Vec<Pose> = (0..6)
             .map(|i| Pose::vertical(Point3::new(0.0, i as f64, 0.0)))
             .collect();
@@ -439,7 +439,7 @@ mod tests {
         // point lies on the design, the edge check finds the depth.
         let bull = Cutter::bull(10.0, 2.0, Some(20.0)).unwrap();
         let profile = bull.profile();
-        let design = DesignSurface::new(&plane_part(0.0));
+        let design = DesignSurface::new(&plane_part(0.0)).unwrap();
         let low = Pose::vertical(Point3::new(53.0, 0.0, -0.05));
         let mut g = PoseGouge::none();
         check_boundary(&design, &profile, &low, 2.0, &mut g);

@@ -128,7 +128,7 @@ pub fn position_with_progress(
     positioning
         .validate()
         .map_err(|(field, message)| FiveAxisError::parameter(field, message))?;
-    let design = DesignSurface::new(part);
+    let design = DesignSurface::new(part)?;
     let angle = mean_direction(cc);
     let (passes, mut report) = match *positioning {
         Positioning::Inclined {

@@ -12,13 +12,13 @@
 //!
 //! The machined surface at `(x, y)` is the lowest point of the mesh above it (a
 //! vertical ray through the union of the swept volumes' lower boundaries), found with
-//! the XY index of swarf-geom; sampling it along a line on a section plane gives the
+//! the height-field query of swarf-geom ([`MeshHeights::lower`]); sampling it along a line on a section plane gives the
 //! section profiles that the thesis compares with measurements and with the Z-map.
 
 use crate::gencurve::{CurveOptions, Half, PoseCurve};
 use crate::profile_point::{ProfileTable, full_radius_height};
 use crate::sections::Sections;
-use swarf_geom::mesh::XyIndex;
+use swarf_geom::height::MeshHeights;
 use swarf_geom::{GeomError, MeshBuilder, Point3, TriMesh, Vec3};
 use swarf_tool::{Pose, Profile, Segment};
 
@@ -32,9 +32,7 @@ const CAP_MERIDIANS: usize = 360;
 /// The machined surface of one or more passes.
 #[derive(Debug, Clone)]
 pub struct SweptSurface {
-    /// The surface as triangles (mm).
-    pub mesh: TriMesh,
-    index: XyIndex,
+    surface: MeshHeights<'static>,
 }
 
 impl SweptSurface {
@@ -52,9 +50,14 @@ impl SweptSurface {
         for poses in passes {
             add_pass(&mut b, &table, poses, opts)?;
         }
-        let mesh = b.finish();
-        let index = XyIndex::build(&mesh);
-        Ok(SweptSurface { mesh, index })
+        Ok(SweptSurface {
+            surface: MeshHeights::owned(b.finish()),
+        })
+    }
+
+    /// The surface as triangles (mm).
+    pub fn mesh(&self) -> &TriMesh {
+        self.surface.mesh()
     }
 
     /// The lowest point of the swept surface above `(x, y)`: the machined height there;
@@ -63,13 +66,7 @@ impl SweptSurface {
     /// # Units
     /// mm.
     pub fn height(&self, x: f64, y: f64) -> Option<f64> {
-        let e = 1e-9;
-        let mut ids = Vec::new();
-        self.index
-            .query_rect([x - e, y - e], [x + e, y + e], &mut ids);
-        ids.iter()
-            .filter_map(|&t| vertical_hit(&self.mesh.triangle(t as usize), x, y))
-            .reduce(f64::min)
+        self.surface.lower(x, y)
     }
 
     /// The machined surface sampled at `points` (their z is ignored): one height per
@@ -85,7 +82,7 @@ impl SweptSurface {
     /// # Units
     /// mm.
     pub fn section(&self, sections: &Sections, k: i64, step: f64) -> Vec<Point3> {
-        let b = self.mesh.aabb();
+        let b = self.mesh().aabb();
         if b.is_empty() || !(step.is_finite() && step > 0.0) {
             return Vec::new();
         }
@@ -106,22 +103,6 @@ impl SweptSurface {
             })
             .collect()
     }
-}
-
-/// Height of the triangle above `(x, y)`, when the point lies in its XY projection.
-fn vertical_hit(t: &[Point3; 3], x: f64, y: f64) -> Option<f64> {
-    let (ax, ay) = (t[1].x - t[0].x, t[1].y - t[0].y);
-    let (bx, by) = (t[2].x - t[0].x, t[2].y - t[0].y);
-    let det = ax * by - ay * bx;
-    if det.abs() < 1e-18 {
-        return None;
-    }
-    let (px, py) = (x - t[0].x, y - t[0].y);
-    let s = (px * by - py * bx) / det;
-    let r = (ax * py - ay * px) / det;
-    let e = 1e-12;
-    (s >= -e && r >= -e && s + r <= 1.0 + e)
-        .then(|| t[0].z + s * (t[1].z - t[0].z) + r * (t[2].z - t[0].z))
 }
 
 fn add_pass(
@@ -236,7 +217,7 @@ mod tests {
         }
         assert!(s.height(0.0, 20.0).is_none());
         assert!(s.height(6.0, 5.0).is_none());
-        assert!(!s.mesh.is_empty());
+        assert!(!s.mesh().is_empty());
         // The section y = 5.3 across the pass is the tool's profile; x = 1 along it is
         // flat from the first to the last pose.
         let across = Sections::along(0.0, 5.3).unwrap();

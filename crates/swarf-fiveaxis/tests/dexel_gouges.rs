@@ -192,7 +192,7 @@ fn sectioning(
     spacing: f64,
     whole_tool: bool,
 ) -> Vec<Vec<PoseGouge>> {
-    let design = DesignSurface::new(part);
+    let design = DesignSurface::new(part).unwrap();
     let profile = cutter.profile();
     let table = ProfileTable::new(&profile);
     let opts = GougeOptions {

@@ -7,10 +7,12 @@
 //!   derivatives, differential geometry, projection, plane sections, tessellation.
 //! - [`part`]: a part as a set of patches (upper-envelope semantics for 3-axis work).
 //! - [`mesh`]: triangle meshes, their validation and an XY spatial index.
+//! - [`height`]: the height field of a part or mesh (its upper envelope along +z).
 //!
 //! Units: millimetres and radians throughout.
 
 pub mod error;
+pub mod height;
 pub mod math;
 pub mod mesh;
 pub mod part;

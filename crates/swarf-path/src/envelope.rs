@@ -6,44 +6,33 @@
 //! one patch may lie under another; a pass must not follow it there. A CC point is
 //! *hidden* when the envelope at its `(x, y)` is above it by more than a margin; the
 //! envelope height is read from a tessellation of the whole part (within `e` of it)
-//! through an XY index: the highest triangle over the point. With a margin at least
+//! through the height-field query of swarf-geom ([`MeshHeights::upper`]): the highest
+//! triangle over the point. With a margin at least
 //! `e`, a point on the envelope is never hidden; points of two patches that cross
 //! within the margin are both kept (the gouge check then settles the crease).
 
-use swarf_geom::{Point3, TriMesh, XyIndex};
-
-/// Barycentric coordinates down to this (negative) value count as inside a triangle
-/// (dimensionless; closes the cracks between neighbours under rounding).
-const INSIDE_EPS: f64 = 1e-12;
+use swarf_geom::height::MeshHeights;
+use swarf_geom::{Point3, TriMesh};
 
 /// The upper envelope of a tessellated part.
 #[derive(Debug, Clone)]
 pub struct Envelope {
-    mesh: TriMesh,
-    index: XyIndex,
+    surface: MeshHeights<'static>,
     margin: f64,
 }
 
 impl Envelope {
     /// The envelope of `mesh`; points more than `margin` (mm) below it are hidden.
     pub fn new(mesh: TriMesh, margin: f64) -> Envelope {
-        let index = XyIndex::build(&mesh);
         Envelope {
-            mesh,
-            index,
+            surface: MeshHeights::owned(mesh),
             margin,
         }
     }
 
     /// Height of the envelope at `(x, y)`, mm; `None` outside the part's outline.
     pub fn height(&self, x: f64, y: f64) -> Option<f64> {
-        let mut best: Option<f64> = None;
-        self.index.for_each_in_rect([x, y], [x, y], |t| {
-            if let Some(z) = height_over(&self.mesh.triangle(t as usize), x, y) {
-                best = Some(best.map_or(z, |b| b.max(z)));
-            }
-        });
-        best
+        self.surface.upper(x, y)
     }
 
     /// True when the envelope at `p`'s `(x, y)` is above `p` by more than the margin.
@@ -52,25 +41,10 @@ impl Envelope {
     }
 }
 
-/// Height of the triangle's plane over `(x, y)` when that point is inside its XY
-/// projection; `None` outside or for a triangle seen edge-on.
-fn height_over(t: &[Point3; 3], x: f64, y: f64) -> Option<f64> {
-    let [a, b, c] = t;
-    let (e1x, e1y, e2x, e2y) = (b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y);
-    let det = e1x * e2y - e1y * e2x;
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    let (px, py) = (x - a.x, y - a.y);
-    let s = (px * e2y - py * e2x) / det;
-    let t = (e1x * py - e1y * px) / det;
-    let inside = s >= -INSIDE_EPS && t >= -INSIDE_EPS && s + t <= 1.0 + INSIDE_EPS;
-    inside.then(|| a.z + s * (b.z - a.z) + t * (c.z - a.z))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use swarf_geom::height::vertical_hit as height_over;
 
     #[test]
     fn highest_triangle_wins_and_hidden_points_are_found() {

@@ -2,45 +2,22 @@
 //! seen along +z (`parts/README.md`), the reference the machined stock is measured
 //! against.
 //!
-//! - **Mesh**: an exact vertical ray cast at each cell centre (plane of the triangle
-//!   hit), the highest hit kept. Rows are taken in bands; the [`XyIndex`] gives the
-//!   triangles meeting a band and [`crate::raster::cover`] the centres each holds.
-//! - **Parametric part**: each patch is sampled on a uniform `(u, v)` grid (about one
-//!   sample per [`SAMPLE_SPACING`] of control-net length, between [`MIN_SAMPLES`] and
-//!   [`MAX_SAMPLES`] a direction) and the sample triangles are cast as above, carrying
-//!   `(u, v)`; that gives, per cell, a starting point on the two highest patches there.
-//!   Newton's method on `S_xy(u, v) = (x, y)` (`J = [S_u S_v]_xy`, the patch in power
-//!   form, [`crate::power`]) then solves the
-//!   vertical ray against each exactly, to [`NEWTON_XY`] in XY (so the height to that
-//!   times the surface slope), and the higher is kept. Cells whose ray leaves a patch
-//!   (Newton pushed against the domain boundary with a residual left) get no height
-//!   from it; where the Jacobian is singular (a vertical tangent plane) the sampled
-//!   height is kept and counted in [`DesignField::approximate`]. Cells outside every
-//!   patch's projection are NaN: they are not measured.
+//! This is a grid-filling adapter over the one height-field query of the geometry
+//! kernel, [`swarf_geom::height`] (its module doc has the derivation): exact Newton on
+//! the patches of a parametric part, seeded from their sample triangles, or vertical
+//! ray casts on a mesh. Rows are taken in bands of `BAND_ROWS` (16), in parallel; each
+//! band scan-converts the triangles the XY index gives for it. Cells where Newton met
+//! a singular Jacobian (a vertical tangent plane) keep the sampled height and are
+//! counted in [`DesignField::approximate`]. Cells outside every patch's projection are
+//! NaN: they are not measured.
 
 use crate::error::SimError;
 use crate::grid::Grid;
-use crate::power::PowerPatch;
 use crate::progress::Progress;
-use crate::raster::cover;
 use rayon::prelude::*;
-use std::borrow::Cow;
-use swarf_geom::{Aabb, Part, Patch, Point3, TriMesh, Vec3, XyIndex};
+use swarf_geom::height::{HeightStatus, Lattice, MeshHeights, PartHeights};
+use swarf_geom::{Aabb, Part, TriMesh, Vec3};
 
-/// Target control-net length per sample of a patch, mm.
-pub const SAMPLE_SPACING: f64 = 1.0;
-/// Fewest samples per direction of a patch.
-pub const MIN_SAMPLES: usize = 8;
-/// Most samples per direction of a patch.
-pub const MAX_SAMPLES: usize = 1024;
-/// Newton stops when the ray's XY residual is below this, mm.
-pub const NEWTON_XY: f64 = 1e-10;
-/// A Newton step shorter than this fraction of the parameter range is the last one:
-/// the next would change the point by about `|S''| step^2 / 2`, below 1e-10 mm for
-/// second derivatives up to 1e4 mm per unit parameter squared.
-pub const NEWTON_ACCEPT: f64 = 1e-7;
-/// Most Newton steps per cell and patch.
-const NEWTON_STEPS: usize = 16;
 /// Rows per parallel band.
 const BAND_ROWS: usize = 16;
 
@@ -66,73 +43,66 @@ pub struct DesignField {
 
 /// A design prepared for vertical ray casts.
 #[derive(Debug, Clone)]
-pub struct DesignSurface<'a> {
-    design: Design<'a>,
-    mesh: Cow<'a, TriMesh>,
-    /// Per vertex `(u, v)` (parametric parts only).
-    uv: Vec<[f64; 2]>,
-    /// Per triangle, its patch (parametric parts only).
-    patch_of: Vec<u32>,
-    /// The patches in power form (parametric parts only).
-    power: Vec<PowerPatch>,
-    index: XyIndex,
+pub enum DesignSurface<'a> {
+    /// A parametric part.
+    Part(PartHeights),
+    /// A triangle mesh.
+    Mesh(MeshHeights<'a>),
 }
 
-/// A starting point on one patch.
-#[derive(Debug, Clone, Copy)]
-struct Guess {
-    z: f64,
-    uv: [f64; 2],
-    patch: u32,
+impl Lattice for Grid {
+    fn nx(&self) -> usize {
+        self.nx
+    }
+    fn x(&self, i: usize) -> f64 {
+        Grid::x(self, i)
+    }
+    fn y(&self, j: usize) -> f64 {
+        Grid::y(self, j)
+    }
+    fn columns(&self, lo: f64, hi: f64) -> Option<(usize, usize)> {
+        Grid::columns(self, lo, hi)
+    }
+    fn rows(&self, lo: f64, hi: f64) -> Option<(usize, usize)> {
+        Grid::rows(self, lo, hi)
+    }
 }
 
-const NO_GUESS: Guess = Guess {
-    z: f64::NEG_INFINITY,
-    uv: [0.0; 2],
-    patch: u32::MAX,
-};
+fn f32x3(n: Vec3) -> [f32; 3] {
+    [n.x as f32, n.y as f32, n.z as f32]
+}
 
 impl<'a> DesignSurface<'a> {
     /// Prepares `design` (samples a part's patches, indexes the triangles).
     ///
     /// # Errors
-    /// [`SimError::Empty`] for a part without patches or a mesh without triangles.
+    /// [`SimError::Empty`] for a part without patches or a mesh without triangles;
+    /// [`SimError::Unsupported`] for a patch the kernel cannot put in power form.
     pub fn new(design: Design<'a>) -> Result<DesignSurface<'a>, SimError> {
-        let mut power = Vec::new();
-        let (mesh, uv, patch_of) = match design {
+        match design {
             Design::Mesh(m) => {
                 if m.is_empty() {
                     return Err(SimError::Empty("the design mesh has no triangle".into()));
                 }
-                (Cow::Borrowed(m), Vec::new(), Vec::new())
+                Ok(DesignSurface::Mesh(MeshHeights::new(m)))
             }
             Design::Part(part) => {
                 if part.patches.is_empty() {
                     return Err(SimError::Empty(format!("part {}: no patch", part.name)));
                 }
-                let (m, uv, patch_of) = sample_part(part);
-                power = part
-                    .patches
-                    .iter()
-                    .map(PowerPatch::new)
-                    .collect::<Result<_, _>>()?;
-                (Cow::Owned(m), uv, patch_of)
+                let h = PartHeights::new(part)
+                    .map_err(|e| SimError::Unsupported(format!("part {}: {e}", part.name)))?;
+                Ok(DesignSurface::Part(h))
             }
-        };
-        let index = XyIndex::build(&mesh);
-        Ok(DesignSurface {
-            design,
-            mesh,
-            uv,
-            patch_of,
-            power,
-            index,
-        })
+        }
     }
 
     /// Box around the design (the sampled patches, or the mesh), mm.
     pub fn bounds(&self) -> Aabb {
-        self.mesh.aabb()
+        match self {
+            DesignSurface::Part(p) => p.bounds(),
+            DesignSurface::Mesh(m) => m.mesh().aabb(),
+        }
     }
 
     /// Heights (and, when `normals`, unit upward normals) at every cell centre.
@@ -174,238 +144,32 @@ impl<'a> DesignSurface<'a> {
     ) -> usize {
         let j0 = b * BAND_ROWS;
         let j1 = j0 + heights.len() / grid.nx - 1;
-        let half = 0.5 * grid.cell;
-        let lo = [grid.origin[0], grid.y(j0) - half];
-        let hi = [grid.max()[0], grid.y(j1) + half];
-        let approx = match self.design {
-            Design::Mesh(_) => {
-                self.index.for_each_in_rect(lo, hi, |t| {
-                    let tri = self.mesh.triangle(t as usize);
-                    let p = tri.map(|q| [q.x, q.y, q.z]);
-                    let up = upward(&tri);
-                    cover(grid, j0, j1, &p, |k, w| {
-                        let z = w[0] * p[0][2] + w[1] * p[1][2] + w[2] * p[2][2];
-                        if heights[k].is_nan() || z > heights[k] {
-                            heights[k] = z;
-                            if let Some(nb) = normals.as_deref_mut() {
-                                nb[k] = up;
-                            }
-                        }
-                    });
-                });
-                0
-            }
-            Design::Part(_) => self.part_band(grid, j0, j1, heights, normals),
-        };
+        let mut approx = 0;
+        match self {
+            DesignSurface::Mesh(m) => m.fill_rows(grid, j0, j1, |k, z, n| {
+                heights[k] = z;
+                if let Some(nb) = normals.as_deref_mut() {
+                    nb[k] = f32x3(n);
+                }
+            }),
+            DesignSurface::Part(p) => p.fill_rows(grid, j0, j1, |k, h| {
+                heights[k] = h.z;
+                if let Some(nb) = normals.as_deref_mut() {
+                    nb[k] = f32x3(h.normal);
+                }
+                approx += usize::from(h.status == HeightStatus::Singular);
+            }),
+        }
         progress.advance((j1 - j0 + 1) as u64);
         approx
     }
-
-    /// Fills one band of a parametric part: sampled guesses, then Newton per cell.
-    fn part_band(
-        &self,
-        grid: &Grid,
-        j0: usize,
-        j1: usize,
-        heights: &mut [f64],
-        mut normals: Option<&mut [[f32; 3]]>,
-    ) -> usize {
-        let mut best = vec![[NO_GUESS; 2]; heights.len()];
-        let half = 0.5 * grid.cell;
-        let lo = [grid.origin[0], grid.y(j0) - half];
-        let hi = [grid.max()[0], grid.y(j1) + half];
-        self.index.for_each_in_rect(lo, hi, |t| {
-            let ids = self.mesh.triangles[t as usize];
-            let p = ids.map(|v| {
-                let q = self.mesh.vertices[v as usize];
-                [q.x, q.y, q.z]
-            });
-            let uv = ids.map(|v| self.uv[v as usize]);
-            let patch = self.patch_of[t as usize];
-            cover(grid, j0, j1, &p, |k, w| {
-                let g = Guess {
-                    z: w[0] * p[0][2] + w[1] * p[1][2] + w[2] * p[2][2],
-                    uv: [0, 1].map(|d| w[0] * uv[0][d] + w[1] * uv[1][d] + w[2] * uv[2][d]),
-                    patch,
-                };
-                keep_top_two(&mut best[k], g);
-            });
-        });
-        let mut approx = 0;
-        for (k, pair) in best.iter().enumerate() {
-            let (i, j) = (k % grid.nx, j0 + k / grid.nx);
-            let [x, y] = grid.centre(i, j);
-            let mut top: Option<(f64, Vec3)> = None;
-            for g in pair.iter().filter(|g| g.patch != u32::MAX) {
-                let hit = match newton(&self.power[g.patch as usize], x, y, g.uv) {
-                    Ray::Hit(z, n) => Some((z, n)),
-                    Ray::Off => None,
-                    Ray::Singular => {
-                        approx += 1;
-                        Some((g.z, Vec3::z()))
-                    }
-                };
-                if let Some(h) = hit
-                    && top.is_none_or(|t| h.0 > t.0)
-                {
-                    top = Some(h);
-                }
-            }
-            if let Some((z, n)) = top {
-                heights[k] = z;
-                if let Some(nb) = normals.as_deref_mut() {
-                    nb[k] = [n.x as f32, n.y as f32, n.z as f32];
-                }
-            }
-        }
-        approx
-    }
-}
-
-/// Keeps the highest guess of each of the two highest patches.
-fn keep_top_two(pair: &mut [Guess; 2], g: Guess) {
-    if g.patch == pair[0].patch {
-        if g.z > pair[0].z {
-            pair[0] = g;
-        }
-    } else if g.patch == pair[1].patch {
-        if g.z > pair[1].z {
-            pair[1] = g;
-        }
-        if pair[1].z > pair[0].z {
-            pair.swap(0, 1);
-        }
-    } else if g.z > pair[0].z {
-        pair[1] = pair[0];
-        pair[0] = g;
-    } else if g.z > pair[1].z {
-        pair[1] = g;
-    }
-}
-
-/// The outcome of a vertical ray against one patch.
-enum Ray {
-    /// Height and unit upward normal.
-    Hit(f64, Vec3),
-    /// The ray passes beside the patch.
-    Off,
-    /// Newton could not proceed (vertical tangent plane).
-    Singular,
-}
-
-/// Solves `S_xy(u, v) = (x, y)` from `uv`.
-fn newton(patch: &PowerPatch, x: f64, y: f64, uv: [f64; 2]) -> Ray {
-    let [[u0, u1], [v0, v1]] = patch.domain();
-    let (mut u, mut v) = (uv[0], uv[1]);
-    let up = |du: Vec3, dv: Vec3| {
-        let n = du.cross(&dv);
-        let n = if n.z < 0.0 { -n } else { n };
-        n.try_normalize(0.0).unwrap_or(Vec3::z())
-    };
-    let small = [NEWTON_ACCEPT * (u1 - u0), NEWTON_ACCEPT * (v1 - v0)];
-    for _ in 0..NEWTON_STEPS {
-        let (p, du, dv) = patch.eval1(u, v);
-        let (rx, ry) = (x - p.x, y - p.y);
-        if rx * rx + ry * ry <= NEWTON_XY * NEWTON_XY {
-            return Ray::Hit(p.z, up(du, dv));
-        }
-        let det = du.x * dv.y - du.y * dv.x;
-        if det.is_nan() || det.abs() <= 1e-300 {
-            return Ray::Singular;
-        }
-        let su = (rx * dv.y - ry * dv.x) / det;
-        let sv = (du.x * ry - du.y * rx) / det;
-        let (cu, cv) = ((u + su).clamp(u0, u1), (v + sv).clamp(v0, v1));
-        if cu == u && cv == v {
-            return Ray::Off;
-        }
-        if cu == u + su && cv == v + sv && su.abs() <= small[0] && sv.abs() <= small[1] {
-            // The last step is so short that the step after it would be below
-            // rounding (quadratic convergence): take the tangent plane's height.
-            return Ray::Hit(p.z + du.z * su + dv.z * sv, up(du, dv));
-        }
-        (u, v) = (cu, cv);
-    }
-    let (p, du, dv) = patch.eval1(u, v);
-    if (x - p.x).hypot(y - p.y) <= 1e3 * NEWTON_XY {
-        Ray::Hit(p.z, up(du, dv))
-    } else {
-        Ray::Off
-    }
-}
-
-/// Unit normal of a triangle, turned upward, as `f32`.
-fn upward(t: &[Point3; 3]) -> [f32; 3] {
-    let n = (t[1] - t[0]).cross(&(t[2] - t[0]));
-    let n = if n.z < 0.0 { -n } else { n };
-    let n = n.try_normalize(0.0).unwrap_or(Vec3::z());
-    [n.x as f32, n.y as f32, n.z as f32]
-}
-
-/// Samples every patch of `part` on a uniform parameter grid: the triangle mesh, each
-/// vertex's `(u, v)`, and each triangle's patch.
-fn sample_part(part: &Part) -> (TriMesh, Vec<[f64; 2]>, Vec<u32>) {
-    let mut vertices = Vec::new();
-    let mut uv = Vec::new();
-    let mut triangles = Vec::new();
-    let mut patch_of = Vec::new();
-    for (pi, patch) in part.patches.iter().enumerate() {
-        let [nu, nv] = sample_counts(patch);
-        let [[u0, u1], [v0, v1]] = patch.domain();
-        let base = vertices.len() as u32;
-        for a in 0..=nu {
-            for b in 0..=nv {
-                let u = u0 + (u1 - u0) * a as f64 / nu as f64;
-                let v = v0 + (v1 - v0) * b as f64 / nv as f64;
-                vertices.push(patch.eval(u, v));
-                uv.push([u, v]);
-            }
-        }
-        let id = |a: usize, b: usize| base + (a * (nv + 1) + b) as u32;
-        for a in 0..nu {
-            for b in 0..nv {
-                triangles.push([id(a, b), id(a + 1, b), id(a + 1, b + 1)]);
-                triangles.push([id(a, b), id(a + 1, b + 1), id(a, b + 1)]);
-                patch_of.extend([pi as u32; 2]);
-            }
-        }
-    }
-    (
-        TriMesh {
-            vertices,
-            triangles,
-        },
-        uv,
-        patch_of,
-    )
-}
-
-/// Samples per direction: control-net length over [`SAMPLE_SPACING`], clamped.
-fn sample_counts(patch: &Patch) -> [usize; 2] {
-    let [cu, cv] = patch.count();
-    let pt = |i: usize, j: usize| patch.point(i, j);
-    let along_u = (0..cv)
-        .map(|j| {
-            (1..cu)
-                .map(|i| (pt(i, j) - pt(i - 1, j)).norm())
-                .sum::<f64>()
-        })
-        .fold(0.0, f64::max);
-    let along_v = (0..cu)
-        .map(|i| {
-            (1..cv)
-                .map(|j| (pt(i, j) - pt(i, j - 1)).norm())
-                .sum::<f64>()
-        })
-        .fold(0.0, f64::max);
-    [along_u, along_v]
-        .map(|l| ((l / SAMPLE_SPACING).ceil() as usize).clamp(MIN_SAMPLES, MAX_SAMPLES))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::progress::Quiet;
+    use swarf_geom::{Patch, Point3};
 
     /// A bicubic Bezier patch over [0, 20] x [0, 10] with z = f(x, y) known in closed
     /// form: x = 20 u, y = 10 v (control points evenly spaced), z bilinear-cubic.

@@ -6,8 +6,8 @@
 //! - [`sweep`]: what a motion removes (the per-shape `Sweep` interface, the sampling
 //!   bounds for arcs and five-axis motions), with [`sweep_linear`] (exact) and
 //!   [`sweep_tilted`] (one tilted tool position).
-//! - [`design`]: the design's height (and normal) at every cell centre, exact by
-//!   Newton on patches (in [`power`] form) or by ray casts on meshes ([`raster`]).
+//! - [`design`]: the design's height (and normal) at every cell centre, from the
+//!   height-field query of the geometry kernel ([`swarf_geom::height`]).
 //! - [`deviation`]: gouge, excess and scallop crests against the design, by region.
 //! - [`mow`]: deviation along the design normals ("mow the grass").
 //! - [`simulate`](mod@simulate): a program over a stock, in parallel row bands,
@@ -27,9 +27,7 @@ pub mod error;
 pub mod grid;
 pub mod mow;
 pub mod picture;
-pub mod power;
 pub mod progress;
-pub mod raster;
 pub mod report;
 pub mod simulate;
 pub mod sweep;

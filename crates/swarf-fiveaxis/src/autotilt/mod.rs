@@ -293,7 +293,7 @@ mod tests {
 
     #[test]
     fn too_small_a_max_alpha_is_an_error_naming_the_point() {
-        let design = DesignSurface::new(&die());
+        let design = DesignSurface::new(&die()).unwrap();
         let passes = die_passes();
         let cutter: Cutter = "bull:d=38.1,r=6.35".parse().unwrap();
         let e = gouge_free_tilt(&cutter, &design, &passes[..1], &opts(2.0)).unwrap_err();

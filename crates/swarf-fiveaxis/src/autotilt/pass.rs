@@ -284,7 +284,7 @@ mod tests {
 
     #[test]
     fn searched_alpha_is_within_a_tenth_of_a_degree_of_brute_force() {
-        let design = DesignSurface::new(&die());
+        let design = DesignSurface::new(&die()).unwrap();
         let passes = die_passes();
         let cutter: Cutter = "bull:d=38.1,r=6.35".parse().unwrap();
         let profile = cutter.profile();

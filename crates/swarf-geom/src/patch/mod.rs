@@ -11,6 +11,7 @@ mod eval;
 #[cfg(test)]
 pub(crate) mod fixtures;
 mod knot_insert;
+mod power;
 mod project;
 mod section;
 mod section_seed;
@@ -21,6 +22,7 @@ mod tessellate;
 pub use basis::MAX_DEGREE;
 pub use diffgeo::{Curvature, FundamentalForms};
 pub use eval::SurfaceDerivs;
+pub use power::PowerPatch;
 pub use project::Projection;
 pub use section::{SectionCurve, SurfaceSample};
 

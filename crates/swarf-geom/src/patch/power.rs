@@ -1,7 +1,7 @@
 //! A patch in power form per span, for the millions of exact point-and-tangent
-//! evaluations the design heights need.
+//! evaluations the height-field query needs ([`crate::height`]).
 //!
-//! The design heights solve a vertical ray against the part at every cell centre (8
+//! The design heights of the dexel verifier solve a vertical ray against the part at every cell centre (8
 //! million on wave.toml at 0.05 mm), about three Newton steps each, every step a point
 //! with its first derivatives. The general evaluator of the geometry kernel
 //! (`Patch::derivs`, de Boor with second derivatives) costs about 570 ns a call in a
@@ -17,8 +17,9 @@
 //! Horner's rule in the span's local parameters; a rational patch divides by the
 //! weight polynomial (`S_u = (H_u - w_u S) / w`).
 
-use crate::error::SimError;
-use swarf_geom::{Patch, Point3, Vec3};
+use super::Patch;
+use crate::error::GeomError;
+use crate::math::{Point3, Vec3};
 
 /// A patch as polynomials per span.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,9 +57,8 @@ impl PowerPatch {
     /// Converts `patch`.
     ///
     /// # Errors
-    /// [`SimError::Unsupported`] when a knot insertion fails (it cannot for a valid
-    /// patch).
-    pub fn new(patch: &Patch) -> Result<PowerPatch, SimError> {
+    /// The [`GeomError`] of a knot insertion that fails (it cannot for a valid patch).
+    pub fn new(patch: &Patch) -> Result<PowerPatch, GeomError> {
         let mut bez = patch.clone();
         for dir in 0..2 {
             let p = bez.degree()[dir];
@@ -70,9 +70,7 @@ impl PowerPatch {
                 let mult = knots[k..].iter().take_while(|&&x| x == t).count();
                 if t > lo && t < hi {
                     for _ in mult..p {
-                        bez = bez.insert_knot(dir, t).map_err(|e| {
-                            SimError::Unsupported(format!("Bezier decomposition: {e}"))
-                        })?;
+                        bez = bez.insert_knot(dir, t)?;
                     }
                 }
                 k += mult;
