@@ -11,7 +11,7 @@ use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, check_pass};
 use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::positioning::{Positioning, position};
-use swarf_fiveaxis::profile_point::ProfileTable;
+use swarf_tool::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
 use swarf_geom::{Part, Point3};

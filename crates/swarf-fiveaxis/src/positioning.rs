@@ -23,7 +23,7 @@ use crate::gencurve::CurveOptions;
 use crate::gouge::{GougeOptions, check_pass};
 use crate::inclined::incline_pass;
 use crate::lead_bound::lead_bound;
-use crate::profile_point::ProfileTable;
+use swarf_tool::ProfileTable;
 use crate::sections::Sections;
 use rayon::current_num_threads;
 use rayon::prelude::*;

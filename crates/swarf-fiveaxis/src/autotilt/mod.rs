@@ -45,7 +45,7 @@ use crate::design::DesignSurface;
 use crate::error::FiveAxisError;
 use crate::gouge::GougeOptions;
 use crate::inclined::feed_directions;
-use crate::profile_point::ProfileTable;
+use swarf_tool::ProfileTable;
 use pass::{PassResult, PassTilt, tilt_pass};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
