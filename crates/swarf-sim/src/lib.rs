@@ -2,7 +2,8 @@
 //!
 //! - [`grid`]: the Z-map grid and its memory check.
 //! - [`dexel`]: the stock: one height per cell, and the motion that last lowered it.
-//! - [`envelope`]: a cutter's lower profile and its exact minimum along a straight move.
+//! - [`swept_min`]: the exact minimum of a cutter's lower envelope
+//!   ([`swarf_tool::drop::Envelope`]) along a straight move.
 //! - [`sweep`]: what a motion removes (the per-shape `Sweep` interface, the sampling
 //!   bounds for arcs and five-axis motions), with [`sweep_linear`] (exact) and
 //!   [`sweep_tilted`] (one tilted tool position).
@@ -22,7 +23,6 @@ pub mod canvas;
 pub mod design;
 pub mod deviation;
 pub mod dexel;
-pub mod envelope;
 pub mod error;
 pub mod grid;
 pub mod mow;
@@ -35,12 +35,12 @@ pub mod simulate;
 pub mod sweep;
 pub mod sweep_linear;
 pub mod sweep_tilted;
+pub mod swept_min;
 pub mod verify;
 
 pub use design::{Design, DesignField, DesignSurface};
 pub use deviation::{Deviation, DeviationOptions, DeviationSummary};
 pub use dexel::{Dexel, StockInit};
-pub use envelope::Envelope;
 pub use error::SimError;
 pub use grid::Grid;
 pub use progress::{Progress, Quiet};
