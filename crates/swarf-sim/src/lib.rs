@@ -14,19 +14,17 @@
 //! - [`simulate`](mod@simulate): a program over a stock, in parallel row bands,
 //!   deterministically.
 //! - [`verify`](mod@verify): all of it for a program, a tool and a design.
-//! - [`report`] (JSON, CSV, text) and [`picture`] (heat map, tool path; drawn on a
-//!   small [`canvas`]).
+//! - [`report`] (JSON, CSV, text); the pictures of a verification are drawn by
+//!   swarf-report.
 //!
 //! Units: millimetres, radians, mm/min.
 
-pub mod canvas;
 pub mod design;
 pub mod deviation;
 pub mod dexel;
 pub mod error;
 pub mod grid;
 pub mod mow;
-pub mod picture;
 pub mod power;
 pub mod progress;
 pub mod raster;
