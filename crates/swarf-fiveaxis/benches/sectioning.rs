@@ -9,11 +9,11 @@ use swarf_fiveaxis::autotilt::{TiltOptions, gouge_free_tilt};
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, pose_gouge};
 use swarf_fiveaxis::job::planned_cc_paths;
-use swarf_tool::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
 use swarf_geom::Part;
 use swarf_path::{Contact, Job};
+use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
 
 fn bench(c: &mut Criterion) {

@@ -12,12 +12,12 @@ use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport, position};
 use swarf_fiveaxis::post::{PostOptions, write_gcode_5x};
-use swarf_tool::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
 use swarf_geom::Part;
 use swarf_path::{Contact, Feeds, Job, Linking, Pass, Toolpath};
+use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
 
 fn show(name: &str, r: &PositioningReport, secs: f64) {

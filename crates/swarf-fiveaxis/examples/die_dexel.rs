@@ -11,13 +11,13 @@ use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, check_pass};
 use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::positioning::{Positioning, position};
-use swarf_tool::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
 use swarf_geom::{Part, Point3};
 use swarf_nc::read::{Motion, MotionKind};
 use swarf_path::{Contact, Job};
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, SimTool, StockInit, simulate};
+use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
 
 /// Gouge tolerance, mm.

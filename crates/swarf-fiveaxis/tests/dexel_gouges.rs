@@ -44,12 +44,12 @@ use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, PoseGouge, check_pass, wall_top};
 use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport, mean_direction, position};
-use swarf_tool::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_geom::Part;
 use swarf_nc::read::{Motion, MotionKind, Program};
 use swarf_path::{Contact, Job, Pass};
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};
+use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
 
 /// The thesis's toroidal cutter.

@@ -13,8 +13,8 @@
 //! (the capsule formula of the swept-minimum module, specialised); the tests check it
 //! against the general path.
 
-use crate::swept_min::{swept_min, swept_min_below};
 use crate::grid::Grid;
+use crate::swept_min::{swept_min, swept_min_below};
 use swarf_geom::Point3;
 use swarf_geom::tol::LENGTH_EPS;
 use swarf_tool::drop::Envelope;

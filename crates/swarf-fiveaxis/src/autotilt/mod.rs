@@ -45,11 +45,11 @@ use crate::design::DesignSurface;
 use crate::error::FiveAxisError;
 use crate::gouge::GougeOptions;
 use crate::inclined::feed_directions;
-use swarf_tool::ProfileTable;
 use pass::{PassResult, PassTilt, tilt_pass};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use swarf_path::{Contact, Pass, PathPoint};
+use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
 
 /// Options of the automatic tilt.

@@ -7,9 +7,9 @@ use crate::design::DesignSurface;
 use crate::error::FiveAxisError;
 use crate::gouge::{PoseGouge, pose_gouge};
 use crate::inclined::{Inclination, inclined_pose};
-use swarf_tool::ProfileTable;
 use swarf_geom::Vec3;
 use swarf_path::Contact;
+use swarf_tool::ProfileTable;
 use swarf_tool::{Pose, Profile};
 
 /// The first upward step of the bracket search when there is no hint (radians, 1

@@ -66,11 +66,7 @@ impl<'a> ProfileTable<'a> {
             acc += seg.length();
             len += 1;
         }
-        ProfileTable {
-            profile,
-            segs,
-            len,
-        }
+        ProfileTable { profile, segs, len }
     }
 
     /// The profile.
@@ -171,8 +167,8 @@ impl Profile {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::f64::consts::{FRAC_PI_2, PI};
     use crate::Cutter;
+    use std::f64::consts::{FRAC_PI_2, PI};
 
     fn bull() -> Profile {
         Cutter::bull(10.0, 2.0, Some(20.0)).unwrap().profile()
