@@ -4,8 +4,8 @@
 //! a test can check that no two of them overlap, that none covers the map, the colour
 //! bar or a legend key, and that all of them lie on the canvas.
 //!
-//! The title and the footer wrap to the canvas width ([`wrap`]); axis ticks are
-//! spaced so that their labels clear one another ([`ticks`]); the left margin fits
+//! The title and the footer wrap to the canvas width (`text::wrap`); axis ticks are
+//! spaced so that their labels clear one another (`text::ticks`); the left margin fits
 //! the widest y label, and the legend column starts right of the map and of the x
 //! labels; the top margin follows the title's lines and the footer starts below the
 //! lowest label or legend key. Gouge labels go right, left, above or
