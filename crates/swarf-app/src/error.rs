@@ -27,6 +27,9 @@ pub enum AppError {
     /// Simulation and verification.
     #[error(transparent)]
     Sim(#[from] swarf_sim::SimError),
+    /// Drawing pictures.
+    #[error(transparent)]
+    Report(#[from] swarf_report::ReportError),
     /// Writing to an output stream.
     #[error(transparent)]
     Output(#[from] std::io::Error),

@@ -355,10 +355,10 @@ pub fn verify_and_write(
     );
     swarf_io::write_atomic(
         &file("deviation.png"),
-        &swarf_sim::picture::deviation_png(&v, &title)?,
+        &swarf_report::picture::deviation_png(&v, &title)?,
     )?;
     let title = format!("tool path: {name}, {}", ctx.tool);
-    let png = swarf_sim::picture::toolpath_png(&v, &program.motions, &title)?;
+    let png = swarf_report::picture::toolpath_png(&v, &program.motions, &title)?;
     swarf_io::write_atomic(&file("toolpath.png"), &png)?;
     Ok(v)
 }

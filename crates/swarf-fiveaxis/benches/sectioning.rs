@@ -10,10 +10,10 @@ use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::autotilt::{TiltOptions, gouge_free_tilt};
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, pose_gouge};
-use swarf_fiveaxis::profile_point::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
 use swarf_geom::Part;
+use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::Contact;
 

@@ -13,11 +13,11 @@ use swarf_fiveaxis::gouge::{GougeOptions, pose_gouge};
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport, position};
 use swarf_fiveaxis::post::{PostOptions, write_gcode_5x};
-use swarf_fiveaxis::profile_point::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
 use swarf_geom::Part;
+use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Contact, Feeds, Linking, Pass, Toolpath};
 

@@ -18,7 +18,7 @@
 //! `DC = r (Delta C x N) / |Delta C x N|`, `N` the insert-plane normal, the lower of the
 //! two roots; `velocity_iterations` fixed-point steps then move the reference to the
 //! point itself, so that the exact condition `n . v(p) = 0` holds. The profile point
-//! with normal angle `psi*` is found by `locate_angle` in `profile_point` (arcs,
+//! with normal angle `psi*` is found by [`ProfileTable::point_for_normal`] (arcs,
 //! corners, and the rim of a flat bottom: the generating circle of radius `R` of
 //! §3.3). A bottom cone follows the same rule, which is §5.4.4: when the motion's angle
 //! above the tool's `X-Y` plane exceeds `theta_start`, `psi*` passes the cone's normal and
@@ -47,13 +47,12 @@
 //! generating curve has the same number of points").
 
 use crate::motion::{Twist, pose_twist};
-use crate::profile_point::{ProfileTable, arc_position_at_height, full_radius_height};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use swarf_geom::tol::LENGTH_EPS;
 use swarf_geom::{Point3, Vec3};
 use swarf_tool::pose::reference_frame;
-use swarf_tool::{Pose, Profile, RhoZ, Segment};
+use swarf_tool::{Pose, Profile, ProfileTable, RhoZ};
 
 /// A meridian whose in-plane speed is below this fraction of its speed is degenerate
 /// (dimensionless).
@@ -195,20 +194,12 @@ impl<'a> PoseCurve<'a> {
         let x = c
             .try_normalize(LENGTH_EPS * twist.linear.norm().max(1.0))
             .unwrap_or_else(|| reference_frame(&a).0);
-        let segs = profile.segments();
-        let centre = segs
-            .iter()
-            .find_map(|s| match *s {
-                Segment::Arc { centre, .. } => Some(centre),
-                Segment::Line { .. } => None,
-            })
-            .or_else(|| segs.first().map(|s| s.end()))
-            .unwrap_or_default();
+        let centre = profile.corner_centre();
         let top_height = opts
             .wall_height
-            .unwrap_or_else(|| full_radius_height(profile))
+            .unwrap_or_else(|| profile.full_radius_height())
             .min(profile.top().z);
-        let wall_top = arc_position_at_height(profile, top_height);
+        let wall_top = profile.arc_position_at_height(top_height);
         PoseCurve {
             table,
             profile,

@@ -30,12 +30,11 @@
 
 use crate::design::DesignSurface;
 use crate::gencurve::{CurveOptions, Half, PoseCurve};
-use crate::profile_point::ProfileTable;
 use crate::sections::Sections;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 use swarf_geom::Point3;
-use swarf_tool::{Pose, Profile, Segment};
+use swarf_tool::{Pose, Profile, ProfileTable};
 
 /// Crossings are refined until the point is this close to its plane (mm).
 pub const ROOT_TOL: f64 = 1e-6;
@@ -172,14 +171,14 @@ pub fn check_cap(
     meridians: usize,
     out: &mut PoseGouge,
 ) {
-    let meridian = meridian_polyline(profile, top);
+    let meridian = profile.polyline(CAP_ARC_PIECES, top);
     let (b1, b2) = pose.frame();
     for m in 0..meridians {
         let (s, c) = (TAU * m as f64 / meridians as f64).sin_cos();
         let u = c * b1 + s * b2;
         let pts: Vec<Point3> = meridian
             .iter()
-            .map(|q| pose.cl + q.0 * u + q.1 * pose.axis)
+            .map(|q| pose.cl + q.rho * u + q.z * pose.axis)
             .collect();
         for w in pts.windows(2) {
             let (va, vb) = (sections.coordinate(&w[0]), sections.coordinate(&w[1]));
@@ -259,27 +258,6 @@ const MARCH_HIT: f64 = 1e-7;
 /// Most march steps.
 const MARCH_STEPS: usize = 400;
 
-/// The profile from the tip up to height `top` as `(rho, z)` points, arcs in
-/// [`CAP_ARC_PIECES`] chords.
-fn meridian_polyline(profile: &Profile, top: f64) -> Vec<(f64, f64)> {
-    let mut out = Vec::new();
-    for seg in profile.segments() {
-        let pieces = match seg {
-            Segment::Line { .. } => 1,
-            Segment::Arc { .. } => CAP_ARC_PIECES,
-        };
-        let len = seg.length();
-        for i in 0..=pieces {
-            let (q, _) = seg.point_at(len * i as f64 / pieces as f64);
-            if q.z > top + 1e-12 {
-                return out;
-            }
-            out.push((q.rho, q.z));
-        }
-    }
-    out
-}
-
 /// The sectioning check of pose `i` of a pass (module doc). Poses must have unit axes.
 pub fn pose_gouge(
     design: &DesignSurface,
@@ -317,7 +295,7 @@ pub fn pose_gouge(
 pub fn wall_top(profile: &Profile, curve: &CurveOptions) -> f64 {
     curve
         .wall_height
-        .unwrap_or_else(|| crate::profile_point::full_radius_height(profile))
+        .unwrap_or_else(|| profile.full_radius_height())
         .min(profile.top().z)
 }
 

@@ -9,7 +9,6 @@
 //! Swept surfaces and gouges (thesis 000 ch. 3, 5, 7):
 //! - [`motion`]: the velocity field of the tool at a pose of a path.
 //! - [`gencurve`]: generating curves of inserts and cards (§5.3-5.4, eqs. 5.2-5.17).
-//! - [`profile_point`]: profile points by normal direction, arc length and height.
 //! - [`swept`]: the machined surface as a mesh of generating curves, sampled by height.
 //! - [`sections`], [`design`], [`gouge`]: sectioning gouge detection (§7.2).
 //!
@@ -34,7 +33,6 @@ pub mod machine;
 pub mod motion;
 pub mod positioning;
 pub mod post;
-pub mod profile_point;
 pub mod sections;
 pub mod swept;
 

@@ -22,12 +22,12 @@ use crate::gencurve::CurveOptions;
 use crate::gouge::{GougeOptions, check_pass};
 use crate::inclined::incline_pass;
 use crate::lead_bound::lead_bound;
-use crate::profile_point::ProfileTable;
 use crate::sections::Sections;
 use rayon::current_num_threads;
 use rayon::prelude::*;
 use serde::Serialize;
 use swarf_geom::Part;
+use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Contact, Pass};
 

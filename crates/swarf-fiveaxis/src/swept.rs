@@ -16,11 +16,10 @@
 //! section profiles that the thesis compares with measurements and with the Z-map.
 
 use crate::gencurve::{CurveOptions, Half, PoseCurve};
-use crate::profile_point::{ProfileTable, full_radius_height};
 use crate::sections::Sections;
 use swarf_geom::height::MeshHeights;
 use swarf_geom::{GeomError, MeshBuilder, Point3, TriMesh, Vec3};
-use swarf_tool::{Pose, Profile, Segment};
+use swarf_tool::{Pose, Profile, ProfileTable};
 
 /// Twice a triangle's area below which it is dropped from the mesh (mm^2).
 const MIN_DOUBLE_AREA: f64 = 1e-12;
@@ -114,7 +113,7 @@ fn add_pass(
     let profile = table.profile();
     let top = opts
         .wall_height
-        .unwrap_or_else(|| full_radius_height(profile))
+        .unwrap_or_else(|| profile.full_radius_height())
         .min(profile.top().z);
     if let Some(first) = poses.first() {
         add_cap(b, profile, first, top)?;
@@ -154,27 +153,14 @@ fn add_triangle(b: &mut MeshBuilder, t: [Point3; 3]) -> Result<(), GeomError> {
 
 /// The tool's surface at `pose` from the tip up to height `top`, revolved.
 fn add_cap(b: &mut MeshBuilder, profile: &Profile, pose: &Pose, top: f64) -> Result<(), GeomError> {
-    let mut meridian = vec![(0.0, 0.0)];
-    for seg in profile.segments() {
-        let pieces = match seg {
-            Segment::Line { .. } => 1,
-            Segment::Arc { .. } => CAP_ARC_PIECES,
-        };
-        for i in 1..=pieces {
-            let (q, _) = seg.point_at(seg.length() * i as f64 / pieces as f64);
-            if q.z > top + 1e-12 {
-                break;
-            }
-            meridian.push((q.rho, q.z));
-        }
-    }
+    let meridian = profile.polyline(CAP_ARC_PIECES, top);
     let (b1, b2) = pose.frame();
     let ring = |m: usize| -> Vec<Point3> {
         let (s, c) = (std::f64::consts::TAU * m as f64 / CAP_MERIDIANS as f64).sin_cos();
         let u = c * b1 + s * b2;
         meridian
             .iter()
-            .map(|q| pose.cl + q.0 * u + q.1 * pose.axis)
+            .map(|q| pose.cl + q.rho * u + q.z * pose.axis)
             .collect()
     };
     let mut prev = ring(0);

@@ -45,11 +45,11 @@ use swarf_fiveaxis::CurveOptions;
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, PoseGouge, check_pass, wall_top};
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport, mean_direction, position};
-use swarf_fiveaxis::profile_point::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_geom::Part;
 use swarf_nc::read::{Motion, MotionKind, Program};
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};
+use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Contact, Pass};
 

@@ -2,7 +2,8 @@
 //!
 //! - [`grid`]: the Z-map grid and its memory check.
 //! - [`dexel`]: the stock: one height per cell, and the motion that last lowered it.
-//! - [`envelope`]: a cutter's lower profile and its exact minimum along a straight move.
+//! - [`swept_min`]: the exact minimum of a cutter's lower envelope
+//!   ([`swarf_tool::drop::Envelope`]) along a straight move.
 //! - [`sweep`]: what a motion removes (the per-shape `Sweep` interface, the sampling
 //!   bounds for arcs and five-axis motions), with [`sweep_linear`] (exact) and
 //!   [`sweep_tilted`] (one tilted tool position).
@@ -13,32 +14,29 @@
 //! - [`simulate`](mod@simulate): a program over a stock, in parallel row bands,
 //!   deterministically.
 //! - [`verify`](mod@verify): all of it for a program, a tool and a design.
-//! - [`report`] (JSON, CSV, text) and [`picture`] (heat map, tool path; drawn on a
-//!   small [`canvas`]).
+//! - [`report`] (JSON, CSV, text); the pictures of a verification are drawn by
+//!   swarf-report.
 //!
 //! Units: millimetres, radians, mm/min.
 
-pub mod canvas;
 pub mod design;
 pub mod deviation;
 pub mod dexel;
-pub mod envelope;
 pub mod error;
 pub mod grid;
 pub mod mow;
-pub mod picture;
 pub mod progress;
 pub mod report;
 pub mod simulate;
 pub mod sweep;
 pub mod sweep_linear;
 pub mod sweep_tilted;
+pub mod swept_min;
 pub mod verify;
 
 pub use design::{Design, DesignField, DesignSurface};
 pub use deviation::{Deviation, DeviationOptions, DeviationSummary};
 pub use dexel::{Dexel, StockInit};
-pub use envelope::Envelope;
 pub use error::SimError;
 pub use grid::Grid;
 pub use progress::{Progress, Quiet};

@@ -5,7 +5,7 @@
 //! # Which motions are exact and which are sampled
 //!
 //! - A straight move of a vertical tool is one [`LinearSweep`]: exact (the swept
-//!   envelope of [`crate::envelope`]).
+//!   minimum of [`crate::swept_min`]).
 //! - An arc or helix of a vertical tool is cut into `n` chords at equal parameter
 //!   steps, each swept exactly. With `phi = t Theta` the arc's angle, the tip's XY
 //!   position `P(phi) = r(phi) (cos, sin)(phi)` (radius linear in `phi` for the slight
@@ -31,7 +31,6 @@
 //!   `n` is the least count with `delta <= sample_tol`; rapids use the coarser
 //!   [`RAPID_SAMPLE`] (a rapid that touches material is reported anyway).
 
-use crate::envelope::Envelope;
 use crate::error::SimError;
 use crate::grid::Grid;
 use crate::sweep_linear::{LinearSweep, RowCut};
@@ -39,12 +38,11 @@ use crate::sweep_tilted::ToolInstance;
 use swarf_geom::tol::{LENGTH_EPS, PARALLEL_COS};
 use swarf_geom::{Point3, Vec3};
 use swarf_nc::read::{Motion, MotionKind};
+use swarf_tool::drop::Envelope;
 use swarf_tool::{Cutter, Profile};
 
 /// Sampling tolerance for five-axis rapids, mm (at least this coarse).
 pub const RAPID_SAMPLE: f64 = 0.1;
-/// Normal angles within this of each other count as equal when testing convexity.
-const CONVEX_EPS: f64 = 1e-9;
 
 /// A cutter prepared for simulation.
 #[derive(Debug, Clone, Copy)]
@@ -80,7 +78,7 @@ impl SimTool {
             envelope,
             radius: envelope.radius().max(profile.radius()),
             length: profile.length(),
-            convex: is_convex(&profile),
+            convex: profile.is_convex(),
         })
     }
 
@@ -98,20 +96,6 @@ impl SimTool {
     pub fn reach(&self) -> f64 {
         self.radius.hypot(self.length)
     }
-}
-
-/// True when the outline's normal angle never decreases along the chain (a convex
-/// solid of revolution).
-fn is_convex(profile: &Profile) -> bool {
-    let mut prev = -std::f64::consts::FRAC_PI_2;
-    for s in profile.segments() {
-        let (a, b) = s.normal_angles();
-        if a < prev - CONVEX_EPS || b < a - CONVEX_EPS {
-            return false;
-        }
-        prev = b;
-    }
-    prev <= std::f64::consts::FRAC_PI_2 + CONVEX_EPS
 }
 
 /// What a shape-specific sweep must provide.

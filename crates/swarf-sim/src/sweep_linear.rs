@@ -4,19 +4,21 @@
 //! The move's swept solid is the union of the tool's positions along the segment. Over
 //! a cell centre its lowest point is `A_z + min_w (m (s + w) + h(sqrt(w^2 + d^2)))`,
 //! solved per profile piece in closed form (or by a bracketed 1-D root for a torus) in
-//! [`crate::envelope`]. Only cells whose centres lie within the tool radius of the
+//! [`crate::swept_min`]. Only cells whose centres lie within the tool radius of the
 //! move's XY segment (the "stadium": the segment's XY projection grown by the radius)
 //! are visited: each row meets the stadium in one interval, the union of the two end
 //! discs' chords and the band's, computed per row.
 //!
 //! A ball end mill, the common finishing tool, takes a two-square-root fast path
-//! (the capsule formula of the envelope module, specialised); the tests check it
+//! (the capsule formula of the swept-minimum module, specialised); the tests check it
 //! against the general path.
 
-use crate::envelope::{Envelope, Piece};
 use crate::grid::Grid;
+use crate::swept_min::{swept_min, swept_min_below};
 use swarf_geom::Point3;
 use swarf_geom::tol::LENGTH_EPS;
+use swarf_tool::drop::Envelope;
+use swarf_tool::drop::envelope::Piece;
 
 /// One straight move of a vertical tool, ready to cut rows.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -145,7 +147,7 @@ impl LinearSweep {
         let (tx, ty) = (x - self.a[0], y - self.a[1]);
         let s = tx * self.e[0] + ty * self.e[1];
         let d = (ty * self.e[0] - tx * self.e[1]).abs();
-        self.a[2] + env.swept_min(s, d, self.len, self.m)
+        self.a[2] + swept_min(env, s, d, self.len, self.m)
     }
 
     /// Lowers the cells of row `j` (`heights`, `last` are that row's slices) to the
@@ -183,10 +185,10 @@ impl LinearSweep {
             let s = tx * self.e[0] + ty * self.e[1];
             let d = (ty * self.e[0] - tx * self.e[1]).abs();
             // The tool is never nearer the cell than d, so never below zmin + h(d).
-            if h <= self.zmin + env.h(d) {
+            if h <= self.zmin + env.lowest_at(d) {
                 continue;
             }
-            let z = self.a[2] + env.swept_min_below(s, d, self.len, self.m, h - self.a[2]);
+            let z = self.a[2] + swept_min_below(env, s, d, self.len, self.m, h - self.a[2]);
             if z < h {
                 heights[i] = z;
                 last[i] = motion;
@@ -268,9 +270,9 @@ fn ball_radius(env: &Envelope) -> Option<f64> {
     match env.pieces() {
         [
             Piece::Arc {
-                rho0, rho1, c, r, ..
+                rho0, rho1, ce, r, ..
             },
-        ] if *c == 0.0 && *rho0 == 0.0 && *rho1 == *r => Some(*r),
+        ] if *ce == 0.0 && *rho0 == 0.0 && *rho1 == *r => Some(*r),
         _ => None,
     }
 }

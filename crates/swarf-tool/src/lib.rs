@@ -5,7 +5,9 @@
 //! - [`cutter`]: the closed family [`Cutter`] (flat, ball, bull, cone, taper ball,
 //!   APT), each named shape a special case of the APT tool ([`Cutter::to_apt`]).
 //! - [`profile`]: every cutter as a chain of lines and arcs in its meridian
-//!   half-plane, with exact `height_at_radius` / `radius_at_height`.
+//!   half-plane, with exact `height_at_radius` / `radius_at_height`, and every other
+//!   profile query (points by normal direction, arc positions, the chain as a
+//!   polyline); the lower envelope in pieces is [`drop::Envelope`].
 //! - [`surface`]: the cutting surface in any orientation and the exact signed
 //!   distance to the tool solid (the gouge test).
 //! - [`contact`]: pose from a CC point and surface normal for any tool axis, and back
@@ -41,5 +43,5 @@ pub use apt::Apt;
 pub use cutter::Cutter;
 pub use error::ToolError;
 pub use pose::Pose;
-pub use profile::{Profile, ProfileContact};
+pub use profile::{Profile, ProfileContact, ProfileTable};
 pub use segment::{RhoZ, Segment};

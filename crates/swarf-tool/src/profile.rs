@@ -20,7 +20,19 @@
 //!   one point except on a flat bottom, and the first segment that reaches a radius
 //!   holds the lowest point at that radius.
 //!
-//! All queries are closed forms per segment; no allocation.
+//! All queries are closed forms per segment; no allocation (except
+//! [`Profile::polyline`], which returns its points).
+//!
+//! - [`table`]: points by normal direction ([`ProfileTable`]) and their arc-length
+//!   positions, as the generating curves and the five-axis checks need them.
+//! - [`meridian`]: whole-chain queries: arc position at a height, full-radius height,
+//!   corner centre, convexity, the chain as a polyline.
+//! - the lower envelope `h(rho)` in pieces is [`crate::drop::Envelope`].
+
+pub mod meridian;
+pub mod table;
+
+pub use table::ProfileTable;
 
 use crate::segment::{RhoZ, Segment};
 use swarf_geom::tol::LENGTH_EPS;

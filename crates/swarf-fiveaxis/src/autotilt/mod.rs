@@ -45,10 +45,10 @@ use crate::design::DesignSurface;
 use crate::error::FiveAxisError;
 use crate::gouge::GougeOptions;
 use crate::inclined::feed_directions;
-use crate::profile_point::ProfileTable;
 use pass::{PassResult, PassTilt, tilt_pass};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Contact, Pass, PathPoint};
 

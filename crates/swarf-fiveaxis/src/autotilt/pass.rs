@@ -7,8 +7,8 @@ use crate::design::DesignSurface;
 use crate::error::FiveAxisError;
 use crate::gouge::{PoseGouge, pose_gouge};
 use crate::inclined::{Inclination, inclined_pose};
-use crate::profile_point::ProfileTable;
 use swarf_geom::Vec3;
+use swarf_tool::ProfileTable;
 use swarf_tool::{Pose, Profile};
 use swarf_toolpath::Contact;
 

@@ -15,7 +15,8 @@
 //! triangle is a concave maximisation ([`super::kernel`]).
 //!
 //! The pieces are closed forms without trigonometry; tests pin them to
-//! [`Profile::height_at_radius`].
+//! [`Profile::height_at_radius`]. The same envelope serves the drop-cutter kernels here
+//! and the exact swept minimum of a straight move in the simulator (swarf-sim).
 
 use crate::profile::{MAX_SEGMENTS, Profile};
 use crate::segment::Segment;
@@ -52,6 +53,7 @@ pub enum Piece {
 
 impl Piece {
     /// Outer radius of the piece.
+    #[inline]
     pub fn rho1(&self) -> f64 {
         match *self {
             Piece::Line { rho1, .. } | Piece::Arc { rho1, .. } => rho1,
@@ -59,6 +61,7 @@ impl Piece {
     }
 
     /// Inner radius of the piece.
+    #[inline]
     pub fn rho0(&self) -> f64 {
         match *self {
             Piece::Line { rho0, .. } | Piece::Arc { rho0, .. } => rho0,
@@ -94,6 +97,22 @@ impl Piece {
             Piece::Arc { ce, r, .. } => {
                 let q = rho - ce;
                 q / (r * r - q * q).max(0.0).sqrt()
+            }
+        }
+    }
+
+    /// Slope `dh/drho` and second derivative `d2h/drho2` at `rho` (both infinite at
+    /// an arc's equator; an arc's offset from its centre is taken as at least 0), for
+    /// Newton steps on functions of `h` (the swept minimum of swarf-sim).
+    #[inline]
+    pub fn derivatives(&self, rho: f64) -> (f64, f64) {
+        match *self {
+            Piece::Line { k, .. } => (k, 0.0),
+            Piece::Arc { ce, r, .. } => {
+                let t = (rho - ce).max(0.0);
+                let q = (r * r - t * t).max(0.0);
+                let sq = q.sqrt();
+                (t / sq, r * r / (q * sq))
             }
         }
     }
@@ -166,6 +185,19 @@ impl Envelope {
             }
         }
         pieces.last().map_or(0.0, |p| p.height(rho.min(p.rho1())))
+    }
+
+    /// `h(rho)` within the reach, `+inf` beyond it (the cutter never comes down over a
+    /// point farther than `R` from its axis).
+    ///
+    /// # Units
+    /// mm.
+    #[inline]
+    pub fn lowest_at(&self, rho: f64) -> f64 {
+        self.pieces()
+            .iter()
+            .find(|p| rho <= p.rho1())
+            .map_or(f64::INFINITY, |p| p.height(rho.max(p.rho0())))
     }
 
     /// The point `(rho, h)` of the lower surface that touches a plane whose upward unit

@@ -11,37 +11,37 @@
 use crate::canvas::Canvas;
 
 /// Font scale of all text (picture pixels per font pixel).
-pub(super) const SCALE: i64 = 2;
+pub(crate) const SCALE: i64 = 2;
 /// Height (and advance) of one character, px.
-pub(super) const GLYPH: i64 = 8 * SCALE;
+pub(crate) const GLYPH: i64 = 8 * SCALE;
 /// Line pitch of wrapped text, px.
-pub(super) const LEAD: i64 = 22;
+pub(crate) const LEAD: i64 = 22;
 /// Least clear gap between neighbouring tick labels, px.
-pub(super) const TICK_GAP: i64 = 16;
+pub(crate) const TICK_GAP: i64 = 16;
 /// Most ticks on one axis (a guard against degenerate ranges).
 const MAX_TICKS: i64 = 100;
 
 /// A rectangle of pixels, `[x0, y0, x1, y1)`.
-pub(super) type Rect = [i64; 4];
+pub(crate) type Rect = [i64; 4];
 
 /// Whether two rectangles share a pixel.
-pub(super) fn overlap(a: &Rect, b: &Rect) -> bool {
+pub(crate) fn overlap(a: &Rect, b: &Rect) -> bool {
     a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
 }
 
 /// Whether `a` lies within `b`.
-pub(super) fn within(a: &Rect, b: &Rect) -> bool {
+pub(crate) fn within(a: &Rect, b: &Rect) -> bool {
     a[0] >= b[0] && a[1] >= b[1] && a[2] <= b[2] && a[3] <= b[3]
 }
 
 /// Width of `s` in pixels.
-pub(super) fn tw(s: &str) -> i64 {
+pub(crate) fn tw(s: &str) -> i64 {
     Canvas::text_width(s, SCALE)
 }
 
 /// One line of text: its top-left corner and its characters.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) struct Label {
+pub(crate) struct Label {
     /// Top-left corner, px.
     pub at: [i64; 2],
     /// The characters.
@@ -49,7 +49,7 @@ pub(super) struct Label {
 }
 
 impl Label {
-    pub(super) fn new(x: i64, y: i64, text: impl Into<String>) -> Label {
+    pub(crate) fn new(x: i64, y: i64, text: impl Into<String>) -> Label {
         Label {
             at: [x, y],
             text: text.into(),
@@ -57,14 +57,14 @@ impl Label {
     }
 
     /// The pixels its character cells cover.
-    pub(super) fn rect(&self) -> Rect {
+    pub(crate) fn rect(&self) -> Rect {
         let [x, y] = self.at;
         [x, y, x + tw(&self.text), y + GLYPH]
     }
 }
 
 /// 1, 2 or 5 times a power of ten, at least `raw`.
-pub(super) fn nice_step(raw: f64) -> f64 {
+pub(crate) fn nice_step(raw: f64) -> f64 {
     let p = 10f64.powf(raw.max(1e-12).log10().floor());
     [1.0, 2.0, 5.0, 10.0]
         .into_iter()
@@ -74,7 +74,7 @@ pub(super) fn nice_step(raw: f64) -> f64 {
 }
 
 /// A number without trailing zeros.
-pub(super) fn trim(v: f64) -> String {
+pub(crate) fn trim(v: f64) -> String {
     let s = format!("{v:.3}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" { "0".into() } else { s.into() }
@@ -98,7 +98,7 @@ fn multiples(lo: f64, hi: f64, step: f64) -> Vec<(f64, String)> {
 /// Ticks over `[lo, hi]` at the least nice step (from a sixth of the range up) at
 /// which labels `extent(label)` px long along the axis clear one another by
 /// [`TICK_GAP`] at `ppmm`.
-pub(super) fn ticks(
+pub(crate) fn ticks(
     lo: f64,
     hi: f64,
     ppmm: f64,
@@ -119,7 +119,7 @@ pub(super) fn ticks(
 /// `text` in lines of at most `max` characters (at least 1): broken after spaces and
 /// commas, and inside a word only where the word alone is longer than a line; spaces
 /// at either end of a line are dropped, and so are empty lines.
-pub(super) fn wrap(text: &str, max: usize) -> Vec<String> {
+pub(crate) fn wrap(text: &str, max: usize) -> Vec<String> {
     let max = max.max(1);
     let mut lines = Vec::new();
     let mut line = String::new();

@@ -4,15 +4,28 @@
 //! extreme of them.
 
 use super::text::Rect;
-use crate::grid::Grid;
+
+/// A regular lattice of square cells in the XY plane, as a map shows it: the cells
+/// under each pixel are found by index arithmetic (swarf-sim's dexel grid is one).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cells {
+    /// Lower-left corner of cell `(0, 0)`, mm.
+    pub origin: [f64; 2],
+    /// Cell size, mm.
+    pub cell: f64,
+    /// Columns.
+    pub nx: usize,
+    /// Rows.
+    pub ny: usize,
+}
 
 /// Largest map size, px.
 const MAP_MAX: [f64; 2] = [1000.0, 700.0];
 
 /// The map: the world rectangle `rect` (`[xmin, ymin, xmax, ymax]`, mm) drawn at
 /// `ppmm` pixels per mm, `w x h` pixels from `(left, top)`.
-pub(super) struct Map {
-    grid: Grid,
+pub(crate) struct Map {
+    grid: Cells,
     /// World rectangle, mm.
     pub rect: [f64; 4],
     /// Picture column of the map's left edge.
@@ -30,7 +43,7 @@ pub(super) struct Map {
 impl Map {
     /// The map of `rect` over `grid` at the largest scale that fits, placed at the
     /// origin until the page sets `left` and `top`.
-    pub(super) fn new(grid: &Grid, rect: [f64; 4]) -> Map {
+    pub(crate) fn new(grid: &Cells, rect: [f64; 4]) -> Map {
         let (sx, sy) = ((rect[2] - rect[0]).max(1e-9), (rect[3] - rect[1]).max(1e-9));
         let ppmm = (MAP_MAX[0] / sx).min(MAP_MAX[1] / sy);
         Map {
@@ -45,12 +58,12 @@ impl Map {
     }
 
     /// The map's pixels.
-    pub(super) fn inside(&self) -> Rect {
+    pub(crate) fn inside(&self) -> Rect {
         [self.left, self.top, self.left + self.w, self.top + self.h]
     }
 
     /// Picture coordinates of a point of the XY plane.
-    pub(super) fn px(&self, x: f64, y: f64) -> [f64; 2] {
+    pub(crate) fn px(&self, x: f64, y: f64) -> [f64; 2] {
         [
             self.left as f64 + (x - self.rect[0]) * self.ppmm,
             (self.top + self.h) as f64 - (y - self.rect[1]) * self.ppmm,
@@ -59,7 +72,7 @@ impl Map {
 
     /// Cells under map pixel `(u, v)` (from the map's top-left): column and row
     /// ranges, `None` off the grid.
-    pub(super) fn cells(&self, u: i64, v: i64) -> Option<([usize; 2], [usize; 2])> {
+    pub(crate) fn cells(&self, u: i64, v: i64) -> Option<([usize; 2], [usize; 2])> {
         let g = &self.grid;
         let span = |a0: f64, a1: f64, origin: f64, n: usize| {
             let lo = ((a0 - origin) / g.cell).floor();

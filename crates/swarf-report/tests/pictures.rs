@@ -1,12 +1,12 @@
 //! The report pictures of a real verification: a ball raster over a flat part with
 //! one planted gouge (one gouge region), titled with a title longer than the canvas.
 //! Text that ran off the canvas would leave ink in its outer band; the layout's own
-//! tests (picture::page) check that no two labels overlap.
+//! tests (swarf_report::page) check that no two labels overlap.
 
 use std::io::Cursor;
 use swarf_geom::{Part, Patch, Point3};
 use swarf_nc::read::{Motion, MotionKind, Program};
-use swarf_sim::picture::{deviation_png, toolpath_png};
+use swarf_report::picture::{deviation_png, toolpath_png};
 use swarf_sim::report::{ReportContext, text_summary};
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};
 use swarf_tool::{Cutter, Pose};

@@ -4,8 +4,8 @@
 //! a test can check that no two of them overlap, that none covers the map, the colour
 //! bar or a legend key, and that all of them lie on the canvas.
 //!
-//! The title and the footer wrap to the canvas width ([`wrap`]); axis ticks are
-//! spaced so that their labels clear one another ([`ticks`]); the left margin fits
+//! The title and the footer wrap to the canvas width (`text::wrap`); axis ticks are
+//! spaced so that their labels clear one another (`text::ticks`); the left margin fits
 //! the widest y label, and the legend column starts right of the map and of the x
 //! labels; the top margin follows the title's lines and the footer starts below the
 //! lowest label or legend key. Gouge labels go right, left, above or
@@ -13,10 +13,13 @@
 //! (worst first), or nowhere. All positions are integers computed from the inputs
 //! alone, so a picture is byte-identical from run to run.
 
-use super::map::Map;
-use super::text::{GLYPH, LEAD, Label, Rect, SCALE, TICK_GAP, overlap, ticks, tw, within, wrap};
+pub(crate) mod map;
+pub(crate) mod text;
+
 use crate::canvas::{Canvas, Rgb};
-use crate::grid::Grid;
+pub use map::Cells;
+use map::Map;
+use text::{GLYPH, LEAD, Label, Rect, SCALE, TICK_GAP, overlap, ticks, tw, within, wrap};
 
 /// Margin kept at the canvas edges and between blocks, px.
 const PAD: i64 = 8;
@@ -29,11 +32,11 @@ const MIN_WIDTH: i64 = 640;
 /// Least height of the map's row (the colour bar's length), px.
 const MIN_ROW: i64 = 320;
 /// Colour bar width, px.
-pub(super) const BAR_W: i64 = 28;
+pub(crate) const BAR_W: i64 = 28;
 const BLACK: Rgb = [0, 0, 0];
 
 /// What the legend column shows.
-pub(super) enum Legend<'a> {
+pub(crate) enum Legend<'a> {
     /// A colour bar from `-below` to `+above` (mm) with `tol` marked, then swatches.
     Bar {
         /// Deviation at the bar's foot is `-below`, mm (> 0).
@@ -50,7 +53,7 @@ pub(super) enum Legend<'a> {
 }
 
 /// The colour bar: its pixels and the rows of its marks.
-pub(super) struct Bar {
+pub(crate) struct Bar {
     /// The bar's pixels (its frame lies one pixel outside).
     pub rect: Rect,
     /// Rows of the value ticks, right of the bar.
@@ -142,7 +145,7 @@ fn axes(map: &Map, xt: &[(f64, String)], yt: &[(f64, String)]) -> ([Vec<i64>; 2]
 }
 
 /// A whole picture's layout.
-pub(super) struct Page {
+pub(crate) struct Page {
     /// The map.
     pub map: Map,
     /// Canvas width and height, px.
@@ -160,8 +163,8 @@ pub(super) struct Page {
 impl Page {
     /// The layout of a map of `rect` (mm) over `grid`, titled `title` (wrapped),
     /// with `legend` and the `footer` lines (each wrapped) below.
-    pub(super) fn new(
-        grid: &Grid,
+    pub(crate) fn new(
+        grid: &Cells,
         rect: [f64; 4],
         title: &str,
         footer: &[String],
@@ -223,7 +226,7 @@ impl Page {
     }
 
     /// A blank canvas of the page's size.
-    pub(super) fn canvas(&self, background: Rgb) -> Canvas {
+    pub(crate) fn canvas(&self, background: Rgb) -> Canvas {
         Canvas::new(self.size[0] as usize, self.size[1] as usize, background)
     }
 
@@ -232,7 +235,7 @@ impl Page {
     /// of the labels placed before it and of every ring of radius `ring` px about
     /// `rings`, else at the first place clear of those labels only; a label with no
     /// such place is left out.
-    pub(super) fn marks(
+    pub(crate) fn marks(
         &self,
         marks: &[([f64; 2], String)],
         rings: &[[f64; 2]],
@@ -271,7 +274,7 @@ impl Page {
     }
 
     /// The map's frame, the axis ticks, and every label.
-    pub(super) fn draw(&self, c: &mut Canvas) {
+    pub(crate) fn draw(&self, c: &mut Canvas) {
         let m = &self.map;
         c.frame(m.left - 1, m.top - 1, m.left + m.w, m.top + m.h, BLACK);
         let foot = m.top + m.h;
@@ -302,8 +305,9 @@ mod tests {
         ]
     }
 
-    fn grid(rect: [f64; 4], cell: f64) -> Grid {
-        Grid::covering([rect[0], rect[1]], [rect[2], rect[3]], cell, 1 << 40).unwrap()
+    fn grid(rect: [f64; 4], cell: f64) -> Cells {
+        let g = swarf_sim::Grid::covering([rect[0], rect[1]], [rect[2], rect[3]], cell, 1 << 40);
+        crate::picture::cells(&g.unwrap())
     }
 
     const BAR: Legend = Legend::Bar {

@@ -1,17 +1,19 @@
-//! Points of a cutter profile by normal angle, arc length and height, with the choices
-//! the generating curves need where a normal angle does not name one point (thesis 000
-//! §5.2, eq. 5.1: the profile as bottom cone, torus and side cone).
+//! Points of a cutter profile by normal direction and their arc-length positions, with
+//! the choices the generating curves need where a normal angle does not name one point
+//! (thesis 000 §5.2, eq. 5.1: the profile as bottom cone, torus and side cone).
 //!
-//! Along a profile the outward normal angle `psi` never decreases (swarf-tool's
-//! [`swarf_tool::profile`] conventions). A normal angle is met by one point of an arc, by
-//! a corner (a sharp joint takes the whole fan of angles between its two segments), or by
-//! a whole straight piece. On a straight piece the end next to the middle of the profile
-//! is taken: the outer end of the bottom line (the rim of a flat bottom, where the
+//! Along a profile the outward normal angle `psi` never decreases ([`crate::profile`]
+//! conventions). A normal angle is met by one point of an arc, by a corner (a sharp
+//! joint takes the whole fan of angles between its two segments), or by a whole
+//! straight piece. On a straight piece the end next to the middle of the profile is
+//! taken: the outer end of the bottom line (the rim of a flat bottom, where the
 //! generating circle of a flat cut runs, thesis §3.3), the lower end of a side line.
+//! (This differs from [`Profile::contact_for_normal_angle`], which takes a straight
+//! piece's lowest point, as a drop onto a plane needs.)
 
+use crate::profile::{MAX_SEGMENTS, Profile};
+use crate::segment::{RhoZ, Segment};
 use std::f64::consts::FRAC_PI_2;
-use swarf_geom::tol::LENGTH_EPS;
-use swarf_tool::{Profile, RhoZ, Segment};
 
 /// Sines of normal angles closer than this are equal (dimensionless).
 const SINE_EPS: f64 = 1e-12;
@@ -19,10 +21,12 @@ const SINE_EPS: f64 = 1e-12;
 /// The profile prepared for lookups by normal direction, without trigonometry in the
 /// hot path: since the normal angle `psi` is in `[-pi/2, pi/2]` and never decreases
 /// along the profile, its sine `n_z` does neither, so ranges are compared by sines.
+/// No allocation.
 #[derive(Debug, Clone)]
 pub struct ProfileTable<'a> {
     profile: &'a Profile,
-    segs: Vec<SegInfo>,
+    segs: [SegInfo; MAX_SEGMENTS],
+    len: usize,
 }
 
 /// One segment with the sines of its end normal angles and its arc-length start.
@@ -38,24 +42,31 @@ struct SegInfo {
 impl<'a> ProfileTable<'a> {
     /// The table of `profile`.
     pub fn new(profile: &'a Profile) -> ProfileTable<'a> {
+        let mut segs = [SegInfo {
+            seg: Segment::Line {
+                start: RhoZ::default(),
+                end: RhoZ::default(),
+            },
+            n0: 0.0,
+            s0: 0.0,
+            s1: 0.0,
+            acc: 0.0,
+        }; MAX_SEGMENTS];
         let mut acc = 0.0;
-        let segs = profile
-            .segments()
-            .iter()
-            .map(|seg| {
-                let (n0, n1) = seg.normal_angles();
-                let info = SegInfo {
-                    seg: *seg,
-                    n0,
-                    s0: n0.sin(),
-                    s1: n1.sin(),
-                    acc,
-                };
-                acc += seg.length();
-                info
-            })
-            .collect();
-        ProfileTable { profile, segs }
+        let mut len = 0;
+        for (slot, seg) in segs.iter_mut().zip(profile.segments()) {
+            let (n0, n1) = seg.normal_angles();
+            *slot = SegInfo {
+                seg: *seg,
+                n0,
+                s0: n0.sin(),
+                s1: n1.sin(),
+                acc,
+            };
+            acc += seg.length();
+            len += 1;
+        }
+        ProfileTable { profile, segs, len }
     }
 
     /// The profile.
@@ -63,10 +74,14 @@ impl<'a> ProfileTable<'a> {
         self.profile
     }
 
+    fn segs(&self) -> &[SegInfo] {
+        &self.segs[..self.len]
+    }
+
     /// The profile point whose outward unit normal is `(n_rho, n_z)` (`n_rho >= 0`), by
     /// the rules of the module doc; the tip below the range, the top above it.
     pub fn point_for_normal(&self, n_rho: f64, n_z: f64) -> RhoZ {
-        for (k, info) in self.segs.iter().enumerate() {
+        for (k, info) in self.segs().iter().enumerate() {
             if k == 0 && n_z < info.s0 - SINE_EPS {
                 return info.seg.start();
             }
@@ -91,7 +106,7 @@ impl<'a> ProfileTable<'a> {
                 }
                 _ => {}
             }
-            if n_z > info.s1 && self.segs.get(k + 1).is_none_or(|next| n_z < next.s0) {
+            if n_z > info.s1 && self.segs().get(k + 1).is_none_or(|next| n_z < next.s0) {
                 return info.seg.end();
             }
         }
@@ -102,7 +117,7 @@ impl<'a> ProfileTable<'a> {
     /// [`ProfileTable::point_for_normal`] returns).
     pub fn arc_position(&self, q: RhoZ) -> f64 {
         let mut best = (f64::INFINITY, 0.0);
-        for info in &self.segs {
+        for info in self.segs() {
             let (d, at) = match info.seg {
                 Segment::Line { start, end } => {
                     let (dr, dz) = (end.rho - start.rho, end.z - start.z);
@@ -136,63 +151,24 @@ impl<'a> ProfileTable<'a> {
     }
 }
 
-/// The profile point with outward normal angle `psi` (module doc for the choices at
-/// straight pieces and corners); the tip below the range, the top above it.
-pub fn point_for_angle(profile: &Profile, psi: f64) -> RhoZ {
-    let (s, c) = psi.clamp(-FRAC_PI_2, FRAC_PI_2).sin_cos();
-    ProfileTable::new(profile).point_for_normal(c.max(0.0), s)
-}
-
-/// Arc-length position (mm from the tip) of the lowest profile point at height `h`;
-/// the whole length above the profile.
-pub fn arc_position_at_height(profile: &Profile, h: f64) -> f64 {
-    let mut acc = 0.0;
-    for seg in profile.segments() {
-        let (a, b) = (seg.start(), seg.end());
-        let len = seg.length();
-        if h <= b.z {
-            let within = if b.z - a.z <= LENGTH_EPS {
-                len
-            } else {
-                match *seg {
-                    Segment::Line { .. } => len * ((h - a.z) / (b.z - a.z)).max(0.0),
-                    Segment::Arc {
-                        centre,
-                        radius,
-                        start_angle,
-                        end_angle,
-                        ..
-                    } => {
-                        let ang = ((h - centre.z) / radius).clamp(-1.0, 1.0).asin();
-                        radius * (ang.clamp(start_angle, end_angle) - start_angle)
-                    }
-                }
-            };
-            return acc + within;
-        }
-        acc += len;
+impl Profile {
+    /// The profile point with outward normal angle `psi` (radians; module doc for the
+    /// choices at straight pieces and corners); the tip below the range, the top
+    /// above it.
+    ///
+    /// # Units
+    /// mm.
+    pub fn point_for_angle(&self, psi: f64) -> RhoZ {
+        let (s, c) = psi.clamp(-FRAC_PI_2, FRAC_PI_2).sin_cos();
+        ProfileTable::new(self).point_for_normal(c.max(0.0), s)
     }
-    acc
-}
-
-/// The lowest height where the profile reaches its full radius (the default wall top).
-pub fn full_radius_height(profile: &Profile) -> f64 {
-    let r = profile.radius();
-    profile
-        .segments()
-        .iter()
-        .flat_map(|s| [s.start(), s.end()])
-        .filter(|q| q.rho >= r - 1e-9 * r.max(1.0))
-        .map(|q| q.z)
-        .fold(f64::INFINITY, f64::min)
-        .min(profile.top().z)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Cutter;
     use std::f64::consts::{FRAC_PI_2, PI};
-    use swarf_tool::Cutter;
 
     fn bull() -> Profile {
         Cutter::bull(10.0, 2.0, Some(20.0)).unwrap().profile()
@@ -268,25 +244,25 @@ mod tests {
     #[test]
     fn profile_lookups() {
         let p = bull();
-        assert_eq!(point_for_angle(&p, -FRAC_PI_2), RhoZ::new(3.0, 0.0));
-        assert_eq!(point_for_angle(&p, 0.0), RhoZ::new(5.0, 2.0));
-        assert_eq!(point_for_angle(&p, 1.0), RhoZ::new(5.0, 20.0));
-        let q = point_for_angle(&p, -FRAC_PI_2 / 3.0);
+        assert_eq!(p.point_for_angle(-FRAC_PI_2), RhoZ::new(3.0, 0.0));
+        assert_eq!(p.point_for_angle(0.0), RhoZ::new(5.0, 2.0));
+        assert_eq!(p.point_for_angle(1.0), RhoZ::new(5.0, 20.0));
+        let q = p.point_for_angle(-FRAC_PI_2 / 3.0);
         assert!((q.rho - (3.0 + 3f64.sqrt())).abs() < 1e-12 && (q.z - 1.0).abs() < 1e-12);
         let s = ProfileTable::new(&p).arc_position(q);
         assert!((s - (3.0 + 2.0 * FRAC_PI_2 * 2.0 / 3.0)).abs() < 1e-12);
-        assert!((arc_position_at_height(&p, 1.0) - s).abs() < 1e-12);
-        assert_eq!(arc_position_at_height(&p, 0.0), 3.0);
-        assert!((arc_position_at_height(&p, 10.0) - (3.0 + PI + 8.0)).abs() < 1e-12);
-        assert_eq!(full_radius_height(&p), 2.0);
+        assert!((p.arc_position_at_height(1.0) - s).abs() < 1e-12);
+        assert_eq!(p.arc_position_at_height(0.0), 3.0);
+        assert!((p.arc_position_at_height(10.0) - (3.0 + PI + 8.0)).abs() < 1e-12);
+        assert_eq!(p.full_radius_height(), 2.0);
         let flat = Cutter::flat(6.0, Some(10.0)).unwrap().profile();
-        assert_eq!(point_for_angle(&flat, -FRAC_PI_2), RhoZ::new(3.0, 0.0));
-        assert_eq!(point_for_angle(&flat, -0.4), RhoZ::new(3.0, 0.0));
-        assert_eq!(point_for_angle(&flat, 0.0), RhoZ::new(3.0, 0.0));
-        assert_eq!(full_radius_height(&flat), 0.0);
+        assert_eq!(flat.point_for_angle(-FRAC_PI_2), RhoZ::new(3.0, 0.0));
+        assert_eq!(flat.point_for_angle(-0.4), RhoZ::new(3.0, 0.0));
+        assert_eq!(flat.point_for_angle(0.0), RhoZ::new(3.0, 0.0));
+        assert_eq!(flat.full_radius_height(), 0.0);
         let cone = Cutter::cone(10.0, std::f64::consts::FRAC_PI_4, Some(20.0))
             .unwrap()
             .profile();
-        assert_eq!(point_for_angle(&cone, -FRAC_PI_2), RhoZ::new(0.0, 0.0));
+        assert_eq!(cone.point_for_angle(-FRAC_PI_2), RhoZ::new(0.0, 0.0));
     }
 }

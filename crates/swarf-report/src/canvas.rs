@@ -3,7 +3,7 @@
 //! Daniel Hepper's font8x8_basic), encoded as PNG with the `png` crate. No TrueType
 //! stack, no colour management: the pictures are diagrams.
 
-use crate::error::SimError;
+use crate::error::ReportError;
 
 /// An RGB colour.
 pub type Rgb = [u8; 3];
@@ -139,9 +139,9 @@ impl Canvas {
     /// The PNG file bytes.
     ///
     /// # Errors
-    /// [`SimError::Write`] when encoding fails (a zero-sized canvas).
-    pub fn to_png(&self) -> Result<Vec<u8>, SimError> {
-        let err = |e: png::EncodingError| SimError::Write {
+    /// [`ReportError::Write`] when encoding fails (a zero-sized canvas).
+    pub fn to_png(&self) -> Result<Vec<u8>, ReportError> {
+        let err = |e: png::EncodingError| ReportError::Write {
             path: "<png>".into(),
             message: e.to_string(),
         };

@@ -7,23 +7,19 @@
 //! When a pixel covers several cells it shows the most extreme deviation among them,
 //! so that a gouge one cell wide still shows at any picture size.
 //!
-//! Each picture is laid out before it is drawn (the `page` module places every line
+//! Each picture is laid out before it is drawn ([`crate::page`] places every line
 //! of text as a box: the title and footer wrap, margins grow to fit their labels), so
 //! no text overlaps other text, the map or the legend, or runs off the canvas.
 
-mod map;
-mod page;
-mod text;
-
 use crate::canvas::{Canvas, Rgb};
-use crate::error::SimError;
-use crate::grid::Grid;
-use crate::report::count;
-use crate::verify::Verification;
-use map::Map;
-use page::{Bar, Legend, Page};
+use crate::error::ReportError;
+use crate::page::map::Map;
+use crate::page::text::SCALE;
+use crate::page::{Bar, Cells, Legend, Page};
 use swarf_nc::read::{Motion, MotionKind};
-use text::SCALE;
+use swarf_sim::Grid;
+use swarf_sim::report::count;
+use swarf_sim::verify::Verification;
 
 const BLACK: Rgb = [0, 0, 0];
 const WHITE: Rgb = [255, 255, 255];
@@ -74,8 +70,8 @@ fn limits(v: &Verification) -> (f64, f64) {
 /// The deviation heat map as PNG bytes.
 ///
 /// # Errors
-/// [`SimError::Write`] when PNG encoding fails.
-pub fn deviation_png(v: &Verification, title: &str) -> Result<Vec<u8>, SimError> {
+/// [`ReportError::Write`] when PNG encoding fails.
+pub fn deviation_png(v: &Verification, title: &str) -> Result<Vec<u8>, ReportError> {
     let (below, above) = limits(v);
     let s = &v.deviation.summary;
     let legend = Legend::Bar {
@@ -86,7 +82,7 @@ pub fn deviation_png(v: &Verification, title: &str) -> Result<Vec<u8>, SimError>
     };
     let max = v.grid.max();
     let rect = [v.grid.origin[0], v.grid.origin[1], max[0], max[1]];
-    let page = Page::new(&v.grid, rect, title, &footer(v), &legend);
+    let page = Page::new(&cells(&v.grid), rect, title, &footer(v), &legend);
     let mut c = page.canvas(WHITE);
     heat_map(&mut c, &page.map, v, below, above);
     page.draw(&mut c);
@@ -253,12 +249,12 @@ fn relief(c: &mut Canvas, map: &Map, v: &Verification) {
 /// The tool path over the part (top view) as PNG bytes.
 ///
 /// # Errors
-/// [`SimError::Write`] when PNG encoding fails.
+/// [`ReportError::Write`] when PNG encoding fails.
 pub fn toolpath_png(
     v: &Verification,
     motions: &[Motion],
     title: &str,
-) -> Result<Vec<u8>, SimError> {
+) -> Result<Vec<u8>, ReportError> {
     const FEED: Rgb = [20, 60, 170];
     const RAPID: Rgb = [235, 120, 0];
     const START: Rgb = [0, 160, 0];
@@ -270,11 +266,11 @@ pub fn toolpath_png(
         p.passes,
         p.cutting_length_mm,
         p.rapid_length_mm,
-        crate::report::clock(p.time_s)
+        swarf_sim::report::clock(p.time_s)
     );
     let legend = Legend::Lines(&["feed", "rapid", "start", "end"]);
     let rect = path_rect(&v.grid, motions);
-    let page = Page::new(&v.grid, rect, title, &[footer], &legend);
+    let page = Page::new(&cells(&v.grid), rect, title, &[footer], &legend);
     let mut c = page.canvas(WHITE);
     relief(&mut c, &page.map, v);
     for m in motions {
@@ -302,6 +298,16 @@ pub fn toolpath_png(
         c.line([r[0] as f64, y], [r[2] as f64, y], 3.0, col, None);
     }
     c.to_png()
+}
+
+/// The cells of the dexel grid, as a map shows them.
+pub fn cells(grid: &Grid) -> Cells {
+    Cells {
+        origin: grid.origin,
+        cell: grid.cell,
+        nx: grid.nx,
+        ny: grid.ny,
+    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,21 @@
+//! swarf-report: what the machinist reads: pictures (PNG) now, tables and glTF later.
+//!
+//! Drawing primitives, independent of the simulator:
+//! - [`canvas`]: a small RGB raster (rectangles, lines, rings, 8x8 bitmap text) and
+//!   its PNG encoding.
+//! - [`page`]: the layout of a report picture: map at one scale, axes with tick
+//!   labels, legend, wrapped title and footer, every text box placed clear of the
+//!   others ([`page::Cells`]: the cell lattice a map shows).
+//!
+//! Pictures of results:
+//! - [`picture`]: the deviation heat map and the tool-path picture of a dexel
+//!   verification (swarf-sim).
+//!
+//! Units: millimetres in the world, pixels on the canvas.
+
+pub mod canvas;
+pub mod error;
+pub mod page;
+pub mod picture;
+
+pub use error::ReportError;
