@@ -8,12 +8,10 @@ use std::hint::black_box;
 use swarf_fiveaxis::autotilt::{TiltOptions, gouge_free_tilt};
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, pose_gouge};
-use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::profile_point::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
-use swarf_geom::Part;
-use swarf_path::{Contact, Job};
+use swarf_testkit::die_cc;
 use swarf_tool::{Cutter, Pose};
 
 fn bench(c: &mut Criterion) {
@@ -63,14 +61,3 @@ criterion_group! {
     targets = bench
 }
 criterion_main!(benches);
-
-/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
-/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
-fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
-    let text = format!(
-        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
-         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
-    );
-    let job = Job::parse(&text, "die job").expect("job");
-    planned_cc_paths(&job, part).expect("CC paths")
-}

@@ -42,14 +42,15 @@
 use swarf_fiveaxis::CurveOptions;
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, PoseGouge, check_pass, wall_top};
-use swarf_fiveaxis::job::planned_cc_paths;
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport, mean_direction, position};
 use swarf_fiveaxis::profile_point::ProfileTable;
 use swarf_fiveaxis::sections::Sections;
 use swarf_geom::Part;
 use swarf_nc::read::{Motion, MotionKind, Program};
-use swarf_path::{Contact, Job, Pass};
+use swarf_path::{Contact, Pass};
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};
+use swarf_testkit::die_cc;
+use swarf_testkit::parts::die;
 use swarf_tool::{Cutter, Pose};
 
 /// The thesis's toroidal cutter.
@@ -161,13 +162,8 @@ fn the_gouge_free_lead_leaves_no_dexel_gouge() {
 
 /// The die, the cutter and the CC paths of the two windows (module doc).
 fn window() -> (Part, Cutter, Vec<Vec<Contact>>) {
-    let part = swarf_io::builtin_part("die").unwrap();
-    let text = format!(
-        "part = \"builtin:die\"\ntool = \"{CUTTER}\"\n[strategy]\nkind = \"iso-planar\"\n\
-         stepover = 3.5\ntolerance = {TOL}\nangle = 60\n"
-    );
-    let job = Job::parse(&text, "die job").unwrap();
-    let all = planned_cc_paths(&job, &part).unwrap();
+    let part = die();
+    let all = die_cc(&part, CUTTER, 60.0, 3.5, TOL);
     let mut cc = Vec::new();
     for [x, y] in CENTRES {
         let dist = |c: &Contact| (c.point.x - x).hypot(c.point.y - y);

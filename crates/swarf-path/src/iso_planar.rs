@@ -46,7 +46,7 @@
 //! passes.
 
 use crate::error::PathError;
-use crate::forward_step::{Sample, point_segment_distance, sample_curve};
+use crate::forward_step::{Sample, sample_curve};
 use crate::iso_parametric::Figures;
 use crate::iso_setup::{IsoSetup, fit_interval};
 use crate::job::{Job, StartSide};
@@ -55,6 +55,7 @@ use crate::plan::{Plan, PlanReport};
 use crate::section_point::{PlaneEq, Solved, two_planes};
 use crate::side_step::corners_face;
 use crate::toolpath::{Pass, PathPoint};
+use swarf_geom::math::point_segment_distance;
 use swarf_geom::{Part, Patch, Plane, SectionCurve, Vec3};
 
 /// The first and last planes are moved this far inside the part's extent, mm.

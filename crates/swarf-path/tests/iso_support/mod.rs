@@ -15,10 +15,7 @@ use swarf_geom::{Part, Patch, Point3, Vec3};
 use swarf_path::{Pass, Plan};
 use swarf_tool::Cutter;
 
-/// The built-in wave part (paper 004's experiment).
-pub fn wave() -> Part {
-    swarf_io::builtin_part("wave").expect("built-in wave")
-}
+pub use swarf_testkit::parts::wave;
 
 /// A job on wave for `kind` with scallop `h` and tolerance `tol`, ball d = 8.
 pub fn wave_job(kind: &str, h: f64, tol: f64) -> swarf_path::Job {
