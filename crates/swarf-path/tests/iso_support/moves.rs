@@ -102,9 +102,8 @@ impl Moves {
             None => {
                 for s in n.first..n.last {
                     let (a, b) = &self.segs[s];
-                    let away = (0..2).any(|i| {
-                        a[i].min(b[i]) - reach > hi[i] || a[i].max(b[i]) + reach < lo[i]
-                    });
+                    let away = (0..2)
+                        .any(|i| a[i].min(b[i]) - reach > hi[i] || a[i].max(b[i]) + reach < lo[i]);
                     if !away {
                         f(s);
                     }
