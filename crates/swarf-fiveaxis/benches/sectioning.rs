@@ -5,17 +5,14 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use swarf_app::Job;
-use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::autotilt::{TiltOptions, gouge_free_tilt};
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, pose_gouge};
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
-use swarf_geom::Part;
+use swarf_testkit::die_cc;
 use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
-use swarf_toolpath::Contact;
 
 fn bench(c: &mut Criterion) {
     let part = swarf_io::builtin_part("die").expect("die");
@@ -64,14 +61,3 @@ criterion_group! {
     targets = bench
 }
 criterion_main!(benches);
-
-/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
-/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
-fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
-    let text = format!(
-        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
-         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
-    );
-    let job = Job::parse(&text, "die job").expect("job");
-    planned_cc_paths(&job, part).expect("CC paths")
-}

@@ -30,8 +30,9 @@
 //! Table-table machines program the tool tip (`G43 H` tool length compensation);
 //! machines with head axes program the head's reference point, the tool length being
 //! part of the kinematics (`tool_length`), so no length compensation is active (`G49`).
-//! Layout otherwise as the 3-axis post of swarf-nc: `%`, comments, modal line, tool
-//! change, spindle, moves with only changed words, `M5`, `M30`, `%`.
+//! Layout otherwise as the 3-axis post of swarf-nc, through the same block writer
+//! ([`swarf_nc::BlockWriter`]): `%`, comments, modal line, tool change, spindle, moves
+//! with only changed words, `M5`, `M30`, `%`.
 
 pub mod subdivide;
 
@@ -39,28 +40,14 @@ use crate::error::FiveAxisError;
 use crate::machine::joints::solve_pass;
 use crate::machine::kinematics::Joints;
 use crate::machine::{Machine, MachineKind};
-use serde::{Deserialize, Serialize};
-use std::fmt::Write as _;
 use subdivide::{PathTol, subdivide};
 pub use subdivide::{PostReport, Stray};
-use swarf_nc::number::{Units, format_decimal};
+pub use swarf_nc::block::FeedMode;
+use swarf_nc::block::{BlockWriter, Feed, MotionCode, WordKind};
+use swarf_nc::number::Units;
 use swarf_nc::{Dialect, NcError};
 use swarf_tool::Pose;
 use swarf_toolpath::{Move, MoveKind, Toolpath};
-
-/// Decimal places of rotary words, degrees.
-const ANGLE_DECIMALS: usize = 4;
-
-/// How feeds are written.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum FeedMode {
-    /// G93: `F` is the inverse of each move's time.
-    #[default]
-    InverseTime,
-    /// G94: `F` in length units per minute.
-    UnitsPerMinute,
-}
 
 /// What the five-axis post writes besides the moves.
 #[derive(Debug, Clone, PartialEq)]
@@ -239,68 +226,35 @@ pub fn post_5x(
     let moves = toolpath.moves();
     let joints = solve_moves(m, toolpath, &moves, opts.tool_length)?;
     let (blocks, report) = blocks(m, &moves, &joints, opts)?;
-    let mut out = String::with_capacity(blocks.len() * 48 + 512);
-    header(&mut out, m, toolpath, opts);
     let names = m.rotary_names();
-    let letters = ['X', 'Y', 'Z', names[0], names[1]];
-    let mut modal: [Option<String>; 5] = Default::default();
-    let mut motion = None;
-    let mut feed_word: Option<String> = None;
+    let axes = [
+        ('X', WordKind::Length),
+        ('Y', WordKind::Length),
+        ('Z', WordKind::Length),
+        (names[0], WordKind::Angle),
+        (names[1], WordKind::Angle),
+    ];
+    let mut w = BlockWriter::new(opts.dialect, opts.units, &axes, blocks.len());
+    header(&mut w, m, toolpath, opts);
     let mut prev: Option<&Joints> = None;
     for (index, b) in blocks.iter().enumerate() {
         let j = &b.joints;
-        let values = [
-            opts.units.from_mm(j.linear.x),
-            opts.units.from_mm(j.linear.y),
-            opts.units.from_mm(j.linear.z),
-            j.rotary[0].to_degrees(),
-            j.rotary[1].to_degrees(),
-        ];
-        if !values.iter().all(|v| v.is_finite()) {
-            return Err(NcError::NonFinite {
-                index,
-                what: "machine position",
-            }
-            .into());
-        }
-        let mut words = String::new();
-        for k in 0..5 {
-            let decimals = if k < 3 {
-                opts.units.decimals()
-            } else {
-                ANGLE_DECIMALS
-            };
-            let w = format_decimal(values[k], decimals);
-            if modal[k].as_deref() != Some(w.as_str()) {
-                push_word(&mut words, letters[k], &w);
-                modal[k] = Some(w);
-            }
-        }
-        if words.is_empty() {
-            prev = Some(j);
-            continue;
-        }
-        if motion != Some(b.kind) {
-            out.push_str(if b.kind == MoveKind::Rapid {
-                "G0 "
-            } else {
-                "G1 "
-            });
-            motion = Some(b.kind);
-        }
-        out.push_str(&words);
-        if b.kind == MoveKind::Feed {
-            let f = feed(b, prev, opts, index)?;
-            if opts.feed_mode == FeedMode::InverseTime || feed_word.as_deref() != Some(f.as_str()) {
-                push_word(&mut out, 'F', &f);
-                feed_word = Some(f);
-            }
-        }
-        out.push('\n');
+        let position = [j.linear.x, j.linear.y, j.linear.z, j.rotary[0], j.rotary[1]];
+        let code = match b.kind {
+            MoveKind::Rapid => MotionCode::Rapid,
+            MoveKind::Feed => MotionCode::Linear,
+        };
+        let feed = || match b.kind {
+            MoveKind::Feed => feed(b, prev, opts, index).map(Some),
+            MoveKind::Rapid => Ok(None),
+        };
+        w.motion(index, code, &position, feed)?;
         prev = Some(j);
     }
-    out.push_str("M5\nM30\n%\n");
-    Ok(Post5x { gcode: out, report })
+    Ok(Post5x {
+        gcode: w.finish(),
+        report,
+    })
 }
 
 /// One block to write: a move, or a piece of one.
@@ -363,19 +317,15 @@ fn feed(
     prev: Option<&Joints>,
     opts: &PostOptions,
     index: usize,
-) -> Result<String, FiveAxisError> {
+) -> Result<Feed, NcError> {
     if !(b.feed.is_finite() && b.feed > 0.0) {
         return Err(NcError::NonFinite {
             index,
             what: "feed",
-        }
-        .into());
+        });
     }
     match opts.feed_mode {
-        FeedMode::UnitsPerMinute => Ok(format_decimal(
-            opts.units.from_mm(b.feed),
-            opts.units.decimals().min(3),
-        )),
+        FeedMode::UnitsPerMinute => Ok(Feed::PerMinute(b.feed)),
         FeedMode::InverseTime => {
             let turn = prev.map_or(0.0, |p| {
                 (0..2)
@@ -383,27 +333,13 @@ fn feed(
                     .fold(0.0, f64::max)
             });
             let minutes = (b.length / b.feed).max(turn / opts.rotary_feed).max(1e-7);
-            Ok(format_decimal((1.0 / minutes).max(1e-4), 4))
+            Ok(Feed::InverseTime((1.0 / minutes).max(1e-4)))
         }
     }
-}
-
-fn push_word(block: &mut String, letter: char, value: &str) {
-    if !block.is_empty() {
-        block.push(' ');
-    }
-    block.push(letter);
-    block.push_str(value);
 }
 
 fn check_options(o: &PostOptions) -> Result<(), FiveAxisError> {
-    if o.dialect == Dialect::Fanuc && !(1..=9999).contains(&o.program_number) {
-        return Err(NcError::InvalidOption {
-            field: "program_number",
-            message: format!("expected 1..=9999, found {}", o.program_number),
-        }
-        .into());
-    }
+    BlockWriter::check_program_number(o.dialect, o.program_number)?;
     if !(o.rotary_feed.is_finite() && o.rotary_feed > 0.0) {
         return Err(FiveAxisError::parameter(
             "rotary_feed",
@@ -433,56 +369,21 @@ fn check_options(o: &PostOptions) -> Result<(), FiveAxisError> {
     Ok(())
 }
 
-/// A comment safe for both dialects.
-fn comment(text: &str, dialect: Dialect) -> String {
-    let clean: String = text
-        .chars()
-        .map(|c| match c {
-            '(' | ')' => ' ',
-            c if c.is_ascii_graphic() || c == ' ' => c,
-            _ => '?',
-        })
-        .collect();
-    match dialect {
-        Dialect::Linuxcnc => format!("({clean})"),
-        Dialect::Fanuc => format!("({})", clean.to_ascii_uppercase()),
-    }
-}
-
-fn header(out: &mut String, m: &Machine, toolpath: &Toolpath, opts: &PostOptions) {
-    out.push_str("%\n");
-    if opts.dialect == Dialect::Fanuc {
-        let _ = writeln!(out, "O{:04}", opts.program_number);
-    }
+fn header(w: &mut BlockWriter, m: &Machine, toolpath: &Toolpath, opts: &PostOptions) {
+    w.start(opts.program_number);
     for c in &opts.comments {
-        let _ = writeln!(out, "{}", comment(c, opts.dialect));
+        w.comment(c);
     }
-    let _ = writeln!(
-        out,
-        "{}",
-        comment(&format!("machine {}", m.name), opts.dialect)
-    );
-    let units = match opts.units {
-        Units::Mm => "G21",
-        Units::Inch => "G20",
-    };
-    let feed = match opts.feed_mode {
-        FeedMode::InverseTime => "G93",
-        FeedMode::UnitsPerMinute => "G94",
-    };
-    let _ = writeln!(out, "G17 {units} G40 G49 G80 G90 {feed}");
-    let t = opts.tool_number;
-    let six = if opts.dialect == Dialect::Fanuc {
-        "M06"
-    } else {
-        "M6"
-    };
-    let _ = writeln!(out, "T{t} {six}");
+    w.comment(&format!("machine {}", m.name));
+    w.safe_modal(opts.feed_mode);
+    w.tool_change(opts.tool_number);
     if m.kind == MachineKind::TableTable {
-        let _ = writeln!(out, "G43 H{t}");
+        w.length_offset(opts.tool_number);
     } else {
-        let note = format!("tool length {} mm in the kinematics", opts.tool_length);
-        let _ = writeln!(out, "{}", comment(&note, opts.dialect));
+        w.comment(&format!(
+            "tool length {} mm in the kinematics",
+            opts.tool_length
+        ));
     }
-    let _ = writeln!(out, "S{} M3", toolpath.feeds.spindle.round() as u64);
+    w.spindle_on(toolpath.feeds.spindle);
 }

@@ -3,15 +3,12 @@
 //! ch. 6: "both methods are in agreement within 3 um"); the full comparison at x = -20,
 //! -50, -80 mm is `examples/die_dexel.rs`.
 
-use swarf_app::Job;
-use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::swept::SweptSurface;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
-use swarf_geom::Part;
 use swarf_nc::read::{Motion, MotionKind};
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, SimTool, StockInit, simulate};
+use swarf_testkit::die_cc;
 use swarf_tool::{Cutter, Pose};
-use swarf_toolpath::Contact;
 
 #[test]
 fn generating_curves_agree_with_the_dexel_within_3_micrometres() {
@@ -71,15 +68,4 @@ fn generating_curves_agree_with_the_dexel_within_3_micrometres() {
         }
     }
     assert!(compared > 50, "{compared} cells compared");
-}
-
-/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
-/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
-fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
-    let text = format!(
-        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
-         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
-    );
-    let job = Job::parse(&text, "die job").expect("job");
-    planned_cc_paths(&job, part).expect("CC paths")
 }

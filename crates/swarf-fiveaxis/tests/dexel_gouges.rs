@@ -39,8 +39,6 @@
 //! where the whole-tool check stops; that pose is flagged deeper on its torus, so the
 //! cell is explained here.
 
-use swarf_app::Job;
-use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::CurveOptions;
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, PoseGouge, check_pass, wall_top};
@@ -49,6 +47,8 @@ use swarf_fiveaxis::sections::Sections;
 use swarf_geom::Part;
 use swarf_nc::read::{Motion, MotionKind, Program};
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};
+use swarf_testkit::die_cc;
+use swarf_testkit::parts::die;
 use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Contact, Pass};
@@ -162,13 +162,8 @@ fn the_gouge_free_lead_leaves_no_dexel_gouge() {
 
 /// The die, the cutter and the CC paths of the two windows (module doc).
 fn window() -> (Part, Cutter, Vec<Vec<Contact>>) {
-    let part = swarf_io::builtin_part("die").unwrap();
-    let text = format!(
-        "part = \"builtin:die\"\ntool = \"{CUTTER}\"\n[strategy]\nkind = \"iso-planar\"\n\
-         stepover = 3.5\ntolerance = {TOL}\nangle = 60\n"
-    );
-    let job = Job::parse(&text, "die job").unwrap();
-    let all = planned_cc_paths(&job, &part).unwrap();
+    let part = die();
+    let all = die_cc(&part, CUTTER, 60.0, 3.5, TOL);
     let mut cc = Vec::new();
     for [x, y] in CENTRES {
         let dist = |c: &Contact| (c.point.x - x).hypot(c.point.y - y);

@@ -7,17 +7,13 @@
 //! to design points), and the automatic method's result is checked gouge-free by the
 //! same independent check.
 
-use swarf_app::Job;
-use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::lead_bound::lead_bound;
 use swarf_fiveaxis::positioning::{Positioning, position};
 use swarf_geom::{Part, Point3, Vec3};
+use swarf_testkit::die_cc;
+use swarf_testkit::parts::die;
 use swarf_tool::Cutter;
 use swarf_toolpath::{Contact, Pass};
-
-fn die() -> Part {
-    swarf_io::builtin_part("die").expect("the built-in die part loads")
-}
 
 fn cc(part: &Part) -> Vec<Vec<Contact>> {
     let all = die_cc(part, "bull:d=38.1,r=6.35", 60.0, 7.0, 0.005);
@@ -109,18 +105,6 @@ fn fixed_leads_gouge_and_the_automatic_lead_does_not() {
     let pen = penetration(&part, &cutter, &pa, 1);
     assert!(pen <= tol + 0.002, "independent check: {pen} mm");
 }
-
-/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
-/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
-fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
-    let text = format!(
-        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
-         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
-    );
-    let job = Job::parse(&text, "die job").expect("job");
-    planned_cc_paths(&job, part).expect("CC paths")
-}
-
 /// Thesis 000 eq. 6.1 in closed form.
 fn die_closed_form(u: f64, v: f64) -> Vec3 {
     Vec3::new(

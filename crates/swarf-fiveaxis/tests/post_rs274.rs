@@ -4,33 +4,17 @@
 //! forward kinematics, are the tool path's poses to the printed precision, with the
 //! blocks the post inserts between them on the chords (within `path_tol`).
 
-use std::path::Path;
-use std::process::Command;
-use swarf_app::Job;
-use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::machine::kinematics::Joints;
 use swarf_fiveaxis::post::{FeedMode, PostOptions, write_gcode_5x};
 use swarf_fiveaxis::{FiveAxisError, incline_pass};
-use swarf_geom::{Part, Point3, Vec3};
+use swarf_geom::{Point3, Vec3};
+
+use swarf_testkit::machines::MACHINES;
+use swarf_testkit::parts::die;
+use swarf_testkit::{die_cc, rs274::run_rs274};
 use swarf_tool::{Cutter, Pose};
-use swarf_toolpath::{Contact, Feeds, Linking, Move, Toolpath};
-
-const MACHINES: [(&str, &str); 3] = [
-    (
-        "trunnion",
-        include_str!("../../../machines/xyzac-trunnion.toml"),
-    ),
-    ("head", include_str!("../../../machines/xyzbc-head.toml")),
-    (
-        "table-head",
-        include_str!("../../../machines/xyzbc-table-head.toml"),
-    ),
-];
-
-fn die() -> Part {
-    swarf_io::builtin_part("die").expect("the built-in die part loads")
-}
+use swarf_toolpath::{Feeds, Linking, Move, Toolpath};
 
 /// Three inclined passes over the die (lead 10 degrees, tilt 5), iso-planar at a 19 mm cross feed.
 fn toolpath() -> Toolpath {
@@ -90,36 +74,10 @@ fn canonical(text: &str, names: [char; 2]) -> Vec<(Joints, f64, bool)> {
     out
 }
 
+/// `rs274 -g` on `program`: its canonical output, checked clean; `None` when rs274
+/// is not installed.
 fn rs274(program: &str, name: &str) -> Option<String> {
-    if !Path::new("/usr/bin/rs274").exists() {
-        assert!(
-            std::env::var("SWARF_REQUIRE_REFERENCES").as_deref() != Ok("1"),
-            "rs274 is required but not installed"
-        );
-        return None;
-    }
-    let dir = std::env::temp_dir().join(format!("swarf-5x-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("prog.ngc");
-    std::fs::write(&file, program).unwrap();
-    let out = Command::new("/usr/bin/rs274")
-        .arg("-g")
-        .arg(&file)
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout).to_string();
-    assert!(out.status.success(), "{name}: rs274 failed:\n{text}");
-    for line in text.lines().filter(|l| !l.trim().is_empty()) {
-        let t = line.trim_start();
-        let ok = t
-            .split(' ')
-            .next()
-            .is_some_and(|n| n.parse::<u32>().is_ok())
-            && t.contains("N..... ");
-        assert!(ok, "{name}: rs274 complained: {line}");
-    }
-    std::fs::remove_dir_all(&dir).ok();
-    Some(text)
+    run_rs274(program, &format!("5x-{name}")).map(|out| out.clean(name))
 }
 
 #[test]
@@ -261,15 +219,4 @@ fn unreachable_poses_name_the_pass_point_and_axis() {
     let m = Machine::parse(&small, "small").unwrap();
     let e = write_gcode_5x(&m, &tp, &PostOptions::default()).unwrap_err();
     assert!(e.to_string().contains("axis X"), "{e}");
-}
-
-/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
-/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
-fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
-    let text = format!(
-        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
-         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
-    );
-    let job = Job::parse(&text, "die job").expect("job");
-    planned_cc_paths(&job, part).expect("CC paths")
 }

@@ -11,30 +11,19 @@
 //! finds the tip well off the chord: the check can fail.
 
 use std::ops::Range;
-use swarf_app::Job;
-use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::machine::kinematics::Joints;
 use swarf_fiveaxis::machine::reader::MachineKinematics;
 use swarf_fiveaxis::positioning::{Positioning, position};
 use swarf_fiveaxis::post::subdivide::MAX_BLOCKS;
 use swarf_fiveaxis::post::{FeedMode, PostOptions, post_5x};
-use swarf_geom::{Part, Point3, Vec3};
+use swarf_geom::{Point3, Vec3};
 use swarf_nc::read::{GcodeReadOptions, Program, parse_gcode};
+use swarf_testkit::die_cc;
+use swarf_testkit::machines::MACHINES;
+use swarf_testkit::parts::die;
 use swarf_tool::{Cutter, Pose};
-use swarf_toolpath::{Contact, Feeds, Linking, Move, MoveKind, Toolpath};
-
-const MACHINES: [(&str, &str); 3] = [
-    (
-        "trunnion",
-        include_str!("../../../machines/xyzac-trunnion.toml"),
-    ),
-    ("head", include_str!("../../../machines/xyzbc-head.toml")),
-    (
-        "table-head",
-        include_str!("../../../machines/xyzbc-table-head.toml"),
-    ),
-];
+use swarf_toolpath::{Feeds, Linking, Move, MoveKind, Toolpath};
 
 /// Tool length (gauge line to tip) for the machines with head axes, mm.
 const TOOL_LENGTH: f64 = 80.0;
@@ -48,10 +37,6 @@ const AXIS_TOL: f64 = 1e-4;
 
 /// The reader's chordal tolerance on joint-linear motion, mm.
 const READ_TOL: f64 = 1e-3;
-
-fn die() -> Part {
-    swarf_io::builtin_part("die").expect("the built-in die part loads")
-}
 
 /// Three passes across the die at a fixed lead of 6 degrees (thesis 000 §8.2 cutter).
 fn toolpath() -> Toolpath {
@@ -417,15 +402,4 @@ fn one_block_per_pose_strays_off_the_chord() {
         (tip - unsplit).abs() < READ_TOL + TIP_TOL,
         "{tip} vs {unsplit}"
     );
-}
-
-/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
-/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
-fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
-    let text = format!(
-        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
-         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
-    );
-    let job = Job::parse(&text, "die job").expect("job");
-    planned_cc_paths(&job, part).expect("CC paths")
 }

@@ -4,24 +4,15 @@
 //! Layout: `%`, (Fanuc: an `O` program number), comment lines naming part, tool and
 //! strategy, a safe modal line `G17 G21|G20 G40 G49 G80 G90 G94`, tool change,
 //! spindle on, the moves (`G0`/`G1`, only changed words, `F` when it changes), spindle
-//! off, `M30`, `%`. A move that changes no written coordinate is dropped. Every value carries a decimal point (see [`crate::number`]).
+//! off, `M30`, `%`. A move that changes no written coordinate is dropped. Every value
+//! carries a decimal point (see [`crate::number`]). The blocks are written by the one
+//! block writer of every post, [`crate::block::BlockWriter`].
 
+pub use crate::block::Dialect;
+use crate::block::{BlockWriter, Feed, FeedMode, MotionCode, WordKind};
 use crate::error::NcError;
-use crate::number::{Units, format_decimal};
-use serde::{Deserialize, Serialize};
-use std::fmt::Write as _;
+use crate::number::Units;
 use swarf_toolpath::{Feeds, Move, MoveKind};
-
-/// Control family the program is written for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Dialect {
-    /// LinuxCNC (RS274/NGC as its interpreter reads it).
-    #[default]
-    Linuxcnc,
-    /// Fanuc-style: `O` program number, upper-case comments, `G43 H` length offset.
-    Fanuc,
-}
 
 /// What the G-code post writes besides the moves.
 #[derive(Debug, Clone, PartialEq)]
@@ -50,14 +41,6 @@ impl Default for GcodeOptions {
     }
 }
 
-/// Axis words tracked between blocks so that only changed values are written.
-#[derive(Default)]
-struct Modal {
-    words: [Option<String>; 3],
-    motion: Option<MoveKind>,
-    feed: Option<String>,
-}
-
 /// Writes `moves` as a 3-axis G-code program.
 ///
 /// # Units
@@ -67,64 +50,20 @@ struct Modal {
 /// [`NcError::NotThreeAxis`] when a pose's axis is not +Z, [`NcError::NonFinite`] for
 /// NaN or infinite values, [`NcError::InvalidOption`] for a bad program number.
 pub fn write_gcode(moves: &[Move], feeds: &Feeds, opts: &GcodeOptions) -> Result<String, NcError> {
-    if opts.dialect == Dialect::Fanuc && !(1..=9999).contains(&opts.program_number) {
-        return Err(NcError::InvalidOption {
-            field: "program_number",
-            message: format!("expected 1..=9999, found {}", opts.program_number),
-        });
-    }
-    let mut out = String::with_capacity(moves.len() * 32 + 512);
-    write_header(&mut out, feeds, opts);
-    let mut modal = Modal::default();
-    let decimals = opts.units.decimals();
+    BlockWriter::check_program_number(opts.dialect, opts.program_number)?;
+    let axes = ['X', 'Y', 'Z'].map(|c| (c, WordKind::Length));
+    let mut w = BlockWriter::new(opts.dialect, opts.units, &axes, moves.len());
+    write_header(&mut w, feeds, opts);
     for (index, m) in moves.iter().enumerate() {
         check_move(index, m)?;
-        let cl = m.to.cl;
-        let mut words = String::new();
-        let mut changed = [None, None, None];
-        for (k, letter) in ['X', 'Y', 'Z'].into_iter().enumerate() {
-            let w = format_decimal(opts.units.from_mm(cl[k]), decimals);
-            if modal.words[k].as_deref() != Some(w.as_str()) {
-                push_word(&mut words, letter, &w);
-                changed[k] = Some(w);
-            }
-        }
-        if words.is_empty() {
-            continue;
-        }
-        for (k, w) in changed.into_iter().enumerate() {
-            if w.is_some() {
-                modal.words[k] = w;
-            }
-        }
-        if modal.motion != Some(m.kind) {
-            out.push_str(if m.kind == MoveKind::Rapid {
-                "G0 "
-            } else {
-                "G1 "
-            });
-            modal.motion = Some(m.kind);
-        }
-        out.push_str(&words);
-        if m.kind == MoveKind::Feed {
-            let f = format_decimal(opts.units.from_mm(m.feed), decimals.min(3));
-            if modal.feed.as_deref() != Some(f.as_str()) {
-                push_word(&mut out, 'F', &f);
-                modal.feed = Some(f);
-            }
-        }
-        out.push('\n');
+        let code = match m.kind {
+            MoveKind::Rapid => MotionCode::Rapid,
+            MoveKind::Feed => MotionCode::Linear,
+        };
+        let feed = (m.kind == MoveKind::Feed).then_some(Feed::PerMinute(m.feed));
+        w.motion(index, code, m.to.cl.coords.as_slice(), || Ok(feed))?;
     }
-    write_footer(&mut out);
-    Ok(out)
-}
-
-fn push_word(block: &mut String, letter: char, value: &str) {
-    if !block.is_empty() {
-        block.push(' ');
-    }
-    block.push(letter);
-    block.push_str(value);
+    Ok(w.finish())
 }
 
 fn check_move(index: usize, m: &Move) -> Result<(), NcError> {
@@ -150,51 +89,15 @@ fn check_move(index: usize, m: &Move) -> Result<(), NcError> {
     Ok(())
 }
 
-/// A comment safe for both dialects: no parentheses, printable ASCII; upper case on Fanuc.
-fn comment(text: &str, dialect: Dialect) -> String {
-    let clean: String = text
-        .chars()
-        .map(|c| match c {
-            '(' | ')' => ' ',
-            c if c.is_ascii_graphic() || c == ' ' => c,
-            _ => '?',
-        })
-        .collect();
-    match dialect {
-        Dialect::Linuxcnc => format!("({clean})"),
-        Dialect::Fanuc => format!("({})", clean.to_ascii_uppercase()),
-    }
-}
-
-fn write_header(out: &mut String, feeds: &Feeds, opts: &GcodeOptions) {
-    out.push_str("%\n");
-    if opts.dialect == Dialect::Fanuc {
-        let _ = writeln!(out, "O{:04}", opts.program_number);
-    }
+fn write_header(w: &mut BlockWriter, feeds: &Feeds, opts: &GcodeOptions) {
+    w.start(opts.program_number);
     for c in &opts.comments {
-        out.push_str(&comment(c, opts.dialect));
-        out.push('\n');
+        w.comment(c);
     }
-    let units = match opts.units {
-        Units::Mm => "G21",
-        Units::Inch => "G20",
-    };
-    let _ = writeln!(out, "G17 {units} G40 G49 G80 G90 G94");
-    let t = opts.tool_number;
-    match opts.dialect {
-        Dialect::Linuxcnc => {
-            let _ = writeln!(out, "T{t} M6");
-        }
-        Dialect::Fanuc => {
-            let _ = writeln!(out, "T{t} M06");
-            let _ = writeln!(out, "G43 H{t}");
-        }
+    w.safe_modal(FeedMode::UnitsPerMinute);
+    w.tool_change(opts.tool_number);
+    if opts.dialect == Dialect::Fanuc {
+        w.length_offset(opts.tool_number);
     }
-    let _ = writeln!(out, "S{} M3", feeds.spindle.round() as u64);
-}
-
-fn write_footer(out: &mut String) {
-    out.push_str("M5\n");
-    out.push_str("M30\n");
-    out.push_str("%\n");
+    w.spindle_on(feeds.spindle);
 }

@@ -1,6 +1,7 @@
 //! swarf-nc: NC programs. Writers (posts) turn a tool path's moves into RS274/NGC
 //! G-code for LinuxCNC and Fanuc-style controls, APT CL data and pose CSV.
 
+pub mod block;
 pub mod cl_writer;
 pub mod csv_writer;
 pub mod error;
@@ -8,6 +9,7 @@ pub mod gcode_writer;
 pub mod number;
 pub mod read;
 
+pub use block::{BlockWriter, FeedMode};
 pub use cl_writer::write_cl;
 pub use csv_writer::write_pose_csv;
 pub use error::NcError;

@@ -8,9 +8,9 @@
 
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use swarf_geom::{Point3, Vec3};
 use swarf_nc::read::{GcodeReadOptions, Motion, MotionKind, parse_gcode};
+use swarf_testkit::rs274::run_rs274;
 
 /// One canonical move, in mm.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -221,34 +221,7 @@ fn inch_program_matches_recorded_rs274() {
 
 /// `rs274 -g` on `text`, stdout and stderr together; `None` when it is not installed.
 fn rs274(text: &str) -> Option<String> {
-    use std::sync::Mutex;
-    // Concurrent rs274 runs interfere (it keeps state outside the process): one at a time.
-    static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
-    let _guard = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
-    let dir = std::env::temp_dir();
-    let path = dir.join(format!("swarf-read-{}.ngc", std::process::id()));
-    std::fs::write(&path, text).unwrap();
-    let out = Command::new("rs274")
-        .arg("-g")
-        .arg(&path)
-        .current_dir(&dir)
-        .output();
-    let _ = std::fs::remove_file(&path);
-    match out {
-        Ok(out) => Some(format!(
-            "{}{}",
-            String::from_utf8_lossy(&out.stdout),
-            String::from_utf8_lossy(&out.stderr)
-        )),
-        Err(_) => {
-            assert!(
-                std::env::var("SWARF_REQUIRE_REFERENCES").as_deref() != Ok("1"),
-                "rs274 is required (SWARF_REQUIRE_REFERENCES=1) but cannot be run"
-            );
-            eprintln!("rs274 not installed: live comparison skipped");
-            None
-        }
-    }
+    run_rs274(text, "read").map(|out| out.text(""))
 }
 
 #[test]

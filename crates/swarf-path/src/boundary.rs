@@ -20,6 +20,7 @@ use crate::forward_step::sample_curve;
 use crate::iso_setup::IsoSetup;
 use crate::ordering::Row;
 use rayon::prelude::*;
+use swarf_geom::math::ray_capsule;
 use swarf_geom::{Point3, Vec3};
 use swarf_toolpath::Pass;
 
@@ -241,48 +242,6 @@ impl Capsules {
     }
 }
 
-/// First `t >= 0` where `p + t n` (unit `n`) is within `r` of segment `ab`.
-fn ray_capsule(p: &Point3, n: &Vec3, a: &Point3, b: &Point3, r: f64) -> f64 {
-    let d = b - a;
-    let dd = d.norm_squared();
-    let inside = |q: &Point3| {
-        let t = if dd > 0.0 {
-            ((q - a).dot(&d) / dd).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (q - (a + t * d)).norm() <= r
-    };
-    if inside(p) {
-        return 0.0;
-    }
-    let mut best = f64::INFINITY;
-    for c in [a, b] {
-        let m = p - c;
-        let bb = m.dot(n);
-        let disc = bb * bb - (m.norm_squared() - r * r);
-        if disc >= 0.0 && -bb - disc.sqrt() >= 0.0 {
-            best = best.min(-bb - disc.sqrt());
-        }
-    }
-    if dd > 0.0 {
-        let m = p - a;
-        let (nd, md) = (n.dot(&d), m.dot(&d));
-        let qa = 1.0 - nd * nd / dd;
-        let qb = m.dot(n) - md * nd / dd;
-        let qc = m.norm_squared() - md * md / dd - r * r;
-        let disc = qb * qb - qa * qc;
-        if qa > 0.0 && disc >= 0.0 {
-            let t = (-qb - disc.sqrt()) / qa;
-            let s = (md + t * nd) / dd;
-            if t >= 0.0 && (0.0..=1.0).contains(&s) {
-                best = best.min(t);
-            }
-        }
-    }
-    best
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -293,25 +252,5 @@ mod tests {
         assert_eq!(stretches(&b("0001100000011"), 1), vec![(2, 5), (10, 12)]);
         assert_eq!(stretches(&b("0100010"), 2), vec![(0, 6)]);
         assert!(stretches(&b("0000"), 3).is_empty());
-    }
-
-    #[test]
-    fn ray_enters_capsule_where_expected() {
-        let a = Point3::new(0.0, 0.0, 5.0);
-        let b = Point3::new(10.0, 0.0, 5.0);
-        // Below the middle of the axis: enters at z = 5 - r.
-        let t = ray_capsule(&Point3::new(4.0, 0.0, 0.0), &Vec3::z(), &a, &b, 4.0);
-        assert!((t - 1.0).abs() < 1e-12);
-        // Below an end cap, off the axis by 3: z = 5 - sqrt(16 - 9).
-        let t = ray_capsule(&Point3::new(-3.0, 0.0, 0.0), &Vec3::z(), &a, &b, 4.0);
-        assert!((t - (5.0 - 7f64.sqrt())).abs() < 1e-12);
-        assert_eq!(
-            ray_capsule(&Point3::new(4.0, 9.0, 0.0), &Vec3::z(), &a, &b, 4.0),
-            f64::INFINITY
-        );
-        assert_eq!(
-            ray_capsule(&Point3::new(4.0, 0.0, 3.0), &Vec3::z(), &a, &b, 4.0),
-            0.0
-        );
     }
 }

@@ -19,6 +19,7 @@
 //! are refined by bisection, and each interval is sampled on its own.
 
 use swarf_geom::Point3;
+use swarf_geom::math::point_segment_distance;
 use swarf_toolpath::PathPoint;
 
 /// Safety factor on the curvature-predicted step (dimensionless).
@@ -68,18 +69,6 @@ where
         .map(|(a, b)| sample_interval(f, a, b, opts))
         .filter(|run| !run.is_empty())
         .collect()
-}
-
-/// Distance from `p` to the segment `[a, b]`.
-pub fn point_segment_distance(p: &Point3, a: &Point3, b: &Point3) -> f64 {
-    let ab = b - a;
-    let len2 = ab.norm_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(&ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + t * ab)).norm()
 }
 
 /// The intervals of `[t0, t1]` where `f` is defined (scan, then bisect the ends).

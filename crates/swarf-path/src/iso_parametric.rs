@@ -314,7 +314,7 @@ mod tests {
 
     #[test]
     fn cylinder_paths_are_spaced_by_the_exact_convex_step() {
-        let part = crate::test_parts::cylinder(1.0);
+        let part = swarf_testkit::parts::cylinder(1.0);
         let h = 0.1;
         let plan = plan(&part, &job(h)).unwrap();
         let passes = &plan.toolpath.passes;
@@ -342,7 +342,7 @@ mod tests {
 
     #[test]
     fn bad_parameters_name_their_field() {
-        let part = crate::test_parts::cylinder(1.0);
+        let part = swarf_testkit::parts::cylinder(1.0);
         let mut j = job(0.1);
         j.scallop = None;
         let e = plan(&part, &j).unwrap_err().to_string();

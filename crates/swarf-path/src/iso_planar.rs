@@ -46,7 +46,7 @@
 //! passes.
 
 use crate::error::PathError;
-use crate::forward_step::{Sample, point_segment_distance, sample_curve};
+use crate::forward_step::{Sample, sample_curve};
 use crate::iso_parametric::Figures;
 use crate::iso_setup::{IsoSetup, fit_interval};
 use crate::ordering::Row;
@@ -54,6 +54,7 @@ use crate::params::{IsoParams, StartSide, StrategyKind};
 use crate::plan::{Plan, PlanReport};
 use crate::section_point::{PlaneEq, Solved, two_planes};
 use crate::side_step::corners_face;
+use swarf_geom::math::point_segment_distance;
 use swarf_geom::{Part, Patch, Plane, SectionCurve, Vec3};
 use swarf_toolpath::{Pass, PathPoint};
 

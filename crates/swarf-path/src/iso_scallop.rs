@@ -439,7 +439,7 @@ mod tests {
     #[test]
     fn cylinder_paths_keep_the_exact_step_and_reach_the_far_edge() {
         let h = 0.1;
-        let plan = plan(&crate::test_parts::cylinder(1.0), &job("ball:d=8", h)).unwrap();
+        let plan = plan(&swarf_testkit::parts::cylinder(1.0), &job("ball:d=8", h)).unwrap();
         let passes = &plan.toolpath.passes;
         let step = ball_step(4.0, -1.0 / 60.0, h).unwrap();
         let deg = (step / 60.0).to_degrees();
@@ -467,7 +467,7 @@ mod tests {
     #[test]
     fn bull_cutter_plans_with_its_least_effective_radius() {
         let h = 0.1;
-        let part = crate::test_parts::cylinder(1.0);
+        let part = swarf_testkit::parts::cylinder(1.0);
         let bull = plan(&part, &job("bull:d=10,r=2", h)).unwrap();
         // The cylinder tilts up to 30 degrees: the least effective radius up to there,
         // used as a ball on the convex radius 60, sets the interior side step.

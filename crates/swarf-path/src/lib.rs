@@ -25,8 +25,6 @@ pub mod scallop_crest;
 pub mod scallop_step;
 pub mod section_point;
 pub mod side_step;
-#[cfg(test)]
-mod test_parts;
 mod uncovered;
 
 pub use error::PathError;

@@ -239,7 +239,7 @@ mod tests {
     use crate::side_step::ball_step;
     use swarf_tool::Cutter;
 
-    const R: f64 = crate::test_parts::CYLINDER_RADIUS;
+    const R: f64 = swarf_testkit::parts::CYLINDER_RADIUS;
 
     fn side(tool: &str, h: f64) -> SideStep {
         SideStep::new(&tool.parse::<Cutter>().unwrap(), h).unwrap()
@@ -252,7 +252,7 @@ mod tests {
         let want = arc / ball_step(4.0, -1.0 / R, h).unwrap() + 0.5;
         for c in [1.0, 1.7] {
             let b = &pass_bound(
-                &crate::test_parts::cylinder(c),
+                &swarf_testkit::parts::cylinder(c),
                 &s,
                 Feed::Param(ParamDir::U),
             )[0];
@@ -263,12 +263,12 @@ mod tests {
             assert_eq!(b.column_param, "u");
         }
         // Drive planes along x are the same family.
-        let b = &pass_bound(&crate::test_parts::cylinder(1.0), &s, Feed::Plane(0.0))[0];
+        let b = &pass_bound(&swarf_testkit::parts::cylinder(1.0), &s, Feed::Plane(0.0))[0];
         assert!((b.passes - want).abs() < 1e-6 * want, "{b:?}");
         // Along the arc the side direction is the straight generator (no curvature,
         // no tilt): 40 mm over the flat step.
         let b = &pass_bound(
-            &crate::test_parts::cylinder(1.0),
+            &swarf_testkit::parts::cylinder(1.0),
             &s,
             Feed::Param(ParamDir::V),
         )[0];

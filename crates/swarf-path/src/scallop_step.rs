@@ -443,7 +443,7 @@ mod tests {
 
     #[test]
     fn cylinder_step_matches_the_exact_circle_form() {
-        let p = crate::test_parts::cylinder_patch(1.0);
+        let p = swarf_testkit::parts::cylinder_patch(1.0);
         let side = SideStep::new(&Cutter::ball(8.0, None).unwrap(), 0.15).unwrap();
         let st = station(&p, &side, [0.5, 0.3]);
         let q = point(next_point(&p, &side, &st));
@@ -457,7 +457,7 @@ mod tests {
 
     #[test]
     fn far_edge_clamps_then_drops() {
-        let p = crate::test_parts::cylinder_patch(1.0);
+        let p = swarf_testkit::parts::cylinder_patch(1.0);
         let side = SideStep::new(&Cutter::ball(8.0, None).unwrap(), 0.15).unwrap();
         // About 2 mm from the far edge y = 30: the next point is on the edge.
         let st = station(&p, &side, [0.5, 0.97]);

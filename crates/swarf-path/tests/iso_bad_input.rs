@@ -1,8 +1,8 @@
 //! Bad input to the iso strategies: a clear error naming the field, never a panic.
 
 use swarf_app::{Job, PlanInput};
-use swarf_geom::{Part, Patch, Point3};
 use swarf_path::PathError;
+use swarf_testkit::parts::groove;
 
 fn job(kind: &str, body: &str) -> String {
     format!("part = \"builtin:wave\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"{kind}\"\n{body}\n")
@@ -60,30 +60,6 @@ fn jobs_built_in_code_are_checked_by_the_planners_too() {
                 "{kind}: want {field}: {e}"
             );
         }
-    }
-}
-
-/// A groove of radius 3 (a 120-degree arc) along y: narrower than the ball.
-fn groove() -> Part {
-    let r = 3.0;
-    let half = 60f64.to_radians();
-    let (s, c) = half.sin_cos();
-    let mut pts = Vec::new();
-    for y in [0.0, 20.0] {
-        pts.push(Point3::new(-r * s, y, 20.0 - r * c));
-        pts.push(Point3::new(0.0, y, 20.0 - r / c));
-        pts.push(Point3::new(r * s, y, 20.0 - r * c));
-    }
-    let patch = Patch::new(
-        [1, 2],
-        pts,
-        [None, None],
-        Some(vec![1.0, c, 1.0, 1.0, c, 1.0]),
-    )
-    .unwrap();
-    Part {
-        name: "groove".into(),
-        patches: vec![patch],
     }
 }
 

@@ -5,9 +5,9 @@
 //! skipped, unless `SWARF_REQUIRE_REFERENCES=1`.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use swarf_app::{Job, PlanInput};
 use swarf_nc::{GcodeOptions, Units};
+use swarf_testkit::rs274::run_rs274;
 
 fn job_path(kind: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../../jobs/wave-{kind}.toml"))
@@ -16,33 +16,7 @@ fn job_path(kind: &str) -> PathBuf {
 /// `rs274 -g` on a program: exit status and everything it printed; `None` when it is
 /// not installed.
 fn rs274(program: &str, name: &str) -> Option<(bool, String)> {
-    let dir = std::env::temp_dir();
-    let path = dir.join(format!("swarf-{name}-{}.ngc", std::process::id()));
-    std::fs::write(&path, program).unwrap();
-    let out = Command::new("rs274")
-        .arg("-g")
-        .arg(&path)
-        .current_dir(&dir)
-        .output();
-    let _ = std::fs::remove_file(&path);
-    match out {
-        Ok(out) => Some((
-            out.status.success(),
-            format!(
-                "{}\n{}",
-                String::from_utf8_lossy(&out.stdout),
-                String::from_utf8_lossy(&out.stderr)
-            ),
-        )),
-        Err(_) => {
-            assert!(
-                std::env::var("SWARF_REQUIRE_REFERENCES").as_deref() != Ok("1"),
-                "rs274 is required (SWARF_REQUIRE_REFERENCES=1) but cannot be run"
-            );
-            eprintln!("rs274 not installed: G-code acceptance skipped");
-            None
-        }
-    }
+    run_rs274(program, name).map(|out| (out.success, out.text("\n")))
 }
 
 /// End points of the interpreter's straight moves, with `true` for cutting feeds

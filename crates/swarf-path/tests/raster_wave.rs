@@ -77,32 +77,12 @@ fn wave_raster_is_gouge_free_and_rs274_reads_it() {
 /// `rs274 -g` on the program: its canonical output, `None` when rs274 is not
 /// installed (a failure instead with `SWARF_REQUIRE_REFERENCES=1`).
 fn run_rs274(gcode: &str) -> Option<String> {
-    let dir = std::env::temp_dir().join(format!("swarf-raster-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("wave-raster.ngc");
-    std::fs::write(&file, gcode).unwrap();
-    let out = match std::process::Command::new("rs274")
-        .arg("-g")
-        .arg(&file)
-        .output()
-    {
-        Ok(o) => o,
-        Err(e) => {
-            let required = std::env::var("SWARF_REQUIRE_REFERENCES").is_ok_and(|v| v == "1");
-            assert!(
-                !required,
-                "rs274 not runnable ({e}) and SWARF_REQUIRE_REFERENCES=1"
-            );
-            return None;
-        }
-    };
-    std::fs::remove_dir_all(&dir).ok();
-    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let out = swarf_testkit::rs274::run_rs274(gcode, "wave-raster")?;
     assert!(
-        out.status.success(),
-        "rs274 refused the program: {stderr}\n{stdout}"
+        out.success,
+        "rs274 refused the program: {}\n{}",
+        out.stderr, out.stdout
     );
-    assert!(stdout.contains("PROGRAM_END"), "{stdout}");
-    Some(stdout)
+    assert!(out.stdout.contains("PROGRAM_END"), "{}", out.stdout);
+    Some(out.stdout)
 }

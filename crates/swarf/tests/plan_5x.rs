@@ -11,6 +11,8 @@ use std::process::{Command, Output};
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::machine::kinematics::Joints;
 use swarf_geom::{Point3, Vec3};
+use swarf_testkit::machines::TRUNNION;
+use swarf_testkit::rs274::run_rs274;
 
 fn swarf(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_swarf"))
@@ -30,8 +32,7 @@ fn temp_dir(name: &str) -> PathBuf {
 }
 
 fn machine_text() -> String {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    std::fs::read_to_string(root.join("machines/xyzac-trunnion.toml")).unwrap()
+    TRUNNION.to_string()
 }
 
 /// Die, bull R 12.7 r 6.35, 60 degrees off X, cross feed 20 mm; the machine file
@@ -89,31 +90,10 @@ fn cl_feed_poses(text: &str) -> Vec<(Point3, Vec3)> {
 /// `rs274 -g` on `program`: the machine positions of its `STRAIGHT_FEED` lines, or
 /// `None` when rs274 is not installed.
 fn rs274_feeds(program: &Path) -> Option<Vec<Joints>> {
-    if !Path::new("/usr/bin/rs274").exists() {
-        assert!(
-            std::env::var("SWARF_REQUIRE_REFERENCES").as_deref() != Ok("1"),
-            "rs274 is required but not installed"
-        );
-        return None;
-    }
-    let out = Command::new("/usr/bin/rs274")
-        .arg("-g")
-        .arg(program)
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout).to_string();
-    assert!(out.status.success(), "rs274 failed:\n{text}");
+    let text = std::fs::read_to_string(program).unwrap();
+    let text = run_rs274(&text, "plan-5x")?.clean("die.ngc");
     let mut feeds = Vec::new();
-    for line in text.lines().filter(|l| !l.trim().is_empty()) {
-        let t = line.trim_start();
-        let numbered = t
-            .split(' ')
-            .next()
-            .is_some_and(|n| n.parse::<u32>().is_ok());
-        assert!(
-            numbered && t.contains("N..... "),
-            "rs274 complained: {line}"
-        );
+    for line in text.lines() {
         if let Some(args) = line.split("STRAIGHT_FEED(").nth(1) {
             let v: Vec<f64> = args
                 .trim_end_matches(')')

@@ -6,12 +6,13 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use swarf_app::Job;
-use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::positioning::{Positioning, position};
 use swarf_fiveaxis::post::{PostOptions, write_gcode_5x};
 use swarf_nc::{Units, write_cl};
+use swarf_testkit::die_cc;
+use swarf_testkit::machines::machine_path;
+use swarf_testkit::parts::die;
 use swarf_tool::Cutter;
 use swarf_toolpath::{Feeds, Linking, Toolpath};
 
@@ -35,19 +36,14 @@ fn temp_dir(name: &str) -> PathBuf {
 }
 
 fn trunnion_file() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../machines/xyzac-trunnion.toml")
+    machine_path("xyzac-trunnion.toml")
 }
 
 /// Two neighbouring passes across the middle of the die (iso-planar, 60 degrees off
 /// X, cross feed 3.5 mm as in thesis 000 ch. 8) at a lead of 6 degrees.
 fn toolpath() -> Toolpath {
-    let part = swarf_io::builtin_part("die").expect("the built-in die part loads");
-    let text = format!(
-        "part = \"builtin:die\"\ntool = \"{CUTTER}\"\n[strategy]\nkind = \"iso-planar\"\n\
-         stepover = 3.5\ntolerance = 0.005\nangle = 60\n"
-    );
-    let job = Job::parse(&text, "die job").expect("job");
-    let all = planned_cc_paths(&job, &part).expect("CC paths");
+    let part = die();
+    let all = die_cc(&part, CUTTER, 60.0, 3.5, 0.005);
     let n = all.len();
     let cc = vec![all[n / 2].clone(), all[n / 2 + 1].clone()];
     let cutter: Cutter = CUTTER.parse().unwrap();

@@ -39,8 +39,9 @@ use crate::error::FiveAxisError;
 use crate::machine::Machine;
 use crate::machine::joints::{lerp, solve_near};
 use crate::machine::kinematics::Joints;
+use swarf_geom::Vec3;
+use swarf_geom::math::{point_segment_distance, slerp};
 use swarf_geom::tol::PARALLEL_COS;
-use swarf_geom::{Point3, Vec3};
 use swarf_tool::Pose;
 
 /// The joint-linear motion of a block is sampled at `k / SAMPLES`, `k = 1 ..
@@ -165,7 +166,7 @@ pub fn measure(m: &Machine, a: &Joints, b: &Joints, tool_length: f64) -> Deviati
     let mut last = pa.cl;
     for k in 1..SAMPLES {
         let q = m.forward(&lerp(a, b, k as f64 / SAMPLES as f64), tool_length);
-        out.tip = out.tip.max(off_segment(&q.cl, &pa.cl, &pb.cl));
+        out.tip = out.tip.max(point_segment_distance(&q.cl, &pa.cl, &pb.cl));
         out.angle = out.angle.max(off_arc(&q.axis, &pa.axis, &pb.axis));
         out.length += (q.cl - last).norm();
         last = q.cl;
@@ -258,33 +259,9 @@ fn split(
     Ok(out)
 }
 
-/// Spherical linear interpolation between unit vectors (normalised linear
-/// interpolation where they are parallel within rounding).
-pub fn slerp(a: &Vec3, b: &Vec3, t: f64) -> Vec3 {
-    let angle = angle(a, b);
-    let sin = angle.sin();
-    if sin <= PARALLEL_COS {
-        let mix = a * (1.0 - t) + b * t;
-        return mix.try_normalize(PARALLEL_COS).unwrap_or(*a);
-    }
-    (a * ((1.0 - t) * angle).sin() + b * (t * angle).sin()) / sin
-}
-
 /// The angle between two vectors, radians (accurate for small angles).
 fn angle(u: &Vec3, v: &Vec3) -> f64 {
     u.cross(v).norm().atan2(u.dot(v))
-}
-
-/// Distance from `p` to the segment `a b`.
-fn off_segment(p: &Point3, a: &Point3, b: &Point3) -> f64 {
-    let d = b - a;
-    let len2 = d.norm_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(&d) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + d * t)).norm()
 }
 
 /// Angle from the unit vector `v` to the great-circle arc from `a` to `b`.
@@ -310,6 +287,7 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
     use std::f64::consts::PI;
+    use swarf_geom::Point3;
 
     /// An A/C table with both axes through the origin (the A tilts about X, the C
     /// turns on it about the part's Z).
@@ -418,7 +396,7 @@ continuous = true
             let (fa, fb) = (m.forward(&prev, 0.0).cl, f.cl);
             for i in 1..64 {
                 let q = m.forward(&lerp(&prev, &b.joints, i as f64 / 64.0), 0.0).cl;
-                assert!(off_segment(&q, &fa, &fb) <= tol.tip * 1.01);
+                assert!(point_segment_distance(&q, &fa, &fb) <= tol.tip * 1.01);
             }
             let steps = (b.joints.rotary[1] - prev.rotary[1]).abs();
             assert!(steps < 0.1, "C jumped {steps}");
@@ -497,7 +475,7 @@ continuous = true
                 let fa = m.forward(&prev, tool_length);
                 for i in 1..64 {
                     let q = m.forward(&lerp(&prev, &b.joints, i as f64 / 64.0), tool_length);
-                    let tip = off_segment(&q.cl, &fa.cl, &f.cl);
+                    let tip = point_segment_distance(&q.cl, &fa.cl, &f.cl);
                     let angle = off_arc(&q.axis, &fa.axis, &f.axis);
                     prop_assert!(tip <= tol.tip * 1.02, "block {k}/{n}: {tip}");
                     prop_assert!(angle <= tol.angle * 1.02, "block {k}/{n}: {angle}");

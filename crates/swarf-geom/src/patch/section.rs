@@ -26,9 +26,9 @@
 
 use super::Patch;
 use super::section_seed::{Seed, seeds};
-use super::section_trace::{End, Section, segment_distance};
+use super::section_trace::{End, Section};
 use crate::error::GeomError;
-use crate::math::{Plane, Point3, Polyline};
+use crate::math::{Plane, Point3, Polyline, point_segment_distance};
 use crate::tol::SOLVER_LENGTH;
 use serde::{Deserialize, Serialize};
 
@@ -200,8 +200,8 @@ fn retire_seeds(sec: &Section, curve: &SectionCurve, seeds: &mut [Seed]) {
         let param = |x: &SurfaceSample| Point3::new(x.u / sec.cell[0], x.v / sec.cell[1], 0.0);
         seed.used = (0..segments).any(|k| {
             let (a, b) = (&s[k], &s[(k + 1) % n]);
-            segment_distance(&q, &param(a), &param(b)) <= SEED_ON_BRANCH_CELLS
-                && segment_distance(&p, &a.point, &b.point) <= 2.0 * sec.tol + SOLVER_LENGTH
+            point_segment_distance(&q, &param(a), &param(b)) <= SEED_ON_BRANCH_CELLS
+                && point_segment_distance(&p, &a.point, &b.point) <= 2.0 * sec.tol + SOLVER_LENGTH
         });
     }
 }
@@ -275,7 +275,7 @@ mod tests {
             }
         }
         let p = at(lo);
-        segment_distance(&patch.eval(p[0], p[1]), &a.point, &b.point)
+        point_segment_distance(&patch.eval(p[0], p[1]), &a.point, &b.point)
     }
 
     /// On the plane, chords within `tol` at their midpoints, open ends on the boundary.
@@ -474,8 +474,9 @@ mod tests {
                     let pts = c.to_polyline().points;
                     let n = pts.len();
                     let chords = if c.closed { n } else { n - 1 };
-                    (0..chords)
-                        .any(|k| segment_distance(&q, &pts[k], &pts[(k + 1) % n]) <= tol + 1e-9)
+                    (0..chords).any(|k| {
+                        point_segment_distance(&q, &pts[k], &pts[(k + 1) % n]) <= tol + 1e-9
+                    })
                 });
                 prop_assert!(near, "a crossing at {q:?} is on no traced branch");
             }

@@ -29,7 +29,7 @@
 
 use super::Patch;
 use super::section::SurfaceSample;
-use crate::math::{Point3, Vec3};
+use crate::math::{Vec3, point_segment_distance};
 use crate::tol::{MAX_NEWTON_ITERATIONS, SOLVER_LENGTH};
 
 /// Share of `tol` the curvature-based step aims at (the rest absorbs its variation).
@@ -188,7 +188,7 @@ impl<'a> Section<'a> {
                 let q = self.patch.eval(c[0], c[1]);
                 let at_exit = exits && (q - pb).norm() <= 0.25 * (pb - pa).norm();
                 let stays_inside = at_exit || !self.on_boundary(c);
-                stays_inside && segment_distance(&q, &pa, &pb) <= CHORD_SHARE * self.tol
+                stays_inside && point_segment_distance(&q, &pa, &pb) <= CHORD_SHARE * self.tol
             })
         })
     }
@@ -288,16 +288,4 @@ impl<'a> Section<'a> {
         }
         None
     }
-}
-
-/// Distance from `q` to the segment `[a, b]`, mm.
-pub(super) fn segment_distance(q: &Point3, a: &Point3, b: &Point3) -> f64 {
-    let ab = b - a;
-    let len2 = ab.norm_squared();
-    let s = if len2 > 0.0 {
-        ((q - a).dot(&ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (q - (a + ab * s)).norm()
 }

@@ -29,6 +29,7 @@
 
 use std::f64::consts::TAU;
 use std::fmt;
+use swarf_geom::math::slerp;
 use swarf_geom::{Point3, Vec3};
 use swarf_tool::{Cutter, Pose};
 
@@ -248,22 +249,6 @@ impl ArcGeometry {
             + (self.u * phi.cos() + self.v * phi.sin()) * r
             + self.n * (t * self.height)
     }
-}
-
-/// Spherical linear interpolation between unit vectors; linear (then normalised) when
-/// they are parallel or opposite within rounding, `a` itself when equal.
-fn slerp(a: &Vec3, b: &Vec3, t: f64) -> Vec3 {
-    if a == b {
-        return *a;
-    }
-    let cos = a.dot(b).clamp(-1.0, 1.0);
-    let angle = cos.acos();
-    let sin = angle.sin();
-    if sin.abs() <= swarf_geom::tol::PARALLEL_COS {
-        let mix = a * (1.0 - t) + b * t;
-        return mix.try_normalize(swarf_geom::tol::LENGTH_EPS).unwrap_or(*a);
-    }
-    (a * ((1.0 - t) * angle).sin() + b * (t * angle).sin()) / sin
 }
 
 /// A program read from G-code, APT CL or pose CSV.

@@ -1,25 +1,26 @@
 //! Independent oracles for the iso strategies' tests: the true scallop left by a ball
-//! tool path, and a brute-force gouge check. Nothing here uses the planners' models:
-//! the machined surface is the union of the swept balls (capsules around the polyline
-//! of ball centres), intersected exactly with rays along the surface normal.
+//! tool path, and a brute-force gouge check. Nothing here uses the planners' models or
+//! code: the machined surface is the union of the swept balls (capsules around the
+//! polyline of ball centres), and the material left at a surface point is where the
+//! ray along its normal first enters that union, found by sphere tracing on the
+//! distance to the ball centres' paths (the planners intersect rays with capsules in
+//! closed form instead).
 
 #![allow(dead_code)]
 
 pub mod moves;
 pub mod swept;
 
-use moves::MoveGrid;
+use moves::Moves;
 
 use rayon::prelude::*;
+use swarf_geom::math::point_segment_distance;
 use swarf_geom::{Part, Patch, Point3, Vec3};
 use swarf_path::Plan;
 use swarf_tool::Cutter;
 use swarf_toolpath::Pass;
 
-/// The built-in wave part (paper 004's experiment).
-pub fn wave() -> Part {
-    swarf_io::builtin_part("wave").expect("built-in wave")
-}
+pub use swarf_testkit::parts::wave;
 
 /// A job on wave for `kind` with scallop `h` and tolerance `tol`, ball d = 8.
 pub fn wave_job(kind: &str, h: f64, tol: f64) -> swarf_app::Job {
@@ -29,10 +30,18 @@ pub fn wave_job(kind: &str, h: f64, tol: f64) -> swarf_app::Job {
     swarf_app::Job::parse(&text, "test job").expect("valid job")
 }
 
-/// Segments of ball centres, bucketed on an XY grid.
+/// How far along the normal the oracle looks for the tool, in ball radii: material
+/// thicker than the tool's diameter counts as never cut.
+const RAY_REACH_RADII: f64 = 2.0;
+/// Sphere tracing stops this close to the swept balls, mm.
+const TRACE_TOL: f64 = 1e-10;
+/// Most sphere-tracing steps of one ray (a ray grazing a ball advances slowly).
+const TRACE_STEPS: usize = 100_000;
+
+/// The paths of the ball centres.
 pub struct Envelope {
     r: f64,
-    moves: MoveGrid,
+    moves: Moves,
 }
 
 impl Envelope {
@@ -40,71 +49,48 @@ impl Envelope {
     pub fn new(plan: &Plan, r: f64) -> Envelope {
         Envelope {
             r,
-            moves: MoveGrid::new(plan, r, r, 2.0 * r),
+            moves: Moves::new(plan, r),
         }
     }
 
     /// Material left above surface point `p` along its unit normal `n`: the distance
     /// to the first swept ball the ray `p + t n` enters (0 when `p` is inside one;
-    /// `f64::INFINITY` when no tool passes over it).
+    /// `f64::INFINITY` when the ray leaves the tool's reach without entering one).
+    ///
+    /// Sphere tracing: the distance from a point to the union of the swept balls,
+    /// `gap(q) = min_k |q - move_k| - r`, changes by at most the step along the ray, so
+    /// stepping `t` by `gap(p + t n)` never passes the first entry and converges to it.
     pub fn residual(&self, p: &Point3, n: &Vec3) -> f64 {
-        let mut best = f64::INFINITY;
-        for &k in self.moves.near(p.x, p.y) {
-            let (a, b) = self.moves.segs[k as usize];
-            best = best.min(ray_capsule(p, n, &a, &b, self.r));
+        let reach = RAY_REACH_RADII * self.r;
+        let end = p + reach * n;
+        let lo = [p.x.min(end.x), p.y.min(end.y)];
+        let hi = [p.x.max(end.x), p.y.max(end.y)];
+        let mut near = Vec::new();
+        self.moves
+            .for_each_near(lo, hi, self.r, &mut |k| near.push(self.moves.segs[k]));
+        if near.is_empty() {
+            return f64::INFINITY;
         }
-        best.max(0.0)
-    }
-}
-
-/// First `t >= 0` where `p + t n` (unit `n`) is within `r` of segment `ab`; 0 when `p`
-/// already is, infinity when never.
-fn ray_capsule(p: &Point3, n: &Vec3, a: &Point3, b: &Point3, r: f64) -> f64 {
-    if segment_distance(p, a, b) <= r {
-        return 0.0;
-    }
-    let mut best = f64::INFINITY;
-    for c in [a, b] {
-        let m = p - c;
-        let bb = m.dot(n);
-        let disc = bb * bb - (m.norm_squared() - r * r);
-        if disc >= 0.0 {
-            let t = -bb - disc.sqrt();
-            if t >= 0.0 {
-                best = best.min(t);
+        let gap = |t: f64| {
+            let q = p + t * n;
+            near.iter()
+                .map(|(a, b)| point_segment_distance(&q, a, b))
+                .fold(f64::INFINITY, f64::min)
+                - self.r
+        };
+        let mut t = 0.0;
+        for _ in 0..TRACE_STEPS {
+            let d = gap(t);
+            if d <= TRACE_TOL {
+                return t;
+            }
+            t += d;
+            if t > reach {
+                return f64::INFINITY;
             }
         }
+        t
     }
-    let d = b - a;
-    let dd = d.norm_squared();
-    if dd > 0.0 {
-        let m = p - a;
-        let (nd, md) = (n.dot(&d), m.dot(&d));
-        let qa = 1.0 - nd * nd / dd;
-        let qb = m.dot(n) - md * nd / dd;
-        let qc = m.norm_squared() - md * md / dd - r * r;
-        let disc = qb * qb - qa * qc;
-        if qa > 0.0 && disc >= 0.0 {
-            let t = (-qb - disc.sqrt()) / qa;
-            let s = (md + t * nd) / dd;
-            if t >= 0.0 && (0.0..=1.0).contains(&s) {
-                best = best.min(t);
-            }
-        }
-    }
-    best
-}
-
-/// Distance from `p` to segment `ab`.
-pub fn segment_distance(p: &Point3, a: &Point3, b: &Point3) -> f64 {
-    let d = b - a;
-    let dd = d.norm_squared();
-    let t = if dd > 0.0 {
-        ((p - a).dot(&d) / dd).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + t * d)).norm()
 }
 
 /// Scallop crests between adjacent passes: for each station (every `spacing` mm

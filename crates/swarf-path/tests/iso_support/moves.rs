@@ -1,78 +1,114 @@
-//! The straight cutting moves of a tool path, bucketed on an XY grid so that the
-//! oracles visit only the moves within reach of a point.
+//! The straight cutting moves of a tool path, found near a point through a hierarchy of
+//! bounding boxes over each pass's consecutive moves (a pass is a coherent curve, so
+//! the boxes of halves of it nest tightly). Written for the oracles alone: the
+//! planners index their moves otherwise (a uniform grid), and nothing here is shared
+//! with them.
 
 use swarf_geom::{Point3, Vec3};
 use swarf_path::Plan;
 
-/// Moves (segments between consecutive points of each pass, a lone point as a zero
-/// segment) and the grid cells each one reaches within `reach` in XY.
-pub struct MoveGrid {
-    /// The moves.
-    pub segs: Vec<(Point3, Point3)>,
-    origin: [f64; 2],
-    cell: f64,
-    dims: [usize; 2],
-    cells: Vec<Vec<u32>>,
+/// Moves per leaf of the hierarchy.
+const LEAF: usize = 8;
+
+/// A node: the XY box of moves `first..last`, and its two halves unless it is a leaf.
+struct Node {
+    lo: [f64; 2],
+    hi: [f64; 2],
+    first: usize,
+    last: usize,
+    halves: Option<(usize, usize)>,
 }
 
-impl MoveGrid {
-    /// The cutting moves of `plan`, each CL point raised by `lift` along z, on cells
-    /// of size `cell`, each move listed in every cell within `reach` of it.
-    pub fn new(plan: &Plan, lift: f64, reach: f64, cell: f64) -> MoveGrid {
-        let mut segs = Vec::new();
+/// Moves (segments between consecutive points of each pass, a lone point as a zero
+/// segment) in one box hierarchy per pass.
+pub struct Moves {
+    /// The moves.
+    pub segs: Vec<(Point3, Point3)>,
+    nodes: Vec<Node>,
+    roots: Vec<usize>,
+}
+
+impl Moves {
+    /// The cutting moves of `plan`, each CL point raised by `lift` along z.
+    pub fn new(plan: &Plan, lift: f64) -> Moves {
+        let mut moves = Moves {
+            segs: Vec::new(),
+            nodes: Vec::new(),
+            roots: Vec::new(),
+        };
         for pass in &plan.toolpath.passes {
             let c: Vec<Point3> = pass
                 .points
                 .iter()
                 .map(|p| p.pose.cl + lift * Vec3::z())
                 .collect();
+            let first = moves.segs.len();
             if c.len() == 1 {
-                segs.push((c[0], c[0]));
+                moves.segs.push((c[0], c[0]));
             }
-            segs.extend(c.windows(2).map(|w| (w[0], w[1])));
+            moves.segs.extend(c.windows(2).map(|w| (w[0], w[1])));
+            let last = moves.segs.len();
+            if last > first {
+                let root = moves.build(first, last);
+                moves.roots.push(root);
+            }
         }
+        moves
+    }
+
+    /// The node over moves `first..last` (not empty), its halves built first.
+    fn build(&mut self, first: usize, last: usize) -> usize {
+        let halves = (last - first > LEAF).then(|| {
+            let mid = first + (last - first) / 2;
+            (self.build(first, mid), self.build(mid, last))
+        });
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for (a, b) in &segs {
+        for (a, b) in &self.segs[first..last] {
             for p in [a, b] {
                 lo = [lo[0].min(p.x), lo[1].min(p.y)];
                 hi = [hi[0].max(p.x), hi[1].max(p.y)];
             }
         }
-        let origin = [lo[0] - reach, lo[1] - reach];
-        let dims = [0, 1].map(|k| ((hi[k] - lo[k] + 2.0 * reach) / cell).ceil() as usize + 1);
-        let mut grid = MoveGrid {
-            segs,
-            origin,
-            cell,
-            dims,
-            cells: vec![Vec::new(); dims[0] * dims[1]],
-        };
-        for k in 0..grid.segs.len() {
-            let (a, b) = grid.segs[k];
-            let (x0, x1) = (
-                grid.ix(a.x.min(b.x) - reach, 0),
-                grid.ix(a.x.max(b.x) + reach, 0),
-            );
-            let (y0, y1) = (
-                grid.ix(a.y.min(b.y) - reach, 1),
-                grid.ix(a.y.max(b.y) + reach, 1),
-            );
-            for j in y0..=y1 {
-                for i in x0..=x1 {
-                    grid.cells[j * dims[0] + i].push(k as u32);
+        self.nodes.push(Node {
+            lo,
+            hi,
+            first,
+            last,
+            halves,
+        });
+        self.nodes.len() - 1
+    }
+
+    /// Calls `f` with the index (into [`Moves::segs`]) of every move whose XY box,
+    /// grown by `reach`, meets the XY box `[lo, hi]`: every move within `reach` of it,
+    /// and maybe a few more.
+    pub fn for_each_near(&self, lo: [f64; 2], hi: [f64; 2], reach: f64, f: &mut impl FnMut(usize)) {
+        for &root in &self.roots {
+            self.visit(root, lo, hi, reach, f);
+        }
+    }
+
+    fn visit(&self, k: usize, lo: [f64; 2], hi: [f64; 2], reach: f64, f: &mut impl FnMut(usize)) {
+        let n = &self.nodes[k];
+        let apart = (0..2).any(|i| n.lo[i] - reach > hi[i] || n.hi[i] + reach < lo[i]);
+        if apart {
+            return;
+        }
+        match n.halves {
+            Some((a, b)) => {
+                self.visit(a, lo, hi, reach, f);
+                self.visit(b, lo, hi, reach, f);
+            }
+            None => {
+                for s in n.first..n.last {
+                    let (a, b) = &self.segs[s];
+                    let away = (0..2)
+                        .any(|i| a[i].min(b[i]) - reach > hi[i] || a[i].max(b[i]) + reach < lo[i]);
+                    if !away {
+                        f(s);
+                    }
                 }
             }
         }
-        grid
-    }
-
-    fn ix(&self, v: f64, ax: usize) -> usize {
-        (((v - self.origin[ax]) / self.cell).floor().max(0.0) as usize).min(self.dims[ax] - 1)
-    }
-
-    /// Indices (into [`MoveGrid::segs`]) of the moves listed in the cell of `(x, y)`:
-    /// every move within `reach` of the point, and maybe a few more.
-    pub fn near(&self, x: f64, y: f64) -> &[u32] {
-        &self.cells[self.ix(y, 1) * self.dims[0] + self.ix(x, 0)]
     }
 }

@@ -10,7 +10,7 @@ use swarf_geom::{Point3, Vec3};
 use swarf_path::Plan;
 use swarf_tool::Cutter;
 
-use super::moves::MoveGrid;
+use super::moves::Moves;
 
 /// Golden-section steps minimising the tool bottom over one move.
 const GOLDEN_STEPS: usize = 32;
@@ -76,46 +76,46 @@ impl Bottom {
 
 thread_local! {
     /// Lower bounds of the moves within reach of a point, reused between calls.
-    static LOWER: std::cell::RefCell<Vec<(f64, u32)>> = const { std::cell::RefCell::new(Vec::new()) };
+    static LOWER: std::cell::RefCell<Vec<(f64, usize)>> = const { std::cell::RefCell::new(Vec::new()) };
 }
 
 /// The straight moves of a tool path (CL points), bucketed on an XY grid.
 pub struct Swept {
     bottom: Bottom,
-    moves: MoveGrid,
+    moves: Moves,
 }
 
 impl Swept {
     /// The cutting moves of `plan` for `cutter`.
     pub fn new(plan: &Plan, cutter: &Cutter) -> Swept {
-        let bottom = Bottom::of(cutter);
-        let r = bottom.radius();
         Swept {
-            bottom,
-            moves: MoveGrid::new(plan, 0.0, r, r),
+            bottom: Bottom::of(cutter),
+            moves: Moves::new(plan, 0.0),
         }
     }
 
     /// Height of the machined surface at `(x, y)`: the lowest tool bottom over all
     /// moves; infinite where no tool passes.
     pub fn height(&self, x: f64, y: f64) -> f64 {
-        let cell = self.moves.near(x, y);
         let r = self.bottom.radius();
         LOWER.with(|lower| {
             let mut lower = lower.borrow_mut();
             lower.clear();
-            lower.extend(cell.iter().filter_map(|&k| {
-                let (a, b) = self.moves.segs[k as usize];
-                let d = xy_distance(x, y, &a, &b);
-                (d <= r + REACH_EPS).then(|| (a.z.min(b.z) + self.bottom.at(d), k))
-            }));
+            self.moves
+                .for_each_near([x, y], [x, y], r + 2.0 * REACH_EPS, &mut |k| {
+                    let (a, b) = self.moves.segs[k];
+                    let d = xy_distance(x, y, &a, &b);
+                    if d <= r + REACH_EPS {
+                        lower.push((a.z.min(b.z) + self.bottom.at(d), k));
+                    }
+                });
             lower.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
             let mut best = f64::INFINITY;
             for &(bound, k) in lower.iter() {
                 if bound >= best {
                     break;
                 }
-                let (a, b) = self.moves.segs[k as usize];
+                let (a, b) = self.moves.segs[k];
                 best = best.min(self.move_height(x, y, &a, &b));
             }
             best

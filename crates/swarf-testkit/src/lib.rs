@@ -1,0 +1,22 @@
+//! swarf-testkit: the fixtures that the workspace's tests share, written once (dev-only,
+//! never published; every crate takes it as a dev-dependency).
+//!
+//! - [`parts`]: the built-in die and wave, the exact cylinder and the groove.
+//! - [`machines`]: the example machine files and the repository root.
+//! - [`references`]: whether independent references (OpenCAMLib, `rs274`) are
+//!   required (`SWARF_REQUIRE_REFERENCES=1`), and skipping when they are not.
+//! - [`rs274`]: LinuxCNC's standalone interpreter `rs274 -g` as a reference.
+//! - `die_cc` (feature `plan`): the CC paths of the die experiment.
+//!
+//! Fixtures only: independent oracles (brute-force samplers, closed forms) stay next
+//! to the tests they serve and share no code with what they check.
+
+#[cfg(feature = "plan")]
+mod die;
+pub mod machines;
+pub mod parts;
+pub mod references;
+pub mod rs274;
+
+#[cfg(feature = "plan")]
+pub use die::die_cc;

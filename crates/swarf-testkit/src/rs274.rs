@@ -1,0 +1,79 @@
+//! LinuxCNC's standalone interpreter `rs274 -g`, found on `PATH`, as an independent
+//! reference for G-code: it prints the canonical machining calls a program makes
+//! (`STRAIGHT_TRAVERSE`, `STRAIGHT_FEED`, `ARC_FEED`, ...), one numbered line each.
+
+use crate::references::skip_reference;
+use std::process::Command;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Concurrent runs interfere (rs274 keeps state outside the process): one at a time.
+static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
+/// Distinguishes the program files of one test process.
+static RUNS: AtomicUsize = AtomicUsize::new(0);
+
+/// What `rs274 -g` made of a program.
+#[derive(Debug, Clone)]
+pub struct Rs274 {
+    /// True when it exited with success.
+    pub success: bool,
+    /// Its standard output: the canonical calls.
+    pub stdout: String,
+    /// Its standard error: complaints.
+    pub stderr: String,
+}
+
+impl Rs274 {
+    /// Standard output and error, joined by `separator`.
+    pub fn text(&self, separator: &str) -> String {
+        format!("{}{separator}{}", self.stdout, self.stderr)
+    }
+
+    /// The canonical output of a program it accepted without complaint.
+    ///
+    /// # Panics
+    /// When it failed, or any non-empty line of its output is not a numbered canonical
+    /// call (`<n> N..... CALL(...)`): the test fails, naming `name`.
+    pub fn clean(self, name: &str) -> String {
+        assert!(self.success, "{name}: rs274 failed:\n{}", self.stdout);
+        for line in self.stdout.lines().filter(|l| !l.trim().is_empty()) {
+            let t = line.trim_start();
+            let numbered = t
+                .split(' ')
+                .next()
+                .is_some_and(|n| n.parse::<u32>().is_ok());
+            assert!(
+                numbered && t.contains("N..... "),
+                "{name}: rs274 complained: {line}"
+            );
+        }
+        self.stdout
+    }
+}
+
+/// Runs `rs274 -g` on `program` (written to a temporary file named after `name`);
+/// `None`, after [`skip_reference`], when rs274 cannot be run.
+pub fn run_rs274(program: &str, name: &str) -> Option<Rs274> {
+    let _guard = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = std::env::temp_dir();
+    let run = RUNS.fetch_add(1, Ordering::Relaxed);
+    let path = dir.join(format!("swarf-{name}-{}-{run}.ngc", std::process::id()));
+    std::fs::write(&path, program).expect("the temporary program is written");
+    let out = Command::new("rs274")
+        .arg("-g")
+        .arg(&path)
+        .current_dir(&dir)
+        .output();
+    let _ = std::fs::remove_file(&path);
+    match out {
+        Ok(out) => Some(Rs274 {
+            success: out.status.success(),
+            stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+            stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+        }),
+        Err(e) => {
+            skip_reference("rs274", &e.to_string());
+            None
+        }
+    }
+}
