@@ -38,6 +38,50 @@ pub const UMBILIC_REL: f64 = 1e-10;
 /// residual counts as normal to the surface (dimensionless).
 pub const ORTHOGONALITY_COS: f64 = 1e-13;
 
+/// The golden-section ratio `(sqrt(5) - 1) / 2`.
+pub const GOLDEN: f64 = 0.618_033_988_749_894_8;
+
+/// What [`golden_max`] found.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GoldenMax {
+    /// The final bracket `[a, b]`.
+    pub bracket: [f64; 2],
+    /// The best evaluated point and its value (the first of equal values); `None`
+    /// after zero steps.
+    pub best: Option<(f64, f64)>,
+}
+
+/// Golden-section search for a maximum of a unimodal `f` on `[a, b]`: `steps`
+/// reductions of the bracket by [`GOLDEN`], each keeping the side of the larger of
+/// the two interior values (the left side on a tie). `f` is evaluated twice a step.
+///
+/// ```
+/// use swarf_geom::solve::golden_max;
+/// let g = golden_max(|x| -(x - 0.3) * (x - 0.3), 0.0, 1.0, 40);
+/// assert!((g.bracket[0] - 0.3).abs() < 1e-6 && (g.best.unwrap().0 - 0.3).abs() < 1e-6);
+/// ```
+pub fn golden_max(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, steps: usize) -> GoldenMax {
+    let mut best: Option<(f64, f64)> = None;
+    for _ in 0..steps {
+        let (c, d) = (b - GOLDEN * (b - a), a + GOLDEN * (b - a));
+        let (fc, fd) = (f(c), f(d));
+        for (x, v) in [(c, fc), (d, fd)] {
+            if best.is_none_or(|(_, bv)| v > bv) {
+                best = Some((x, v));
+            }
+        }
+        if fc >= fd {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    GoldenMax {
+        bracket: [a, b],
+        best,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -5,6 +5,7 @@
 //! written as `0.`.
 
 use serde::{Deserialize, Serialize};
+use swarf_geom::units::MM_PER_INCH;
 
 /// Length units of an output program.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -22,7 +23,7 @@ impl Units {
     pub fn from_mm(self, mm: f64) -> f64 {
         match self {
             Units::Mm => mm,
-            Units::Inch => mm / 25.4,
+            Units::Inch => mm / MM_PER_INCH,
         }
     }
 

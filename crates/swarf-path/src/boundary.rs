@@ -21,6 +21,7 @@ use crate::iso_setup::IsoSetup;
 use crate::ordering::Row;
 use rayon::prelude::*;
 use swarf_geom::math::ray_capsule;
+use swarf_geom::solve::golden_max;
 use swarf_geom::{Point3, Vec3};
 use swarf_toolpath::Pass;
 
@@ -34,8 +35,7 @@ const COVERED_SLACK: f64 = 1.02;
 /// limit has a sample within an eighth of the coverage radius of it, which the
 /// material's rise from the neighbouring contacts keeps well above this).
 const CREST_FLOOR: f64 = 0.5;
-/// Golden-section ratio and steps refining a crest along an edge.
-const GOLDEN: f64 = 0.618_033_988_749_894_8;
+/// Golden-section steps refining a crest along an edge.
 const GOLDEN_STEPS: usize = 30;
 /// Side of the capsules' XY grid cells, in capsule radii.
 const CELL_RADII: f64 = 0.5;
@@ -108,15 +108,7 @@ fn bare_samples(ts: &[f64], material: &(impl Fn(f64) -> f64 + Sync), limit: f64)
             if !crest {
                 return false;
             }
-            let (mut a, mut b) = (ts[k - 1], ts[k + 1]);
-            for _ in 0..GOLDEN_STEPS {
-                let (c, d) = (b - GOLDEN * (b - a), a + GOLDEN * (b - a));
-                if material(c) >= material(d) {
-                    b = d;
-                } else {
-                    a = c;
-                }
-            }
+            let [a, b] = golden_max(material, ts[k - 1], ts[k + 1], GOLDEN_STEPS).bracket;
             material(0.5 * (a + b)) > limit
         })
         .collect()

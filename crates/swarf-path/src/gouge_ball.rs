@@ -333,31 +333,7 @@ impl Buckets {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A cylindrical groove z = 20 - sqrt(R^2 - x^2) (R = 3 < ball radius 4) along y,
-    /// as an exact rational quadratic (a 120-degree arc) times a line.
-    fn groove() -> Part {
-        let r = 3.0;
-        let half = 60f64.to_radians();
-        let (s, c) = half.sin_cos();
-        let mut pts = Vec::new();
-        for y in [0.0, 20.0] {
-            pts.push(Point3::new(-r * s, y, 20.0 - r * c));
-            pts.push(Point3::new(0.0, y, 20.0 - r / c));
-            pts.push(Point3::new(r * s, y, 20.0 - r * c));
-        }
-        let patch = Patch::new(
-            [1, 2],
-            pts,
-            [None, None],
-            Some(vec![1.0, c, 1.0, 1.0, c, 1.0]),
-        )
-        .unwrap();
-        Part {
-            name: "groove".into(),
-            patches: vec![patch],
-        }
-    }
+    use swarf_testkit::parts::groove;
 
     #[test]
     fn ball_in_a_narrow_groove_rests_on_its_rims() {

@@ -58,6 +58,7 @@ use crate::params::ParamDir;
 use crate::side_step::SideStep;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+use swarf_geom::solve::golden_max;
 use swarf_geom::{Part, Patch, Point3, SurfaceDerivs, Vec3};
 
 /// Columns sampled across the feed parameter before refining the largest.
@@ -66,8 +67,6 @@ pub const COLUMNS: usize = 65;
 pub const SIMPSON_INTERVALS: usize = 128;
 /// Golden-section steps refining the bottleneck column.
 const GOLDEN_STEPS: usize = 30;
-/// Golden-section ratio.
-const GOLDEN: f64 = 0.618_033_988_749_894_8;
 
 /// The feed direction of a pass family.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -153,21 +152,12 @@ fn patch_bound(patch: &Patch, index: usize, side: &SideStep, feed: Feed) -> Pass
         .max_by(|&a, &b| values[a].total_cmp(&values[b]))
         .unwrap_or(0);
     let at = |k: usize| t0 + (t1 - t0) * k as f64 / (COLUMNS - 1) as f64;
-    let (mut a, mut b) = (at(best.saturating_sub(1)), at((best + 1).min(COLUMNS - 1)));
+    let (a, b) = (at(best.saturating_sub(1)), at((best + 1).min(COLUMNS - 1)));
     let (mut t, mut n) = (at(best), values[best]);
-    for _ in 0..GOLDEN_STEPS {
-        let (c, d) = (b - GOLDEN * (b - a), a + GOLDEN * (b - a));
-        let (fc, fd) = (column(c), column(d));
-        for (x, f) in [(c, fc), (d, fd)] {
-            if f > n {
-                (t, n) = (x, f);
-            }
-        }
-        if fc >= fd {
-            b = d;
-        } else {
-            a = c;
-        }
+    if let Some((x, f)) = golden_max(column, a, b, GOLDEN_STEPS).best
+        && f > n
+    {
+        (t, n) = (x, f);
     }
     let [s0, s1] = dom[1 - p];
     let mid = uv(p, t, 0.5 * (s0 + s1));
