@@ -24,7 +24,7 @@
 use crate::error::{Context, Result};
 use crate::job::Job;
 use crate::model::load_model;
-use crate::plan_job::{part_arg, plan_job};
+use crate::plan_job::{part_arg, plan_model};
 use crate::report::Reporter;
 use crate::verify::{Destination, SimSettings, context, verify_and_write};
 use serde::Serialize;
@@ -201,12 +201,12 @@ fn check_one(
     job.output.csv = None;
     job.output.double_contacts = None;
     job.output.units = swarf_nc::Units::Mm;
+    let part = part_arg(&job, job_dir);
     let start = Instant::now();
-    let summary = plan_job(&job, job_dir, out, reporter)?;
+    let model = load_model(&part)?;
+    let summary = plan_model(&job, &model, job_dir, out, reporter)?;
     let planning_s = start.elapsed().as_secs_f64();
     let program = read_program(&out.join(&program_file))?;
-    let part = part_arg(&job, job_dir);
-    let model = load_model(&part)?;
     let scallop = job.strategy.scallop.unwrap_or(0.0);
     let mut opts = sim.options(job.strategy.tolerance, scallop, job.feeds.rapid, true)?;
     if five {

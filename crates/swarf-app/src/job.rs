@@ -58,7 +58,7 @@ use swarf_io::error::toml_message;
 use swarf_nc::{Dialect, Units};
 use swarf_path::params::{Finish, IsoParams, ParamDir, RasterParams, StartSide, StrategyKind};
 use swarf_tool::Cutter;
-use swarf_toolpath::{Feeds, Linking, LinkingSpec};
+use swarf_toolpath::{Feeds, LinkingSpec};
 
 /// A planning job.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -270,12 +270,6 @@ impl Job {
             return Err("output.machine: expected a machine file or builtin:NAME".into());
         }
         positive("output.tool_length", o.tool_length)
-    }
-
-    /// The linking for a path whose highest CL point is at `top_z`
-    /// ([`LinkingSpec::for_top`]).
-    pub fn linking_for(&self, top_z: f64) -> Linking {
-        self.linking.for_top(top_z)
     }
 
     /// The feed direction angle in radians.

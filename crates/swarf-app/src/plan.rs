@@ -63,16 +63,6 @@ pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
             swarf_path::iso_scallop::plan(part, &job.iso_params())?
         }
     };
-    let top = plan
-        .toolpath
-        .passes
-        .iter()
-        .flat_map(|p| &p.points)
-        .map(|p| p.pose.cl.z)
-        .fold(f64::NEG_INFINITY, f64::max);
-    if top.is_finite() {
-        plan.toolpath.linking = job.linking_for(top);
-    }
     plan.report.lifted_points = plan.toolpath.lifted_count();
     if let PlanInput::Part(part) = input {
         plan.report.pass_bound = bound_for(job, part);

@@ -18,6 +18,10 @@ use swarf_toolpath::motion_stats;
 
 /// Loads the job's part, plans it (and positions it, for a five-axis job) and writes
 /// every requested output under `out_dir`. Returns the JSON summary.
+///
+/// # Errors
+/// A part or machine that cannot be read; the planning, positioning and post
+/// errors; an output that cannot be written.
 pub fn plan_job(
     job: &Job,
     job_dir: &Path,
@@ -25,17 +29,32 @@ pub fn plan_job(
     reporter: &dyn Reporter,
 ) -> Result<serde_json::Value> {
     let model = load_model(&part_arg(job, job_dir))?;
+    plan_model(job, &model, job_dir, out_dir, reporter)
+}
+
+/// [`plan_job`] on the job's part already loaded as `model` (a caller that verifies
+/// the program against the same part reads it once).
+///
+/// # Errors
+/// As [`plan_job`].
+pub fn plan_model(
+    job: &Job,
+    model: &Model,
+    job_dir: &Path,
+    out_dir: &Path,
+    reporter: &dyn Reporter,
+) -> Result<serde_json::Value> {
     let machine = job
         .output
         .machine
         .as_deref()
         .map(|spec| load_machine(spec, job_dir))
         .transpose()?;
-    let (name, mut plan) = match &model {
+    let (name, mut plan) = match model {
         Model::Patches(part) => (part.name.clone(), plan(job, PlanInput::Part(part))?),
         Model::Mesh { name, mesh } => (name.clone(), plan(job, PlanInput::Mesh(mesh))?),
     };
-    let positioning = match (&model, &job.positioning) {
+    let positioning = match (model, &job.positioning) {
         (_, None) => None,
         (Model::Patches(part), Some(_)) => {
             let start = std::time::Instant::now();

@@ -19,7 +19,7 @@
 
 use swarf_geom::Part;
 use swarf_tool::Cutter;
-use swarf_toolpath::{Contact, Linking, LinkingSpec, Pass, Toolpath};
+use swarf_toolpath::{Contact, Linking, LinkingSpec, Pass, Toolpath, top_z};
 
 /// Consecutive contacts closer than this are merged by [`cc_paths`], mm.
 pub const MIN_CC_GAP: f64 = 1e-6;
@@ -60,12 +60,7 @@ pub fn cc_paths(toolpath: &Toolpath) -> Vec<Vec<Contact>> {
 /// (module doc).
 pub fn linking(spec: &LinkingSpec, tool: &Cutter, part: &Part, passes: &[Pass]) -> Linking {
     let r = tool.radius();
-    let tips = passes
-        .iter()
-        .flat_map(|p| &p.points)
-        .map(|p| p.pose.cl.z)
-        .fold(f64::NEG_INFINITY, f64::max);
-    let top = part.control_box().max.z.max(tips);
+    let top = part.control_box().max.z.max(top_z(passes));
     let below = passes
         .iter()
         .flat_map(|p| [p.points.first(), p.points.last()])

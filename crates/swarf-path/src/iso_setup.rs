@@ -28,7 +28,7 @@ use crate::side_step::SideStep;
 use crate::uncovered::{Marked, regions};
 use swarf_geom::{Part, Point3, SurfaceDerivs, Vec3};
 use swarf_tool::drop::DropScratch;
-use swarf_toolpath::{PathPoint, Toolpath};
+use swarf_toolpath::{PathPoint, Toolpath, top_z};
 
 /// A CC point is hidden under another patch when the envelope (tessellated within the
 /// tolerance) is above it by more than this many tolerances...
@@ -227,11 +227,7 @@ impl<'a> IsoSetup<'a> {
             drop: |x: f64, y: f64| self.gouge.drop_z(x, y, &mut scratch.borrow_mut()),
         };
         let passes = order_rows(rows, self.params.finish.zigzag, &join);
-        let top = passes
-            .iter()
-            .flat_map(|p| &p.points)
-            .map(|p| p.pose.cl.z)
-            .fold(f64::NEG_INFINITY, f64::max);
+        let top = top_z(&passes);
         Ok(Plan {
             toolpath: Toolpath {
                 passes,

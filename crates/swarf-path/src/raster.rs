@@ -37,7 +37,7 @@ use crate::raster_step::flat_scallop;
 use rayon::prelude::*;
 use swarf_geom::TriMesh;
 use swarf_tool::drop::{DropScratch, MeshDropper};
-use swarf_toolpath::{Pass, Toolpath};
+use swarf_toolpath::{Pass, Toolpath, top_z};
 
 /// First sampling step along a pass, as a fraction of the tool radius.
 pub const INIT_STEP_RADII: f64 = 0.25;
@@ -123,11 +123,12 @@ pub fn plan(mesh: &TriMesh, params: &RasterParams) -> Result<Plan, PathError> {
         side_step_range: Some([frame.spacing, frame.spacing]),
         ..PlanReport::default()
     };
+    let linking = params.finish.linking.for_top(top_z(&passes));
     Ok(Plan {
         toolpath: Toolpath {
             passes,
             feeds: params.finish.feeds,
-            linking: params.finish.linking.for_top(0.0),
+            linking,
         },
         report,
         double_contacts,

@@ -108,6 +108,15 @@ impl Default for Linking {
     }
 }
 
+/// The highest CL point (tool tip) of `passes`, mm; `-inf` when they hold none.
+pub fn top_z(passes: &[Pass]) -> f64 {
+    passes
+        .iter()
+        .flat_map(|p| &p.points)
+        .map(|p| p.pose.cl.z)
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
 /// Height of the default clearance plane above the highest CL point, mm.
 pub const DEFAULT_CLEARANCE_MARGIN: f64 = 5.0;
 
