@@ -25,6 +25,7 @@ pub mod scallop_crest;
 pub mod scallop_step;
 pub mod section_point;
 pub mod side_step;
+pub mod track;
 mod uncovered;
 
 pub use error::PathError;

@@ -2,7 +2,7 @@
 
 use crate::pass_bound::PassBound;
 use serde::{Deserialize, Serialize};
-use swarf_geom::Point3;
+use swarf_geom::{Point3, Vec3};
 use swarf_toolpath::Toolpath;
 
 /// A region a strategy could not cover, and why.
@@ -22,6 +22,13 @@ pub struct DoubleContact {
     pub cl: Point3,
     /// The separated contact points.
     pub contacts: Vec<Point3>,
+    /// The part's upward unit normal at each contact.
+    pub normals: Vec<Vec3>,
+    /// Index of the pass (raster row) it was found on.
+    pub pass: usize,
+    /// Largest gap between the cutter and the part at the XY midpoint of two of the
+    /// contacts, mm (the valley's depth under the tool there).
+    pub gap: f64,
 }
 
 /// Figures a strategy reports beside its tool path.

@@ -30,13 +30,12 @@
 
 use crate::error::PathError;
 use crate::params::RasterParams;
-use crate::plan::{Plan, PlanReport};
+use crate::plan::{DoubleContact, Plan, PlanReport};
 use crate::raster_frame::Frame;
-use crate::raster_pass::{PassOut, Sampler};
+use crate::raster_pass::Sampler;
 use crate::raster_step::flat_scallop;
-use rayon::prelude::*;
 use swarf_geom::TriMesh;
-use swarf_tool::drop::{DropScratch, MeshDropper};
+use swarf_tool::drop::MeshDropper;
 use swarf_toolpath::{Pass, Toolpath, top_z};
 
 /// First sampling step along a pass, as a fraction of the tool radius.
@@ -68,30 +67,13 @@ pub fn plan(mesh: &TriMesh, params: &RasterParams) -> Result<Plan, PathError> {
         ));
     }
     let frame = Frame::new(mesh, params, &dropper)?;
-    let radius = dropper.tool().radius();
-    let tolerance = params.finish.tolerance;
-    let init_step = INIT_STEP_RADII * radius;
-    let sampler = Sampler {
-        mesh,
-        dropper: &dropper,
-        tolerance,
-        init_step,
-        min_step: tolerance.max(MIN_STEP_FLOOR).min(0.5 * init_step),
-        min_sep: DOUBLE_SEPARATION_RADII * radius,
-    };
-    let rows: Vec<PassOut> = frame
-        .offsets
-        .par_iter()
-        .map_init(DropScratch::default, |s, &c| match frame.line(c) {
-            Some(line) => sampler.run(&line, s),
-            None => PassOut::default(),
-        })
-        .collect();
+    let sampler = Sampler::new(mesh, &dropper, params.finish.tolerance, true);
+    let rows = frame.rows(&sampler);
     let mut passes = Vec::new();
     let mut double_contacts = Vec::new();
     let mut backwards = false;
-    for row in rows {
-        double_contacts.extend(row.doubles);
+    for (k, row) in rows.into_iter().enumerate() {
+        double_contacts.extend(row.doubles.into_iter().map(|d| DoubleContact { pass: k, ..d }));
         if row.pieces.is_empty() {
             continue;
         }
@@ -133,6 +115,40 @@ pub fn plan(mesh: &TriMesh, params: &RasterParams) -> Result<Plan, PathError> {
         report,
         double_contacts,
     })
+}
+
+/// Contact-only crease scans (thesis 002 §5.1 with a reference tool): lines at
+/// `angle` (radians from +X) every `spacing` mm across the whole mesh, sampled as
+/// raster passes are but without refinement, and the double contacts found where the
+/// contact jumps across a valley; `pass` is the line's index. A valley parallel to
+/// the lines is only crossed by lines across it: scan in two directions.
+///
+/// # Errors
+/// As [`plan`] (an empty mesh, a spacing outside `(0, tool diameter]`).
+pub fn crease_scan(
+    mesh: &TriMesh,
+    tool: &swarf_tool::Cutter,
+    angle: f64,
+    spacing: f64,
+    tolerance: f64,
+) -> Result<Vec<DoubleContact>, PathError> {
+    let mut params = RasterParams::new(crate::params::Finish::new(tool.clone()), spacing);
+    params.angle = angle;
+    params.finish.tolerance = tolerance;
+    let dropper = MeshDropper::new(mesh, tool);
+    if dropper.is_empty() {
+        return Err(PathError::NoPath(
+            "crease scan: the mesh has no triangle with finite corners".into(),
+        ));
+    }
+    let frame = Frame::new(mesh, &params, &dropper)?;
+    let sampler = Sampler::new(mesh, &dropper, tolerance, false);
+    Ok(frame
+        .rows(&sampler)
+        .into_iter()
+        .enumerate()
+        .flat_map(|(k, row)| row.doubles.into_iter().map(move |d| DoubleContact { pass: k, ..d }))
+        .collect())
 }
 
 #[cfg(test)]

@@ -46,21 +46,33 @@ pub(crate) fn double_contact(
             .surface_z(mx, my)
             .map_or(f64::INFINITY, |z| cutter - z)
     };
-    let mut chosen: Vec<Point3> = Vec::new();
+    let mut chosen: Vec<&DropResult> = Vec::new();
+    let mut widest = 0.0f64;
     for (i, a) in contacts.iter().enumerate() {
         for b in &contacts[i + 1..] {
-            if (a.cc - b.cc).norm() > min_sep && gap(&a.cc, &b.cc) > gap_tol {
-                for p in [a.cc, b.cc] {
-                    if chosen.iter().all(|q| (q - p).norm() > min_sep) {
-                        chosen.push(p);
+            if (a.cc - b.cc).norm() <= min_sep {
+                continue;
+            }
+            let g = gap(&a.cc, &b.cc);
+            if g > gap_tol {
+                widest = widest.max(g);
+                for c in [a, b] {
+                    if chosen.iter().all(|q| (q.cc - c.cc).norm() > min_sep) {
+                        chosen.push(c);
                     }
                 }
             }
         }
     }
-    (chosen.len() >= 2).then_some(DoubleContact {
+    (chosen.len() >= 2).then(|| DoubleContact {
         cl: *cl,
-        contacts: chosen,
+        contacts: chosen.iter().map(|c| c.cc).collect(),
+        normals: chosen
+            .iter()
+            .map(|c| plane(mesh, c).map_or(Vec3::z(), |p| p.0))
+            .collect(),
+        pass: 0,
+        gap: widest,
     })
 }
 

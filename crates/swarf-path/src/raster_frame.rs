@@ -3,7 +3,9 @@
 
 use crate::error::PathError;
 use crate::params::{RasterParams, StartSide};
-use crate::raster_pass::Line;
+use crate::raster_pass::{Line, PassOut, Sampler};
+use rayon::prelude::*;
+use swarf_tool::drop::DropScratch;
 use crate::raster_step::stepover_for_scallop;
 use swarf_geom::TriMesh;
 use swarf_tool::drop::MeshDropper;
@@ -98,6 +100,17 @@ impl Frame {
             along: [mesh_along[0] - radius, mesh_along[1] + radius],
             boundary: params.boundary,
         })
+    }
+
+    /// Every row sampled by `sampler`, in parallel, collected in cutting order.
+    pub(crate) fn rows(&self, sampler: &Sampler<'_>) -> Vec<PassOut> {
+        self.offsets
+            .par_iter()
+            .map_init(DropScratch::default, |s, &c| match self.line(c) {
+                Some(line) => sampler.run(&line, s),
+                None => PassOut::default(),
+            })
+            .collect()
     }
 
     /// The pass line at side offset `c`, clipped to the boundary (`None` when the

@@ -24,6 +24,7 @@
 //! valley's reachable bottom, and the double contact there is recorded.
 
 use crate::plan::DoubleContact;
+use crate::raster::{DOUBLE_SEPARATION_RADII, INIT_STEP_RADII, MIN_STEP_FLOOR};
 use crate::raster_double::{TOP_TOL, double_contact, same_plane};
 use swarf_geom::{Point3, TriMesh, Vec3};
 use swarf_tool::Pose;
@@ -53,6 +54,9 @@ pub(crate) struct Sampler<'a> {
     pub min_step: f64,
     /// Contacts further apart than this can make a double contact, mm.
     pub min_sep: f64,
+    /// Refine between samples to the tolerance (a tool path); without it only the
+    /// creases are searched (a contact scan).
+    pub refine: bool,
 }
 
 /// A sample of the line: parameter, drop height (`None` off the mesh), contact.
@@ -73,6 +77,15 @@ pub(crate) struct PassOut {
     pub doubles: Vec<DoubleContact>,
 }
 
+/// A curve in XY to drop the cutter along: its point at a parameter, and the
+/// parameters it must be sampled at (its ends and corners, ascending).
+pub(crate) trait Along {
+    /// The point at parameter `t`.
+    fn at(&self, t: f64) -> [f64; 2];
+    /// The parameters of the ends and corners, ascending.
+    fn breaks(&self) -> Vec<f64>;
+}
+
 /// A line `origin + t dir`, `t` in `[t0, t1]`.
 pub(crate) struct Line {
     pub origin: [f64; 2],
@@ -81,34 +94,70 @@ pub(crate) struct Line {
     pub t1: f64,
 }
 
-impl Line {
+impl Along for Line {
     fn at(&self, t: f64) -> [f64; 2] {
         [
             self.origin[0] + t * self.dir[0],
             self.origin[1] + t * self.dir[1],
         ]
     }
+
+    fn breaks(&self) -> Vec<f64> {
+        vec![self.t0, self.t1]
+    }
 }
 
-impl Sampler<'_> {
-    /// Samples `line` (module doc).
-    pub(crate) fn run(&self, line: &Line, scratch: &mut DropScratch) -> PassOut {
-        let mut out = PassOut::default();
-        let span = line.t1 - line.t0;
-        if span.is_nan() || span < 0.0 {
-            return out;
+impl<'a> Sampler<'a> {
+    /// The sampler of [`crate::raster`]: first step [`INIT_STEP_RADII`] tool radii,
+    /// refinement down to the tolerance (not below [`MIN_STEP_FLOOR`]), double
+    /// contacts at [`DOUBLE_SEPARATION_RADII`] tool radii.
+    pub(crate) fn new(
+        mesh: &'a TriMesh,
+        dropper: &'a MeshDropper,
+        tolerance: f64,
+        refine: bool,
+    ) -> Sampler<'a> {
+        let radius = dropper.tool().radius();
+        let init_step = INIT_STEP_RADII * radius;
+        Sampler {
+            mesh,
+            dropper,
+            tolerance,
+            init_step,
+            min_step: tolerance.max(MIN_STEP_FLOOR).min(0.5 * init_step),
+            min_sep: DOUBLE_SEPARATION_RADII * radius,
+            refine,
         }
-        let n = (span / self.init_step).ceil().max(1.0) as usize;
+    }
+
+    /// Samples `line` (module doc): every piece between breaks evenly at most
+    /// `init_step` apart, then refined.
+    pub(crate) fn run(&self, line: &impl Along, scratch: &mut DropScratch) -> PassOut {
+        let mut out = PassOut::default();
+        let breaks = line.breaks();
+        let mut ts = Vec::new();
+        for w in breaks.windows(2) {
+            let span = w[1] - w[0];
+            if span.is_nan() || span < 0.0 {
+                return out;
+            }
+            let n = (span / self.init_step).ceil().max(1.0) as usize;
+            ts.extend((0..n).map(|i| w[0] + span * i as f64 / n as f64));
+        }
+        let Some(&last) = breaks.last() else {
+            return out;
+        };
+        ts.push(last);
         let mut contacts = Vec::new();
         let mut drop = |t: f64, check: bool| {
             self.sample(line, t, check, scratch, &mut contacts, &mut out.doubles)
         };
-        let first: Vec<Sample> = (0..=n)
-            .map(|i| drop(line.t0 + span * i as f64 / n as f64, true))
-            .collect();
+        let first: Vec<Sample> = ts.into_iter().map(|t| drop(t, true)).collect();
         let mut samples = vec![first[0]];
         for w in first.windows(2) {
-            self.refine(w[0], w[1], &mut drop, &mut samples);
+            if self.refine {
+                self.refine(w[0], w[1], &mut drop, &mut samples);
+            }
             samples.push(w[1]);
         }
         let switches = self.switches(&samples, &mut drop);
@@ -123,7 +172,7 @@ impl Sampler<'_> {
     /// Drops at `t`; with `check`, records a double contact there if any.
     fn sample(
         &self,
-        line: &Line,
+        line: &impl Along,
         t: f64,
         check: bool,
         scratch: &mut DropScratch,
@@ -247,7 +296,7 @@ impl Sampler<'_> {
     }
 
     /// The runs of samples with contact as pieces of path points.
-    fn pieces(&self, line: &Line, samples: &[Sample]) -> Vec<Vec<PathPoint>> {
+    fn pieces(&self, line: &impl Along, samples: &[Sample]) -> Vec<Vec<PathPoint>> {
         let mut pieces = Vec::new();
         let mut cur: Vec<PathPoint> = Vec::new();
         for s in samples {
