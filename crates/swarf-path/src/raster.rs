@@ -120,29 +120,30 @@ pub fn plan(mesh: &TriMesh, params: &RasterParams) -> Result<Plan, PathError> {
 /// Contact-only crease scans (thesis 002 §5.1 with a reference tool): lines at
 /// `angle` (radians from +X) every `spacing` mm across the whole mesh, sampled as
 /// raster passes are but without refinement, and the double contacts found where the
-/// contact jumps across a valley; `pass` is the line's index. A valley parallel to
+/// contact jumps across a valley; `pass` is the line's index. `dropper` is made
+/// from `mesh` and the scanning tool. A valley parallel to
 /// the lines is only crossed by lines across it: scan in two directions.
 ///
 /// # Errors
 /// As [`plan`] (an empty mesh, a spacing outside `(0, tool diameter]`).
 pub fn crease_scan(
     mesh: &TriMesh,
-    tool: &swarf_tool::Cutter,
+    dropper: &MeshDropper,
     angle: f64,
     spacing: f64,
     tolerance: f64,
 ) -> Result<Vec<DoubleContact>, PathError> {
+    let tool = dropper.tool().cutter();
     let mut params = RasterParams::new(crate::params::Finish::new(tool.clone()), spacing);
     params.angle = angle;
     params.finish.tolerance = tolerance;
-    let dropper = MeshDropper::new(mesh, tool);
     if dropper.is_empty() {
         return Err(PathError::NoPath(
             "crease scan: the mesh has no triangle with finite corners".into(),
         ));
     }
-    let frame = Frame::new(mesh, &params, &dropper)?;
-    let sampler = Sampler::new(mesh, &dropper, tolerance, false);
+    let frame = Frame::new(mesh, &params, dropper)?;
+    let sampler = Sampler::new(mesh, dropper, tolerance, false);
     Ok(frame
         .rows(&sampler)
         .into_iter()

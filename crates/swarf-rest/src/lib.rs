@@ -1,0 +1,25 @@
+//! swarf-rest: rest material and its automatic cleanup (thesis 002 ch. 3-5).
+//!
+//! - [`pair`]: the rest sample, a pair of contacts with the tool above them, and its
+//!   depth.
+//! - [`detect`]: rest from double contacts, from reference-tool crease scans or from
+//!   the in-process stock, each ending in [`region::RestRegion`]s.
+//! - [`directory`], [`order`]: the 2D spatial directory and the ordering of a group
+//!   into chains (§5.2).
+//! - [`region`]: raw pieces and the boundary operations (smoothing, merging,
+//!   deletion, overlap; §5.3); [`stock`]: pieces from the dexel stock (ch. 4).
+//!
+//! Units: millimetres, radians.
+
+pub mod detect;
+pub mod directory;
+pub mod error;
+pub mod order;
+pub mod pair;
+pub mod region;
+pub mod stock;
+
+pub use detect::{Detection, Source, detect};
+pub use error::RestError;
+pub use pair::{RestKind, RestPair};
+pub use region::{RegionParams, RestRegion};
