@@ -99,6 +99,7 @@ mod tests {
                 .enumerate()
                 .map(|(i, &c)| point(i as f64, c))
                 .collect(),
+            ..Pass::default()
         };
         let tp = Toolpath {
             passes: vec![
@@ -109,6 +110,7 @@ mod tests {
                         .into_iter()
                         .map(|x| point(x, true))
                         .collect(),
+                    ..Pass::default()
                 },
             ],
             feeds: Default::default(),
@@ -165,6 +167,7 @@ mod tests {
         for (tip, top) in [(10.0, 20.0), (30.0, 30.0)] {
             let passes = vec![Pass {
                 points: vec![at(tip), at(tip)],
+                ..Pass::default()
             }];
             let l = linking(&LinkingSpec::default(), &tool, &part, &passes);
             let low = lowest(l.clearance);

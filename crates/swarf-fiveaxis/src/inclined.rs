@@ -154,7 +154,10 @@ pub fn incline_pass(
             lifted: 0.0,
         });
     }
-    Ok(Pass { points: out })
+    Ok(Pass {
+        points: out,
+        ..Pass::default()
+    })
 }
 
 #[cfg(test)]

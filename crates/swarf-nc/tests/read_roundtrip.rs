@@ -27,6 +27,7 @@ fn toolpath(tilt: f64) -> Toolpath {
                     })
                 })
                 .collect(),
+            ..Pass::default()
         })
         .collect();
     let feeds = Feeds {

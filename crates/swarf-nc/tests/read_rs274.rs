@@ -307,6 +307,7 @@ fn writer_output_matches_rs274_live() {
                     )))
                 })
                 .collect(),
+            ..Pass::default()
         })
         .collect();
     let toolpath = Toolpath {

@@ -79,6 +79,7 @@ pub fn boundary_passes(setup: &IsoSetup<'_>, rows: &[Row]) -> Vec<Pass> {
                     for run in sample_curve(&f, ts[a], ts[b], &setup.step) {
                         out.push(Pass {
                             points: run.into_iter().map(|s| s.point).collect(),
+                            ..Pass::default()
                         });
                     }
                 }

@@ -287,6 +287,7 @@ fn to_row(runs: &[Vec<Sample>]) -> Row {
     runs.iter()
         .map(|r| Pass {
             points: r.iter().map(|s| s.point).collect(),
+            ..Pass::default()
         })
         .collect()
 }

@@ -265,6 +265,7 @@ impl IsoPlanar<'_, '_> {
                 self.even_end(&f, &mut run);
                 Pass {
                     points: run.into_iter().map(|s| s.point).collect::<Vec<PathPoint>>(),
+                    ..Pass::default()
                 }
             })
             .collect()

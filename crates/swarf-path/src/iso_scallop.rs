@@ -198,6 +198,7 @@ impl<'s, 'a> IsoScallop<'s, 'a> {
         if self.setup.envelope.is_none() {
             return vec![Pass {
                 points: path.samples.iter().map(|s| s.point).collect(),
+                ..Pass::default()
             }];
         }
         let (Some(a), Some(b)) = (path.samples.first(), path.samples.last()) else {
@@ -211,6 +212,7 @@ impl<'s, 'a> IsoScallop<'s, 'a> {
             .into_iter()
             .map(|run| Pass {
                 points: run.iter().map(|s| s.point).collect(),
+                ..Pass::default()
             })
             .collect()
     }

@@ -104,6 +104,7 @@ mod tests {
                 .iter()
                 .map(|&x| PathPoint::new(Pose::vertical(Point3::new(x, y, 0.0))))
                 .collect(),
+            ..Pass::default()
         }
     }
 

@@ -73,14 +73,21 @@ pub fn plan(mesh: &TriMesh, params: &RasterParams) -> Result<Plan, PathError> {
     let mut double_contacts = Vec::new();
     let mut backwards = false;
     for (k, row) in rows.into_iter().enumerate() {
-        double_contacts.extend(row.doubles.into_iter().map(|d| DoubleContact { pass: k, ..d }));
+        double_contacts.extend(
+            row.doubles
+                .into_iter()
+                .map(|d| DoubleContact { pass: k, ..d }),
+        );
         if row.pieces.is_empty() {
             continue;
         }
         let mut pieces: Vec<Pass> = row
             .pieces
             .into_iter()
-            .map(|points| Pass { points })
+            .map(|points| Pass {
+                points,
+                ..Pass::default()
+            })
             .collect();
         if backwards {
             pieces.reverse();
@@ -148,7 +155,11 @@ pub fn crease_scan(
         .rows(&sampler)
         .into_iter()
         .enumerate()
-        .flat_map(|(k, row)| row.doubles.into_iter().map(move |d| DoubleContact { pass: k, ..d }))
+        .flat_map(|(k, row)| {
+            row.doubles
+                .into_iter()
+                .map(move |d| DoubleContact { pass: k, ..d })
+        })
         .collect())
 }
 

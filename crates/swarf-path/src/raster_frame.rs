@@ -4,10 +4,10 @@
 use crate::error::PathError;
 use crate::params::{RasterParams, StartSide};
 use crate::raster_pass::{Line, PassOut, Sampler};
-use rayon::prelude::*;
-use swarf_tool::drop::DropScratch;
 use crate::raster_step::stepover_for_scallop;
+use rayon::prelude::*;
 use swarf_geom::TriMesh;
+use swarf_tool::drop::DropScratch;
 use swarf_tool::drop::MeshDropper;
 
 /// A given boundary is widened by this (relative to its largest coordinate) so that

@@ -57,7 +57,10 @@ impl Track {
 
 impl Along for Track {
     fn at(&self, t: f64) -> [f64; 2] {
-        let k = self.cum.partition_point(|&c| c <= t).clamp(1, self.cum.len());
+        let k = self
+            .cum
+            .partition_point(|&c| c <= t)
+            .clamp(1, self.cum.len());
         if k == self.cum.len() {
             return self.points[k - 1];
         }
@@ -113,6 +116,24 @@ pub fn drop_track(
         pieces: out.pieces,
         doubles: out.doubles,
     }
+}
+
+/// The double contacts where `dropper`'s cutter, moved along `track`, jumps across
+/// a valley (the crease search of the raster sampler without refinement): the points
+/// of the cutter's bitangency curve that the track crosses.
+///
+/// # Units
+/// mm.
+pub fn crease_track(
+    mesh: &TriMesh,
+    dropper: &MeshDropper,
+    track: &Track,
+    tolerance: f64,
+    scratch: &mut DropScratch,
+) -> Vec<DoubleContact> {
+    Sampler::new(mesh, dropper, tolerance, false)
+        .run(track, scratch)
+        .doubles
 }
 
 #[cfg(test)]

@@ -88,6 +88,7 @@ fn the_swept_oracle_measures_closed_forms() {
                 }
             })
             .collect(),
+        ..Pass::default()
     };
     let s = 1.0;
     let plan = Plan {

@@ -153,6 +153,7 @@ fn the_scallop_oracle_measures_the_closed_form() {
                 }
             })
             .collect(),
+        ..Pass::default()
     };
     let plan = Plan {
         toolpath: Toolpath {

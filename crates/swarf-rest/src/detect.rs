@@ -103,12 +103,18 @@ pub fn detect(
         Source::Contacts(dcs) => {
             let pairs = valley_pairs(&dropper, dcs);
             let n = pairs.len();
-            (pieces_from_pairs(&dropper, &pairs, pitch, params.threshold), n)
+            (
+                pieces_from_pairs(&dropper, &pairs, pitch, params.threshold),
+                n,
+            )
         }
         Source::Reference => {
             let pairs = reference_pairs(mesh, &dropper, tolerance)?;
             let n = pairs.len();
-            (pieces_from_pairs(&dropper, &pairs, pitch, params.threshold), n)
+            (
+                pieces_from_pairs(&dropper, &pairs, pitch, params.threshold),
+                n,
+            )
         }
     };
     Ok(Detection {

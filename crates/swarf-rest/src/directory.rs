@@ -98,10 +98,16 @@ mod tests {
             [4.0, 2.0],
             [0.1, -0.2],
         ];
-        assert_eq!(group(&pts, 1.0, |_, _| true), vec![vec![0, 1, 2, 3, 5], vec![4]]);
+        assert_eq!(
+            group(&pts, 1.0, |_, _| true),
+            vec![vec![0, 1, 2, 3, 5], vec![4]]
+        );
         // A wall between x <= 1 and x >= 2 cuts the group.
         let wall = |a: usize, b: usize| (pts[a][0] <= 1.5) == (pts[b][0] <= 1.5);
-        assert_eq!(group(&pts, 1.0, wall), vec![vec![0, 1, 5], vec![2, 3], vec![4]]);
+        assert_eq!(
+            group(&pts, 1.0, wall),
+            vec![vec![0, 1, 5], vec![2, 3], vec![4]]
+        );
         // Non-finite points and a bad pitch file nothing.
         assert!(group(&[[f64::NAN, 0.0]], 1.0, |_, _| true).is_empty());
         assert!(group(&pts, 0.0, |_, _| true).is_empty());

@@ -8,17 +8,23 @@
 //!   into chains (§5.2).
 //! - [`region`]: raw pieces and the boundary operations (smoothing, merging,
 //!   deletion, overlap; §5.3); [`stock`]: pieces from the dexel stock (ch. 4).
+//! - [`cleanup`]: the cleanup tool path, with the patterns [`pencil`] (flow-cut) and
+//!   [`pocket`] (follow-pocket) (§5.4).
 //!
 //! Units: millimetres, radians.
 
+pub mod cleanup;
 pub mod detect;
 pub mod directory;
 pub mod error;
 pub mod order;
 pub mod pair;
+pub mod pencil;
+pub mod pocket;
 pub mod region;
 pub mod stock;
 
+pub use cleanup::{CleanupParams, Pattern, plan_cleanup};
 pub use detect::{Detection, Source, detect};
 pub use error::RestError;
 pub use pair::{RestKind, RestPair};

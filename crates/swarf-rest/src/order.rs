@@ -55,7 +55,10 @@ pub fn open_path(points: &[[f64; 2]]) -> Vec<usize> {
             .iter()
             .enumerate()
             .map(|(i, &k)| (i, dist(here, points[k])))
-            .fold((0, f64::INFINITY), |m, (i, d)| if d < m.1 { (i, d) } else { m });
+            .fold(
+                (0, f64::INFINITY),
+                |m, (i, d)| if d < m.1 { (i, d) } else { m },
+            );
         path.push(left.remove(pos));
     }
     two_opt(points, &mut path);
@@ -72,10 +75,24 @@ fn two_opt(points: &[[f64; 2]], path: &mut [usize]) {
         for i in 0..n - 1 {
             for j in i + 1..n.min(i + 1 + window) {
                 // Reverse path[i..=j]: the edges (i-1, i) and (j, j+1) change.
-                let before = if i > 0 { dist(p(path, i - 1), p(path, i)) } else { 0.0 }
-                    + if j + 1 < n { dist(p(path, j), p(path, j + 1)) } else { 0.0 };
-                let after = if i > 0 { dist(p(path, i - 1), p(path, j)) } else { 0.0 }
-                    + if j + 1 < n { dist(p(path, i), p(path, j + 1)) } else { 0.0 };
+                let before = if i > 0 {
+                    dist(p(path, i - 1), p(path, i))
+                } else {
+                    0.0
+                } + if j + 1 < n {
+                    dist(p(path, j), p(path, j + 1))
+                } else {
+                    0.0
+                };
+                let after = if i > 0 {
+                    dist(p(path, i - 1), p(path, j))
+                } else {
+                    0.0
+                } + if j + 1 < n {
+                    dist(p(path, i), p(path, j + 1))
+                } else {
+                    0.0
+                };
                 if after < before - IMPROVE_EPS {
                     path[i..=j].reverse();
                     improved = true;
@@ -93,7 +110,12 @@ pub fn chains(points: &[[f64; 2]], order: &[usize], link: f64) -> Vec<Vec<usize>
     let mut out: Vec<Vec<usize>> = Vec::new();
     for &k in order {
         match out.last_mut() {
-            Some(c) if c.last().is_some_and(|&l| dist(points[l], points[k]) <= link) => c.push(k),
+            Some(c)
+                if c.last()
+                    .is_some_and(|&l| dist(points[l], points[k]) <= link) =>
+            {
+                c.push(k)
+            }
             _ => out.push(vec![k]),
         }
     }
@@ -105,7 +127,9 @@ mod tests {
     use super::*;
 
     fn length(points: &[[f64; 2]], path: &[usize]) -> f64 {
-        path.windows(2).map(|w| dist(points[w[0]], points[w[1]])).sum()
+        path.windows(2)
+            .map(|w| dist(points[w[0]], points[w[1]]))
+            .sum()
     }
 
     #[test]
@@ -162,7 +186,10 @@ mod tests {
     #[test]
     fn chains_cut_at_long_links() {
         let pts = [[0.0, 0.0], [1.0, 0.0], [5.0, 0.0], [6.0, 0.0]];
-        assert_eq!(chains(&pts, &[0, 1, 2, 3], 1.5), vec![vec![0, 1], vec![2, 3]]);
+        assert_eq!(
+            chains(&pts, &[0, 1, 2, 3], 1.5),
+            vec![vec![0, 1], vec![2, 3]]
+        );
         assert!(chains(&pts, &[], 1.0).is_empty());
     }
 }

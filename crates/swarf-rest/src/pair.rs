@@ -97,9 +97,7 @@ impl<'a> DepthProbe<'a> {
         let pose = Pose::vertical(*cl);
         let point = |t: f64| {
             let (x, y) = (a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
-            self.dropper
-                .surface_z(x, y)
-                .map(|z| Point3::new(x, y, z))
+            self.dropper.surface_z(x, y).map(|z| Point3::new(x, y, z))
         };
         let dist = |t: f64| {
             point(t).map_or(f64::NEG_INFINITY, |q| {
@@ -107,9 +105,10 @@ impl<'a> DepthProbe<'a> {
             })
         };
         let n = DEPTH_SAMPLES;
-        let (k, best) = (0..=n)
-            .map(|k| (k, dist(k as f64 / n as f64)))
-            .fold((0, f64::NEG_INFINITY), |m, (k, v)| if v > m.1 { (k, v) } else { m });
+        let (k, best) = (0..=n).map(|k| (k, dist(k as f64 / n as f64))).fold(
+            (0, f64::NEG_INFINITY),
+            |m, (k, v)| if v > m.1 { (k, v) } else { m },
+        );
         let lo = k.saturating_sub(1) as f64 / n as f64;
         let hi = (k + 1).min(n) as f64 / n as f64;
         let mut t_best = k as f64 / n as f64;

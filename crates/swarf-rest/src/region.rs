@@ -34,8 +34,8 @@ use crate::error::RestError;
 use crate::order::{chains, open_path};
 use crate::pair::{RestKind, RestPair};
 use geo::{
-    Area, BooleanOps, BoundingRect, Buffer, ConvexHull, Coord, Intersects, LineString,
-    MultiPoint, MultiPolygon, Point, Polygon, unary_union,
+    Area, BooleanOps, BoundingRect, Buffer, ConvexHull, Coord, Intersects, LineString, MultiPoint,
+    MultiPolygon, Point, Polygon, unary_union,
 };
 use swarf_geom::Point3;
 use swarf_tool::drop::MeshDropper;
@@ -156,7 +156,9 @@ pub fn pieces_from_pairs(
         .copied()
         .collect();
     let centres: Vec<[f64; 2]> = kept.iter().map(RestPair::centre).collect();
-    let groups = group(&centres, pitch, |i, j| linked(dropper, &kept[i], &kept[j], pitch));
+    let groups = group(&centres, pitch, |i, j| {
+        linked(dropper, &kept[i], &kept[j], pitch)
+    });
     groups
         .into_iter()
         .map(|g| {
@@ -217,7 +219,11 @@ fn strip(p: &RestPair, w: f64) -> Polygon<f64> {
     let (a, b) = (xy(&p.a), xy(&p.b));
     let (dx, dy) = (b.x - a.x, b.y - a.y);
     let len = dx.hypot(dy);
-    let (ux, uy) = if len > 0.0 { (dx / len, dy / len) } else { (1.0, 0.0) };
+    let (ux, uy) = if len > 0.0 {
+        (dx / len, dy / len)
+    } else {
+        (1.0, 0.0)
+    };
     let (nx, ny) = (-uy * w, ux * w);
     let (ex, ey) = (ux * w, uy * w);
     Polygon::new(
@@ -244,7 +250,11 @@ pub fn regions(pieces: Vec<RawPiece>, params: &RegionParams) -> Result<Vec<RestR
     let kept: Vec<Polygon<f64>> = closed
         .0
         .into_iter()
-        .filter(|p| raw.intersection(&MultiPolygon(vec![p.clone()])).unsigned_area() >= params.min_area)
+        .filter(|p| {
+            raw.intersection(&MultiPolygon(vec![p.clone()]))
+                .unsigned_area()
+                >= params.min_area
+        })
         .collect();
     let grown = MultiPolygon(kept).buffer(params.overlap);
     let mut out: Vec<RestRegion> = grown
@@ -267,7 +277,10 @@ pub fn regions(pieces: Vec<RawPiece>, params: &RegionParams) -> Result<Vec<RestR
 
 /// The region with boundary `boundary`: the pieces that meet it.
 fn region_of(boundary: Polygon<f64>, pieces: &[RawPiece], raw: &MultiPolygon<f64>) -> RestRegion {
-    let mine: Vec<&RawPiece> = pieces.iter().filter(|p| p.shape.intersects(&boundary)).collect();
+    let mine: Vec<&RawPiece> = pieces
+        .iter()
+        .filter(|p| p.shape.intersects(&boundary))
+        .collect();
     let raw_inside = raw.intersection(&MultiPolygon(vec![boundary.clone()]));
     let mut kinds: Vec<RestKind> = mine.iter().map(|p| p.kind).collect();
     kinds.sort();
@@ -335,10 +348,18 @@ mod tests {
             threshold: 0.0,
         };
         let r = regions(pieces.clone(), &params).unwrap();
-        assert_eq!(r.len(), 2, "{:?}", r.iter().map(|r| r.area).collect::<Vec<_>>());
+        assert_eq!(
+            r.len(),
+            2,
+            "{:?}",
+            r.iter().map(|r| r.area).collect::<Vec<_>>()
+        );
         assert!((r[0].raw_area - 2.0).abs() < 1e-9 && (r[1].raw_area - 1.0).abs() < 1e-9);
         // With a merge distance below the gap nothing merges.
-        let apart = RegionParams { merge: 1.0, ..params };
+        let apart = RegionParams {
+            merge: 1.0,
+            ..params
+        };
         assert_eq!(regions(pieces.clone(), &apart).unwrap().len(), 3);
         // Every raw corner lies inside its final boundary.
         for region in &r {
@@ -349,7 +370,14 @@ mod tests {
             }
         }
         // Bad parameters are errors, naming the field.
-        let e = regions(pieces, &RegionParams { overlap: 0.0, ..params }).unwrap_err();
+        let e = regions(
+            pieces,
+            &RegionParams {
+                overlap: 0.0,
+                ..params
+            },
+        )
+        .unwrap_err();
         assert!(e.to_string().contains("strategy.overlap"), "{e}");
     }
 }

@@ -38,7 +38,16 @@ pub fn pieces_from_excess(
         while let Some(k) = stack.pop() {
             cells.push(k);
             let (i, j) = ((k % nx) as i64, (k / nx) as i64);
-            for (di, dj) in [(-1, -1), (0, -1), (1, -1), (-1, 0), (1, 0), (-1, 1), (0, 1), (1, 1)] {
+            for (di, dj) in [
+                (-1, -1),
+                (0, -1),
+                (1, -1),
+                (-1, 0),
+                (1, 0),
+                (-1, 1),
+                (0, 1),
+                (1, 1),
+            ] {
                 let (a, b) = (i + di, j + dj);
                 if a < 0 || b < 0 || a >= nx as i64 || b >= ny as i64 {
                     continue;
@@ -67,8 +76,14 @@ fn piece(grid: &Grid, excess: &[f64], design: &[f64], cells: &[usize]) -> RawPie
             e += 1;
         }
         let (i0, i1, j) = (cells[k] % nx, cells[e] % nx, cells[k] / nx);
-        let (x0, x1) = (grid.origin[0] + i0 as f64 * grid.cell, grid.origin[0] + (i1 + 1) as f64 * grid.cell);
-        let (y0, y1) = (grid.origin[1] + j as f64 * grid.cell, grid.origin[1] + (j + 1) as f64 * grid.cell);
+        let (x0, x1) = (
+            grid.origin[0] + i0 as f64 * grid.cell,
+            grid.origin[0] + (i1 + 1) as f64 * grid.cell,
+        );
+        let (y0, y1) = (
+            grid.origin[1] + j as f64 * grid.cell,
+            grid.origin[1] + (j + 1) as f64 * grid.cell,
+        );
         rects.push(Polygon::new(
             LineString::from(vec![(x0, y0), (x1, y0), (x1, y1), (x0, y1)]),
             vec![],

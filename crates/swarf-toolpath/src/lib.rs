@@ -6,7 +6,9 @@
 //! Passes are cut in the order stored; strategies reverse alternate passes for zigzag.
 //! Linking between passes: retract along the tool axis to the clearance plane, rapid
 //! above the next pass, rapid down to `approach` above its first pose, then feed in at
-//! the plunge rate. The first move of a program starts from the clearance plane.
+//! the plunge rate. A pass with a skim height is linked to at that height instead
+//! (the strategy has checked the part below the link). The first move of a program
+//! starts from the clearance plane.
 
 use serde::{Deserialize, Serialize};
 use swarf_geom::{Point3, Vec3};
@@ -52,6 +54,11 @@ impl PathPoint {
 pub struct Pass {
     /// Poses in cutting order.
     pub points: Vec<PathPoint>,
+    /// Skim link: the tool tip height for the link into this pass from the previous
+    /// one (above the part along the way, set by the strategy), instead of the
+    /// clearance plane. Ignored for the first pass and when above the clearance plane.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub skim: Option<f64>,
 }
 
 impl Pass {
@@ -212,7 +219,8 @@ impl Toolpath {
             let Some(first) = pass.points.first() else {
                 continue;
             };
-            self.link_in(&first.pose, out.is_empty(), &mut out);
+            let height = self.link_height(pass, out.is_empty());
+            self.link_in(&first.pose, out.is_empty(), height, &mut out);
             out.extend(pass.points.iter().skip(1).map(|p| Move {
                 kind: MoveKind::Feed,
                 to: p.pose,
@@ -220,14 +228,25 @@ impl Toolpath {
                 pass: Some(k),
             }));
             let last = pass.points.last().map_or(first.pose, |p| p.pose);
-            out.push(rapid(self.lift_to_clearance(&last)));
+            let next = self.passes[k + 1..].iter().find(|p| !p.points.is_empty());
+            let up = next.map_or(self.linking.clearance, |p| self.link_height(p, false));
+            out.push(rapid(lift_to(&last, up)));
         }
         out
     }
 
-    /// Moves from the clearance plane down onto `start`.
-    fn link_in(&self, start: &Pose, is_first: bool, out: &mut Vec<Move>) {
-        let above = self.lift_to_clearance(start);
+    /// The tip height of the link into `pass`: its skim height, else the clearance
+    /// plane.
+    fn link_height(&self, pass: &Pass, is_first: bool) -> f64 {
+        match pass.skim {
+            Some(h) if !is_first && h < self.linking.clearance => h,
+            _ => self.linking.clearance,
+        }
+    }
+
+    /// Moves from the link height down onto `start`.
+    fn link_in(&self, start: &Pose, is_first: bool, height: f64, out: &mut Vec<Move>) {
+        let above = lift_to(start, height);
         if is_first {
             let mut high = above;
             high.cl.z = high.cl.z.max(self.linking.clearance);
@@ -251,19 +270,6 @@ impl Toolpath {
         });
     }
 
-    /// The pose moved along its axis until its tip reaches the clearance plane (a pose
-    /// already above it stays where it is).
-    fn lift_to_clearance(&self, pose: &Pose) -> Pose {
-        let dz = self.linking.clearance - pose.cl.z;
-        if dz <= 0.0 || pose.axis.z <= 0.0 {
-            return *pose;
-        }
-        Pose {
-            cl: pose.cl + pose.axis * (dz / pose.axis.z),
-            axis: pose.axis,
-        }
-    }
-
     /// Number of poses over all passes.
     pub fn pose_count(&self) -> usize {
         self.passes.iter().map(|p| p.points.len()).sum()
@@ -276,6 +282,19 @@ impl Toolpath {
             .flat_map(|p| &p.points)
             .filter(|p| p.lifted > 0.0)
             .count()
+    }
+}
+
+/// The pose moved along its axis until its tip reaches the height `z` (a pose
+/// already above it stays where it is).
+fn lift_to(pose: &Pose, z: f64) -> Pose {
+    let dz = z - pose.cl.z;
+    if dz <= 0.0 || pose.axis.z <= 0.0 {
+        return *pose;
+    }
+    Pose {
+        cl: pose.cl + pose.axis * (dz / pose.axis.z),
+        axis: pose.axis,
     }
 }
 
@@ -318,4 +337,51 @@ pub fn motion_stats(moves: &[Move], rapid_rate: f64) -> MotionStats {
         }
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pass(x: f64, skim: Option<f64>) -> Pass {
+        let p = |y: f64| PathPoint::new(Pose::vertical(Point3::new(x, y, 1.0)));
+        Pass {
+            points: vec![p(0.0), p(5.0)],
+            skim,
+        }
+    }
+
+    #[test]
+    fn skim_links_stay_low_and_others_use_the_clearance_plane() {
+        let tp = Toolpath {
+            passes: vec![pass(0.0, Some(3.0)), pass(2.0, Some(4.0)), pass(4.0, None)],
+            feeds: Feeds::default(),
+            linking: Linking {
+                clearance: 20.0,
+                approach: 1.0,
+            },
+        };
+        let rapids: Vec<[f64; 3]> = tp
+            .moves()
+            .iter()
+            .filter(|m| m.kind == MoveKind::Rapid)
+            .map(|m| [m.to.cl.x, m.to.cl.y, m.to.cl.z])
+            .collect();
+        // First pass from the clearance plane (its skim ignored); into the second at
+        // its skim height 4; into the third through the clearance plane; end on it.
+        assert_eq!(
+            rapids,
+            vec![
+                [0.0, 0.0, 20.0],
+                [0.0, 0.0, 2.0],
+                [0.0, 5.0, 4.0],
+                [2.0, 0.0, 4.0],
+                [2.0, 0.0, 2.0],
+                [2.0, 5.0, 20.0],
+                [4.0, 0.0, 20.0],
+                [4.0, 0.0, 2.0],
+                [4.0, 5.0, 20.0],
+            ]
+        );
+    }
 }

@@ -181,6 +181,7 @@ pub fn gouge_free_tilt(
                     lifted: 0.0,
                 })
                 .collect(),
+            ..Pass::default()
         });
     }
     Ok((out, report))

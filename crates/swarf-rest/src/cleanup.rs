@@ -1,0 +1,192 @@
+//! The cleanup tool path (thesis 002 §4.4 and §5.4): the regions' passes in an
+//! order that keeps air time short, linked by skims.
+//!
+//! - **Patterns**: flow-cut ([`crate::pencil`]) or follow-pocket ([`crate::pocket`]);
+//!   the stepover follows from the scallop height as for the raster
+//!   ([`swarf_path::raster_step::stepover_for_scallop`]).
+//! - **Order**: regions greedily, each next the one whose first pass starts nearest
+//!   (in XY) to where the previous ended, starting with the first region; inside a
+//!   region the pattern's own order.
+//! - **Links**: every pass after the first is entered by a skim at the highest drop
+//!   height of the cleanup tool along the straight XY line from the previous pass's
+//!   end to its start (sampled every quarter tool radius: a bump of the CL surface is
+//!   at least as wide as the tool) plus [`SKIM_MARGIN`], never above the clearance
+//!   plane.
+//! - **Gouge**: every CL point is an exact drop of the cleanup tool onto the whole
+//!   part, and moves between them are refined to the tolerance, as for the raster.
+//!
+//! An empty region set gives an empty tool path (no passes), not an error: the
+//! caller says so and writes a program without moves.
+
+use crate::detect::reference_pairs;
+use crate::directory::group;
+use crate::error::RestError;
+use crate::order::{chains, open_path};
+use crate::pair::RestPair;
+use crate::pencil::Pencil;
+use crate::pocket::follow_pocket;
+use crate::region::{LINK_PITCHES, RestRegion};
+use geo::{Contains, Point};
+use serde::Serialize;
+use swarf_geom::TriMesh;
+use swarf_path::Finish;
+use swarf_path::raster_step::stepover_for_scallop;
+use swarf_tool::Cutter;
+use swarf_tool::drop::{DropScratch, MeshDropper};
+use swarf_toolpath::{Pass, Toolpath, top_z};
+
+/// Height of a skim link above the highest drop along it, mm.
+pub const SKIM_MARGIN: f64 = 1.0;
+
+/// The cleanup cut patterns.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Pattern {
+    /// Passes along the cleanup tool's bitangency curves.
+    #[default]
+    FlowCut,
+    /// Rings from the region boundary inwards.
+    FollowPocket,
+}
+
+/// Parameters of a cleanup path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CleanupParams {
+    /// The cleanup tool, tolerance, feeds and linking.
+    pub finish: Finish,
+    /// The cut pattern.
+    pub pattern: Pattern,
+    /// Flow-cut: parallel passes on each side of the pencil pass.
+    pub passes: usize,
+    /// Scallop height between parallel passes and rings, mm.
+    pub scallop: f64,
+}
+
+/// Plans the cleanup of `regions` on `mesh`, left by `reference` (module doc).
+///
+/// # Errors
+/// [`RestError::ToolNotSmaller`] for a cleanup tool wider than the reference tool;
+/// [`RestError::InvalidParameter`] for a scallop the tool cannot leave or a region
+/// needing too many rings.
+pub fn plan_cleanup(
+    mesh: &TriMesh,
+    regions: &[RestRegion],
+    reference: &Cutter,
+    params: &CleanupParams,
+) -> Result<Toolpath, RestError> {
+    let tool = &params.finish.tool;
+    if tool.radius() > reference.radius() {
+        return Err(RestError::ToolNotSmaller {
+            cleanup: tool.to_string(),
+            reference: reference.to_string(),
+        });
+    }
+    RestError::check("strategy.scallop", params.scallop, false)?;
+    let stepover = stepover_for_scallop(tool, params.scallop)?;
+    let tol = params.finish.tolerance;
+    let dropper = MeshDropper::new(mesh, tool);
+    let mut per_region: Vec<Vec<Pass>> = Vec::with_capacity(regions.len());
+    match params.pattern {
+        Pattern::FollowPocket => {
+            for r in regions {
+                per_region.push(follow_pocket(mesh, &dropper, r, stepover, tol)?);
+            }
+        }
+        Pattern::FlowCut => {
+            let locus = if regions.is_empty() {
+                Vec::new()
+            } else {
+                reference_pairs(mesh, &dropper, tol)?
+            };
+            let pencil = Pencil {
+                mesh,
+                dropper: &dropper,
+                tolerance: tol,
+                passes: params.passes,
+                stepover,
+            };
+            for r in regions {
+                let chains = locus_chains(&locus, r, 0.5 * tool.radius());
+                per_region.push(pencil.passes(r, &chains));
+            }
+        }
+    }
+    let mut passes = order_regions(per_region);
+    let linking = params.finish.linking.for_top(top_z(&passes));
+    add_skims(&dropper, &mut passes, linking.clearance);
+    Ok(Toolpath {
+        passes,
+        feeds: params.finish.feeds,
+        linking,
+    })
+}
+
+/// The cleanup tool's locus pairs inside `region`, grouped and ordered into chains.
+fn locus_chains(locus: &[RestPair], region: &RestRegion, pitch: f64) -> Vec<Vec<RestPair>> {
+    let inside: Vec<RestPair> = locus
+        .iter()
+        .filter(|p| region.boundary.contains(&Point::new(p.cl.x, p.cl.y)))
+        .copied()
+        .collect();
+    let cls: Vec<[f64; 2]> = inside.iter().map(|p| [p.cl.x, p.cl.y]).collect();
+    let mut out = Vec::new();
+    for g in group(&cls, pitch, |_, _| true) {
+        let pts: Vec<[f64; 2]> = g.iter().map(|&k| cls[k]).collect();
+        for c in chains(&pts, &open_path(&pts), LINK_PITCHES * pitch) {
+            out.push(c.iter().map(|&i| inside[g[i]]).collect());
+        }
+    }
+    out
+}
+
+/// The regions' passes in greedy nearest-start order (module doc).
+fn order_regions(mut per_region: Vec<Vec<Pass>>) -> Vec<Pass> {
+    per_region.retain(|p| !p.is_empty());
+    let mut out: Vec<Pass> = Vec::new();
+    while !per_region.is_empty() {
+        let here = out.last().and_then(|p| p.points.last()).map(|p| p.pose.cl);
+        let next = match here {
+            None => 0,
+            Some(h) => {
+                (0..per_region.len())
+                    .map(|k| {
+                        let s = per_region[k][0].points[0].pose.cl;
+                        (k, (s.x - h.x).hypot(s.y - h.y))
+                    })
+                    .fold(
+                        (0, f64::INFINITY),
+                        |m, (k, d)| if d < m.1 { (k, d) } else { m },
+                    )
+                    .0
+            }
+        };
+        out.extend(per_region.remove(next));
+    }
+    out.retain(|p| p.points.len() > 1);
+    out
+}
+
+/// Sets every pass's skim height after the first (module doc).
+fn add_skims(dropper: &MeshDropper, passes: &mut [Pass], clearance: f64) {
+    let mut scratch = DropScratch::default();
+    let step = 0.25 * dropper.tool().radius();
+    for k in 1..passes.len() {
+        let (Some(a), Some(b)) = (
+            passes[k - 1].points.last().map(|p| p.pose.cl),
+            passes[k].points.first().map(|p| p.pose.cl),
+        ) else {
+            continue;
+        };
+        let len = (b.x - a.x).hypot(b.y - a.y);
+        let n = (len / step).ceil().max(1.0) as usize;
+        let top = (0..=n)
+            .filter_map(|i| {
+                let t = i as f64 / n as f64;
+                dropper
+                    .drop(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), &mut scratch)
+                    .map(|h| h.z)
+            })
+            .fold(a.z.max(b.z), f64::max);
+        passes[k].skim = Some((top + SKIM_MARGIN).min(clearance));
+    }
+}
