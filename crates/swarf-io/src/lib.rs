@@ -3,6 +3,7 @@
 //! - [`part`]: part files (TOML patches, `parts/README.md`), and [`builtin`] copies of
 //!   the shared test parts embedded in the binary;
 //! - [`stl`], [`obj`], [`mesh_file`]: triangle meshes;
+//! - [`rest_parts`]: built-in mesh parts for rest-material detection, built in code;
 //! - [`csv`]: numeric point lists;
 //! - [`atomic`]: writes that never leave a half-written file behind.
 //!
@@ -16,6 +17,7 @@ pub mod error;
 pub mod mesh_file;
 pub mod obj;
 pub mod part;
+pub mod rest_parts;
 pub mod stl;
 
 pub use atomic::{write_atomic, write_atomic_with};
@@ -25,6 +27,7 @@ pub use error::{At, IoError};
 pub use mesh_file::read_mesh;
 pub use obj::{parse_obj, read_obj};
 pub use part::{parse_part, read_part};
+pub use rest_parts::{MESH_PART_CHORD, builtin_mesh, builtin_mesh_names};
 pub use stl::{parse_stl, read_stl, write_stl};
 
 /// Scratch directories for tests.

@@ -1,0 +1,116 @@
+//! Built-in mesh parts for rest-material detection and cleanup (issue 11, item 7),
+//! built in code from their formulas (all mm, z up; `parts/README.md` lists them).
+//!
+//! Each mesh is the part's upper surface as seen along +z, with the material below:
+//! the top, the pocket or groove walls (vertical faces included) and floors, wound
+//! counter-clockwise seen from outside the material (normals up on tops and floors,
+//! into the pocket or groove on walls). The block's outer sides and bottom are left
+//! out. Every vertex is computed directly from the surface formula (never
+//! accumulated), so it lies on the analytic surface to rounding; every curved face is
+//! cut into as few segments as keep each triangle within [`MESH_PART_CHORD`] of it.
+//! Output is deterministic.
+//!
+//! - `fillet-pocket` ([`fillet_pocket`]): 100 x 80 block, top z = 20, a pocket with
+//!   vertical corner radius 5 and a floor fillet of radius 3. A ball of radius
+//!   R > 3 finishing the floor/wall corner leaves rest `(R - 3)(sqrt 2 - 1)` along
+//!   the 45-degree bisector (2D: the ball touching wall and floor has its centre
+//!   `R sqrt 2` from the sharp corner, its surface `R (sqrt 2 - 1)`; the fillet's
+//!   surface is `3 (sqrt 2 - 1)` from it); R = 6: 1.2426 mm. A ball of radius R > 5
+//!   cannot enter the vertical corner.
+//! - `v-grooves` ([`grooves::v_grooves`]): 140 x 60 block, top z = 10, three V-grooves
+//!   along y of included angles 60, 90 and 120 degrees, depth 10. A ball of radius R
+//!   in a V of half-angle `a/2` touches both flanks with its centre `R / sin(a/2)`
+//!   above the bottom, so it leaves `R / sin(a/2) - R` at the bottom (thesis 002
+//!   §1.1) and touches at height `R / sin(a/2) - R sin(a/2)`; for R = 6 that is 9.0,
+//!   4.243 and 1.732 mm, below the groove top (10) on all three.
+//! - `short-grooves` ([`grooves::short_grooves`]): 70 x 60 block, top z = 0, four
+//!   90-degree V-grooves of depth 4 along x with vertical end walls, in two pairs
+//!   1.5 mm and 5 mm apart. The valley rest of each groove is a strip along its bottom
+//!   ending at its end walls, so merging regions at 2 mm joins the first pair but not
+//!   the second: 4 regions become 3.
+//!
+//! Segment count: the chord of an arc of radius r over angle t / n sags
+//! `r (1 - cos(t / 2n))` from it, so an arc needs the smallest n with that at most the
+//! tolerance ([`arc_segments`]). On a doubly curved patch (the pocket's corner tori)
+//! the sags of the two directions add at a quad's centre, so each direction gets half
+//! the tolerance.
+
+mod fillet_pocket;
+mod grooves;
+
+use swarf_geom::TriMesh;
+
+/// Chord tolerance of the curved built-in mesh parts: every triangle lies within this
+/// of the analytic surface.
+///
+/// # Units
+/// mm.
+pub const MESH_PART_CHORD: f64 = 0.001;
+
+/// Names of the built-in mesh parts: `"fillet-pocket"`, `"v-grooves"`,
+/// `"short-grooves"`.
+pub fn builtin_mesh_names() -> [&'static str; 3] {
+    ["fillet-pocket", "v-grooves", "short-grooves"]
+}
+
+/// The built-in mesh part `name` (with or without a `.stl` suffix), built exactly from
+/// its formulas; `None` for another name.
+///
+/// # Units
+/// Vertex coordinates in mm.
+///
+/// # Example
+/// ```
+/// let m = swarf_io::builtin_mesh("v-grooves.stl").unwrap();
+/// assert_eq!(m.len(), 20);
+/// assert!(swarf_io::builtin_mesh("bracket").is_none());
+/// ```
+pub fn builtin_mesh(name: &str) -> Option<TriMesh> {
+    match name.strip_suffix(".stl").unwrap_or(name) {
+        "fillet-pocket" => Some(fillet_pocket::fillet_pocket()),
+        "v-grooves" => Some(grooves::v_grooves()),
+        "short-grooves" => Some(grooves::short_grooves()),
+        _ => None,
+    }
+}
+
+/// The fewest segments `n` that keep the chords of an arc of `radius` over `angle`
+/// (radians) within `tol` of it: `radius (1 - cos(angle / 2n)) <= tol`.
+///
+/// # Units
+/// `radius` and `tol` in mm.
+fn arc_segments(radius: f64, angle: f64, tol: f64) -> usize {
+    let sag = |n: usize| radius * (1.0 - (angle / (2.0 * n as f64)).cos());
+    let half_step = (1.0 - tol / radius).clamp(-1.0, 1.0).acos();
+    let mut n = ((angle / (2.0 * half_step)).ceil() as usize).max(1);
+    while sag(n) > tol {
+        n += 1;
+    }
+    while n > 1 && sag(n - 1) <= tol {
+        n -= 1;
+    }
+    n
+}
+
+/// `(cos, sin)` of `quadrant * 90 + 90 * j / n` degrees, exact at the quadrant ends
+/// (`j = 0` and `j = n`), so that arcs meet straight segments and axis-parallel planes
+/// without rounding.
+fn quarter_turn(quadrant: usize, j: usize, n: usize) -> [f64; 2] {
+    let [c, s] = if j == 0 {
+        [1.0, 0.0]
+    } else if j >= n {
+        [0.0, 1.0]
+    } else {
+        let t = std::f64::consts::FRAC_PI_2 * j as f64 / n as f64;
+        [t.cos(), t.sin()]
+    };
+    match quadrant % 4 {
+        0 => [c, s],
+        1 => [-s, c],
+        2 => [-c, -s],
+        _ => [s, -c],
+    }
+}
+
+#[cfg(test)]
+mod tests;
