@@ -113,4 +113,6 @@ fn quarter_turn(quadrant: usize, j: usize, n: usize) -> [f64; 2] {
 }
 
 #[cfg(test)]
+mod oracles;
+#[cfg(test)]
 mod tests;
