@@ -27,6 +27,9 @@ pub enum AppError {
     /// Simulation and verification.
     #[error(transparent)]
     Sim(#[from] swarf_sim::SimError),
+    /// Rest detection or cleanup planning failed.
+    #[error(transparent)]
+    Rest(#[from] swarf_rest::RestError),
     /// Drawing pictures.
     #[error(transparent)]
     Report(#[from] swarf_report::ReportError),

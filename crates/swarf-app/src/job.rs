@@ -57,6 +57,7 @@ use swarf_fiveaxis::post::FeedMode;
 use swarf_io::error::toml_message;
 use swarf_nc::{Dialect, Units};
 use swarf_path::params::{Finish, IsoParams, ParamDir, RasterParams, StartSide, StrategyKind};
+use swarf_rest::{Pattern, RegionParams};
 use swarf_tool::Cutter;
 use swarf_toolpath::{Feeds, LinkingSpec};
 
@@ -86,6 +87,34 @@ pub struct Job {
     /// Output files.
     #[serde(default)]
     pub output: Output,
+    /// What a cleanup job cleans up after (`kind = "cleanup"` only).
+    #[serde(default)]
+    pub parent: Option<Parent>,
+}
+
+/// The parent of a cleanup job: a finishing job, or just the tool that finished.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Parent {
+    /// The parent job file, relative to this job's file.
+    #[serde(default)]
+    pub job: Option<String>,
+    /// A reference tool instead of a parent job.
+    #[serde(default)]
+    pub tool: Option<Cutter>,
+}
+
+/// Where a cleanup job takes its rest from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RestSource {
+    /// Crease scans of the part with the parent's tool (any parent).
+    #[default]
+    Reference,
+    /// The double contacts the parent raster job records while it is planned.
+    Contacts,
+    /// The dexel stock after the parent job's program, minus the design.
+    Stock,
 }
 
 /// Strategy parameters. Fields not used by a strategy are ignored by it.
@@ -120,6 +149,52 @@ pub struct StrategyParams {
     /// Raster boundary `[xmin, ymin, xmax, ymax]`, mm (default: the mesh outline).
     #[serde(default)]
     pub boundary: Option<[f64; 4]>,
+    /// Cleanup: the cut pattern (`flow-cut` or `follow-pocket`).
+    #[serde(default)]
+    pub pattern: Pattern,
+    /// Cleanup, flow-cut: parallel passes on each side of the pencil pass.
+    #[serde(default)]
+    pub passes: usize,
+    /// Cleanup: where the rest comes from.
+    #[serde(default)]
+    pub source: RestSource,
+    /// Cleanup: rest thinner than this is left, mm (default: the tolerance plus the
+    /// scallop height).
+    #[serde(default)]
+    pub threshold: Option<f64>,
+    /// Cleanup: regions closer than this are merged, mm.
+    #[serde(default = "default_merge")]
+    pub merge: f64,
+    /// Cleanup: outward offset of the regions, mm.
+    #[serde(default = "default_overlap")]
+    pub overlap: f64,
+    /// Cleanup: regions with a smaller raw area are dropped, mm².
+    #[serde(default = "default_min_area")]
+    pub min_area: f64,
+    /// Cleanup: concave corners of the boundaries are rounded to at least this
+    /// radius, mm.
+    #[serde(default = "default_smoothness")]
+    pub smoothness: f64,
+    /// Cleanup: intermediate tools, largest first, each cleaning up after the one
+    /// before it (the parent's tool first); the job's tool cleans up last.
+    #[serde(default)]
+    pub chain: Vec<Cutter>,
+}
+
+fn default_merge() -> f64 {
+    RegionParams::default().merge
+}
+
+fn default_overlap() -> f64 {
+    RegionParams::default().overlap
+}
+
+fn default_min_area() -> f64 {
+    RegionParams::default().min_area
+}
+
+fn default_smoothness() -> f64 {
+    RegionParams::default().smoothness
 }
 
 fn default_tolerance() -> f64 {
@@ -197,7 +272,7 @@ impl Job {
             );
         }
         match (s.kind, s.scallop, s.stepover) {
-            (StrategyKind::Raster, _, _) | (_, _, None) => {}
+            (StrategyKind::Raster | StrategyKind::Cleanup, _, _) | (_, _, None) => {}
             (StrategyKind::IsoPlanar, Some(_), Some(_)) => {
                 return Err(
                     "strategy.stepover: give either `scallop` (plane spacing from a scallop limit) or `stepover` (a fixed cross feed), not both"
@@ -237,6 +312,7 @@ impl Job {
                 "strategy.boundary: expected [xmin, ymin, xmax, ymax] with xmin < xmax and ymin < ymax, found {b:?}"
             ));
         }
+        self.validate_cleanup()?;
         let f = &self.feeds;
         for (name, v) in [
             ("feeds.feed", f.feed),
@@ -251,6 +327,43 @@ impl Job {
         }
         positive("linking.approach", Some(self.linking.approach))?;
         self.validate_five_axis()
+    }
+
+    /// A cleanup job's parent and region parameters; other jobs have no parent.
+    fn validate_cleanup(&self) -> Result<(), String> {
+        let s = &self.strategy;
+        let Some(parent) = &self.parent else {
+            if s.kind == StrategyKind::Cleanup {
+                return Err("parent: a cleanup job needs a [parent] table with `job` (a finishing job file) or `tool` (a reference tool)".into());
+            }
+            return Ok(());
+        };
+        if s.kind != StrategyKind::Cleanup {
+            return Err(
+                "parent: only a cleanup job (strategy.kind = \"cleanup\") has a parent".into(),
+            );
+        }
+        match (&parent.job, &parent.tool) {
+            (Some(_), Some(_)) | (None, None) => {
+                return Err("parent: expected exactly one of `job` (a finishing job file) and `tool` (a reference tool)".into());
+            }
+            (None, Some(_)) if s.source != RestSource::Reference => {
+                return Err(format!(
+                    "strategy.source: {:?} needs a parent job (parent.job); a reference tool gives source = \"reference\" only",
+                    s.source
+                ));
+            }
+            _ => {}
+        }
+        if s.scallop.is_none() {
+            return Err(
+                "strategy.scallop: a cleanup job needs the scallop height of its passes, mm".into(),
+            );
+        }
+        if self.positioning.is_some() {
+            return Err("positioning: cleanup paths are three-axis".into());
+        }
+        self.region_params().validate().map_err(|e| e.to_string())
     }
 
     /// The positioning's ranges and the outputs a five-axis job can write.
@@ -312,6 +425,23 @@ impl Job {
             angle: self.angle_rad(),
             start: s.start,
             boundary: s.boundary,
+        }
+    }
+}
+
+impl Job {
+    /// The region parameters of a cleanup job (threshold: the tolerance plus the
+    /// scallop height unless given).
+    pub fn region_params(&self) -> RegionParams {
+        let s = &self.strategy;
+        RegionParams {
+            threshold: s
+                .threshold
+                .unwrap_or(s.tolerance + s.scallop.unwrap_or(0.0)),
+            merge: s.merge,
+            overlap: s.overlap,
+            min_area: s.min_area,
+            smoothness: s.smoothness,
         }
     }
 }

@@ -1,9 +1,10 @@
 //! swarf-app: the application layer. It reads job files (the TOML schema, [`job`]),
-//! runs the pipeline plan -> position -> post -> verify ([`plan_job()`], [`five_axis`],
-//! [`verify`]), tabulates the comparison of paper 004 and thesis 000 ([`compare`]),
+//! runs the pipeline plan -> position -> post -> verify -> rest -> cleanup
+//! ([`plan_job()`], [`five_axis`], [`verify`], [`cleanup`]), tabulates the comparison of paper 004 and thesis 000 ([`compare`]),
 //! and runs the demo ([`demo`]). It calls the kernel crates; it does not compute
 //! geometry. The `swarf` command line and the Python package are thin layers over it.
 
+pub mod cleanup;
 pub mod compare;
 pub mod demo;
 pub mod error;

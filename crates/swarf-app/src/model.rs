@@ -18,9 +18,13 @@ pub enum Model {
     },
 }
 
-/// Names of the built-in parts, for messages.
+/// Names of the built-in parts (patches, then meshes), for messages.
 pub fn builtin_names() -> Vec<&'static str> {
-    swarf_io::builtin_parts().iter().map(|(n, _)| *n).collect()
+    let parts = swarf_io::builtin_parts().map(|(n, _)| n);
+    parts
+        .into_iter()
+        .chain(swarf_io::builtin_mesh_names())
+        .collect()
 }
 
 /// Loads `arg`: `builtin:NAME` or a bare built-in name (when no such file exists),
@@ -36,6 +40,10 @@ pub fn load_model(arg: &str) -> Result<Model> {
     if let Some(name) = builtin {
         if let Some(part) = swarf_io::builtin_part(name) {
             return Ok(Model::Patches(part));
+        }
+        if let Some(mesh) = swarf_io::builtin_mesh(name) {
+            let name = name.strip_suffix(".stl").unwrap_or(name).to_string();
+            return Ok(Model::Mesh { name, mesh });
         }
         if arg.starts_with("builtin:") || path.extension().is_none() {
             bail!(

@@ -21,7 +21,7 @@ pub enum PlanInput<'a> {
 /// scallop height: the strategy has already rejected those).
 fn bound_for(job: &Job, part: &Part) -> Vec<PassBound> {
     let feed = match job.strategy.kind {
-        StrategyKind::Raster => return Vec::new(),
+        StrategyKind::Raster | StrategyKind::Cleanup => return Vec::new(),
         StrategyKind::IsoParametric | StrategyKind::IsoScallop => {
             Feed::Param(job.strategy.direction)
         }
@@ -47,6 +47,11 @@ pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
         (StrategyKind::Raster, PlanInput::Part(part)) => {
             let mesh = part.tessellate(job.strategy.tolerance * 0.1)?;
             swarf_path::raster::plan(&mesh, &job.raster_params())?
+        }
+        (StrategyKind::Cleanup, _) => {
+            return Err(PathError::NoPath(
+                "a cleanup job is planned with its parent (swarf plan, crate::cleanup)".into(),
+            ));
         }
         (kind, PlanInput::Mesh(_)) => {
             return Err(PathError::NoPath(format!(

@@ -3,6 +3,7 @@
 //! requested output: G-code (three-axis, or five-axis for `output.machine`), APT CL,
 //! pose CSV, double contacts and the JSON summary.
 
+use crate::cleanup::{plan_cleanup_job, rest_json, stage_file};
 use crate::error::{Result, bail};
 use crate::five_axis::{position_plan, write_job_gcode};
 use crate::job::Job;
@@ -13,7 +14,7 @@ use std::path::Path;
 use swarf_fiveaxis::machine::{Machine, load_machine};
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport};
 use swarf_nc::GcodeOptions;
-use swarf_path::Plan;
+use swarf_path::{Plan, StrategyKind};
 use swarf_toolpath::motion_stats;
 
 /// Loads the job's part, plans it (and positions it, for a five-axis job) and writes
@@ -50,6 +51,9 @@ pub fn plan_model(
         .as_deref()
         .map(|spec| load_machine(spec, job_dir))
         .transpose()?;
+    if job.strategy.kind == StrategyKind::Cleanup {
+        return cleanup_outputs(job, model, job_dir, machine.as_ref(), out_dir);
+    }
     let (name, mut plan) = match model {
         Model::Patches(part) => (part.name.clone(), plan(job, PlanInput::Part(part))?),
         Model::Mesh { name, mesh } => (name.clone(), plan(job, PlanInput::Mesh(mesh))?),
@@ -78,6 +82,52 @@ pub fn plan_model(
         positioning.as_ref(),
         out_dir,
     )
+}
+
+/// Plans a cleanup job ([`crate::cleanup`]) and writes each stage's outputs (stage
+/// `k` of several to `.k` files, the last to the job's own); the summary has the
+/// last stage's figures, its rest regions, and every stage's summary when there are
+/// several.
+fn cleanup_outputs(
+    job: &Job,
+    model: &Model,
+    job_dir: &Path,
+    machine: Option<&Machine>,
+    out_dir: &Path,
+) -> Result<serde_json::Value> {
+    let stages = plan_cleanup_job(job, model, job_dir)?;
+    let name = match model {
+        Model::Patches(part) => part.name.clone(),
+        Model::Mesh { name, .. } => name.clone(),
+    };
+    let n = stages.len();
+    let mut summaries = Vec::with_capacity(n);
+    for (k, stage) in stages.iter().enumerate() {
+        let mut staged = job.clone();
+        staged.tool = stage.tool;
+        if k + 1 < n {
+            let o = &mut staged.output;
+            for f in [&mut o.gcode, &mut o.cl, &mut o.csv, &mut o.summary] {
+                *f = f.as_deref().map(|f| stage_file(f, k + 1));
+            }
+        }
+        let summary_file = staged.output.summary.take();
+        let mut s = write_outputs(&staged, &name, &stage.plan, machine, None, out_dir)?;
+        s["reference_tool"] = serde_json::json!(stage.reference.to_string());
+        s["rest_source"] = serde_json::json!(stage.source);
+        s["rest"] = rest_json(&stage.detection);
+        if let Some(rel) = summary_file {
+            let text = serde_json::to_string_pretty(&s)? + "\n";
+            swarf_io::write_atomic(&out_dir.join(rel), text.as_bytes())?;
+        }
+        summaries.push(s);
+    }
+    let mut last = summaries.pop().unwrap_or_default();
+    if !summaries.is_empty() {
+        summaries.push(last.clone());
+        last["stages"] = serde_json::Value::Array(summaries);
+    }
+    Ok(last)
 }
 
 /// The job's part as a `load_model` argument: built-in or absolute as given, else
@@ -109,6 +159,9 @@ fn write_outputs(
         format!("tool {}", job.tool),
         format!("strategy {strategy}"),
     ];
+    if plan.toolpath.passes.is_empty() {
+        comments.push("no passes: nothing to cut".into());
+    }
     if let Some(p) = &job.positioning {
         comments.push(format!("positioning {}", describe(p)));
     }

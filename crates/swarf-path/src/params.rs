@@ -19,6 +19,8 @@ pub enum StrategyKind {
     IsoScallop,
     /// Drop-cutter raster on a triangle mesh (iso-planar for meshes).
     Raster,
+    /// Cleanup of the rest material a parent job leaves (planned by swarf-rest).
+    Cleanup,
 }
 
 /// Which parameter a pass follows (iso-parametric) or which boundary the first pass

@@ -37,15 +37,7 @@ pub(crate) fn double_contact(
     if contacts.len() < 2 || one_plane(mesh, contacts) {
         return None;
     }
-    let env = dropper.tool().envelope();
-    let gap = |a: &Point3, b: &Point3| {
-        let (mx, my) = (0.5 * (a.x + b.x), 0.5 * (a.y + b.y));
-        let rho = (mx - cl.x).hypot(my - cl.y);
-        let cutter = cl.z + env.height(rho.min(env.radius()));
-        dropper
-            .surface_z(mx, my)
-            .map_or(f64::INFINITY, |z| cutter - z)
-    };
+    let gap = |a: &Point3, b: &Point3| gap_at(dropper, cl, a, b);
     let mut chosen: Vec<&DropResult> = Vec::new();
     let mut widest = 0.0f64;
     for (i, a) in contacts.iter().enumerate() {
@@ -73,6 +65,56 @@ pub(crate) fn double_contact(
             .collect(),
         pass: 0,
         gap: widest,
+    })
+}
+
+/// The gap between the cutter with its tip at `cl` and the mesh at the XY midpoint
+/// of `a` and `b`, mm (infinite off the mesh).
+fn gap_at(dropper: &MeshDropper, cl: &Point3, a: &Point3, b: &Point3) -> f64 {
+    let env = dropper.tool().envelope();
+    let (mx, my) = (0.5 * (a.x + b.x), 0.5 * (a.y + b.y));
+    let rho = (mx - cl.x).hypot(my - cl.y);
+    let cutter = cl.z + env.height(rho.min(env.radius()));
+    dropper
+        .surface_z(mx, my)
+        .map_or(f64::INFINITY, |z| cutter - z)
+}
+
+/// The double contact at the foot of a cliff of the CL curve: the cutter at `cl`
+/// rests on `low` and, moving along the unit XY direction `dir`, meets a vertical
+/// wall at once (the drop height jumps up there). The wall touches the cutter where
+/// its profile's normal is horizontal (the ball's equator, a flat end's rim), at
+/// `wall`. Kept, as any double contact, when the two points are more than `min_sep`
+/// apart and the gap under the cutter between them is above `gap_tol`.
+pub(crate) fn cliff_contact(
+    dropper: &MeshDropper,
+    mesh: &TriMesh,
+    cl: &Point3,
+    low: &DropResult,
+    dir: [f64; 2],
+    min_sep: f64,
+    gap_tol: f64,
+) -> Option<DoubleContact> {
+    let side = dropper
+        .tool()
+        .cutter()
+        .profile()
+        .contact_for_normal_angle(0.0)?;
+    let (rho, z) = (side.point.rho, side.point.z);
+    let wall = Point3::new(cl.x + rho * dir[0], cl.y + rho * dir[1], cl.z + z);
+    if (wall - low.cc).norm() <= min_sep {
+        return None;
+    }
+    let gap = gap_at(dropper, cl, &low.cc, &wall);
+    (gap > gap_tol && gap.is_finite()).then(|| DoubleContact {
+        cl: *cl,
+        contacts: vec![low.cc, wall],
+        normals: vec![
+            plane(mesh, low).map_or(Vec3::z(), |p| p.0),
+            Vec3::new(-dir[0], -dir[1], 0.0),
+        ],
+        pass: 0,
+        gap,
     })
 }
 

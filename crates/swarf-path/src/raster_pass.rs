@@ -25,7 +25,7 @@
 
 use crate::plan::DoubleContact;
 use crate::raster::{DOUBLE_SEPARATION_RADII, INIT_STEP_RADII, MIN_STEP_FLOOR};
-use crate::raster_double::{TOP_TOL, double_contact, same_plane};
+use crate::raster_double::{TOP_TOL, cliff_contact, double_contact, same_plane};
 use swarf_geom::{Point3, TriMesh, Vec3};
 use swarf_tool::Pose;
 use swarf_tool::drop::{DropResult, DropScratch, MeshDropper};
@@ -33,6 +33,8 @@ use swarf_toolpath::{Contact, PathPoint};
 
 /// The crease between two contacts is located to this along the pass, mm.
 pub const SWITCH_TOL: f64 = 1e-8;
+/// Distance along the line that gives the direction of a cliff, mm.
+const CLIFF_PROBE: f64 = 1e-3;
 /// Most bisection steps of a crease search.
 const SWITCH_STEPS: usize = 48;
 /// A contact that moves more than this many times as far as the tool between two
@@ -160,11 +162,12 @@ impl<'a> Sampler<'a> {
             }
             samples.push(w[1]);
         }
-        let switches = self.switches(&samples, &mut drop);
+        let (switches, cliffs) = self.switches(line, &samples, &mut drop);
         if !switches.is_empty() {
             samples.extend(switches);
             samples.sort_by(|a, b| a.t.total_cmp(&b.t));
         }
+        out.doubles.extend(cliffs);
         out.pieces = self.pieces(line, &samples);
         out
     }
@@ -251,18 +254,24 @@ impl<'a> Sampler<'a> {
     /// The creases of the CL curve: where the winning contact jumps between
     /// neighbouring samples, by more than `min_sep` and more than [`JUMP_RATIO`] times
     /// the tool's move, from one plane to another, the cutter passes over a valley and
-    /// touches both sides at one point between them. That
-    /// point is bisected to [`SWITCH_TOL`] (the two contacts' heights there then differ
-    /// by far less than the double-contact tolerance) and returned as a sample; the
-    /// drop there records the double contact when there is one. Consecutive drops of a
-    /// pass rarely land exactly on such a crease, so without this step a raster
-    /// crossing a valley would record none.
+    /// touches both sides at one point between them. That point is bisected to
+    /// [`SWITCH_TOL`] (the two contacts' heights there then differ by far less than
+    /// the double-contact tolerance) and returned as a sample; the drop there records
+    /// the double contact when there is one. Consecutive drops of a pass rarely land
+    /// exactly on such a crease, so without this step a raster crossing a valley
+    /// would record none. Where the heights at the two ends of the final bracket
+    /// still differ by more than the tolerance, the CL curve has a cliff there (a
+    /// vertical wall): the cutter at its foot touches the floor and the wall at once,
+    /// and that double contact is returned beside the samples
+    /// (`raster_double::cliff_contact`).
     fn switches(
         &self,
+        line: &impl Along,
         samples: &[Sample],
         drop: &mut impl FnMut(f64, bool) -> Sample,
-    ) -> Vec<Sample> {
+    ) -> (Vec<Sample>, Vec<DoubleContact>) {
         let mut out = Vec::new();
+        let mut cliffs = Vec::new();
         for w in samples.windows(2) {
             let (Some(ha), Some(hb)) = (w[0].hit, w[1].hit) else {
                 continue;
@@ -272,7 +281,7 @@ impl<'a> Sampler<'a> {
             if jump <= self.min_sep.max(JUMP_RATIO * moved) || same_plane(self.mesh, &ha, &hb) {
                 continue;
             }
-            let (mut a, mut b) = ((w[0].t, ha.cc), (w[1].t, hb.cc));
+            let (mut a, mut b) = ((w[0].t, ha), (w[1].t, hb));
             for _ in 0..SWITCH_STEPS {
                 if b.0 - a.0 <= SWITCH_TOL {
                     break;
@@ -281,18 +290,50 @@ impl<'a> Sampler<'a> {
                 let Some(h) = m.hit else {
                     break;
                 };
-                if (h.cc - a.1).norm() <= (h.cc - b.1).norm() {
-                    a = (m.t, h.cc);
+                if (h.cc - a.1.cc).norm() <= (h.cc - b.1.cc).norm() {
+                    a = (m.t, h);
                 } else {
-                    b = (m.t, h.cc);
+                    b = (m.t, h);
                 }
+            }
+            if (a.1.z - b.1.z).abs() > self.tolerance {
+                cliffs.extend(self.cliff(line, a, b));
+                continue;
             }
             let m = drop(0.5 * (a.0 + b.0), true);
             if m.hit.is_some() {
                 out.push(m);
             }
         }
-        out
+        (out, cliffs)
+    }
+
+    /// The double contact at the foot of the cliff between the bracket ends `a` and
+    /// `b` (parameter, drop).
+    fn cliff(
+        &self,
+        line: &impl Along,
+        a: (f64, DropResult),
+        b: (f64, DropResult),
+    ) -> Option<DoubleContact> {
+        let (low, high) = if a.1.z < b.1.z { (a, b) } else { (b, a) };
+        let step = (high.0 - low.0).signum() * CLIFF_PROBE;
+        let (p, q) = (line.at(low.0), line.at(low.0 + step));
+        let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+        let len = dx.hypot(dy);
+        if !(len > 0.0) {
+            return None;
+        }
+        let cl = Point3::new(p[0], p[1], low.1.z);
+        cliff_contact(
+            self.dropper,
+            self.mesh,
+            &cl,
+            &low.1,
+            [dx / len, dy / len],
+            self.min_sep,
+            self.tolerance,
+        )
     }
 
     /// The runs of samples with contact as pieces of path points.

@@ -27,7 +27,7 @@ use crate::pencil::Pencil;
 use crate::pocket::follow_pocket;
 use crate::region::{LINK_PITCHES, RestRegion};
 use geo::{Contains, Point};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use swarf_geom::TriMesh;
 use swarf_path::Finish;
 use swarf_path::raster_step::stepover_for_scallop;
@@ -35,11 +35,13 @@ use swarf_tool::Cutter;
 use swarf_tool::drop::{DropScratch, MeshDropper};
 use swarf_toolpath::{Pass, Toolpath, top_z};
 
+/// Locus points closer than this are one, mm.
+pub const SAME_POINT: f64 = 1e-4;
 /// Height of a skim link above the highest drop along it, mm.
 pub const SKIM_MARGIN: f64 = 1.0;
 
 /// The cleanup cut patterns.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Pattern {
     /// Passes along the cleanup tool's bitangency curves.
@@ -133,7 +135,19 @@ fn locus_chains(locus: &[RestPair], region: &RestRegion, pitch: f64) -> Vec<Vec<
     for g in group(&cls, pitch, |_, _| true) {
         let pts: Vec<[f64; 2]> = g.iter().map(|&k| cls[k]).collect();
         for c in chains(&pts, &open_path(&pts), LINK_PITCHES * pitch) {
-            out.push(c.iter().map(|&i| inside[g[i]]).collect());
+            let mut chain: Vec<RestPair> = Vec::with_capacity(c.len());
+            for &i in &c {
+                let p = inside[g[i]];
+                // A crease met exactly by a sample is also found by the bisection
+                // next to it: keep one of two points this close.
+                if chain
+                    .last()
+                    .is_none_or(|q| (q.cl - p.cl).norm() > SAME_POINT)
+                {
+                    chain.push(p);
+                }
+            }
+            out.push(chain);
         }
     }
     out

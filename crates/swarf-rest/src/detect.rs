@@ -125,11 +125,14 @@ pub fn detect(
 }
 
 /// The valley pairs of recorded double contacts, with their depths (in parallel, in
-/// input order).
+/// input order). A double contact whose CL point is off the part (the tool hanging
+/// over the part's edge, touching two of its boundary edges) is not a valley and is
+/// left out.
 pub fn valley_pairs(dropper: &MeshDropper, contacts: &[DoubleContact]) -> Vec<RestPair> {
     let probe = DepthProbe::new(dropper);
     contacts
         .par_iter()
+        .filter(|d| dropper.surface_z(d.cl.x, d.cl.y).is_some())
         .filter_map(|d| probe.valley(d))
         .collect()
 }

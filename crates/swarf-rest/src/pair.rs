@@ -26,6 +26,8 @@ use swarf_tool::{Pose, Profile};
 
 /// Even samples of the part between the contacts in the depth search.
 pub const DEPTH_SAMPLES: usize = 32;
+/// A part point counts as under the tool up to this above its lower surface, mm.
+pub const UNDER_TOL: f64 = 1e-6;
 /// Golden-section steps of the depth refinement (the bracket shrinks by 0.618 each).
 pub const DEPTH_STEPS: usize = 40;
 
@@ -99,9 +101,16 @@ impl<'a> DepthProbe<'a> {
             let (x, y) = (a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
             self.dropper.surface_z(x, y).map(|z| Point3::new(x, y, z))
         };
+        let env = self.dropper.tool().envelope();
         let dist = |t: f64| {
             point(t).map_or(f64::NEG_INFINITY, |q| {
-                self.profile.signed_distance(&pose, &q)
+                let rho = (q.x - cl.x).hypot(q.y - cl.y);
+                let under = rho <= env.radius() && q.z <= cl.z + env.height(rho) + UNDER_TOL;
+                if under {
+                    self.profile.signed_distance(&pose, &q)
+                } else {
+                    f64::NEG_INFINITY
+                }
             })
         };
         let n = DEPTH_SAMPLES;

@@ -23,14 +23,34 @@ fn v_rest(r: f64, deg: f64) -> f64 {
 fn reference_detection_finds_each_groove_at_its_closed_form_depth() {
     let mesh = grooves();
     let ball: Cutter = "ball:d=12".parse().unwrap();
-    let det = detect(&mesh, &ball, Source::Reference, 0.01, &RegionParams::default()).unwrap();
-    assert_eq!(det.regions.len(), 3, "{:?}", det.regions.iter().map(|r| r.deepest).collect::<Vec<_>>());
+    let det = detect(
+        &mesh,
+        &ball,
+        Source::Reference,
+        0.01,
+        &RegionParams::default(),
+    )
+    .unwrap();
+    assert_eq!(
+        det.regions.len(),
+        3,
+        "{:?}",
+        det.regions.iter().map(|r| r.deepest).collect::<Vec<_>>()
+    );
     let mut by_x: Vec<_> = det.regions.iter().collect();
     by_x.sort_by(|a, b| a.deepest.x.total_cmp(&b.deepest.x));
     for (r, (x, deg)) in by_x.iter().zip(GROOVES) {
         let exact = v_rest(6.0, deg);
-        assert!((r.depth - exact).abs() < 1e-6, "{deg}: {} vs {exact}", r.depth);
-        assert!((r.deepest.x - x).abs() < 1e-6 && r.deepest.z.abs() < 1e-6, "{:?}", r.deepest);
+        assert!(
+            (r.depth - exact).abs() < 1e-6,
+            "{deg}: {} vs {exact}",
+            r.depth
+        );
+        assert!(
+            (r.deepest.x - x).abs() < 1e-6 && r.deepest.z.abs() < 1e-6,
+            "{:?}",
+            r.deepest
+        );
         // The region spans the groove's length.
         use geo::BoundingRect;
         let b = r.boundary.bounding_rect().unwrap();
@@ -42,7 +62,14 @@ fn reference_detection_finds_each_groove_at_its_closed_form_depth() {
 fn pencil_points_lie_on_the_bisector_at_the_closed_form_height() {
     let mesh = grooves();
     let reference: Cutter = "ball:d=12".parse().unwrap();
-    let det = detect(&mesh, &reference, Source::Reference, 0.01, &RegionParams::default()).unwrap();
+    let det = detect(
+        &mesh,
+        &reference,
+        Source::Reference,
+        0.01,
+        &RegionParams::default(),
+    )
+    .unwrap();
     let tool: Cutter = "ball:d=4".parse().unwrap();
     let params = CleanupParams {
         finish: Finish::new(tool.clone()),
@@ -74,7 +101,9 @@ fn pencil_points_lie_on_the_bisector_at_the_closed_form_height() {
             .drop_with_contacts(cl.x, cl.y, 1e-6, &mut scratch, &mut contacts)
             .unwrap();
         assert!((hit.z - cl.z).abs() < 1e-6);
-        let far = contacts.iter().any(|a| contacts.iter().any(|b| (a.cc - b.cc).norm() > 1.0));
+        let far = contacts
+            .iter()
+            .any(|a| contacts.iter().any(|b| (a.cc - b.cc).norm() > 1.0));
         assert!(far, "{cl:?}: one contact only");
     }
     assert!(seen.iter().all(|&n| n >= 2), "{seen:?}");

@@ -1,0 +1,308 @@
+//! Rest material and cleanup jobs (thesis 002 §4.4): a cleanup job names its parent
+//! (a finishing job, or the tool that finished) and cleans up what it left, with
+//! one tool or a chain of them.
+//!
+//! ```toml
+//! name = "pocket cleanup"
+//! part = "builtin:fillet-pocket"
+//! tool = "ball:d=4"               # the (last) cleanup tool
+//!
+//! [parent]
+//! job = "pocket-finish.toml"      # or: tool = "ball:d=12" (a reference tool)
+//!
+//! [strategy]
+//! kind = "cleanup"
+//! pattern = "follow-pocket"       # or "flow-cut" (pencil), with `passes` per side
+//! source = "reference"            # "contacts" (a raster parent) or "stock"
+//! scallop = 0.01                  # scallop height of the cleanup passes, mm
+//! merge = 2                       # region boundary operations, mm (min_area mm²)
+//! overlap = 1
+//! min_area = 0.5
+//! smoothness = 0.5
+//! chain = ["ball:d=6"]            # intermediate tools: 12 -> 6 -> 4
+//! ```
+//!
+//! The first stage finds the rest from the chosen source; every later stage of a
+//! chain uses the previous stage's tool as its reference (crease scans). The last
+//! stage's program goes to the job's outputs; an intermediate stage `k` (from 1)
+//! writes the same files with `.k` before the extension.
+
+use crate::error::{AppError, Context, Result, bail};
+use crate::job::{Job, RestSource};
+use crate::model::Model;
+use crate::plan::{PlanInput, plan};
+use std::borrow::Cow;
+use std::path::{Path, PathBuf};
+use swarf_geom::TriMesh;
+use swarf_path::{Plan, PlanReport, StrategyKind};
+use swarf_rest::{CleanupParams, Detection, Source, detect, plan_cleanup};
+use swarf_sim::{Design, Quiet, StockSpec, VerifyOptions};
+use swarf_tool::Cutter;
+
+/// One stage of a cleanup: its tool, what it was asked to clean up, its plan.
+#[derive(Debug)]
+pub struct CleanupStage {
+    /// The cleanup tool.
+    pub tool: Cutter,
+    /// The tool whose rest it cleans up.
+    pub reference: Cutter,
+    /// Where the rest came from (`reference`, `contacts`, `stock`).
+    pub source: &'static str,
+    /// The rest regions.
+    pub detection: Detection,
+    /// The cleanup tool path.
+    pub plan: Plan,
+}
+
+/// The part as a mesh: a mesh part as it is, patches tessellated within a tenth of
+/// `tol`.
+///
+/// # Errors
+/// A tessellation that fails.
+pub fn part_mesh(model: &Model, tol: f64) -> Result<Cow<'_, TriMesh>> {
+    Ok(match model {
+        Model::Mesh { mesh, .. } => Cow::Borrowed(mesh),
+        Model::Patches(part) => Cow::Owned(part.tessellate(0.1 * tol)?),
+    })
+}
+
+/// Reads the parent job `rel` (relative to `job_dir`).
+///
+/// # Errors
+/// A file that cannot be read or parsed; a parent that is itself a cleanup.
+pub fn read_parent(rel: &str, job_dir: &Path) -> Result<(Job, PathBuf)> {
+    let path = job_dir.join(rel);
+    let text = std::fs::read_to_string(&path)
+        .with_context(|| format!("parent.job: {}: cannot read the parent job", path.display()))?;
+    let parent = Job::parse(&text, &path.display().to_string())?;
+    if parent.strategy.kind == StrategyKind::Cleanup {
+        bail!(
+            "parent.job: {}: the parent is a cleanup job; name the finishing job it cleans up after (or list the tools in strategy.chain)",
+            path.display()
+        );
+    }
+    let dir = path.parent().map_or_else(PathBuf::new, Path::to_path_buf);
+    Ok((parent, dir))
+}
+
+/// The rest `parent` leaves on `mesh` (the tessellation of `model`) from `source`,
+/// with region parameters and tolerance from `job`.
+///
+/// # Errors
+/// A parent that cannot be planned or verified; `contacts` from a parent that is not
+/// a raster; the detection's errors.
+pub fn detect_after(
+    job: &Job,
+    parent: &Job,
+    model: &Model,
+    mesh: &TriMesh,
+    source: RestSource,
+) -> Result<Detection> {
+    let (tol, params) = (job.strategy.tolerance, job.region_params());
+    let parent_plan = |input| {
+        plan(parent, input)
+            .map_err(|e| AppError::Message(format!("parent.job: the parent job fails: {e}")))
+    };
+    Ok(match source {
+        RestSource::Reference => detect(mesh, &parent.tool, Source::Reference, tol, &params)?,
+        RestSource::Contacts => {
+            if parent.strategy.kind != StrategyKind::Raster {
+                bail!(
+                    "strategy.source: \"contacts\" needs a raster parent (the {:?} strategy records no double contacts); use source = \"reference\"",
+                    parent.strategy.kind
+                );
+            }
+            let p = parent_plan(PlanInput::Mesh(mesh))?;
+            detect(
+                mesh,
+                &parent.tool,
+                Source::Contacts(&p.double_contacts),
+                tol,
+                &params,
+            )?
+        }
+        RestSource::Stock => {
+            let p = parent_plan(match model {
+                Model::Patches(part) => PlanInput::Part(part),
+                Model::Mesh { mesh, .. } => PlanInput::Mesh(mesh),
+            })?;
+            let v = simulate_parent(parent, &p, mesh, tol)?;
+            let source = Source::Stock {
+                grid: &v.grid,
+                excess: &v.deviation.values,
+                design: &v.design.heights,
+            };
+            detect(mesh, &parent.tool, source, tol, &params)?
+        }
+    })
+}
+
+/// The parent's program cut from a block (the design's box) and compared with the
+/// design: the in-process model after it.
+fn simulate_parent(
+    parent: &Job,
+    p: &Plan,
+    mesh: &TriMesh,
+    tol: f64,
+) -> Result<swarf_sim::Verification> {
+    let moves = p.toolpath.moves();
+    let text = swarf_nc::write_gcode(&moves, &parent.feeds, &swarf_nc::GcodeOptions::default())?;
+    let opts = swarf_nc::read::GcodeReadOptions::default();
+    let program = swarf_nc::read::parse_gcode(&text, "parent program", &opts)?;
+    let vopts = VerifyOptions {
+        tol,
+        stock: StockSpec::Box { top: None },
+        ..VerifyOptions::default()
+    };
+    Ok(swarf_sim::verify(
+        Design::Mesh(mesh),
+        &program,
+        &parent.tool,
+        &vopts,
+        &Quiet,
+    )?)
+}
+
+/// Plans the cleanup job `job` (module doc) on `model`.
+///
+/// # Errors
+/// A parent that cannot be read, planned or verified; a tool larger than the tool
+/// before it; the detection's and the planning's errors.
+pub fn plan_cleanup_job(job: &Job, model: &Model, job_dir: &Path) -> Result<Vec<CleanupStage>> {
+    let Some(parent_spec) = &job.parent else {
+        bail!("parent: a cleanup job needs a [parent] table");
+    };
+    let mesh = part_mesh(model, job.strategy.tolerance)?;
+    let parent = match (&parent_spec.job, parent_spec.tool) {
+        (Some(rel), _) => Some(read_parent(rel, job_dir)?.0),
+        (None, _) => None,
+    };
+    let mut reference = parent
+        .as_ref()
+        .map(|p| p.tool)
+        .or(parent_spec.tool)
+        .with_context(|| "parent: expected `job` or `tool`".into())?;
+    let tools: Vec<Cutter> = job
+        .strategy
+        .chain
+        .iter()
+        .copied()
+        .chain([job.tool])
+        .collect();
+    let mut stages = Vec::with_capacity(tools.len());
+    for (k, tool) in tools.into_iter().enumerate() {
+        let start = std::time::Instant::now();
+        let (detection, source) = match (&parent, k) {
+            (Some(p), 0) => (
+                detect_after(job, p, model, &mesh, job.strategy.source)?,
+                source_name(job.strategy.source),
+            ),
+            _ => (
+                detect(
+                    &mesh,
+                    &reference,
+                    Source::Reference,
+                    job.strategy.tolerance,
+                    &job.region_params(),
+                )?,
+                "reference",
+            ),
+        };
+        let params = CleanupParams {
+            finish: swarf_path::Finish {
+                tool,
+                ..job.finish()
+            },
+            pattern: job.strategy.pattern,
+            passes: job.strategy.passes,
+            scallop: job.strategy.scallop.unwrap_or(job.strategy.tolerance),
+        };
+        let toolpath =
+            plan_cleanup(&mesh, &detection.regions, &reference, &params).map_err(|e| {
+                AppError::Message(format!("stage {} ({tool} after {reference}): {e}", k + 1))
+            })?;
+        let report = PlanReport {
+            elapsed_s: start.elapsed().as_secs_f64(),
+            ..PlanReport::default()
+        };
+        stages.push(CleanupStage {
+            tool,
+            reference,
+            source,
+            detection,
+            plan: Plan {
+                toolpath,
+                report,
+                double_contacts: Vec::new(),
+            },
+        });
+        reference = tool;
+    }
+    Ok(stages)
+}
+
+fn source_name(s: RestSource) -> &'static str {
+    match s {
+        RestSource::Reference => "reference",
+        RestSource::Contacts => "contacts",
+        RestSource::Stock => "stock",
+    }
+}
+
+/// `file` with `.k` before its extension (`pocket.ngc` -> `pocket.1.ngc`).
+pub fn stage_file(file: &str, k: usize) -> String {
+    let p = Path::new(file);
+    match (p.file_stem(), p.extension()) {
+        (Some(stem), Some(ext)) => p
+            .with_file_name(format!(
+                "{}.{k}.{}",
+                stem.to_string_lossy(),
+                ext.to_string_lossy()
+            ))
+            .display()
+            .to_string(),
+        _ => format!("{file}.{k}"),
+    }
+}
+
+/// The regions of a detection as JSON: per region its kinds, areas, depth, where the
+/// depth is, samples, and the boundary's outer ring.
+pub fn rest_json(d: &Detection) -> serde_json::Value {
+    let regions: Vec<serde_json::Value> = d
+        .regions
+        .iter()
+        .enumerate()
+        .map(|(k, r)| {
+            serde_json::json!({
+                "region": k + 1,
+                "kinds": r.kinds,
+                "area_mm2": r.area,
+                "raw_area_mm2": r.raw_area,
+                "depth_mm": r.depth,
+                "deepest": [r.deepest.x, r.deepest.y, r.deepest.z],
+                "samples": r.pairs.len(),
+                "boundary_points": r.boundary.exterior().0.len(),
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "regions": regions,
+        "samples": d.samples,
+        "directory_pitch_mm": d.pitch,
+    })
+}
+
+/// Every region's boundary as CSV: `region,ring,x,y` (ring 0 the outer boundary,
+/// then the holes), each ring closed.
+pub fn boundaries_csv(d: &Detection) -> String {
+    let mut s = String::from("region,ring,x,y\n");
+    for (k, r) in d.regions.iter().enumerate() {
+        let rings = std::iter::once(r.boundary.exterior()).chain(r.boundary.interiors());
+        for (j, ring) in rings.enumerate() {
+            for c in ring.coords() {
+                s += &format!("{},{j},{:.6},{:.6}\n", k + 1, c.x, c.y);
+            }
+        }
+    }
+    s
+}
