@@ -1,8 +1,11 @@
 //! The cleanup tool path (thesis 002 §4.4 and §5.4): the regions' passes in an
 //! order that keeps air time short, linked by skims.
 //!
-//! - **Patterns**: flow-cut ([`crate::pencil`]) or follow-pocket ([`crate::pocket`]);
-//!   the stepover follows from the scallop height as for the raster
+//! - **Patterns**: flow-cut ([`crate::pencil`]) or follow-pocket ([`crate::pocket`]),
+//!   whose rings end with the cleanup tool's own pencil passes: rings shrinking in
+//!   XY stop up to a step short of the valley's bottom, where the contact jumps from
+//!   one side to the other, and the pencil pass is exactly there. The stepover
+//!   follows from the scallop height as for the raster
 //!   ([`swarf_path::raster_step::stepover_for_scallop`]).
 //! - **Order**: regions greedily, each next the one whose first pass starts nearest
 //!   (in XY) to where the previous ended, starting with the first region; inside a
@@ -13,7 +16,10 @@
 //!   at least as wide as the tool) plus [`SKIM_MARGIN`], never above the clearance
 //!   plane.
 //! - **Gouge**: every CL point is an exact drop of the cleanup tool onto the whole
-//!   part, and moves between them are refined to the tolerance, as for the raster.
+//!   part, and moves between them are refined as the raster's are, to
+//!   [`CHORD_FRACTION`] of the tolerance: the refinement tests the chord at its
+//!   midpoint, and over a convex edge (the CL curve an arc meeting a line) the chord
+//!   dips below the curve up to a quarter further elsewhere.
 //!
 //! An empty region set gives an empty tool path (no passes), not an error: the
 //! caller says so and writes a program without moves.
@@ -35,6 +41,8 @@ use swarf_tool::Cutter;
 use swarf_tool::drop::{DropScratch, MeshDropper};
 use swarf_toolpath::{Pass, Toolpath, top_z};
 
+/// The chordal refinement of cleanup passes, as a fraction of the tolerance.
+pub const CHORD_FRACTION: f64 = 0.5;
 /// Locus points closer than this are one, mm.
 pub const SAME_POINT: f64 = 1e-4;
 /// Height of a skim link above the highest drop along it, mm.
@@ -86,32 +94,32 @@ pub fn plan_cleanup(
     RestError::check("strategy.scallop", params.scallop, false)?;
     let stepover = stepover_for_scallop(tool, params.scallop)?;
     let tol = params.finish.tolerance;
+    let chord = CHORD_FRACTION * tol;
     let dropper = MeshDropper::new(mesh, tool);
+    let locus = if regions.is_empty() {
+        Vec::new()
+    } else {
+        reference_pairs(mesh, &dropper, tol)?
+    };
+    let pencil = Pencil {
+        mesh,
+        dropper: &dropper,
+        tolerance: chord,
+        passes: match params.pattern {
+            Pattern::FlowCut => params.passes,
+            Pattern::FollowPocket => 0,
+        },
+        stepover,
+    };
     let mut per_region: Vec<Vec<Pass>> = Vec::with_capacity(regions.len());
-    match params.pattern {
-        Pattern::FollowPocket => {
-            for r in regions {
-                per_region.push(follow_pocket(mesh, &dropper, r, stepover, tol)?);
-            }
-        }
-        Pattern::FlowCut => {
-            let locus = if regions.is_empty() {
-                Vec::new()
-            } else {
-                reference_pairs(mesh, &dropper, tol)?
-            };
-            let pencil = Pencil {
-                mesh,
-                dropper: &dropper,
-                tolerance: tol,
-                passes: params.passes,
-                stepover,
-            };
-            for r in regions {
-                let chains = locus_chains(&locus, r, 0.5 * tool.radius());
-                per_region.push(pencil.passes(r, &chains));
-            }
-        }
+    for r in regions {
+        let mut passes = match params.pattern {
+            Pattern::FollowPocket => follow_pocket(mesh, &dropper, r, stepover, chord)?,
+            Pattern::FlowCut => Vec::new(),
+        };
+        let chains = locus_chains(&locus, r, 0.5 * tool.radius());
+        passes.extend(pencil.passes(r, &chains));
+        per_region.push(passes);
     }
     let mut passes = order_regions(per_region);
     let linking = params.finish.linking.for_top(top_z(&passes));

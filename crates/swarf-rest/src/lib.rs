@@ -9,7 +9,8 @@
 //! - [`region`]: raw pieces and the boundary operations (smoothing, merging,
 //!   deletion, overlap; §5.3); [`stock`]: pieces from the dexel stock (ch. 4).
 //! - [`cleanup`]: the cleanup tool path, with the patterns [`pencil`] (flow-cut) and
-//!   [`pocket`] (follow-pocket) (§5.4).
+//!   [`pocket`] (follow-pocket) (§5.4), their offsets at a constant stepover along
+//!   the surface ([`stepping`]).
 //!
 //! Units: millimetres, radians.
 
@@ -22,6 +23,7 @@ pub mod pair;
 pub mod pencil;
 pub mod pocket;
 pub mod region;
+pub mod stepping;
 pub mod stock;
 
 pub use cleanup::{CleanupParams, Pattern, plan_cleanup};

@@ -19,12 +19,15 @@
 //! contact and no move leaves the CL surface by more than the tolerance at its
 //! midpoint.
 //!
-//! **Parallel passes.** `passes` more on each side, at `k` times the stepover,
-//! offset in XY from the centre pass along its normals, dropped onto the part as any
-//! track ([`swarf_path::track::drop_track`]) and clipped to the region.
+//! **Parallel passes.** Up to `passes` more on each side, offset in XY from the
+//! centre pass along its normals at a constant stepover along the surface
+//! ([`crate::stepping`]), dropped onto the part as any track
+//! ([`swarf_path::track::drop_track`]) and clipped to the region.
 
 use crate::pair::RestPair;
+use crate::pocket::MIN_STEP_FRACTION;
 use crate::region::RestRegion;
+use crate::stepping::step_out;
 use geo::{Contains, Point};
 use swarf_geom::TriMesh;
 use swarf_path::track::{Track, crease_track, drop_track};
@@ -53,36 +56,46 @@ pub struct Pencil<'a> {
 
 impl Pencil<'_> {
     /// The pencil passes of `region` from the locus `chains` (ordered pairs of the
-    /// cleanup tool inside it), side by side: the outermost on one side first.
+    /// cleanup tool inside it), side by side: the outermost on the left first, then
+    /// inwards, the centre, and out to the right, every other one reversed.
     pub fn passes(&self, region: &RestRegion, chains: &[Vec<RestPair>]) -> Vec<Pass> {
         let mut scratch = DropScratch::default();
         let mut out = Vec::new();
         for chain in chains {
             for centre in self.densify(chain, &mut scratch) {
-                let k = self.passes as i64;
-                for side in -k..=k {
-                    if side == 0 {
-                        out.push(Pass {
-                            points: centre.iter().map(point_of).collect(),
-                            skim: None,
-                        });
-                        continue;
-                    }
-                    let xy = offset(&centre, side as f64 * self.stepover);
-                    let Some(track) = Track::new(&xy) else {
-                        continue;
-                    };
-                    let got = drop_track(
-                        self.mesh,
-                        self.dropper,
-                        &track,
-                        self.tolerance,
-                        &mut scratch,
-                    );
-                    for piece in got.pieces {
-                        out.extend(clip(piece, region));
-                    }
-                }
+                let first = vec![Pass {
+                    points: centre.iter().map(point_of).collect(),
+                    skim: None,
+                }];
+                let side = |sign: f64, scratch: &mut DropScratch| {
+                    step_out(
+                        &first,
+                        self.stepover,
+                        MIN_STEP_FRACTION * self.stepover,
+                        self.passes,
+                        |d| {
+                            let track = Track::new(&offset(&centre, sign * d))?;
+                            let got = drop_track(
+                                self.mesh,
+                                self.dropper,
+                                &track,
+                                self.tolerance,
+                                scratch,
+                            );
+                            let kept: Vec<Pass> = got
+                                .pieces
+                                .into_iter()
+                                .flat_map(|p| clip(p, region))
+                                .collect();
+                            (!kept.is_empty()).then_some(kept)
+                        },
+                    )
+                };
+                let left = side(1.0, &mut scratch);
+                let right = side(-1.0, &mut scratch);
+                out.extend(left.into_iter().rev().flatten());
+                out.extend(first);
+                out.extend(right.into_iter().flatten());
             }
         }
         for (k, p) in out.iter_mut().enumerate() {

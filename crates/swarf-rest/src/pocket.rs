@@ -1,37 +1,32 @@
 //! Follow-pocket cleanup (thesis 002 §5.4): rings along the region's boundary,
 //! working inwards at a constant stepover.
 //!
-//! The rings are the region's boundary offset inwards by `k s` (geo's buffers),
-//! `k = 0, 1, ...` until nothing is left, plus one at `(k + 1/2) s` past the last
-//! when that still has area, so that no point of the region is more than `s` from a
-//! ring. Each ring (outer boundary and holes) is a closed track dropped onto the
-//! part exactly ([`swarf_path::track::drop_track`]: refined to the tolerance, split
-//! where the tool leaves the part), cut outermost first.
-//!
-//! **Stepover along the surface.** On a slope of angle `theta` two rings `s` apart
-//! in XY are `s / cos theta` apart along the surface, so the XY step is the surface
-//! step times `cos theta` at the steepest facet in the region (the facets whose
-//! centroids lie inside its boundary), but not below [`MIN_COS`] times it: on the
-//! near-vertical walls that bound a valley the rings crowd onto the wall in XY
-//! anyway, and a finer step would only multiply passes.
+//! The rings are the region's boundary offset inwards (geo's buffers) until nothing
+//! is left, each next one at a constant stepover along the surface from the one
+//! before ([`crate::stepping`]: the XY step shrinks on slopes and in concave bends
+//! where a contact moves faster than the tool). Each ring (outer boundary and
+//! holes) is a closed track dropped onto the part exactly
+//! ([`swarf_path::track::drop_track`]: refined to the tolerance, split where the
+//! tool leaves the part), cut outermost first.
 
 use crate::error::RestError;
 use crate::region::RestRegion;
-use geo::{BoundingRect, Buffer, Contains, LineString, MultiPolygon, Point};
+use crate::stepping::step_out;
+use geo::{BoundingRect, Buffer, LineString, MultiPolygon};
 use swarf_geom::TriMesh;
 use swarf_path::track::{Track, drop_track};
 use swarf_tool::drop::{DropScratch, MeshDropper};
 use swarf_toolpath::Pass;
 
-/// The XY stepover is never below this fraction of the surface stepover.
-pub const MIN_COS: f64 = 0.3;
+/// The smallest XY step between rings, as a fraction of the stepover.
+pub const MIN_STEP_FRACTION: f64 = 0.05;
 /// Most rings in one region.
 pub const MAX_RINGS: usize = 20_000;
 
 /// The follow-pocket passes of `region`, `stepover` mm apart along the surface.
 ///
 /// # Errors
-/// [`RestError::InvalidParameter`] when the region would need more than
+/// [`RestError::InvalidParameter`] when the region could need more than
 /// [`MAX_RINGS`] rings.
 pub fn follow_pocket(
     mesh: &TriMesh,
@@ -40,48 +35,41 @@ pub fn follow_pocket(
     stepover: f64,
     tolerance: f64,
 ) -> Result<Vec<Pass>, RestError> {
-    let step = stepover * steepest_cos(mesh, region).max(MIN_COS);
     let Some(b) = region.boundary.bounding_rect() else {
         return Ok(Vec::new());
     };
-    let rings = (0.5 * b.width().min(b.height()) / step).ceil() + 2.0;
+    let min_step = MIN_STEP_FRACTION * stepover;
+    let rings = (0.5 * b.width().min(b.height()) / min_step).ceil() + 2.0;
     if !(rings <= MAX_RINGS as f64) {
         return Err(RestError::InvalidParameter {
             field: "strategy.scallop".into(),
             value: format!("{stepover} mm stepover"),
             expected: format!(
                 "a stepover giving at most {MAX_RINGS} rings across the region \
-                 ({rings} needed)"
+                 ({rings} could be needed)"
             ),
         });
     }
     let whole = MultiPolygon(vec![region.boundary.clone()]);
-    let mut levels: Vec<MultiPolygon<f64>> = Vec::new();
-    for k in 0..rings as usize {
-        let inner = if k == 0 {
-            whole.clone()
-        } else {
-            whole.buffer(-(k as f64) * step)
-        };
-        if inner.0.is_empty() {
-            let half = whole.buffer(-((k as f64) - 0.5) * step);
-            if !half.0.is_empty() {
-                levels.push(half);
-            }
-            break;
-        }
-        levels.push(inner);
-    }
     let mut scratch = DropScratch::default();
-    let mut out = Vec::new();
-    for level in &levels {
-        for poly in &level.0 {
+    let level = |shape: &MultiPolygon<f64>, scratch: &mut DropScratch| -> Vec<Pass> {
+        let mut out = Vec::new();
+        for poly in &shape.0 {
             for ring in std::iter::once(poly.exterior()).chain(poly.interiors()) {
-                out.extend(drop_ring(mesh, dropper, ring, tolerance, &mut scratch));
+                out.extend(drop_ring(mesh, dropper, ring, tolerance, scratch));
             }
         }
-    }
-    Ok(out)
+        out
+    };
+    let first = level(&whole, &mut scratch);
+    let inner = step_out(&first, stepover, min_step, rings as usize, |d| {
+        let shape = whole.buffer(-d);
+        (!shape.0.is_empty()).then(|| level(&shape, &mut scratch))
+    });
+    Ok(first
+        .into_iter()
+        .chain(inner.into_iter().flatten())
+        .collect())
 }
 
 /// A closed ring dropped onto the part, as passes.
@@ -101,27 +89,4 @@ fn drop_ring(
         .into_iter()
         .map(|points| Pass { points, skim: None })
         .collect()
-}
-
-/// The smallest upward normal component of the facets whose centroids lie in the
-/// region (1 when none does).
-fn steepest_cos(mesh: &TriMesh, region: &RestRegion) -> f64 {
-    let Some(b) = region.boundary.bounding_rect() else {
-        return 1.0;
-    };
-    (0..mesh.len())
-        .filter_map(|k| {
-            let t = mesh.triangles[k].map(|i| mesh.vertices[i as usize]);
-            let (cx, cy) = (
-                (t[0].x + t[1].x + t[2].x) / 3.0,
-                (t[0].y + t[1].y + t[2].y) / 3.0,
-            );
-            let inside = cx >= b.min().x
-                && cx <= b.max().x
-                && cy >= b.min().y
-                && cy <= b.max().y
-                && region.boundary.contains(&Point::new(cx, cy));
-            inside.then(|| mesh.normal(k)).flatten().map(|n| n.z.abs())
-        })
-        .fold(1.0, f64::min)
 }

@@ -45,6 +45,9 @@ use swarf_tool::drop::MeshDropper;
 /// sample up to `sqrt 2 / 2` from its vertex).
 pub const LINK_PITCHES: f64 = 3.0;
 
+/// Half-width of the strip around a pair's own segment, in directory pitches.
+pub const STRIP_PITCHES: f64 = 0.05;
+
 /// Parameters of the boundary operations (thesis 002 §5.3), all mm or mm².
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RegionParams {
@@ -182,7 +185,7 @@ fn xy(p: &Point3) -> Coord<f64> {
 
 /// The shape of a group's chains (module doc).
 fn piece_of(pairs: Vec<RestPair>, chains: Vec<std::ops::Range<usize>>, pitch: f64) -> RawPiece {
-    let w = 0.25 * pitch;
+    let w = STRIP_PITCHES * pitch;
     let mut polys: Vec<Polygon<f64>> = pairs.iter().map(|p| strip(p, w)).collect();
     for r in &chains {
         for w in pairs[r.clone()].windows(2) {
