@@ -141,7 +141,7 @@ pub fn crease_scan(
     tolerance: f64,
 ) -> Result<Vec<DoubleContact>, PathError> {
     let tool = dropper.tool().cutter();
-    let mut params = RasterParams::new(crate::params::Finish::new(tool.clone()), spacing);
+    let mut params = RasterParams::new(crate::params::Finish::new(*tool), spacing);
     params.angle = angle;
     params.finish.tolerance = tolerance;
     if dropper.is_empty() {

@@ -22,9 +22,10 @@
 //!    is within `c` of the outward offset's boundary... and inside it);
 //! 2. *deletion*: a region whose raw area (the pieces' union inside it) is below
 //!    `min_area` is dropped;
-//! 3. *overlap*: what survives is offset out by `overlap`, for a margin of
+//! 3. *overlap*: each surviving region is offset out by `overlap`, for a margin of
 //!    cleanup around what detection found and a smooth transition to the finishing
-//!    path (regions that then touch are united).
+//!    path. Regions stay apart even where their overlaps meet: merging is the merge
+//!    distance's business alone.
 //!
 //! The final boundaries therefore contain the raw regions they come from; the tests
 //! check it point by point.
@@ -259,12 +260,9 @@ pub fn regions(pieces: Vec<RawPiece>, params: &RegionParams) -> Result<Vec<RestR
                 >= params.min_area
         })
         .collect();
-    let grown = MultiPolygon(kept).buffer(params.overlap);
-    let mut out: Vec<RestRegion> = grown
-        .0
+    let mut out: Vec<RestRegion> = kept
         .into_iter()
-        .map(|boundary| region_of(boundary, &pieces, &raw))
-        .filter(|r| !r.pairs.is_empty() || r.raw_area > 0.0)
+        .filter_map(|p| region_of(&p, params.overlap, &pieces))
         .collect();
     let corner = |r: &RestRegion| {
         r.boundary
@@ -278,13 +276,20 @@ pub fn regions(pieces: Vec<RawPiece>, params: &RegionParams) -> Result<Vec<RestR
     Ok(out)
 }
 
-/// The region with boundary `boundary`: the pieces that meet it.
-fn region_of(boundary: Polygon<f64>, pieces: &[RawPiece], raw: &MultiPolygon<f64>) -> RestRegion {
+/// The region of the closed polygon `closed`: the pieces that meet it (each lies
+/// inside one closed polygon: the closing contains what it closes), its boundary
+/// grown by `overlap` (the largest polygon of the offset; `None` when it has none).
+fn region_of(closed: &Polygon<f64>, overlap: f64, pieces: &[RawPiece]) -> Option<RestRegion> {
+    let boundary = closed
+        .buffer(overlap)
+        .0
+        .into_iter()
+        .max_by(|a, b| a.unsigned_area().total_cmp(&b.unsigned_area()))?;
     let mine: Vec<&RawPiece> = pieces
         .iter()
-        .filter(|p| p.shape.intersects(&boundary))
+        .filter(|p| p.shape.intersects(closed))
         .collect();
-    let raw_inside = raw.intersection(&MultiPolygon(vec![boundary.clone()]));
+    let raw_inside = unary_union(mine.iter().flat_map(|p| p.shape.0.iter()));
     let mut kinds: Vec<RestKind> = mine.iter().map(|p| p.kind).collect();
     kinds.sort();
     kinds.dedup();
@@ -302,7 +307,7 @@ fn region_of(boundary: Polygon<f64>, pieces: &[RawPiece], raw: &MultiPolygon<f64
             _ => Some(p),
         })
         .map_or((0.0, Point3::origin()), |p| (p.depth, p.deepest));
-    RestRegion {
+    Some(RestRegion {
         kinds,
         area: boundary.unsigned_area(),
         boundary,
@@ -312,7 +317,7 @@ fn region_of(boundary: Polygon<f64>, pieces: &[RawPiece], raw: &MultiPolygon<f64
         deepest: deepest.1,
         pairs,
         chains,
-    }
+    })
 }
 
 #[cfg(test)]
