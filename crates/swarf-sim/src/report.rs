@@ -160,33 +160,7 @@ fn csv_field(text: &str) -> String {
 /// A few lines for a terminal.
 pub fn text_summary(v: &Verification, ctx: &ReportContext) -> String {
     let s = &v.deviation.summary;
-    let p = &v.program;
-    let mut t = String::new();
-    let _ = writeln!(
-        t,
-        "{}: {} motions ({} passes), cutting {:.1} mm, rapid {:.1} mm, time {}",
-        ctx.program,
-        p.motions,
-        p.passes,
-        p.cutting_length_mm,
-        p.rapid_length_mm,
-        clock(p.time_s)
-    );
-    if v.stages.len() > 1 {
-        for st in &v.stages {
-            let p = &st.stats;
-            let _ = writeln!(
-                t,
-                "  {} with {}: {} motions ({} passes), cutting {:.1} mm, time {}",
-                st.source,
-                st.tool,
-                p.motions,
-                p.passes,
-                p.cutting_length_mm,
-                clock(p.time_s)
-            );
-        }
-    }
+    let mut t = program_lines(v, ctx);
     let _ = writeln!(
         t,
         "grid {} x {} cells of {} mm; {} cells measured",
@@ -243,6 +217,36 @@ pub fn text_summary(v: &Verification, ctx: &ReportContext) -> String {
     }
     if let Some(stop) = &ctx.stopped {
         let _ = writeln!(t, "error: the program stopped early: {stop}");
+    }
+    t
+}
+
+/// The program's figures (and each program's, when there are several).
+fn program_lines(v: &Verification, ctx: &ReportContext) -> String {
+    let p = &v.program;
+    let mut t = format!(
+        "{}: {} motions ({} passes), cutting {:.1} mm, rapid {:.1} mm, time {}\n",
+        ctx.program,
+        p.motions,
+        p.passes,
+        p.cutting_length_mm,
+        p.rapid_length_mm,
+        clock(p.time_s)
+    );
+    if v.stages.len() > 1 {
+        for st in &v.stages {
+            let p = &st.stats;
+            let _ = writeln!(
+                t,
+                "  {} with {}: {} motions ({} passes), cutting {:.1} mm, time {}",
+                st.source,
+                st.tool,
+                p.motions,
+                p.passes,
+                p.cutting_length_mm,
+                clock(p.time_s)
+            );
+        }
     }
     t
 }
