@@ -13,6 +13,7 @@ pub mod job;
 pub mod model;
 pub mod plan;
 pub mod plan_job;
+pub mod programs;
 pub mod report;
 pub mod verify;
 
