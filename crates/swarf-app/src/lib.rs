@@ -1,6 +1,6 @@
 //! swarf-app: the application layer. It reads job files (the TOML schema, [`job`]),
 //! runs the pipeline plan -> position -> post -> verify ([`plan_job()`], [`five_axis`],
-//! [`verify`]), tabulates the comparison of paper 004 and thesis 000 ([`compare`]),
+//! [`verify`], reading its programs with [`programs`]), tabulates the comparison of paper 004 and thesis 000 ([`compare`]),
 //! and runs the demo ([`demo`]). It calls the kernel crates; it does not compute
 //! geometry. The `swarf` command line and the Python package are thin layers over it.
 

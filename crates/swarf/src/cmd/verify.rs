@@ -275,6 +275,22 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(err.contains("missing.ngc"), "{err}");
+        // A finish that stops mid-way: the cleanup after it is not simulated.
+        let stopped = dir.join("stopped.ngc");
+        let cut: String = raster(2.5, 3.0)
+            .lines()
+            .take(10)
+            .map(|l| l.to_string() + "\n")
+            .collect();
+        std::fs::write(&stopped, cut + "G1 X4 Y\n").unwrap();
+        let two = [&stopped, &cleanup];
+        let err = run(&args(&two, &["ball:d=6", "ball:d=2"], "stop"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("stopped.ngc:11"), "{err}");
+        let report = read_report(&dir.join("stop/report.json"));
+        assert_eq!(report["complete"], serde_json::Value::Bool(false));
+        assert!(report.get("programs").is_none(), "{}", report["programs"]);
         let _ = std::fs::remove_dir_all(&dir);
     }
 
