@@ -32,8 +32,8 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use swarf_nc::read::read_program;
-use swarf_sim::Verification;
 use swarf_sim::report::{clock, count};
+use swarf_sim::{Stage, Verification};
 
 /// Default dexel cell for five-axis programs, mm.
 pub const FIVE_AXIS_CELL: f64 = 0.5;
@@ -213,12 +213,15 @@ fn check_one(
         opts.cell = opts.cell.or(Some(FIVE_AXIS_CELL));
         opts.sample_tol = opts.sample_tol.or(Some(FIVE_AXIS_SAMPLE_TOL));
     }
-    let ctx = context(&part, &program, &job.tool, &opts);
+    let stages = [Stage {
+        program: &program,
+        cutter: &job.tool,
+    }];
+    let ctx = context(&part, &stages, &opts);
     let start = Instant::now();
     let v = verify_and_write(
         &model,
-        &program,
-        &job.tool,
+        &stages,
         &opts,
         Destination {
             dir: out,

@@ -1,6 +1,7 @@
 //! swarf-app: the application layer. It reads job files (the TOML schema, [`job`]),
 //! runs the pipeline plan -> position -> post -> verify -> rest -> cleanup
-//! ([`plan_job()`], [`five_axis`], [`verify`], [`cleanup`]), tabulates the comparison of paper 004 and thesis 000 ([`compare`]),
+//! ([`plan_job()`], [`five_axis`], [`verify`] reading its programs with [`programs`],
+//! [`cleanup`]), tabulates the comparison of paper 004 and thesis 000 ([`compare`]),
 //! and runs the demo ([`demo`]). It calls the kernel crates; it does not compute
 //! geometry. The `swarf` command line and the Python package are thin layers over it.
 
@@ -14,6 +15,7 @@ pub mod job;
 pub mod model;
 pub mod plan;
 pub mod plan_job;
+pub mod programs;
 pub mod report;
 pub mod verify;
 

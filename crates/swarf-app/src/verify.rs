@@ -7,16 +7,20 @@
 //! `--tool-length MM`. The G-code's axis positions then go through the machine's
 //! forward kinematics into part-frame poses ([`read_with_machine`]). APT CL and pose
 //! CSV programs are in the part frame already: the machine is not needed for them.
+//!
+//! Several programs run one after the other on one stock (a finish, then the cleanup
+//! of what its tool left, each with its own tool: [`swarf_sim::stage`]) and give one
+//! report. The tools are matched to the programs in order ([`stage_cutters`]); the
+//! machine applies to every G-code program.
 
-use crate::error::{AppError, Context, Result, bail};
+use crate::error::{Context, Result, bail};
 use crate::model::{Model, load_model};
-use std::path::Path;
-use swarf_fiveaxis::machine::reader::MachineKinematics;
-use swarf_fiveaxis::machine::{Machine, MachineKind, load_machine};
-use swarf_nc::read::{GcodeReadOptions, Program, ProgramFormat, read_program, read_program_with};
+use crate::programs::read_programs;
+pub use crate::programs::{machine_arg, parse_tools, read_with_machine, stage_cutters};
+use std::path::{Path, PathBuf};
+use swarf_nc::read::Motion;
 use swarf_sim::report::{ReportContext, flagged_csv, json_report};
-use swarf_sim::{Design, Progress, StockSpec, Verification, VerifyOptions};
-use swarf_tool::Cutter;
+use swarf_sim::{Design, Progress, Stage, StockSpec, Verification, VerifyOptions};
 
 /// Verification settings as a user gives them (`swarf verify` and `swarf compare`
 /// flags): each absent one takes a default from the job or the command.
@@ -152,11 +156,14 @@ pub fn parse_stock(text: &str) -> Result<StockSpec> {
 pub struct VerifyRequest<'a> {
     /// Design part: a part file, a mesh or a built-in part name.
     pub part: &'a str,
-    /// NC program: G-code, APT CL or pose CSV.
-    pub program: &'a Path,
-    /// Tool spec (default: the program's CUTTER record).
-    pub tool: Option<&'a str>,
-    /// Machine file or `builtin:NAME` for five-axis G-code.
+    /// NC programs, run in this order on one stock (e.g. a finish, then its cleanup):
+    /// G-code, APT CL or pose CSV. At least one.
+    pub programs: &'a [PathBuf],
+    /// Tool specs matched to the programs in order ([`stage_cutters`]): none, one per
+    /// program, or fewer (the programs after them use their own APT CUTTER record,
+    /// else the last tool given).
+    pub tools: &'a [String],
+    /// Machine file or `builtin:NAME` for five-axis G-code (every G-code program).
     pub machine: Option<&'a str>,
     /// Spindle gauge line to tool tip, mm (machines with head axes).
     pub tool_length: Option<f64>,
@@ -178,56 +185,46 @@ pub struct Verified {
     pub notes: Vec<String>,
 }
 
-/// Reads and verifies the program of `req`, writing the reports and pictures under
-/// `req.out` ([`verify_and_write`]).
+/// Reads and verifies the programs of `req`, in order on one stock, writing the
+/// reports and pictures under `req.out` ([`verify_and_write`]). A program that stops
+/// mid-way is simulated up to where it stopped; the programs after it are not (a
+/// note says so), and [`Verified::context`] holds where it stopped.
 ///
 /// # Errors
-/// A part, machine or program that cannot be read; a head machine without a tool
-/// length; a program that names no cutter when no tool is given; the errors of
-/// [`verify_and_write`].
+/// No program; more tools than programs; a tool spec that does not parse (naming
+/// `--tool` and its position); a part, machine or program that cannot be read
+/// (naming its file); a head machine without a tool length; a program with no cutter
+/// (neither a tool nor a CUTTER record); the errors of [`verify_and_write`].
 pub fn verify_request(req: &VerifyRequest<'_>, progress: &dyn Progress) -> Result<Verified> {
+    if req.programs.is_empty() {
+        bail!("--program: give at least one NC program to verify");
+    }
+    let tools = parse_tools(req.tools, req.programs.len())?;
     let model = load_model(req.part)?;
     let opts = req.sim.options(0.01, 0.0, 5000.0, false)?;
-    let mut notes = Vec::new();
-    let machine = match req.machine {
-        Some(spec) if ProgramFormat::of(req.program) == Some(ProgramFormat::Gcode) => {
-            Some(machine_arg(spec)?)
-        }
-        Some(spec) => {
-            notes.push(format!(
-                "note: --machine {spec} ignored: {} is not G-code, its poses are in the \
-                 part frame already",
-                req.program.display()
-            ));
-            None
-        }
-        None => None,
-    };
-    let tool_length = match (&machine, req.tool_length) {
-        (Some(m), None) if m.kind != MachineKind::TableTable => bail!(
-            "--tool-length: the machine {:?} has head axes: give the tool length from the \
-             spindle gauge line to the tip, in mm",
-            m.name
-        ),
-        (_, length) => length.unwrap_or(0.0),
-    };
     let sample_tol = opts.sample_tol.unwrap_or(0.25 * opts.tol);
-    let program = read_with_machine(req.program, machine.as_ref(), tool_length, sample_tol)?;
-    let cutter = match (req.tool, &program.tool) {
-        (Some(spec), _) => spec
-            .parse::<Cutter>()
-            .map_err(|e| AppError::Message(format!("--tool {spec}: {e}")))?,
-        (None, Some(t)) => *t,
-        (None, None) => bail!(
-            "{}: the program names no cutter (no APT CUTTER record): give the tool with --tool, e.g. --tool ball:d=8",
-            program.source
-        ),
-    };
-    let context = context(req.part, &program, &cutter, &opts);
+    let (mut programs, mut notes) =
+        read_programs(req.programs, req.machine, req.tool_length, sample_tol)?;
+    if let Some(k) = programs.iter().position(|p| p.stopped.is_some())
+        && k + 1 < programs.len()
+    {
+        let skipped: Vec<String> = programs.drain(k + 1..).map(|p| p.source).collect();
+        notes.push(format!(
+            "note: {} not simulated: {} stopped before its end",
+            skipped.join(", "),
+            programs[k].source
+        ));
+    }
+    let cutters = stage_cutters(&tools, &programs)?;
+    let stages: Vec<Stage<'_>> = programs
+        .iter()
+        .zip(&cutters)
+        .map(|(program, cutter)| Stage { program, cutter })
+        .collect();
+    let context = context(req.part, &stages, &opts);
     let verification = verify_and_write(
         &model,
-        &program,
-        &cutter,
+        &stages,
         &opts,
         Destination {
             dir: req.out,
@@ -243,65 +240,24 @@ pub fn verify_request(req: &VerifyRequest<'_>, progress: &dyn Progress) -> Resul
     })
 }
 
-/// Reads the program at `path`; a G-code program through `machine`'s forward
-/// kinematics when given (five-axis moves split into motions within `tol` of the tool
-/// tip's path), with a tool `tool_length` long from the gauge line to the tip
-/// (machines with head axes). APT CL and pose CSV programs are read as they are.
-///
-/// # Units
-/// mm.
-///
-/// # Errors
-/// A program file that cannot be read; a tool length that is not a length.
-pub fn read_with_machine(
-    path: &Path,
-    machine: Option<&Machine>,
-    tool_length: f64,
-    tol: f64,
-) -> Result<Program> {
-    let Some(machine) = machine else {
-        return Ok(read_program(path)?);
-    };
-    let kinematics = MachineKinematics::new(machine.clone(), tool_length)?;
-    let opts = GcodeReadOptions {
-        kinematics: Some(&kinematics),
-        kinematics_tol: tol,
-        ..GcodeReadOptions::default()
-    };
-    Ok(read_program_with(path, &opts)?)
-}
-
-/// The machine `--machine` names: `builtin:NAME` or a machine file.
-///
-/// # Errors
-/// A file that cannot be read or parsed; an unknown built-in name.
-pub fn machine_arg(spec: &str) -> Result<Machine> {
-    if spec.starts_with("builtin:") {
-        return Ok(load_machine(spec, Path::new(""))?);
-    }
-    let text = std::fs::read_to_string(spec)
-        .with_context(|| format!("--machine {spec}: cannot read the machine file"))?;
-    Ok(Machine::parse(&text, spec)?)
-}
-
-/// What the report says about the inputs.
-pub fn context(
-    part: &str,
-    program: &Program,
-    cutter: &Cutter,
-    opts: &VerifyOptions,
-) -> ReportContext {
+/// What the report says about the inputs: with several stages, the programs and
+/// tools joined by " + ", and every program's warnings.
+pub fn context(part: &str, stages: &[Stage<'_>], opts: &VerifyOptions) -> ReportContext {
+    let joined =
+        |f: &dyn Fn(&Stage<'_>) -> String| stages.iter().map(f).collect::<Vec<_>>().join(" + ");
     ReportContext {
         part: part.to_string(),
-        program: program.source.clone(),
-        tool: cutter.to_string(),
+        program: joined(&|s| s.program.source.clone()),
+        tool: joined(&|s| s.cutter.to_string()),
         stock: opts.stock.describe(),
-        warnings: program
-            .warnings
+        warnings: stages
             .iter()
-            .map(|w| program.located(w))
+            .flat_map(|s| s.program.warnings.iter().map(|w| s.program.located(w)))
             .collect(),
-        stopped: program.stopped.as_ref().map(|d| program.located(d)),
+        stopped: stages.iter().find_map(|s| {
+            let p = s.program;
+            p.stopped.as_ref().map(|d| p.located(d))
+        }),
     }
 }
 
@@ -314,16 +270,16 @@ pub struct Destination<'a> {
     pub prefix: &'a str,
 }
 
-/// Verifies and writes `{prefix}report.json`, `{prefix}flagged.csv`,
-/// `{prefix}deviation.png` and `{prefix}toolpath.png` under `to.dir`.
+/// Verifies `stages` (programs run in order on one stock, each with its cutter) and
+/// writes `{prefix}report.json`, `{prefix}flagged.csv`, `{prefix}deviation.png` and
+/// `{prefix}toolpath.png` under `to.dir`.
 ///
 /// # Errors
-/// A verification that cannot run (grid too large, ...); an output that cannot be
-/// written.
+/// No stage; a verification that cannot run (grid too large, ...); an output that
+/// cannot be written.
 pub fn verify_and_write(
     model: &Model,
-    program: &Program,
-    cutter: &Cutter,
+    stages: &[Stage<'_>],
     opts: &VerifyOptions,
     to: Destination<'_>,
     ctx: &ReportContext,
@@ -334,16 +290,23 @@ pub fn verify_and_write(
         Model::Patches(p) => Design::Part(p),
         Model::Mesh { mesh, .. } => Design::Mesh(mesh),
     };
-    let v = swarf_sim::verify(design, program, cutter, opts, progress)?;
+    let v = swarf_sim::verify_stages(design, stages, opts, progress)?;
     std::fs::create_dir_all(out)
         .with_context(|| format!("{}: cannot create the output directory", out.display()))?;
     let file = |name: &str| out.join(format!("{prefix}{name}"));
     let json = serde_json::to_string_pretty(&json_report(&v, ctx))? + "\n";
     swarf_io::write_atomic(&file("report.json"), json.as_bytes())?;
     swarf_io::write_atomic(&file("flagged.csv"), flagged_csv(&v).as_bytes())?;
-    let name = Path::new(&ctx.program)
-        .file_name()
-        .map_or(ctx.program.clone(), |n| n.to_string_lossy().into_owned());
+    let name = stages
+        .iter()
+        .map(|s| {
+            let source = &s.program.source;
+            Path::new(source)
+                .file_name()
+                .map_or(source.clone(), |n| n.to_string_lossy().into_owned())
+        })
+        .collect::<Vec<_>>()
+        .join(" + ");
     let mode = if v.along_normals {
         "normal"
     } else {
@@ -358,7 +321,11 @@ pub fn verify_and_write(
         &swarf_report::picture::deviation_png(&v, &title)?,
     )?;
     let title = format!("tool path: {name}, {}", ctx.tool);
-    let png = swarf_report::picture::toolpath_png(&v, &program.motions, &title)?;
+    let motions: Vec<Motion> = stages
+        .iter()
+        .flat_map(|s| s.program.motions.iter().copied())
+        .collect();
+    let png = swarf_report::picture::toolpath_png(&v, &motions, &title)?;
     swarf_io::write_atomic(&file("toolpath.png"), &png)?;
     Ok(v)
 }

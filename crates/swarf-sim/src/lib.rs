@@ -13,7 +13,8 @@
 //! - [`mow`]: deviation along the design normals ("mow the grass").
 //! - [`simulate`](mod@simulate): a program over a stock, in parallel row bands,
 //!   deterministically.
-//! - [`verify`](mod@verify): all of it for a program, a tool and a design.
+//! - [`stage`]: several programs in sequence on one stock, each with its own cutter.
+//! - [`verify`](mod@verify): all of it for a program (or several), a tool and a design.
 //! - [`report`] (JSON, CSV, text); the pictures of a verification are drawn by
 //!   swarf-report.
 //!
@@ -28,6 +29,7 @@ pub mod mow;
 pub mod progress;
 pub mod report;
 pub mod simulate;
+pub mod stage;
 pub mod sweep;
 pub mod sweep_linear;
 pub mod sweep_tilted;
@@ -40,6 +42,7 @@ pub use dexel::{Dexel, StockInit};
 pub use error::SimError;
 pub use grid::Grid;
 pub use progress::{Progress, Quiet};
-pub use simulate::{SimOptions, SimReport, simulate};
+pub use simulate::{SimOptions, SimReport, simulate, simulate_from};
+pub use stage::{Stage, StageSummary};
 pub use sweep::{Primitive, SimTool, Sweep};
-pub use verify::{ProgramStats, StockSpec, Verification, VerifyOptions, verify};
+pub use verify::{ProgramStats, StockSpec, Verification, VerifyOptions, verify, verify_stages};

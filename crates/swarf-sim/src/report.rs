@@ -1,5 +1,11 @@
 //! Reports of a verification: the JSON with every figure (worst gouges with their
 //! program lines), and the CSV of flagged cells.
+//!
+//! A verification of several programs in sequence ([`crate::stage`]) numbers the
+//! motions of all programs in one list; its reports name the program of every motion
+//! they cite (a `program` field in the JSON's regions and notes, a `program` column in
+//! the CSV, and the program list with each one's figures). The reports of a single
+//! program have none of these.
 
 use crate::dexel::NO_MOTION;
 use crate::verify::Verification;
@@ -32,7 +38,7 @@ pub struct ReportContext {
 pub fn json_report(v: &Verification, ctx: &ReportContext) -> Value {
     let g = &v.grid;
     let warnings: Vec<&String> = ctx.warnings.iter().take(JSON_MAX_WARNINGS).collect();
-    json!({
+    let mut report = json!({
         "swarf": env!("CARGO_PKG_VERSION"),
         "part": ctx.part,
         "program": ctx.program,
@@ -57,14 +63,45 @@ pub fn json_report(v: &Verification, ctx: &ReportContext) -> Value {
         "simulation": v.sim,
         "deviation": v.deviation.summary,
         "timings_s": v.timings,
-    })
+    });
+    if v.stages.len() > 1 {
+        name_programs(&mut report, v);
+    }
+    report
 }
 
-/// The flagged cells as CSV: `x,y,design_z,machined_z,deviation,kind,motion,line`,
-/// gouges then excess, in row-major order, at most [`CSV_MAX_ROWS`] rows.
+/// Adds the program list and the program of every cited motion to a report of
+/// several programs.
+fn name_programs(report: &mut Value, v: &Verification) {
+    for (section, list) in [
+        ("deviation", "gouges"),
+        ("deviation", "excesses"),
+        ("simulation", "rapid_cuts"),
+        ("simulation", "outside"),
+    ] {
+        let Some(items) = report[section][list].as_array_mut() else {
+            continue;
+        };
+        for item in items {
+            let stage = item["motion"]
+                .as_u64()
+                .and_then(|m| v.stage_of(usize::try_from(m).ok()?));
+            if let (Some(stage), Some(fields)) = (stage, item.as_object_mut()) {
+                fields.insert("program".into(), Value::from(stage.source.as_str()));
+            }
+        }
+    }
+    report["programs"] = json!(v.stages);
+}
+
+/// The flagged cells as CSV: `x,y,design_z,machined_z,deviation,kind,motion,line`
+/// (and `program` after them for several programs), gouges then excess, in row-major
+/// order, at most [`CSV_MAX_ROWS`] rows.
 pub fn flagged_csv(v: &Verification) -> String {
     let s = &v.deviation.summary;
-    let mut out = String::from("x,y,design_z,machined_z,deviation,kind,motion,line\n");
+    let several = v.stages.len() > 1;
+    let mut out = String::from("x,y,design_z,machined_z,deviation,kind,motion,line");
+    out += if several { ",program\n" } else { "\n" };
     let mut rows = 0;
     for (kind, keep) in [("gouge", -1.0), ("excess", 1.0)] {
         for (k, &d) in v.deviation.values.iter().enumerate() {
@@ -91,32 +128,39 @@ pub fn flagged_csv(v: &Verification) -> String {
                     .map_or(String::new(), |l| l.to_string());
                 (m.to_string(), line)
             };
-            let _ = writeln!(
+            let _ = write!(
                 out,
                 "{x:.4},{y:.4},{:.6},{:.6},{d:.6},{kind},{motion},{line}",
                 v.design.heights[k],
                 v.stock.heights()[k]
             );
+            if several {
+                let program = (m != NO_MOTION)
+                    .then(|| v.stage_of(m as usize))
+                    .flatten()
+                    .map_or("", |s| s.source.as_str());
+                let _ = write!(out, ",{}", csv_field(program));
+            }
+            out.push('\n');
         }
     }
     out
 }
 
+/// `text` as one CSV field: quoted (with its quotes doubled) when it holds a comma, a
+/// quote or a line break (RFC 4180).
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
+}
+
 /// A few lines for a terminal.
 pub fn text_summary(v: &Verification, ctx: &ReportContext) -> String {
     let s = &v.deviation.summary;
-    let p = &v.program;
-    let mut t = String::new();
-    let _ = writeln!(
-        t,
-        "{}: {} motions ({} passes), cutting {:.1} mm, rapid {:.1} mm, time {}",
-        ctx.program,
-        p.motions,
-        p.passes,
-        p.cutting_length_mm,
-        p.rapid_length_mm,
-        clock(p.time_s)
-    );
+    let mut t = program_lines(v, ctx);
     let _ = writeln!(
         t,
         "grid {} x {} cells of {} mm; {} cells measured",
@@ -126,7 +170,9 @@ pub fn text_summary(v: &Verification, ctx: &ReportContext) -> String {
         .gouges
         .first()
         .map(|g| {
-            let line = g.line.map_or(String::new(), |l| format!(" (line {l})"));
+            let line = g
+                .line
+                .map_or(String::new(), |l| format!(" ({})", at_line(v, g.motion, l)));
             format!(
                 ", deepest {:.4} mm at ({:.3}, {:.3}){line}",
                 g.worst, g.at[0], g.at[1]
@@ -156,21 +202,61 @@ pub fn text_summary(v: &Verification, ctx: &ReportContext) -> String {
     for r in &v.sim.rapid_cuts {
         let _ = writeln!(
             t,
-            "warning: rapid at line {} cuts material ({:.4} mm deep)",
-            r.line, r.amount
+            "warning: rapid at {} cuts material ({:.4} mm deep)",
+            at_line(v, Some(r.motion), r.line),
+            r.amount
         );
     }
     for o in &v.sim.outside {
         let _ = writeln!(
             t,
-            "warning: move at line {} lies {:.1} mm outside the stock",
-            o.line, o.amount
+            "warning: move at {} lies {:.1} mm outside the stock",
+            at_line(v, Some(o.motion), o.line),
+            o.amount
         );
     }
     if let Some(stop) = &ctx.stopped {
         let _ = writeln!(t, "error: the program stopped early: {stop}");
     }
     t
+}
+
+/// The program's figures (and each program's, when there are several).
+fn program_lines(v: &Verification, ctx: &ReportContext) -> String {
+    let p = &v.program;
+    let mut t = format!(
+        "{}: {} motions ({} passes), cutting {:.1} mm, rapid {:.1} mm, time {}\n",
+        ctx.program,
+        p.motions,
+        p.passes,
+        p.cutting_length_mm,
+        p.rapid_length_mm,
+        clock(p.time_s)
+    );
+    if v.stages.len() > 1 {
+        for st in &v.stages {
+            let p = &st.stats;
+            let _ = writeln!(
+                t,
+                "  {} with {}: {} motions ({} passes), cutting {:.1} mm, time {}",
+                st.source,
+                st.tool,
+                p.motions,
+                p.passes,
+                p.cutting_length_mm,
+                clock(p.time_s)
+            );
+        }
+    }
+    t
+}
+
+/// `line N` of `motion`, with `of PROGRAM` when the verification ran several.
+fn at_line(v: &Verification, motion: Option<usize>, line: usize) -> String {
+    match motion.and_then(|m| v.stage_of(m)) {
+        Some(stage) if v.stages.len() > 1 => format!("line {line} of {}", stage.source),
+        _ => format!("line {line}"),
+    }
 }
 
 /// `n` and `noun`, plural (`noun` + "s") unless `n` is 1: `1 region`, `3 regions`.

@@ -9,9 +9,11 @@
 //! machine stood before its first motion; with [`SimOptions::known_start`] false
 //! that motion only places the tool at its end. Motions are taken in chunks of at most
 //! [`CHUNK_PRIMITIVES`] primitives so that a densely sampled five-axis program does
-//! not hold all its tool positions at once.
+//! not hold all its tool positions at once. Programs run one after the other on the
+//! same stock ([`crate::stage`]) number their motions on from those before them
+//! ([`simulate_from`]), so that a cell's last motion says which program left it.
 
-use crate::dexel::Dexel;
+use crate::dexel::{Dexel, NO_MOTION};
 use crate::grid::Grid;
 use crate::progress::Progress;
 use crate::sweep::{Primitive, RowJob, SimTool, sweep_motion};
@@ -90,11 +92,42 @@ struct BandStats {
     rapid: BTreeMap<u32, f64>,
 }
 
-/// Runs `motions` over `dexel` with `tool`.
+impl SimReport {
+    /// Adds the findings of a later run on the same stock (counts summed, notes
+    /// appended, the largest sampling bound kept).
+    pub fn absorb(&mut self, later: SimReport) {
+        self.motions += later.motions;
+        self.primitives += later.primitives;
+        self.sampled_motions += later.sampled_motions;
+        self.max_sample_bound = self.max_sample_bound.max(later.max_sample_bound);
+        self.cells_visited += later.cells_visited;
+        self.cells_lowered += later.cells_lowered;
+        self.rapid_cuts.extend(later.rapid_cuts);
+        self.outside.extend(later.outside);
+    }
+}
+
+/// Runs `motions` over `dexel` with `tool`; motion `k` is recorded as `k` in the
+/// stock's last-motion record and in the notes ([`simulate_from`] numbers them from
+/// another index).
 pub fn simulate(
     dexel: &mut Dexel,
     tool: &SimTool,
     motions: &[Motion],
+    opts: &SimOptions,
+    progress: &dyn Progress,
+) -> SimReport {
+    simulate_from(dexel, tool, motions, 0, opts, progress)
+}
+
+/// Runs `motions` over `dexel` with `tool`, recording motion `k` as `first + k` in
+/// the stock's last-motion record and in the notes: the motions of a later program
+/// on the same stock are numbered after those of the programs before it.
+pub fn simulate_from(
+    dexel: &mut Dexel,
+    tool: &SimTool,
+    motions: &[Motion],
+    first: usize,
     opts: &SimOptions,
     progress: &dyn Progress,
 ) -> SimReport {
@@ -129,7 +162,7 @@ pub fn simulate(
             && gap > OUTSIDE_MARGIN * tool.radius()
         {
             report.outside.push(MotionNote {
-                motion: k,
+                motion: first + k,
                 line: m.line,
                 amount: gap,
             });
@@ -138,7 +171,8 @@ pub fn simulate(
         chunk.extend(sw.primitives.into_iter().map(|p| (p, index)));
         pending += 1;
         if chunk.len() >= CHUNK_PRIMITIVES || k + 1 == motions.len() {
-            run_chunk(dexel, tool, motions, &chunk, &mut report, &mut rapid);
+            let numbering = Numbering { motions, first };
+            run_chunk(dexel, tool, numbering, &chunk, &mut report, &mut rapid);
             report.primitives += chunk.len();
             chunk.clear();
             progress.advance(pending);
@@ -149,7 +183,7 @@ pub fn simulate(
     report.rapid_cuts = rapid
         .into_iter()
         .map(|(k, depth)| MotionNote {
-            motion: k as usize,
+            motion: first + k as usize,
             line: motions.get(k as usize).map_or(0, |m| m.line),
             amount: depth,
         })
@@ -157,11 +191,19 @@ pub fn simulate(
     report
 }
 
-/// Applies one chunk of primitives to every band in parallel.
+/// The motions of a run and the index its first one is recorded as.
+#[derive(Clone, Copy)]
+struct Numbering<'a> {
+    motions: &'a [Motion],
+    first: usize,
+}
+
+/// Applies one chunk of primitives (each with its motion's index in the run) to
+/// every band in parallel.
 fn run_chunk(
     dexel: &mut Dexel,
     tool: &SimTool,
-    motions: &[Motion],
+    numbering: Numbering<'_>,
     chunk: &[(Primitive, u32)],
     report: &mut SimReport,
     rapid: &mut BTreeMap<u32, f64>,
@@ -183,16 +225,18 @@ fn run_chunk(
                 let Some((r0, r1)) = grid.rows(bx[1].max(y0), bx[3].min(y1)) else {
                     continue;
                 };
-                let is_rapid = motions
+                let is_rapid = numbering
+                    .motions
                     .get(*motion as usize)
                     .is_some_and(|m| matches!(m.kind, MotionKind::Rapid));
+                let recorded = recorded_index(numbering.first, *motion);
                 for j in r0.max(j0)..=r1.min(j1) {
                     let off = (j - j0) * grid.nx;
                     let job = RowJob {
                         tool,
                         grid: &grid,
                         row: j,
-                        motion: *motion,
+                        motion: recorded,
                     };
                     let cut = prim.cut_row(
                         &job,
@@ -218,6 +262,14 @@ fn run_chunk(
             *e = e.max(d);
         }
     }
+}
+
+/// The last-motion value of run motion `k` in a run numbered from `first`
+/// (saturating below [`NO_MOTION`], which means "no motion").
+fn recorded_index(first: usize, k: u32) -> u32 {
+    u32::try_from(first.saturating_add(k as usize))
+        .unwrap_or(NO_MOTION - 1)
+        .min(NO_MOTION - 1)
 }
 
 /// Rows per band: enough bands for load balance, few enough to keep the per-band

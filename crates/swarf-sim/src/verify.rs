@@ -1,5 +1,6 @@
 //! The whole verification: grid over the design, design heights, stock, simulation of
-//! the program, deviation, and the program's own figures (time, lengths, passes).
+//! the program (or of several programs in sequence, [`crate::stage`]), deviation, and
+//! the program's own figures (time, lengths, passes).
 //!
 //! Machining time follows the program: each cutting motion at its own feed, rapids at
 //! the machine's rapid rate (a parameter: programs do not state it). A cutting motion
@@ -13,7 +14,8 @@ use crate::error::SimError;
 use crate::grid::{DEFAULT_MAX_BYTES, Grid};
 use crate::mow::normal_deviation;
 use crate::progress::Progress;
-use crate::simulate::{SimOptions, SimReport, simulate};
+use crate::simulate::SimReport;
+use crate::stage::{Stage, StageSummary, run_stages, stage_of};
 use crate::sweep::SimTool;
 use serde::Serialize;
 use std::time::Instant;
@@ -114,7 +116,21 @@ pub struct ProgramStats {
     pub time_s: f64,
 }
 
-/// Wall times of the stages, s.
+impl ProgramStats {
+    /// Adds the figures of another program run on the same stock.
+    pub fn add(&mut self, other: &ProgramStats) {
+        self.motions += other.motions;
+        self.rapids += other.rapids;
+        self.arcs += other.arcs;
+        self.passes += other.passes;
+        self.cutting_length_mm += other.cutting_length_mm;
+        self.rapid_length_mm += other.rapid_length_mm;
+        self.unknown_feed_length_mm += other.unknown_feed_length_mm;
+        self.time_s += other.time_s;
+    }
+}
+
+/// Wall times of the computation's steps, s.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
 pub struct Timings {
     /// Design heights.
@@ -138,10 +154,14 @@ pub struct Verification {
     pub deviation: Deviation,
     /// What the simulation did.
     pub sim: SimReport,
-    /// The program's figures.
+    /// The program's figures (summed over the stages).
     pub program: ProgramStats,
-    /// Source line of each motion.
+    /// Source line of each motion (of the stages' motions in order: see
+    /// [`Verification::stages`]).
     pub lines: Vec<usize>,
+    /// Each program run, in order, with the index of its first motion (one for a
+    /// single program).
+    pub stages: Vec<StageSummary>,
     /// Sampling bound used, mm.
     pub sample_tol: f64,
     /// Along the design normals (true) or vertical (false).
@@ -152,7 +172,19 @@ pub struct Verification {
     pub timings: Timings,
 }
 
-/// Verifies `program`, cut with `cutter`, against `design`.
+impl Verification {
+    /// The stage (program) that motion `motion` (an index into [`Verification::lines`],
+    /// the stock's last-motion record, regions and notes) came from.
+    pub fn stage_of(&self, motion: usize) -> Option<&StageSummary> {
+        stage_of(&self.stages, motion).map(|s| &self.stages[s])
+    }
+}
+
+/// Verifies `program`, cut with `cutter`, against `design`: [`verify_stages`] with
+/// one stage.
+///
+/// # Units
+/// mm, mm/min, s.
 ///
 /// # Errors
 /// Invalid options (tolerance, cell size), a grid that does not fit in
@@ -164,22 +196,120 @@ pub fn verify(
     opts: &VerifyOptions,
     progress: &dyn Progress,
 ) -> Result<Verification, SimError> {
+    verify_stages(design, &[Stage { program, cutter }], opts, progress)
+}
+
+/// Verifies `stages` (programs run one after the other on one stock, each with its
+/// own cutter; [`crate::stage`]) against `design`. Motion indices of the result
+/// index the concatenated list of the stages' motions ([`Verification::stages`]).
+/// Scallop crests look for cut valleys within the smallest tool radius.
+///
+/// # Units
+/// mm, mm/min, s.
+///
+/// # Errors
+/// No stage; invalid options (tolerance, cell size), a grid that does not fit in
+/// `opts.max_bytes`, an empty design, an unusable cutter.
+pub fn verify_stages(
+    design: Design<'_>,
+    stages: &[Stage<'_>],
+    opts: &VerifyOptions,
+    progress: &dyn Progress,
+) -> Result<Verification, SimError> {
+    if stages.is_empty() {
+        return Err(SimError::Empty(
+            "nothing to verify: no program was given".into(),
+        ));
+    }
     let tol = SimError::check_positive("tolerance", opts.tol)?;
     SimError::check_non_negative("allowed excess", opts.allowed_excess)?;
     SimError::check_positive("rapid rate", opts.rapid_rate)?;
     let cell = SimError::check_positive("cell size", opts.cell.unwrap_or(CELL_PER_TOL * tol))?;
     let sample_tol =
         SimError::check_positive("sample tolerance", opts.sample_tol.unwrap_or(0.25 * tol))?;
-    let tool = SimTool::new(cutter)?;
+    let tools = stages
+        .iter()
+        .map(|s| SimTool::new(s.cutter))
+        .collect::<Result<Vec<_>, _>>()?;
     let t0 = Instant::now();
     let surface = DesignSurface::new(design)?;
     let b = surface.bounds();
     let grid = Grid::covering([b.min.x, b.min.y], [b.max.x, b.max.y], cell, opts.max_bytes)?;
     let field = surface.heights(&grid, opts.along_normals, progress);
+    let mut stock = initial_stock(grid, &opts.stock, &field, b.max.z, progress)?;
+    let t1 = Instant::now();
+    let run = run_stages(
+        &mut stock,
+        stages,
+        &tools,
+        sample_tol,
+        opts.rapid_rate,
+        progress,
+    );
+    let t2 = Instant::now();
+    let mut values = vertical_deviation(stock.heights(), &field.heights);
+    let mut normal_fallback = 0;
+    if let (true, Some(normals)) = (opts.along_normals, &field.normals) {
+        let (v, n) = normal_deviation(&grid, stock.heights(), &field.heights, normals, &values);
+        (values, normal_fallback) = (v, n);
+    }
+    let dopts = DeviationOptions {
+        tol,
+        allowed_excess: opts.allowed_excess,
+        valley_reach: tools
+            .iter()
+            .map(SimTool::radius)
+            .fold(f64::INFINITY, f64::min),
+        max_regions: opts.max_regions,
+    };
+    let deviation = analyse(
+        &grid,
+        values,
+        &field.heights,
+        stock.last_motion(),
+        &run.lines,
+        &dopts,
+    );
+    let t3 = Instant::now();
+    Ok(Verification {
+        grid,
+        stock,
+        design: field,
+        deviation,
+        sim: run.sim,
+        program: run
+            .stages
+            .iter()
+            .fold(ProgramStats::default(), |mut sum, s| {
+                sum.add(&s.stats);
+                sum
+            }),
+        lines: run.lines,
+        stages: run.stages,
+        sample_tol,
+        along_normals: opts.along_normals,
+        normal_fallback,
+        timings: Timings {
+            design_s: (t1 - t0).as_secs_f64(),
+            simulate_s: (t2 - t1).as_secs_f64(),
+            deviation_s: (t3 - t2).as_secs_f64(),
+        },
+    })
+}
+
+/// The stock before any cut, over `grid`: `spec` with the design `field` (and its
+/// top `design_top`, mm, for a box without a top).
+fn initial_stock(
+    grid: Grid,
+    spec: &StockSpec,
+    field: &DesignField,
+    design_top: f64,
+    progress: &dyn Progress,
+) -> Result<Dexel, SimError> {
     let stock_heights;
-    let init = match &opts.stock {
+    let init = match spec {
         StockSpec::Box { top } => StockInit::Box {
-            top: top.unwrap_or(b.max.z),
+            top: top.unwrap_or(design_top),
         },
         StockSpec::Offset { allowance } => StockInit::Offset {
             design: &field.heights,
@@ -191,58 +321,7 @@ pub fn verify(
             StockInit::Heights(&stock_heights)
         }
     };
-    let mut stock = Dexel::new(grid, init)?;
-    let t1 = Instant::now();
-    let sim = simulate(
-        &mut stock,
-        &tool,
-        &program.motions,
-        &SimOptions {
-            sample_tol,
-            known_start: false,
-        },
-        progress,
-    );
-    let t2 = Instant::now();
-    let lines: Vec<usize> = program.motions.iter().map(|m| m.line).collect();
-    let mut values = vertical_deviation(stock.heights(), &field.heights);
-    let mut normal_fallback = 0;
-    if let (true, Some(normals)) = (opts.along_normals, &field.normals) {
-        let (v, n) = normal_deviation(&grid, stock.heights(), &field.heights, normals, &values);
-        (values, normal_fallback) = (v, n);
-    }
-    let dopts = DeviationOptions {
-        tol,
-        allowed_excess: opts.allowed_excess,
-        valley_reach: tool.radius(),
-        max_regions: opts.max_regions,
-    };
-    let deviation = analyse(
-        &grid,
-        values,
-        &field.heights,
-        stock.last_motion(),
-        &lines,
-        &dopts,
-    );
-    let t3 = Instant::now();
-    Ok(Verification {
-        grid,
-        stock,
-        design: field,
-        deviation,
-        sim,
-        program: program_stats(program, opts.rapid_rate),
-        lines,
-        sample_tol,
-        along_normals: opts.along_normals,
-        normal_fallback,
-        timings: Timings {
-            design_s: (t1 - t0).as_secs_f64(),
-            simulate_s: (t2 - t1).as_secs_f64(),
-            deviation_s: (t3 - t2).as_secs_f64(),
-        },
-    })
+    Dexel::new(grid, init)
 }
 
 /// Time, lengths and passes of a program (see the module doc).

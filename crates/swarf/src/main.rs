@@ -27,8 +27,9 @@ enum Command {
     Tessellate(cmd::tessellate::Args),
     /// Plan a finishing tool path from a job file and write G-code, CL, CSV, summary.
     Plan(cmd::plan::Args),
-    /// Simulate an NC program on a dexel stock and measure gouge, excess and scallops
-    /// against the design; writes a JSON report, a CSV of flagged cells and pictures.
+    /// Simulate an NC program (or several in sequence, each with its tool) on a dexel
+    /// stock and measure gouge, excess and scallops against the design; writes a JSON
+    /// report, a CSV of flagged cells and pictures.
     Verify(cmd::verify::Args),
     /// Plan jobs, verify their programs and print paper 004's Table 1 for them.
     Compare(cmd::compare::Args),

@@ -1,7 +1,9 @@
-//! `swarf verify --part P --program PROG -o DIR`: simulate a program on a dexel stock
-//! and measure it against the design ([`swarf_app::verify`]); writes `report.json`,
-//! `flagged.csv`, `deviation.png` and `toolpath.png`. A program that stops mid-way
-//! still gets its partial report, then the command fails.
+//! `swarf verify --part P --program PROG [--program PROG2 ...] -o DIR`: simulate a
+//! program (or several in sequence on one stock, e.g. a finish then its cleanup, each
+//! with its own `--tool`) on a dexel stock and measure the result against the design
+//! ([`swarf_app::verify`]); writes `report.json`, `flagged.csv`, `deviation.png` and
+//! `toolpath.png`. A program that stops mid-way still gets its partial report, then
+//! the command fails.
 
 use crate::progress::Bars;
 use anyhow::{Result, bail};
@@ -17,14 +19,19 @@ pub struct Args {
     /// Design part: a part file (.toml), a mesh (.stl, .obj) or a built-in part name.
     #[arg(long)]
     part: String,
-    /// NC program: G-code (.ngc, .nc, .tap, .gcode), APT CL (.cl, .apt, .cls) or pose CSV.
+    /// NC program: G-code (.ngc, .nc, .tap, .gcode), APT CL (.cl, .apt, .cls) or pose
+    /// CSV. Give it several times to run programs one after the other on the same
+    /// stock (a finish, then its cleanup): one report for the result.
+    #[arg(long, required = true)]
+    program: Vec<PathBuf>,
+    /// Tool spec, e.g. ball:d=8; the n-th --tool goes with the n-th --program. A
+    /// program past the last --tool uses its own CUTTER record, else the last --tool
+    /// (default: the program's CUTTER record).
     #[arg(long)]
-    program: PathBuf,
-    /// Tool spec, e.g. ball:d=8 (default: the program's CUTTER record).
-    #[arg(long)]
-    tool: Option<String>,
-    /// Machine file (TOML) or builtin:NAME for five-axis G-code: the program's X Y Z
-    /// and rotary words are this machine's axes (not needed for APT CL or pose CSV).
+    tool: Vec<String>,
+    /// Machine file (TOML) or builtin:NAME for five-axis G-code: the programs' X Y Z
+    /// and rotary words are this machine's axes (every G-code program; not needed for
+    /// APT CL or pose CSV).
     #[arg(long)]
     machine: Option<String>,
     /// Tool length from the spindle gauge line to the tip, mm (machines with head
@@ -91,8 +98,8 @@ pub fn run(args: &Args) -> Result<()> {
     let sim = args.sim.settings();
     let req = VerifyRequest {
         part: &args.part,
-        program: &args.program,
-        tool: args.tool.as_deref(),
+        programs: &args.program,
+        tools: &args.tool,
         machine: args.machine.as_deref(),
         tool_length: args.tool_length,
         sim: &sim,
@@ -114,13 +121,9 @@ pub fn run(args: &Args) -> Result<()> {
 mod tests {
     use super::*;
 
-    /// A ball raster over a plane with one CL point 0.05 mm too deep, then the same
-    /// program cut off by a bad word: the gouge is reported with its line, and the
-    /// stopped program still writes its report but fails.
-    #[test]
-    fn verify_finds_the_gouge_and_fails_on_a_stopped_program() {
-        let dir = std::env::temp_dir().join(format!("swarf-verify-test-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+    /// The plane z = 0 over [0, 20] x [0, 10], as a part file in `dir`.
+    fn plane_part(dir: &Path) -> PathBuf {
+        std::fs::create_dir_all(dir).unwrap();
         let part = dir.join("plane.toml");
         std::fs::write(
             &part,
@@ -128,6 +131,34 @@ mod tests {
              points = [[0, 0, 0], [0, 10, 0], [20, 0, 0], [20, 10, 0]]\n",
         )
         .unwrap();
+        part
+    }
+
+    /// The command's defaults, with 0.05 mm cells.
+    fn sim_args() -> SimArgs {
+        SimArgs {
+            stock: "offset:0.5".into(),
+            cell: Some(0.05),
+            tol: None,
+            scallop: None,
+            rapid: None,
+            sample_tol: None,
+            max_memory: 4096,
+            deviation: None,
+        }
+    }
+
+    fn read_report(path: &Path) -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+    }
+
+    /// A ball raster over a plane with one CL point 0.05 mm too deep, then the same
+    /// program cut off by a bad word: the gouge is reported with its line, and the
+    /// stopped program still writes its report but fails.
+    #[test]
+    fn verify_finds_the_gouge_and_fails_on_a_stopped_program() {
+        let dir = std::env::temp_dir().join(format!("swarf-verify-test-{}", std::process::id()));
+        let part = plane_part(&dir);
         let mut g = String::from("G21 G90 G17\nG0 Z5\n");
         let mut gouge_line = 0;
         for k in 0..8 {
@@ -147,26 +178,15 @@ mod tests {
         std::fs::write(&program, &g).unwrap();
         let args = |program: &Path, out: &str| Args {
             part: part.display().to_string(),
-            program: program.to_path_buf(),
-            tool: Some("ball:d=6".into()),
+            program: vec![program.to_path_buf()],
+            tool: vec!["ball:d=6".into()],
             machine: None,
             tool_length: None,
-            sim: SimArgs {
-                stock: "offset:0.5".into(),
-                cell: Some(0.05),
-                tol: None,
-                scallop: None,
-                rapid: None,
-                sample_tol: None,
-                max_memory: 4096,
-                deviation: None,
-            },
+            sim: sim_args(),
             out: dir.join(out),
         };
         run(&args(&program, "ok")).unwrap();
-        let report: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(dir.join("ok/report.json")).unwrap())
-                .unwrap();
+        let report = read_report(&dir.join("ok/report.json"));
         let worst = &report["deviation"]["gouges"][0];
         assert_eq!(worst["line"].as_u64(), Some(gouge_line as u64), "{worst}");
         assert!(
@@ -181,10 +201,132 @@ mod tests {
         std::fs::write(&stopped, cut + "G1 X4 Y\n").unwrap();
         let err = run(&args(&stopped, "stop")).unwrap_err().to_string();
         assert!(err.contains("stopped.ngc:31"), "{err}");
-        let report: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(dir.join("stop/report.json")).unwrap())
-                .unwrap();
+        let report = read_report(&dir.join("stop/report.json"));
         assert_eq!(report["complete"], serde_json::Value::Bool(false));
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// A ball raster along x over the plane with tool radius `r`: passes `step` apart
+    /// from y = 0 to y = 10, the tip on the plane, plunging and retracting off the part.
+    fn raster(step: f64, r: f64) -> String {
+        let (x0, x1) = (-(r + 1.0), 20.0 + r + 1.0);
+        let mut g = String::from("G21 G90 G17\nG0 Z5\n");
+        let n = (10.0 / step).round() as usize;
+        for k in 0..=n {
+            let y = k as f64 * step;
+            g += &format!("G0 X{x0} Y{y:.4}\nG1 Z0 F300\nG1 X{x1} F600\nG0 Z5\n");
+        }
+        g
+    }
+
+    /// A finish (ball d=6, 2.5 mm stepover: 0.27 mm scallops), then its cleanup (ball
+    /// d=2, 0.2 mm stepover: 0.005 mm scallops) on the same stock: the cleanup takes
+    /// out what the finish left, and the report names both programs and tools.
+    #[test]
+    fn verify_runs_a_finish_then_its_cleanup_on_one_stock() {
+        let dir = std::env::temp_dir().join(format!("swarf-verify-two-{}", std::process::id()));
+        let part = plane_part(&dir);
+        let (finish, cleanup) = (dir.join("finish.ngc"), dir.join("cleanup.ngc"));
+        std::fs::write(&finish, raster(2.5, 3.0)).unwrap();
+        std::fs::write(&cleanup, raster(0.2, 1.0)).unwrap();
+        let args = |programs: &[&PathBuf], tools: &[&str], out: &str| Args {
+            part: part.display().to_string(),
+            program: programs.iter().map(|p| p.to_path_buf()).collect(),
+            tool: tools.iter().map(|t| (*t).to_string()).collect(),
+            machine: None,
+            tool_length: None,
+            sim: sim_args(),
+            out: dir.join(out),
+        };
+        run(&args(&[&finish], &["ball:d=6"], "finish")).unwrap();
+        let alone = read_report(&dir.join("finish/report.json"));
+        let left = alone["deviation"]["excess"]["cells"].as_u64().unwrap();
+        assert!(left > 10_000, "{}", alone["deviation"]);
+        assert!(alone.get("programs").is_none());
+
+        let both = [&finish, &cleanup];
+        run(&args(&both, &["ball:d=6", "ball:d=2"], "both")).unwrap();
+        let report = read_report(&dir.join("both/report.json"));
+        let d = &report["deviation"];
+        assert_eq!(d["excess"]["cells"].as_u64(), Some(0), "{d}");
+        assert_eq!(d["gouge"]["cells"].as_u64(), Some(0), "{d}");
+        assert!(d["max"].as_f64().unwrap() < 0.01, "{d}");
+        let names = format!("{} + {}", finish.display(), cleanup.display());
+        assert_eq!(report["program"].as_str(), Some(names.as_str()));
+        assert_eq!(report["tool"], "ball:d=6 + ball:d=2");
+        let programs = report["programs"].as_array().unwrap();
+        assert_eq!(programs.len(), 2);
+        assert_eq!(programs[1]["source"].as_str(), cleanup.to_str());
+        assert_eq!(programs[1]["tool"], "ball:d=2");
+        let motions = |r: &serde_json::Value| r["program_stats"]["motions"].as_u64().unwrap();
+        assert_eq!(
+            motions(&report),
+            motions(&alone) + programs[1]["stats"]["motions"].as_u64().unwrap()
+        );
+        let csv = std::fs::read_to_string(dir.join("both/flagged.csv")).unwrap();
+        assert!(csv.starts_with("x,y,design_z,machined_z,deviation,kind,motion,line,program\n"));
+
+        let err = run(&args(&both, &["ball:d=6", "ball:q=2"], "bad"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("--tool ball:q=2 (tool 2 of 2)"), "{err}");
+        let missing = dir.join("missing.ngc");
+        let err = run(&args(&[&finish, &missing], &["ball:d=6"], "bad"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("missing.ngc"), "{err}");
+        // A finish that stops mid-way: the cleanup after it is not simulated.
+        let stopped = dir.join("stopped.ngc");
+        let cut: String = raster(2.5, 3.0)
+            .lines()
+            .take(10)
+            .map(|l| l.to_string() + "\n")
+            .collect();
+        std::fs::write(&stopped, cut + "G1 X4 Y\n").unwrap();
+        let two = [&stopped, &cleanup];
+        let err = run(&args(&two, &["ball:d=6", "ball:d=2"], "stop"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("stopped.ngc:11"), "{err}");
+        let report = read_report(&dir.join("stop/report.json"));
+        assert_eq!(report["complete"], serde_json::Value::Bool(false));
+        assert!(report.get("programs").is_none(), "{}", report["programs"]);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// `--program` and `--tool` repeat, in order; at least one program.
+    #[test]
+    fn programs_and_tools_repeat_in_order() {
+        use clap::Parser;
+        #[derive(clap::Parser)]
+        struct Cli {
+            #[command(flatten)]
+            args: Args,
+        }
+        let cli = Cli::try_parse_from([
+            "verify",
+            "--part",
+            "p",
+            "--program",
+            "a.ngc",
+            "--tool",
+            "ball:d=6",
+            "--program",
+            "b.cl",
+            "--tool",
+            "ball:d=2",
+            "-o",
+            "out",
+        ])
+        .unwrap();
+        let programs: Vec<&str> = cli
+            .args
+            .program
+            .iter()
+            .map(|p| p.to_str().unwrap())
+            .collect();
+        assert_eq!(programs, ["a.ngc", "b.cl"]);
+        assert_eq!(cli.args.tool, ["ball:d=6", "ball:d=2"]);
+        assert!(Cli::try_parse_from(["verify", "--part", "p", "-o", "out"]).is_err());
     }
 }

@@ -1,0 +1,212 @@
+//! The programs of a verification: reading them (five-axis G-code through the
+//! machine it was posted for) and matching the `--tool` specs to them.
+//!
+//! Tools go with programs in order: the k-th `--tool` is the k-th program's cutter.
+//! A program past the last `--tool` uses its own APT CUTTER record, or, without one,
+//! the last `--tool` given (so one `--tool` serves several G-code programs cut with
+//! the same tool). More tools than programs is an error, and so is a program with
+//! neither a tool nor a CUTTER record.
+
+use crate::error::{AppError, Context, Result, bail};
+use std::path::{Path, PathBuf};
+use swarf_fiveaxis::machine::reader::MachineKinematics;
+use swarf_fiveaxis::machine::{Machine, MachineKind, load_machine};
+use swarf_nc::read::{GcodeReadOptions, Program, ProgramFormat, read_program, read_program_with};
+use swarf_tool::Cutter;
+
+/// Reads the programs at `paths`, G-code ones through the machine `machine` names
+/// (`--machine`) when given, with a tool `tool_length` long (`--tool-length`, mm;
+/// machines with head axes) and five-axis moves split within `sample_tol` mm. The
+/// notes say where the machine does not apply.
+///
+/// # Errors
+/// A program or machine that cannot be read (naming its file); a head machine
+/// without a tool length.
+pub fn read_programs(
+    paths: &[PathBuf],
+    machine: Option<&str>,
+    tool_length: Option<f64>,
+    sample_tol: f64,
+) -> Result<(Vec<Program>, Vec<String>)> {
+    let is_gcode = |p: &Path| ProgramFormat::of(p) == Some(ProgramFormat::Gcode);
+    let mut notes = Vec::new();
+    let machine = match machine {
+        Some(spec) => {
+            for p in paths.iter().filter(|p| !is_gcode(p)) {
+                notes.push(format!(
+                    "note: --machine {spec} ignored: {} is not G-code, its poses are in the \
+                     part frame already",
+                    p.display()
+                ));
+            }
+            let any = paths.iter().any(|p| is_gcode(p));
+            any.then(|| machine_arg(spec)).transpose()?
+        }
+        None => None,
+    };
+    let tool_length = match (&machine, tool_length) {
+        (Some(m), None) if m.kind != MachineKind::TableTable => bail!(
+            "--tool-length: the machine {:?} has head axes: give the tool length from the \
+             spindle gauge line to the tip, in mm",
+            m.name
+        ),
+        (_, length) => length.unwrap_or(0.0),
+    };
+    let programs = paths
+        .iter()
+        .map(|p| {
+            let machine = machine.as_ref().filter(|_| is_gcode(p));
+            read_with_machine(p, machine, tool_length, sample_tol)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok((programs, notes))
+}
+
+/// Parses the `--tool` specs, for `programs` programs.
+///
+/// # Errors
+/// More tools than programs; a spec that does not parse, naming `--tool`, the spec
+/// and (when there are several) its position.
+pub fn parse_tools(specs: &[String], programs: usize) -> Result<Vec<Cutter>> {
+    if specs.len() > programs {
+        bail!(
+            "--tool: {} tools for {} {}: each --tool goes with the --program at its \
+             position",
+            specs.len(),
+            programs,
+            if programs == 1 { "program" } else { "programs" }
+        );
+    }
+    specs
+        .iter()
+        .enumerate()
+        .map(|(k, spec)| {
+            spec.parse::<Cutter>().map_err(|e| {
+                let at = if specs.len() > 1 {
+                    format!(" (tool {} of {})", k + 1, specs.len())
+                } else {
+                    String::new()
+                };
+                AppError::Message(format!("--tool {spec}{at}: {e}"))
+            })
+        })
+        .collect()
+}
+
+/// The cutter of each program: the tool given at its position; past the tools given,
+/// the program's own APT CUTTER record, else the last tool given.
+///
+/// # Errors
+/// A program with neither, naming its file.
+pub fn stage_cutters(tools: &[Cutter], programs: &[Program]) -> Result<Vec<Cutter>> {
+    programs
+        .iter()
+        .enumerate()
+        .map(
+            |(k, program)| match (tools.get(k), &program.tool, tools.last()) {
+                (Some(t), _, _) | (None, Some(t), _) | (None, None, Some(t)) => Ok(*t),
+                (None, None, None) => bail!(
+                    "{}: the program names no cutter (no APT CUTTER record): give the tool \
+                 with --tool, e.g. --tool ball:d=8",
+                    program.source
+                ),
+            },
+        )
+        .collect()
+}
+
+/// Reads the program at `path`; a G-code program through `machine`'s forward
+/// kinematics when given (five-axis moves split into motions within `tol` of the tool
+/// tip's path), with a tool `tool_length` long from the gauge line to the tip
+/// (machines with head axes). APT CL and pose CSV programs are read as they are.
+///
+/// # Units
+/// mm.
+///
+/// # Errors
+/// A program file that cannot be read; a tool length that is not a length.
+pub fn read_with_machine(
+    path: &Path,
+    machine: Option<&Machine>,
+    tool_length: f64,
+    tol: f64,
+) -> Result<Program> {
+    let Some(machine) = machine else {
+        return Ok(read_program(path)?);
+    };
+    let kinematics = MachineKinematics::new(machine.clone(), tool_length)?;
+    let opts = GcodeReadOptions {
+        kinematics: Some(&kinematics),
+        kinematics_tol: tol,
+        ..GcodeReadOptions::default()
+    };
+    Ok(read_program_with(path, &opts)?)
+}
+
+/// The machine `--machine` names: `builtin:NAME` or a machine file.
+///
+/// # Errors
+/// A file that cannot be read or parsed; an unknown built-in name.
+pub fn machine_arg(spec: &str) -> Result<Machine> {
+    if spec.starts_with("builtin:") {
+        return Ok(load_machine(spec, Path::new(""))?);
+    }
+    let text = std::fs::read_to_string(spec)
+        .with_context(|| format!("--machine {spec}: cannot read the machine file"))?;
+    Ok(Machine::parse(&text, spec)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn specs(s: &[&str]) -> Vec<String> {
+        s.iter().map(|t| (*t).to_string()).collect()
+    }
+
+    #[test]
+    fn tool_errors_name_the_flag_and_position() {
+        let e = parse_tools(&specs(&["ball:d=x"]), 1)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("--tool ball:d=x: "), "{e}");
+        let e = parse_tools(&specs(&["ball:d=6", "ball:q=2"]), 2)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("--tool ball:q=2 (tool 2 of 2): "), "{e}");
+        let e = parse_tools(&specs(&["ball:d=6", "ball:d=2"]), 1)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("--tool: 2 tools for 1 program"), "{e}");
+        let two = parse_tools(&specs(&["ball:d=6", "flat:d=2"]), 3).unwrap();
+        assert_eq!(two[1], "flat:d=2".parse::<Cutter>().unwrap());
+    }
+
+    #[test]
+    fn tools_go_with_programs_in_order_then_cutter_records_then_the_last_tool() {
+        let cutter = |s: &str| s.parse::<Cutter>().unwrap();
+        let mut with_record = Program::new("b.cl");
+        with_record.tool = Some(cutter("bull:d=10,r=1"));
+        let programs = [Program::new("a.ngc"), with_record, Program::new("c.ngc")];
+        let given = [cutter("ball:d=6")];
+        let got = stage_cutters(&given, &programs).unwrap();
+        assert_eq!(got, [given[0], cutter("bull:d=10,r=1"), given[0]]);
+        let given = [cutter("ball:d=6"), cutter("ball:d=4"), cutter("ball:d=2")];
+        assert_eq!(stage_cutters(&given, &programs).unwrap(), given);
+        let e = stage_cutters(&[], &programs).unwrap_err().to_string();
+        assert!(e.starts_with("a.ngc: the program names no cutter"), "{e}");
+    }
+
+    #[test]
+    fn a_missing_program_names_its_file() {
+        let dir = std::env::temp_dir().join(format!("swarf-programs-{}", std::process::id()));
+        let paths = [dir.join("there.cl"), dir.join("missing.ngc")];
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(&paths[0], "CUTTER/6\nGOTO/0,0,5\nGOTO/1,0,5\n").unwrap();
+        let e = read_programs(&paths, None, None, 0.01)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("missing.ngc"), "{e}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
