@@ -35,7 +35,7 @@ use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use swarf_geom::TriMesh;
 use swarf_path::{Plan, PlanReport, StrategyKind};
-use swarf_rest::{CleanupParams, Detection, Source, detect, plan_cleanup};
+use swarf_rest::{CleanupParams, Detection, RegionParams, Source, detect, plan_cleanup};
 use swarf_sim::{Design, Quiet, StockSpec, VerifyOptions};
 use swarf_tool::Cutter;
 
@@ -86,25 +86,24 @@ pub fn read_parent(rel: &str, job_dir: &Path) -> Result<(Job, PathBuf)> {
 }
 
 /// The rest `parent` leaves on `mesh` (the tessellation of `model`) from `source`,
-/// with region parameters and tolerance from `job`.
+/// with the machining tolerance `tol` and region parameters `params`.
 ///
 /// # Errors
 /// A parent that cannot be planned or verified; `contacts` from a parent that is not
 /// a raster; the detection's errors.
 pub fn detect_after(
-    job: &Job,
     parent: &Job,
     model: &Model,
     mesh: &TriMesh,
     source: RestSource,
+    (tol, params): (f64, &RegionParams),
 ) -> Result<Detection> {
-    let (tol, params) = (job.strategy.tolerance, job.region_params());
     let parent_plan = |input| {
         plan(parent, input)
             .map_err(|e| AppError::Message(format!("parent.job: the parent job fails: {e}")))
     };
     Ok(match source {
-        RestSource::Reference => detect(mesh, &parent.tool, Source::Reference, tol, &params)?,
+        RestSource::Reference => detect(mesh, &parent.tool, Source::Reference, tol, params)?,
         RestSource::Contacts => {
             if parent.strategy.kind != StrategyKind::Raster {
                 bail!(
@@ -132,7 +131,7 @@ pub fn detect_after(
                 excess: &v.deviation.values,
                 design: &v.design.heights,
             };
-            detect(mesh, &parent.tool, source, tol, &params)?
+            detect(mesh, &parent.tool, source, tol, params)?
         }
     })
 }
@@ -193,10 +192,11 @@ pub fn plan_cleanup_job(job: &Job, model: &Model, job_dir: &Path) -> Result<Vec<
     for (k, tool) in tools.into_iter().enumerate() {
         let start = std::time::Instant::now();
         let (detection, source) = match (&parent, k) {
-            (Some(p), 0) => (
-                detect_after(job, p, model, &mesh, job.strategy.source)?,
-                source_name(job.strategy.source),
-            ),
+            (Some(p), 0) => {
+                let settings = (job.strategy.tolerance, &job.region_params());
+                let d = detect_after(p, model, &mesh, job.strategy.source, settings)?;
+                (d, source_name(job.strategy.source))
+            }
             _ => (
                 detect(
                     &mesh,
@@ -241,7 +241,8 @@ pub fn plan_cleanup_job(job: &Job, model: &Model, job_dir: &Path) -> Result<Vec<
     Ok(stages)
 }
 
-fn source_name(s: RestSource) -> &'static str {
+/// The name of a rest source in reports.
+pub fn source_name(s: RestSource) -> &'static str {
     match s {
         RestSource::Reference => "reference",
         RestSource::Contacts => "contacts",

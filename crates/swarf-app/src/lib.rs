@@ -17,6 +17,7 @@ pub mod plan;
 pub mod plan_job;
 pub mod programs;
 pub mod report;
+pub mod rest;
 pub mod verify;
 
 pub use error::{AppError, Result};

@@ -17,5 +17,6 @@ pub mod canvas;
 pub mod error;
 pub mod page;
 pub mod picture;
+pub mod rest_picture;
 
 pub use error::ReportError;

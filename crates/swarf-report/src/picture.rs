@@ -220,9 +220,9 @@ fn path_rect(grid: &Grid, motions: &[Motion]) -> [f64; 4] {
     [rect[0] - pad, rect[1] - pad, rect[2] + pad, rect[3] + pad]
 }
 
-/// The design in grey, lighter higher up, white off the part.
-fn relief(c: &mut Canvas, map: &Map, v: &Verification) {
-    let design = &v.design.heights;
+/// The design (heights per cell of `grid`) in grey, lighter higher up, white off
+/// the part.
+pub(crate) fn relief(c: &mut Canvas, map: &Map, grid: &Grid, design: &[f64]) {
     let (lo, hi) = design
         .iter()
         .filter(|z| z.is_finite())
@@ -234,7 +234,7 @@ fn relief(c: &mut Canvas, map: &Map, v: &Verification) {
         for upx in 0..map.w {
             let z = map
                 .cells(upx, vpx)
-                .map_or(f64::NAN, |([i0, _], [j0, _])| design[j0 * v.grid.nx + i0]);
+                .map_or(f64::NAN, |([i0, _], [j0, _])| design[j0 * grid.nx + i0]);
             let col = if z.is_finite() {
                 let g = (175.0 + 70.0 * (z - lo) / span).round() as u8;
                 [g, g, g]
@@ -272,7 +272,7 @@ pub fn toolpath_png(
     let rect = path_rect(&v.grid, motions);
     let page = Page::new(&cells(&v.grid), rect, title, &[footer], &legend);
     let mut c = page.canvas(WHITE);
-    relief(&mut c, &page.map, v);
+    relief(&mut c, &page.map, &v.grid, &v.design.heights);
     for m in motions {
         let rapid = matches!(m.kind, MotionKind::Rapid);
         let pts: Vec<[f64; 2]> = polyline(m)

@@ -31,6 +31,9 @@ enum Command {
     /// stock and measure gouge, excess and scallops against the design; writes a JSON
     /// report, a CSV of flagged cells and pictures.
     Verify(cmd::verify::Args),
+    /// Find the rest material a finishing tool or job leaves: regions as JSON, their
+    /// boundaries as CSV, and a picture over the part.
+    Rest(cmd::rest::Args),
     /// Plan jobs, verify their programs and print paper 004's Table 1 for them.
     Compare(cmd::compare::Args),
     /// Drop a cutter onto a triangle mesh at many XY points (CSV in, CSV out).
@@ -50,6 +53,7 @@ fn main() -> ExitCode {
         Command::Drop(a) => cmd::drop::run(&a),
         Command::Verify(a) => cmd::verify::run(&a),
         Command::Compare(a) => cmd::compare::run(&a),
+        Command::Rest(a) => cmd::rest::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

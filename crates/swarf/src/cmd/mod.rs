@@ -6,5 +6,6 @@ pub mod drop;
 pub mod eval;
 pub mod inspect;
 pub mod plan;
+pub mod rest;
 pub mod tessellate;
 pub mod verify;

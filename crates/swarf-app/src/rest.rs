@@ -1,0 +1,150 @@
+//! `swarf rest`: the rest material a finishing tool or job leaves, as regions
+//! ([`crate::cleanup`] for the sources): `rest.json` (the regions), `rest.csv` (their
+//! boundaries) and `rest.png` (the regions over the part), written as one set.
+
+use crate::cleanup::{boundaries_csv, detect_after, part_mesh, read_parent, rest_json, source_name};
+use crate::error::{AppError, Result, bail};
+use crate::job::RestSource;
+use crate::model::load_model;
+use crate::plan_job::part_arg;
+use std::path::Path;
+use swarf_report::rest_picture::{RegionOutline, rest_png};
+use swarf_rest::{Detection, RegionParams, Source, detect};
+use swarf_sim::{Design, DesignSurface, Grid, Quiet};
+use swarf_tool::Cutter;
+
+/// Pixels along the longer side of the picture's height grid.
+const PICTURE_CELLS: f64 = 800.0;
+
+/// A rest detection as `swarf rest` asks for it.
+#[derive(Debug, Clone, Copy)]
+pub struct RestRequest<'a> {
+    /// Design part (default: the parent job's).
+    pub part: Option<&'a str>,
+    /// Reference tool spec (instead of a parent job).
+    pub reference: Option<&'a str>,
+    /// Parent job file.
+    pub job: Option<&'a Path>,
+    /// Where the rest comes from.
+    pub source: RestSource,
+    /// Boundary operations.
+    pub params: RegionParams,
+    /// Machining tolerance, mm.
+    pub tol: f64,
+    /// Output directory.
+    pub out: &'a Path,
+}
+
+/// What `swarf rest` found: the detection, the reference tool and the source.
+#[derive(Debug)]
+pub struct RestFound {
+    /// The regions.
+    pub detection: Detection,
+    /// The tool whose rest it is.
+    pub reference: Cutter,
+    /// The source's name.
+    pub source: &'static str,
+}
+
+/// Detects the rest `req` asks for and writes `rest.json`, `rest.csv` and `rest.png`
+/// under `req.out`.
+///
+/// # Errors
+/// Neither or both of a reference tool and a parent job; a part, job or tool that
+/// cannot be read; a source the parent cannot give; the detection's errors; outputs
+/// that cannot be written.
+pub fn rest_request(req: &RestRequest<'_>) -> Result<RestFound> {
+    let parent = match (req.reference, req.job) {
+        (Some(_), Some(_)) | (None, None) => {
+            bail!("expected one of --reference TOOL and --job PARENT.toml")
+        }
+        (None, Some(job)) => {
+            let dir = job.parent().unwrap_or(Path::new("."));
+            let rel = job.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+            Some(read_parent(&rel, dir)?)
+        }
+        (Some(_), None) => None,
+    };
+    let part = match (req.part, &parent) {
+        (Some(p), _) => p.to_string(),
+        (None, Some((job, dir))) => part_arg(job, dir),
+        (None, None) => bail!("--part: expected the design part (or a parent --job that names it)"),
+    };
+    let model = load_model(&part)?;
+    let mesh = part_mesh(&model, req.tol)?;
+    let (detection, reference) = match (&parent, req.reference) {
+        (Some((job, _)), _) => {
+            let d = detect_after(job, &model, &mesh, req.source, (req.tol, &req.params))?;
+            (d, job.tool)
+        }
+        (None, spec) => {
+            let spec = spec.unwrap_or_default();
+            if req.source != RestSource::Reference {
+                bail!("--source {}: needs a parent --job", source_name(req.source));
+            }
+            let tool: Cutter = spec
+                .parse()
+                .map_err(|e| AppError::Message(format!("--reference {spec}: {e}")))?;
+            (detect(&mesh, &tool, Source::Reference, req.tol, &req.params)?, tool)
+        }
+    };
+    let found = RestFound {
+        detection,
+        reference,
+        source: source_name(req.source),
+    };
+    write_rest(&found, &part, &mesh, req.out)?;
+    Ok(found)
+}
+
+/// Writes the three files of a detection.
+fn write_rest(f: &RestFound, part: &str, mesh: &swarf_geom::TriMesh, out: &Path) -> Result<()> {
+    let mut json = rest_json(&f.detection);
+    json["part"] = serde_json::json!(part);
+    json["reference_tool"] = serde_json::json!(f.reference.to_string());
+    json["source"] = serde_json::json!(f.source);
+    let text = serde_json::to_string_pretty(&json)? + "\n";
+    let png = picture(f, part, mesh)?;
+    let csv = boundaries_csv(&f.detection);
+    std::fs::create_dir_all(out)
+        .map_err(|e| AppError::Message(format!("{}: cannot create the output directory: {e}", out.display())))?;
+    swarf_io::write_atomic(&out.join("rest.json"), text.as_bytes())?;
+    swarf_io::write_atomic(&out.join("rest.csv"), csv.as_bytes())?;
+    swarf_io::write_atomic(&out.join("rest.png"), &png)?;
+    Ok(())
+}
+
+/// The regions over the part's relief (PNG bytes).
+fn picture(f: &RestFound, part: &str, mesh: &swarf_geom::TriMesh) -> Result<Vec<u8>> {
+    let surface = DesignSurface::new(Design::Mesh(mesh))?;
+    let b = surface.bounds();
+    let cell = (b.max.x - b.min.x).max(b.max.y - b.min.y) / PICTURE_CELLS;
+    let grid = Grid::covering([b.min.x, b.min.y], [b.max.x, b.max.y], cell, 1 << 28)?;
+    let heights = surface.heights(&grid, false, &Quiet).heights;
+    let rings = |p: &geo::Polygon<f64>| -> Vec<Vec<[f64; 2]>> {
+        std::iter::once(p.exterior())
+            .chain(p.interiors())
+            .map(|r| r.coords().map(|c| [c.x, c.y]).collect())
+            .collect()
+    };
+    let outlines: Vec<RegionOutline> = f
+        .detection
+        .regions
+        .iter()
+        .enumerate()
+        .map(|(k, r)| RegionOutline {
+            boundary: rings(&r.boundary),
+            raw: r.raw.0.iter().flat_map(rings).collect(),
+            label: (k + 1).to_string(),
+        })
+        .collect();
+    let deepest = f.detection.regions.iter().map(|r| r.depth).fold(0.0, f64::max);
+    let title = format!("rest after {} ({}): {}", f.reference, f.source, part);
+    let footer = [format!(
+        "{} regions, deepest {:.3} mm, {} samples",
+        outlines.len(),
+        deepest,
+        f.detection.samples
+    )];
+    Ok(rest_png(&grid, &heights, &outlines, &title, &footer)?)
+}
