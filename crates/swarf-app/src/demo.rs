@@ -12,6 +12,9 @@
 //!    with the automatic gouge-free lead; each planned (five-axis G-code for the A/C
 //!    trunnion, APT CL, summary with the sectioning gouge report) and verified on a
 //!    dexel stock through its CL (`die/die.md`, pictures beside it).
+//! 5. Thesis 002 on the built-in fillet pocket: finish, detect the rest, clean it
+//!    up, verify both on one stock and tabulate the rest before and after
+//!    (`rest/`, [`crate::demo_rest`]).
 //!
 //! The jobs are embedded so that the demo needs no files; their parts and machine are
 //! built-in.
@@ -108,6 +111,11 @@ pub fn demo(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         "\n== five-axis (thesis 000 ch. 8 on die.toml), verified by dexel through the APT CL"
     )?;
     die(out, &jobs_dir, text, reporter)?;
+    writeln!(
+        text,
+        "\n== rest material and cleanup (thesis 002 on the built-in fillet pocket)"
+    )?;
+    crate::demo_rest::cleanup_section(out, text, reporter)?;
     writeln!(
         text,
         "\nall results in {} ({:.1} s)",

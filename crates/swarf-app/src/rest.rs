@@ -2,7 +2,9 @@
 //! ([`crate::cleanup`] for the sources): `rest.json` (the regions), `rest.csv` (their
 //! boundaries) and `rest.png` (the regions over the part), written as one set.
 
-use crate::cleanup::{boundaries_csv, detect_after, part_mesh, read_parent, rest_json, source_name};
+use crate::cleanup::{
+    boundaries_csv, detect_after, part_mesh, read_parent, rest_json, source_name,
+};
 use crate::error::{AppError, Result, bail};
 use crate::job::RestSource;
 use crate::model::load_model;
@@ -60,7 +62,10 @@ pub fn rest_request(req: &RestRequest<'_>) -> Result<RestFound> {
         }
         (None, Some(job)) => {
             let dir = job.parent().unwrap_or(Path::new("."));
-            let rel = job.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+            let rel = job
+                .file_name()
+                .map(|f| f.to_string_lossy().into_owned())
+                .unwrap_or_default();
             Some(read_parent(&rel, dir)?)
         }
         (Some(_), None) => None,
@@ -85,7 +90,10 @@ pub fn rest_request(req: &RestRequest<'_>) -> Result<RestFound> {
             let tool: Cutter = spec
                 .parse()
                 .map_err(|e| AppError::Message(format!("--reference {spec}: {e}")))?;
-            (detect(&mesh, &tool, Source::Reference, req.tol, &req.params)?, tool)
+            (
+                detect(&mesh, &tool, Source::Reference, req.tol, &req.params)?,
+                tool,
+            )
         }
     };
     let found = RestFound {
@@ -106,8 +114,12 @@ fn write_rest(f: &RestFound, part: &str, mesh: &swarf_geom::TriMesh, out: &Path)
     let text = serde_json::to_string_pretty(&json)? + "\n";
     let png = picture(f, part, mesh)?;
     let csv = boundaries_csv(&f.detection);
-    std::fs::create_dir_all(out)
-        .map_err(|e| AppError::Message(format!("{}: cannot create the output directory: {e}", out.display())))?;
+    std::fs::create_dir_all(out).map_err(|e| {
+        AppError::Message(format!(
+            "{}: cannot create the output directory: {e}",
+            out.display()
+        ))
+    })?;
     swarf_io::write_atomic(&out.join("rest.json"), text.as_bytes())?;
     swarf_io::write_atomic(&out.join("rest.csv"), csv.as_bytes())?;
     swarf_io::write_atomic(&out.join("rest.png"), &png)?;
@@ -138,7 +150,12 @@ fn picture(f: &RestFound, part: &str, mesh: &swarf_geom::TriMesh) -> Result<Vec<
             label: (k + 1).to_string(),
         })
         .collect();
-    let deepest = f.detection.regions.iter().map(|r| r.depth).fold(0.0, f64::max);
+    let deepest = f
+        .detection
+        .regions
+        .iter()
+        .map(|r| r.depth)
+        .fold(0.0, f64::max);
     let title = format!("rest after {} ({}): {}", f.reference, f.source, part);
     let footer = [format!(
         "{} regions, deepest {:.3} mm, {} samples",

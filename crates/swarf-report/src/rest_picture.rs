@@ -39,7 +39,12 @@ pub fn rest_png(
     let max = grid.max();
     let mut rect = [grid.origin[0], grid.origin[1], max[0], max[1]];
     for p in regions.iter().flat_map(|r| r.boundary.iter().flatten()) {
-        rect = [rect[0].min(p[0]), rect[1].min(p[1]), rect[2].max(p[0]), rect[3].max(p[1])];
+        rect = [
+            rect[0].min(p[0]),
+            rect[1].min(p[1]),
+            rect[2].max(p[0]),
+            rect[3].max(p[1]),
+        ];
     }
     let legend = Legend::Lines(&["region boundary", "detected rest"]);
     let page = Page::new(&cells(grid), rect, title, footer, &legend);
@@ -85,7 +90,15 @@ mod tests {
             ny: 20,
         };
         let design: Vec<f64> = (0..800).map(|k| f64::from(k % 40)).collect();
-        let square = |x: f64| vec![[x, 5.0], [x + 5.0, 5.0], [x + 5.0, 10.0], [x, 10.0], [x, 5.0]];
+        let square = |x: f64| {
+            vec![
+                [x, 5.0],
+                [x + 5.0, 5.0],
+                [x + 5.0, 10.0],
+                [x, 10.0],
+                [x, 5.0],
+            ]
+        };
         let regions = [RegionOutline {
             boundary: vec![square(10.0)],
             raw: vec![square(11.0)],
@@ -98,6 +111,11 @@ mod tests {
         let info = reader.next_frame(&mut buf).unwrap();
         let px = &buf[..info.buffer_size()];
         let count = |c: Rgb| px.chunks(3).filter(|p| *p == c).count();
-        assert!(count(BOUNDARY) > 100 && count(RAW) > 50, "{} {}", count(BOUNDARY), count(RAW));
+        assert!(
+            count(BOUNDARY) > 100 && count(RAW) > 50,
+            "{} {}",
+            count(BOUNDARY),
+            count(RAW)
+        );
     }
 }

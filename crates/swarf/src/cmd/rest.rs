@@ -74,7 +74,10 @@ pub fn run(args: &Args) -> Result<()> {
     let found = rest_request(&req)?;
     let regions = &found.detection.regions;
     if regions.is_empty() {
-        println!("no rest after {} ({}): nothing to clean up", found.reference, found.source);
+        println!(
+            "no rest after {} ({}): nothing to clean up",
+            found.reference, found.source
+        );
     }
     for (k, r) in regions.iter().enumerate() {
         println!(
@@ -119,15 +122,37 @@ mod tests {
         assert_eq!(json["regions"].as_array().unwrap().len(), 3);
         let csv = std::fs::read_to_string(dir.join("rest.csv")).unwrap();
         assert!(csv.starts_with("region,ring,x,y\n") && csv.lines().count() > 30);
-        assert!(std::fs::read(dir.join("rest.png")).unwrap().starts_with(b"\x89PNG"));
+        assert!(
+            std::fs::read(dir.join("rest.png"))
+                .unwrap()
+                .starts_with(b"\x89PNG")
+        );
         // Errors name what is wrong.
-        let e = run_with(&["--part", "v-grooves", "--reference", "ball:d=12", "--merge", "0", "-o", out]);
+        let e = run_with(&[
+            "--part",
+            "v-grooves",
+            "--reference",
+            "ball:d=12",
+            "--merge",
+            "0",
+            "-o",
+            out,
+        ]);
         assert!(e.unwrap_err().to_string().contains("strategy.merge"));
         let e = run_with(&["--part", "v-grooves", "--reference", "ball:x=1", "-o", out]);
         assert!(e.unwrap_err().to_string().contains("--reference"));
         let e = run_with(&["--part", "v-grooves", "-o", out]);
         assert!(e.unwrap_err().to_string().contains("--reference"));
-        let e = run_with(&["--part", "v-grooves", "--reference", "ball:d=12", "--source", "stock", "-o", out]);
+        let e = run_with(&[
+            "--part",
+            "v-grooves",
+            "--reference",
+            "ball:d=12",
+            "--source",
+            "stock",
+            "-o",
+            out,
+        ]);
         assert!(e.unwrap_err().to_string().contains("parent --job"));
         let e = run_with(&["--job", "/nonexistent/finish.toml", "-o", out]);
         assert!(e.unwrap_err().to_string().contains("finish.toml"));
