@@ -117,7 +117,7 @@ pub fn detect_after(
                 &parent.tool,
                 Source::Contacts(&p.double_contacts),
                 tol,
-                &params,
+                params,
             )?
         }
         RestSource::Stock => {

@@ -14,7 +14,7 @@
 //!    dexel stock through its CL (`die/die.md`, pictures beside it).
 //! 5. Thesis 002 on the built-in fillet pocket: finish, detect the rest, clean it
 //!    up, verify both on one stock and tabulate the rest before and after
-//!    (`rest/`, [`crate::demo_rest`]).
+//!    (`rest/`, `demo_rest.rs`).
 //!
 //! The jobs are embedded so that the demo needs no files; their parts and machine are
 //! built-in.

@@ -321,7 +321,7 @@ impl<'a> Sampler<'a> {
         let (p, q) = (line.at(low.0), line.at(low.0 + step));
         let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
         let len = dx.hypot(dy);
-        if !(len > 0.0) {
+        if len.is_nan() || len <= 0.0 {
             return None;
         }
         let cl = Point3::new(p[0], p[1], low.1.z);

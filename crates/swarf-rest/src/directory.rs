@@ -38,7 +38,7 @@ pub fn group(
 ) -> Vec<Vec<usize>> {
     let mut cells: BTreeMap<(i64, i64), Vec<usize>> = BTreeMap::new();
     for (k, p) in points.iter().enumerate() {
-        if !(p[0].is_finite() && p[1].is_finite()) || !(pitch > 0.0) {
+        if !(p[0].is_finite() && p[1].is_finite()) || pitch.is_nan() || pitch <= 0.0 {
             continue;
         }
         let key = ((p[0] / pitch).round() as i64, (p[1] / pitch).round() as i64);

@@ -2,7 +2,7 @@
 //!
 //! - [`pair`]: the rest sample, a pair of contacts with the tool above them, and its
 //!   depth.
-//! - [`detect`]: rest from double contacts, from reference-tool crease scans or from
+//! - [`detect`](mod@detect): rest from double contacts, from reference-tool crease scans or from
 //!   the in-process stock, each ending in [`region::RestRegion`]s.
 //! - [`directory`], [`order`]: the 2D spatial directory and the ordering of a group
 //!   into chains (§5.2).

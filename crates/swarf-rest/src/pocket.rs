@@ -40,7 +40,7 @@ pub fn follow_pocket(
     };
     let min_step = MIN_STEP_FRACTION * stepover;
     let rings = (0.5 * b.width().min(b.height()) / min_step).ceil() + 2.0;
-    if !(rings <= MAX_RINGS as f64) {
+    if rings.is_nan() || rings > MAX_RINGS as f64 {
         return Err(RestError::InvalidParameter {
             field: "strategy.scallop".into(),
             value: format!("{stepover} mm stepover"),

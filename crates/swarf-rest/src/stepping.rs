@@ -161,6 +161,6 @@ mod tests {
         // the end.
         let sets = step_out(&at(0.0, f), 0.5, 0.01, 9, |d| (d < 1.2).then(|| at(d, f)));
         let last = sets.last().unwrap()[0].points[0].pose.cl.y;
-        assert!(last < 1.2 && last >= 1.19, "{last}");
+        assert!((1.19..1.2).contains(&last), "{last}");
     }
 }

@@ -72,7 +72,10 @@ fn piece(grid: &Grid, excess: &[f64], design: &[f64], cells: &[usize]) -> RawPie
     let mut k = 0;
     while k < cells.len() {
         let mut e = k;
-        while e + 1 < cells.len() && cells[e + 1] == cells[e] + 1 && cells[e + 1] % nx != 0 {
+        while e + 1 < cells.len()
+            && cells[e + 1] == cells[e] + 1
+            && !cells[e + 1].is_multiple_of(nx)
+        {
             e += 1;
         }
         let (i0, i1, j) = (cells[k] % nx, cells[e] % nx, cells[k] / nx);

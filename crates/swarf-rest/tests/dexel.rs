@@ -26,7 +26,7 @@ fn cutter(s: &str) -> Cutter {
 /// quarter more than it measures: at the full tolerance the grooves' top edges show
 /// 0.0125 mm gouges).
 fn finish(mesh: &TriMesh, tool: &Cutter, h: f64) -> swarf_path::Plan {
-    let mut p = RasterParams::new(Finish::new(tool.clone()), 1.0);
+    let mut p = RasterParams::new(Finish::new(*tool), 1.0);
     (p.stepover, p.scallop) = (None, Some(h));
     p.finish.tolerance = 0.5 * TOL;
     swarf_path::raster::plan(mesh, &p).unwrap()
@@ -206,7 +206,7 @@ fn cleanup_leaves_no_more_than_the_ideal(pattern: Pattern, passes: usize) {
     )
     .unwrap();
     let params = CleanupParams {
-        finish: Finish::new(small.clone()),
+        finish: Finish::new(small),
         pattern,
         passes,
         scallop: TOL,
@@ -286,7 +286,7 @@ fn fillet_pocket_rest_and_its_follow_pocket_cleanup() {
     }
     let plan = finish(&mesh, &ball, TOL);
     let params = CleanupParams {
-        finish: Finish::new(small.clone()),
+        finish: Finish::new(small),
         pattern: Pattern::FollowPocket,
         passes: 0,
         scallop: TOL,

@@ -72,7 +72,7 @@ fn pencil_points_lie_on_the_bisector_at_the_closed_form_height() {
     .unwrap();
     let tool: Cutter = "ball:d=4".parse().unwrap();
     let params = CleanupParams {
-        finish: Finish::new(tool.clone()),
+        finish: Finish::new(tool),
         pattern: Pattern::FlowCut,
         passes: 0,
         scallop: 0.01,

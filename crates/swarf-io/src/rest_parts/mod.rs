@@ -10,20 +10,20 @@
 //! cut into as few segments as keep each triangle within [`MESH_PART_CHORD`] of it.
 //! Output is deterministic.
 //!
-//! - `fillet-pocket` ([`fillet_pocket`]): 100 x 80 block, top z = 20, a pocket with
+//! - `fillet-pocket` (`fillet_pocket.rs`): 100 x 80 block, top z = 20, a pocket with
 //!   vertical corner radius 5 and a floor fillet of radius 3. A ball of radius
 //!   R > 3 finishing the floor/wall corner leaves rest `(R - 3)(sqrt 2 - 1)` along
 //!   the 45-degree bisector (2D: the ball touching wall and floor has its centre
 //!   `R sqrt 2` from the sharp corner, its surface `R (sqrt 2 - 1)`; the fillet's
 //!   surface is `3 (sqrt 2 - 1)` from it); R = 6: 1.2426 mm. A ball of radius R > 5
 //!   cannot enter the vertical corner.
-//! - `v-grooves` ([`grooves::v_grooves`]): 140 x 60 block, top z = 10, three V-grooves
+//! - `v-grooves` (`grooves.rs`): 140 x 60 block, top z = 10, three V-grooves
 //!   along y of included angles 60, 90 and 120 degrees, depth 10. A ball of radius R
 //!   in a V of half-angle `a/2` touches both flanks with its centre `R / sin(a/2)`
 //!   above the bottom, so it leaves `R / sin(a/2) - R` at the bottom (thesis 002
 //!   §1.1) and touches at height `R / sin(a/2) - R sin(a/2)`; for R = 6 that is 9.0,
 //!   4.243 and 1.732 mm, below the groove top (10) on all three.
-//! - `short-grooves` ([`grooves::short_grooves`]): 70 x 60 block, top z = 0, four
+//! - `short-grooves` (`grooves.rs`): 70 x 60 block, top z = 0, four
 //!   90-degree V-grooves of depth 4 along x with vertical end walls, in two pairs
 //!   1.5 mm and 5 mm apart. The valley rest of each groove is a strip along its bottom
 //!   ending at its end walls, so merging regions at 2 mm joins the first pair but not
@@ -31,7 +31,7 @@
 //!
 //! Segment count: the chord of an arc of radius r over angle t / n sags
 //! `r (1 - cos(t / 2n))` from it, so an arc needs the smallest n with that at most the
-//! tolerance ([`arc_segments`]). On a doubly curved patch (the pocket's corner tori)
+//! tolerance (`arc_segments`). On a doubly curved patch (the pocket's corner tori)
 //! the sags of the two directions add at a quad's centre, so each direction gets half
 //! the tolerance.
 
