@@ -30,6 +30,8 @@ use swarf_tool::drop::MeshDropper;
 pub const PITCH_RADII: f64 = 0.5;
 /// Crease scan spacing in reference tool radii.
 pub const SCAN_RADII: f64 = 0.25;
+/// Most drops of the two crease scans of a part.
+pub const MAX_SCAN_DROPS: f64 = 2e8;
 
 /// Where the rest comes from.
 #[derive(Debug, Clone, Copy)]
@@ -140,13 +142,41 @@ pub fn valley_pairs(dropper: &MeshDropper, contacts: &[DoubleContact]) -> Vec<Re
 /// The valley pairs of crease scans along X and Y with `dropper`'s tool.
 ///
 /// # Errors
-/// An empty mesh.
+/// An empty mesh; scans that would need more than [`MAX_SCAN_DROPS`] drops (a tool
+/// tiny for the part).
 pub fn reference_pairs(
     mesh: &TriMesh,
     dropper: &MeshDropper,
     tolerance: f64,
 ) -> Result<Vec<RestPair>, RestError> {
     let spacing = SCAN_RADII * dropper.tool().radius();
+    let (lo, hi) = mesh
+        .vertices
+        .iter()
+        .filter(|v| v.x.is_finite() && v.y.is_finite())
+        .fold(
+            ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+            |(lo, hi), v| {
+                (
+                    [lo[0].min(v.x), lo[1].min(v.y)],
+                    [hi[0].max(v.x), hi[1].max(v.y)],
+                )
+            },
+        );
+    let reach = 2.0 * dropper.tool().radius();
+    let drops =
+        2.0 * ((hi[0] - lo[0] + reach) / spacing + 1.0) * ((hi[1] - lo[1] + reach) / spacing + 1.0);
+    if drops > MAX_SCAN_DROPS {
+        return Err(RestError::InvalidParameter {
+            field: "reference tool".into(),
+            value: dropper.tool().cutter().to_string(),
+            expected: format!(
+                "a tool large enough to scan a {:.1} x {:.1} mm part in at most {MAX_SCAN_DROPS:.0e} drops ({drops:.1e} needed)",
+                hi[0] - lo[0],
+                hi[1] - lo[1]
+            ),
+        });
+    }
     let mut contacts = crease_scan(mesh, dropper, 0.0, spacing, tolerance)?;
     contacts.extend(crease_scan(
         mesh,
