@@ -3,7 +3,9 @@
 //!
 //! The in-process model is the dexel stock the parent programs leave (swarf-sim);
 //! the rest is where it stands above the design by more than a threshold. Cells over
-//! the threshold are grouped into 8-connected sets; each set is a raw piece shaped
+//! the threshold are grouped into 8-connected sets (as the verification groups its
+//! gouge and excess cells, [`swarf_sim::deviation::regions`]); each set is a raw
+//! piece shaped
 //! as the union of its cells (one rectangle per run of cells in a row, united with
 //! geo's booleans), its depth the largest excess in it.
 
@@ -12,6 +14,7 @@ use crate::region::RawPiece;
 use geo::{LineString, Polygon, unary_union};
 use swarf_geom::Point3;
 use swarf_sim::Grid;
+use swarf_sim::deviation::regions;
 
 /// The raw pieces where `excess` (per cell, row-major over `grid`, NaN where not
 /// measured) is above `threshold`; `design` gives the heights of the deepest points.
@@ -24,45 +27,13 @@ pub fn pieces_from_excess(
     design: &[f64],
     threshold: f64,
 ) -> Vec<RawPiece> {
-    let (nx, ny) = (grid.nx, grid.ny);
-    let over = |k: usize| excess.get(k).is_some_and(|&v| v > threshold);
-    let mut seen = vec![false; nx * ny];
-    let mut out = Vec::new();
-    for start in 0..nx * ny {
-        if seen[start] || !over(start) {
-            continue;
-        }
-        seen[start] = true;
-        let mut stack = vec![start];
-        let mut cells = Vec::new();
-        while let Some(k) = stack.pop() {
-            cells.push(k);
-            let (i, j) = ((k % nx) as i64, (k / nx) as i64);
-            for (di, dj) in [
-                (-1, -1),
-                (0, -1),
-                (1, -1),
-                (-1, 0),
-                (1, 0),
-                (-1, 1),
-                (0, 1),
-                (1, 1),
-            ] {
-                let (a, b) = (i + di, j + dj);
-                if a < 0 || b < 0 || a >= nx as i64 || b >= ny as i64 {
-                    continue;
-                }
-                let m = b as usize * nx + a as usize;
-                if !seen[m] && over(m) {
-                    seen[m] = true;
-                    stack.push(m);
-                }
-            }
-        }
-        cells.sort_unstable();
-        out.push(piece(grid, excess, design, &cells));
-    }
-    out
+    regions(grid, excess, |v| v > threshold)
+        .into_iter()
+        .map(|mut cells| {
+            cells.sort_unstable();
+            piece(grid, excess, design, &cells)
+        })
+        .collect()
 }
 
 /// The piece of a set of cells (ascending indices).

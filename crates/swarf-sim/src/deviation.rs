@@ -247,8 +247,9 @@ impl RegionCtx<'_> {
     }
 }
 
-/// 8-connected regions of the cells passing `flag`, each as its cell list.
-fn regions(grid: &Grid, values: &[f64], flag: impl Fn(f64) -> bool) -> Vec<Vec<usize>> {
+/// 8-connected regions of the cells (row-major over `grid`) whose value passes
+/// `flag`, each as its cell list, in the order of their first cell.
+pub fn regions(grid: &Grid, values: &[f64], flag: impl Fn(f64) -> bool) -> Vec<Vec<usize>> {
     let (nx, ny) = (grid.nx as isize, grid.ny as isize);
     let mut seen = vec![false; values.len()];
     let mut out = Vec::new();
