@@ -5,9 +5,8 @@
 //! the rest is where it stands above the design by more than a threshold. Cells over
 //! the threshold are grouped into 8-connected sets (as the verification groups its
 //! gouge and excess cells, [`swarf_sim::deviation::regions`]); each set is a raw
-//! piece shaped
-//! as the union of its cells (one rectangle per run of cells in a row, united with
-//! geo's booleans), its depth the largest excess in it.
+//! piece shaped as the union of its cells (one rectangle per run of cells in a
+//! row, united with geo's booleans), its depth the largest excess in it.
 
 use crate::pair::RestKind;
 use crate::region::RawPiece;
