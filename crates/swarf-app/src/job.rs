@@ -149,6 +149,10 @@ pub struct StrategyParams {
     /// Raster boundary `[xmin, ymin, xmax, ymax]`, mm (default: the mesh outline).
     #[serde(default)]
     pub boundary: Option<[f64; 4]>,
+    /// Raster: ramp angle limit, degrees in `(0, 90)` (passes climb and descend no
+    /// steeper; the rest it leaves is ramp rest for a cleanup job).
+    #[serde(default)]
+    pub max_ramp: Option<f64>,
     /// Cleanup: the cut pattern (`flow-cut` or `follow-pocket`).
     #[serde(default)]
     pub pattern: Pattern,
@@ -302,6 +306,13 @@ impl Job {
                 ));
             }
         }
+        if let Some(a) = s.max_ramp
+            && (a.is_nan() || a <= 0.0 || a >= 90.0)
+        {
+            return Err(format!(
+                "strategy.max_ramp: {a} degrees: expected an angle between 0 and 90 degrees"
+            ));
+        }
         if !s.angle.is_finite() {
             return Err("strategy.angle: expected a finite angle in degrees".into());
         }
@@ -425,6 +436,7 @@ impl Job {
             angle: self.angle_rad(),
             start: s.start,
             boundary: s.boundary,
+            max_ramp: s.max_ramp.map(f64::to_radians),
         }
     }
 }

@@ -16,6 +16,7 @@ mod ordering;
 pub mod params;
 pub mod pass_bound;
 pub mod plan;
+pub mod ramp;
 pub mod raster;
 mod raster_double;
 mod raster_frame;

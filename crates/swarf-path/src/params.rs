@@ -125,6 +125,9 @@ pub struct RasterParams {
     pub start: StartSide,
     /// Raster boundary `[xmin, ymin, xmax, ymax]`, mm (default: the mesh outline).
     pub boundary: Option<[f64; 4]>,
+    /// Ramp angle limit, radians in `(0, pi/2)`: passes climb and descend no steeper
+    /// (thesis 002 §3.1.3, [`crate::ramp`]); none by default.
+    pub max_ramp: Option<f64>,
 }
 
 impl RasterParams {
@@ -137,6 +140,7 @@ impl RasterParams {
             angle: 0.0,
             start: StartSide::Min,
             boundary: None,
+            max_ramp: None,
         }
     }
 }

@@ -27,8 +27,13 @@ pub struct DoubleContact {
     /// Index of the pass (raster row) it was found on.
     pub pass: usize,
     /// Largest gap between the cutter and the part at the XY midpoint of two of the
-    /// contacts, mm (the valley's depth under the tool there).
+    /// contacts, mm (the valley's depth under the tool there); for ramp points, the
+    /// largest lift of the tool between them.
     pub gap: f64,
+    /// A pair of ramp points (where a ramp-limited pass leaves the part and where it
+    /// touches again, [`crate::ramp`]) rather than a double contact.
+    #[serde(default)]
+    pub ramp: bool,
 }
 
 /// Figures a strategy reports beside its tool path.

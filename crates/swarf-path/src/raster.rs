@@ -21,6 +21,9 @@
 //! - **Order**: passes from the `start` side; with `zigzag` every other row is cut
 //!   backwards, else all run along `+d`. Rows are planned in parallel and collected in
 //!   order, so the result does not depend on the thread count.
+//! - **Ramp limit**: with `max_ramp`, each pass's CL profile is limited to that
+//!   slope ([`crate::ramp`]); the ramp points of every lifted run go to
+//!   [`Plan::double_contacts`] marked `ramp`.
 //! - **Contacts**: each pose records its CC point and triangle (face = triangle index,
 //!   normal = the triangle's upward normal, `uv` NaN). Double contacts found at any
 //!   sample go to [`Plan::double_contacts`] (`raster_double.rs`).
@@ -31,6 +34,7 @@
 use crate::error::PathError;
 use crate::params::RasterParams;
 use crate::plan::{DoubleContact, Plan, PlanReport};
+use crate::ramp::limit_ramp;
 use crate::raster_frame::Frame;
 use crate::raster_pass::Sampler;
 use crate::raster_step::flat_scallop;
@@ -66,17 +70,18 @@ pub fn plan(mesh: &TriMesh, params: &RasterParams) -> Result<Plan, PathError> {
             "raster: no triangle of the mesh has finite corners".into(),
         ));
     }
+    let slope = ramp_slope(params)?;
     let frame = Frame::new(mesh, params, &dropper)?;
     let sampler = Sampler::new(mesh, &dropper, params.finish.tolerance, true);
     let rows = frame.rows(&sampler);
     let mut passes = Vec::new();
     let mut double_contacts = Vec::new();
     let mut backwards = false;
-    for (k, row) in rows.into_iter().enumerate() {
+    for (k_row, row) in rows.into_iter().enumerate() {
         double_contacts.extend(
             row.doubles
                 .into_iter()
-                .map(|d| DoubleContact { pass: k, ..d }),
+                .map(|d| DoubleContact { pass: k_row, ..d }),
         );
         if row.pieces.is_empty() {
             continue;
@@ -84,6 +89,13 @@ pub fn plan(mesh: &TriMesh, params: &RasterParams) -> Result<Plan, PathError> {
         let mut pieces: Vec<Pass> = row
             .pieces
             .into_iter()
+            .map(|mut points| {
+                if let Some(k) = slope {
+                    let tol = params.finish.tolerance;
+                    double_contacts.extend(limit_ramp(&mut points, k, tol, k_row));
+                }
+                points
+            })
             .map(|points| Pass {
                 points,
                 ..Pass::default()
@@ -122,6 +134,24 @@ pub fn plan(mesh: &TriMesh, params: &RasterParams) -> Result<Plan, PathError> {
         report,
         double_contacts,
     })
+}
+
+/// `tan` of the ramp angle limit, if any.
+///
+/// # Errors
+/// [`PathError::InvalidParameter`] for an angle outside `(0, pi/2)`.
+fn ramp_slope(params: &RasterParams) -> Result<Option<f64>, PathError> {
+    match params.max_ramp {
+        None => Ok(None),
+        Some(a) if a > 0.0 && a < std::f64::consts::FRAC_PI_2 => Ok(Some(a.tan())),
+        Some(a) => Err(PathError::InvalidParameter {
+            field: "strategy.max_ramp".into(),
+            message: format!(
+                "{} degrees: expected an angle between 0 and 90 degrees",
+                crate::params::degrees(a)
+            ),
+        }),
+    }
 }
 
 /// Contact-only crease scans (thesis 002 §5.1 with a reference tool): lines at

@@ -65,6 +65,7 @@ pub(crate) fn double_contact(
             .collect(),
         pass: 0,
         gap: widest,
+        ramp: false,
     })
 }
 
@@ -115,6 +116,7 @@ pub(crate) fn cliff_contact(
         ],
         pass: 0,
         gap,
+        ramp: false,
     })
 }
 

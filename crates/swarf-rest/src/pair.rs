@@ -133,8 +133,9 @@ impl<'a> DepthProbe<'a> {
         }
     }
 
-    /// The rest pair of a double contact: its two farthest-apart contacts, with the
-    /// depth between them; `None` with fewer than two contacts.
+    /// The rest pair of a double contact (or of a pair of ramp points): its two
+    /// farthest-apart contacts, with the depth between them; `None` with fewer than
+    /// two contacts.
     pub fn valley(&self, dc: &DoubleContact) -> Option<RestPair> {
         let n = dc.contacts.len();
         let (i, j) = (0..n)
@@ -147,7 +148,11 @@ impl<'a> DepthProbe<'a> {
         let normal = |k: usize| dc.normals.get(k).copied().unwrap_or_else(Vec3::z);
         let (depth, deepest) = self.depth(&dc.cl, &a, &b);
         Some(RestPair {
-            kind: RestKind::Valley,
+            kind: if dc.ramp {
+                RestKind::Ramp
+            } else {
+                RestKind::Valley
+            },
             cl: dc.cl,
             a,
             b,

@@ -96,8 +96,8 @@ impl RegionParams {
 /// A raw piece of rest: a group of samples (or stock cells) and its shape.
 #[derive(Debug, Clone)]
 pub struct RawPiece {
-    /// What left it.
-    pub kind: RestKind,
+    /// What left it (sorted, no repeats).
+    pub kinds: Vec<RestKind>,
     /// Its shape in XY.
     pub shape: MultiPolygon<f64>,
     /// Largest rest thickness in it, mm.
@@ -207,8 +207,11 @@ fn piece_of(pairs: Vec<RestPair>, chains: Vec<std::ops::Range<usize>>, pitch: f6
             _ => Some(p),
         })
         .map_or((0.0, Point3::origin()), |p| (p.depth, p.deepest));
+    let mut kinds: Vec<RestKind> = pairs.iter().map(|p| p.kind).collect();
+    kinds.sort();
+    kinds.dedup();
     RawPiece {
-        kind: pairs.first().map_or(RestKind::Valley, |p| p.kind),
+        kinds,
         shape: unary_union(polys.iter()),
         depth: deepest.0,
         deepest: deepest.1,
@@ -290,7 +293,7 @@ fn region_of(closed: &Polygon<f64>, overlap: f64, pieces: &[RawPiece]) -> Option
         .filter(|p| p.shape.intersects(closed))
         .collect();
     let raw_inside = unary_union(mine.iter().flat_map(|p| p.shape.0.iter()));
-    let mut kinds: Vec<RestKind> = mine.iter().map(|p| p.kind).collect();
+    let mut kinds: Vec<RestKind> = mine.iter().flat_map(|p| p.kinds.iter().copied()).collect();
     kinds.sort();
     kinds.dedup();
     let mut pairs = Vec::new();
@@ -327,7 +330,7 @@ mod tests {
 
     fn square(x: f64, y: f64, s: f64) -> RawPiece {
         RawPiece {
-            kind: RestKind::Stock,
+            kinds: vec![RestKind::Stock],
             shape: MultiPolygon(vec![Polygon::new(
                 LineString::from(vec![(x, y), (x + s, y), (x + s, y + s), (x, y + s)]),
                 vec![],

@@ -69,7 +69,7 @@ fn piece(grid: &Grid, excess: &[f64], design: &[f64], cells: &[usize]) -> RawPie
         .fold(cells[0], |m, c| if excess[c] > excess[m] { c } else { m });
     let [x, y] = grid.centre(worst % nx, worst / nx);
     RawPiece {
-        kind: RestKind::Stock,
+        kinds: vec![RestKind::Stock],
         shape: unary_union(rects.iter()),
         depth: excess[worst],
         deepest: Point3::new(x, y, design.get(worst).copied().unwrap_or(f64::NAN)),
