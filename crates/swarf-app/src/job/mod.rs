@@ -1,0 +1,334 @@
+//! Job files: what `swarf plan` and `swarf compare` read. A job names the part, the
+//! tool, the strategy with its parameters, feeds, linking and the output files.
+//!
+//! ```toml
+//! name = "wave, iso-scallop"
+//! part = "../parts/wave.toml"    # relative to the job file; "builtin:wave" for a built-in part
+//! tool = "ball:d=8"              # a spec string or a table { shape = "bull", d = 10, r = 2 }
+//!
+//! [strategy]
+//! kind = "iso-scallop"           # iso-parametric | iso-planar | iso-scallop | raster
+//! scallop = 0.15                 # scallop height limit h, mm
+//! tolerance = 0.01               # chordal tolerance along passes, mm
+//!
+//! [feeds]
+//! feed = 300                     # mm/min
+//! spindle = 1500                 # rev/min
+//!
+//! [linking]
+//! clearance = 60                 # clearance plane z, mm
+//!
+//! [output]
+//! gcode = "wave-iso-scallop.ngc" # paths relative to the job file; each optional
+//! summary = "wave-iso-scallop.json"
+//! ```
+//!
+//! Five-axis jobs add a `positioning` table (how the tool is placed on the CC paths of
+//! the strategy, thesis 000 §7.3) and, for G-code, a machine:
+//!
+//! ```toml
+//! positioning = { method = "inclined", alpha = 3, sections = 1.0 }    # fixed lead
+//! # positioning = { method = "gouge-free", max_alpha = 25, max_rate = 0.5 }
+//!
+//! [strategy]
+//! kind = "iso-planar"
+//! stepover = 3.5                 # fixed cross feed between drive planes, mm
+//! angle = 60
+//!
+//! [output]
+//! machine = "builtin:xyzac-trunnion"  # or a machine file relative to the job file
+//! feed_mode = "inverse-time"          # G93 (default) or "units-per-minute" (G94)
+//! tool_length = 120                   # mm, machines with head axes
+//! gcode = "die.ngc"
+//! cl = "die.cl"                       # APT CL and pose CSV carry the tool axis
+//! ```
+//!
+//! A tilted tool path is never written as 3-axis G-code: a `positioning` with a
+//! `gcode` output needs `output.machine`. A machine without a positioning writes the
+//! 3-axis path (vertical tool) as five-axis G-code.
+//!
+//! Lengths in the job are mm; angles are degrees (converted to radians where they are
+//! used, at the input edge).
+
+use crate::error::AppError;
+use serde::{Deserialize, Serialize};
+use swarf_fiveaxis::positioning::Positioning;
+use swarf_fiveaxis::post::FeedMode;
+use swarf_io::error::toml_message;
+use swarf_nc::{Dialect, Units};
+use swarf_path::params::{Finish, IsoParams, ParamDir, RasterParams, StartSide, StrategyKind};
+use swarf_rest::{Pattern, RegionParams};
+use swarf_tool::Cutter;
+use swarf_toolpath::{Feeds, LinkingSpec};
+
+/// A planning job.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Job {
+    /// Free-text name for reports.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Part file (`.toml` patches, or `.stl`/`.obj` mesh), relative to the job file,
+    /// or `builtin:NAME` for a shared part embedded in swarf.
+    pub part: String,
+    /// The cutter.
+    pub tool: Cutter,
+    /// Strategy and its parameters.
+    pub strategy: StrategyParams,
+    /// Five-axis positioning of the strategy's CC paths (none: a vertical tool).
+    #[serde(default)]
+    pub positioning: Option<Positioning>,
+    /// Feeds and speeds.
+    #[serde(default)]
+    pub feeds: Feeds,
+    /// Linking between passes.
+    #[serde(default)]
+    pub linking: LinkingSpec,
+    /// Output files.
+    #[serde(default)]
+    pub output: Output,
+    /// What a cleanup job cleans up after (`kind = "cleanup"` only).
+    #[serde(default)]
+    pub parent: Option<Parent>,
+}
+
+/// The parent of a cleanup job: a finishing job, or just the tool that finished.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Parent {
+    /// The parent job file, relative to this job's file.
+    #[serde(default)]
+    pub job: Option<String>,
+    /// A reference tool instead of a parent job.
+    #[serde(default)]
+    pub tool: Option<Cutter>,
+}
+
+/// Where a cleanup job takes its rest from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RestSource {
+    /// Crease scans of the part with the parent's tool (any parent).
+    #[default]
+    Reference,
+    /// The double contacts the parent raster job records while it is planned.
+    Contacts,
+    /// The dexel stock after the parent job's program, minus the design.
+    Stock,
+}
+
+/// Strategy parameters. Fields not used by a strategy are ignored by it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StrategyParams {
+    /// Which strategy.
+    pub kind: StrategyKind,
+    /// Scallop height limit h, mm (side step from it). Required unless `stepover` is given.
+    #[serde(default)]
+    pub scallop: Option<f64>,
+    /// Fixed side step instead of a scallop limit, mm: the distance between raster
+    /// lines, or between the drive planes of iso-planar (the "cross feed" of thesis
+    /// 000 ch. 8; then the planes are not spaced by a scallop limit).
+    #[serde(default)]
+    pub stepover: Option<f64>,
+    /// Chordal tolerance along a pass (and gouge tolerance), mm.
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    /// Feed direction along a parameter (iso-parametric, iso-scallop).
+    #[serde(default)]
+    pub direction: ParamDir,
+    /// Feed direction in the XY plane, degrees from +X (iso-planar, raster).
+    #[serde(default)]
+    pub angle: f64,
+    /// Side the first pass starts on.
+    #[serde(default)]
+    pub start: StartSide,
+    /// Alternate the cutting direction of consecutive passes.
+    #[serde(default = "default_true")]
+    pub zigzag: bool,
+    /// Raster boundary `[xmin, ymin, xmax, ymax]`, mm (default: the mesh outline).
+    #[serde(default)]
+    pub boundary: Option<[f64; 4]>,
+    /// Raster: ramp angle limit, degrees in `(0, 90)` (passes climb and descend no
+    /// steeper; the rest it leaves is ramp rest for a cleanup job).
+    #[serde(default)]
+    pub max_ramp: Option<f64>,
+    /// Cleanup: the cut pattern (`flow-cut` or `follow-pocket`).
+    #[serde(default)]
+    pub pattern: Pattern,
+    /// Cleanup, flow-cut: parallel passes on each side of the pencil pass.
+    #[serde(default)]
+    pub passes: usize,
+    /// Cleanup: where the rest comes from.
+    #[serde(default)]
+    pub source: RestSource,
+    /// Cleanup: rest thinner than this is left, mm (default: the tolerance plus the
+    /// scallop height).
+    #[serde(default)]
+    pub threshold: Option<f64>,
+    /// Cleanup: regions closer than this are merged, mm.
+    #[serde(default = "default_merge")]
+    pub merge: f64,
+    /// Cleanup: outward offset of the regions, mm.
+    #[serde(default = "default_overlap")]
+    pub overlap: f64,
+    /// Cleanup: regions with a smaller raw area are dropped, mm².
+    #[serde(default = "default_min_area")]
+    pub min_area: f64,
+    /// Cleanup: concave corners of the boundaries are rounded to at least this
+    /// radius, mm.
+    #[serde(default = "default_smoothness")]
+    pub smoothness: f64,
+    /// Cleanup: intermediate tools, largest first, each cleaning up after the one
+    /// before it (the parent's tool first); the job's tool cleans up last.
+    #[serde(default)]
+    pub chain: Vec<Cutter>,
+}
+
+fn default_merge() -> f64 {
+    RegionParams::default().merge
+}
+
+fn default_overlap() -> f64 {
+    RegionParams::default().overlap
+}
+
+fn default_min_area() -> f64 {
+    RegionParams::default().min_area
+}
+
+fn default_smoothness() -> f64 {
+    RegionParams::default().smoothness
+}
+
+fn default_tolerance() -> f64 {
+    0.01
+}
+
+fn default_true() -> bool {
+    true
+}
+
+/// Output files of a job, relative to the job file. Each is optional.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Output {
+    /// RS274/NGC G-code.
+    #[serde(default)]
+    pub gcode: Option<String>,
+    /// APT CL data.
+    #[serde(default)]
+    pub cl: Option<String>,
+    /// Pose CSV (`x,y,z,i,j,k`).
+    #[serde(default)]
+    pub csv: Option<String>,
+    /// JSON summary.
+    #[serde(default)]
+    pub summary: Option<String>,
+    /// Double contacts found by the raster strategy (CSV).
+    #[serde(default)]
+    pub double_contacts: Option<String>,
+    /// Output units: "mm" or "inch".
+    #[serde(default)]
+    pub units: Units,
+    /// G-code dialect: "linuxcnc" or "fanuc".
+    #[serde(default)]
+    pub dialect: Dialect,
+    /// Machine for five-axis G-code: a machine file relative to the job file, or
+    /// `builtin:NAME` for a machine shipped with swarf (`builtin:xyzac-trunnion`, ...).
+    #[serde(default)]
+    pub machine: Option<String>,
+    /// Feeds of five-axis G-code: "inverse-time" (G93) or "units-per-minute" (G94).
+    #[serde(default)]
+    pub feed_mode: FeedMode,
+    /// Spindle gauge line to tool tip, mm (machines with head axes).
+    #[serde(default)]
+    pub tool_length: Option<f64>,
+}
+
+impl Job {
+    /// Parses and validates a job from TOML text; `source` names the file in errors.
+    ///
+    /// # Errors
+    /// [`AppError::Job`] with the file, line and field for malformed TOML, unknown
+    /// keys, bad tools, and out-of-range parameters.
+    pub fn parse(text: &str, source: &str) -> Result<Job, AppError> {
+        let job: Job = toml::from_str(text).map_err(|e| AppError::Job {
+            file: source.to_string(),
+            message: toml_message(text, &e),
+        })?;
+        job.validate().map_err(|message| AppError::Job {
+            file: source.to_string(),
+            message,
+        })?;
+        Ok(job)
+    }
+}
+
+impl Job {
+    /// The feed direction angle in radians.
+    pub fn angle_rad(&self) -> f64 {
+        self.strategy.angle.to_radians()
+    }
+
+    /// What every strategy takes from the job: tool, tolerance, zigzag, feeds,
+    /// linking.
+    pub fn finish(&self) -> Finish {
+        Finish {
+            tool: self.tool,
+            tolerance: self.strategy.tolerance,
+            zigzag: self.strategy.zigzag,
+            feeds: self.feeds,
+            linking: self.linking,
+        }
+    }
+
+    /// The parameters of the iso strategies.
+    pub fn iso_params(&self) -> IsoParams {
+        let s = &self.strategy;
+        IsoParams {
+            finish: self.finish(),
+            scallop: s.scallop,
+            stepover: s.stepover,
+            direction: s.direction,
+            angle: self.angle_rad(),
+            start: s.start,
+        }
+    }
+
+    /// The parameters of the raster strategy.
+    pub fn raster_params(&self) -> RasterParams {
+        let s = &self.strategy;
+        RasterParams {
+            finish: self.finish(),
+            scallop: s.scallop,
+            stepover: s.stepover,
+            angle: self.angle_rad(),
+            start: s.start,
+            boundary: s.boundary,
+            max_ramp: s.max_ramp.map(f64::to_radians),
+        }
+    }
+}
+
+impl Job {
+    /// The region parameters of a cleanup job (threshold: the tolerance plus the
+    /// scallop height unless given).
+    pub fn region_params(&self) -> RegionParams {
+        let s = &self.strategy;
+        RegionParams {
+            threshold: s
+                .threshold
+                .unwrap_or(s.tolerance + s.scallop.unwrap_or(0.0)),
+            merge: s.merge,
+            overlap: s.overlap,
+            min_area: s.min_area,
+            smoothness: s.smoothness,
+        }
+    }
+}
+
+mod validate;
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,213 @@
+//! Tests of job parsing and validation.
+
+use super::*;
+
+const GOOD: &str = r#"
+part = "builtin:wave"
+tool = "ball:d=8"
+[strategy]
+kind = "iso-scallop"
+scallop = 0.15
+tolerance = 0.01
+[feeds]
+feed = 300
+spindle = 1500
+[linking]
+clearance = 60
+[output]
+gcode = "a.ngc"
+"#;
+
+#[test]
+fn parses_a_good_job() {
+    let job = Job::parse(GOOD, "job.toml").unwrap();
+    assert_eq!(job.strategy.kind, StrategyKind::IsoScallop);
+    assert_eq!(job.strategy.scallop, Some(0.15));
+    assert_eq!(job.feeds.feed, 300.0);
+    assert_eq!(job.feeds.plunge, Feeds::default().plunge);
+    assert!(job.strategy.zigzag);
+    assert_eq!(job.output.gcode.as_deref(), Some("a.ngc"));
+}
+
+#[test]
+fn bad_jobs_name_the_field() {
+    let cases = [
+        (
+            GOOD.replace("scallop = 0.15", "scallop = -1"),
+            "strategy.scallop",
+        ),
+        (
+            GOOD.replace("scallop = 0.15", "scallop = 5"),
+            "strategy.scallop",
+        ),
+        (
+            GOOD.replace("tolerance = 0.01", "tolerance = 0"),
+            "strategy.tolerance",
+        ),
+        (
+            GOOD.replace("scallop = 0.15", ""),
+            "strategy: expected `scallop`",
+        ),
+        (GOOD.replace("feed = 300", "feed = -3"), "feeds.feed"),
+        (
+            GOOD.replace("kind = \"iso-scallop\"", "kind = \"spiral\""),
+            "line 5",
+        ),
+        (GOOD.replace("feed = 300", "fed = 300"), "fed"),
+        (GOOD.replace("ball:d=8", "ball:d=-8"), "line 3"),
+    ];
+    for (text, want) in cases {
+        let e = Job::parse(&text, "job.toml").unwrap_err().to_string();
+        assert!(e.starts_with("job.toml: "), "{e}");
+        assert!(e.contains(want), "want {want:?} in {e}");
+    }
+}
+
+mod five_axis {
+    use super::*;
+    use swarf_fiveaxis::positioning::Positioning;
+
+    const FIVE: &str = r#"
+part = "builtin:die"
+tool = "bull:d=38.1,r=6.35"
+positioning = { method = "inclined", alpha = 3 }
+[strategy]
+kind = "iso-planar"
+stepover = 3.5
+angle = 60
+[output]
+machine = "builtin:xyzac-trunnion"
+gcode = "die.ngc"
+cl = "die.cl"
+"#;
+
+    #[test]
+    fn positioning_tables_parse() {
+        let job = Job::parse(FIVE, "die.toml").unwrap();
+        assert_eq!(
+            job.positioning,
+            Some(Positioning::Inclined {
+                alpha: 3.0,
+                tilt: 0.0,
+                sections: 1.0
+            })
+        );
+        assert_eq!(job.strategy.stepover, Some(3.5));
+        assert_eq!(
+            job.output.machine.as_deref(),
+            Some("builtin:xyzac-trunnion")
+        );
+        assert_eq!(job.output.feed_mode, FeedMode::InverseTime);
+        let auto = FIVE.replace(
+            r#"{ method = "inclined", alpha = 3 }"#,
+            r#"{ method = "gouge-free", max_alpha = 15, sections = 0.5 }"#,
+        );
+        let job = Job::parse(&auto, "die.toml").unwrap();
+        assert_eq!(
+            job.positioning,
+            Some(Positioning::GougeFree {
+                max_alpha: 15.0,
+                sections: 0.5,
+                tilt: 0.0,
+                max_rate: 0.5,
+                tolerance: None
+            })
+        );
+        assert_eq!(job.positioning.map(|p| p.method()), Some("gouge-free"));
+        let g94 = FIVE.replace(
+            "gcode = ",
+            "feed_mode = \"units-per-minute\"\ntool_length = 120\ngcode = ",
+        );
+        let job = Job::parse(&g94, "die.toml").unwrap();
+        assert_eq!(job.output.feed_mode, FeedMode::UnitsPerMinute);
+        assert_eq!(job.output.tool_length, Some(120.0));
+        // A machine without positioning (a vertical tool in five-axis words), and a
+        // positioning with CL output only: both fine.
+        let vertical = FIVE.replace("positioning = { method = \"inclined\", alpha = 3 }", "");
+        assert!(
+            Job::parse(&vertical, "die.toml")
+                .unwrap()
+                .positioning
+                .is_none()
+        );
+        let cl_only = FIVE
+            .replace("machine = \"builtin:xyzac-trunnion\"", "")
+            .replace("gcode = \"die.ngc\"", "");
+        assert!(Job::parse(&cl_only, "die.toml").is_ok());
+    }
+
+    #[test]
+    fn bad_five_axis_jobs_name_the_field() {
+        let inclined = r#"{ method = "inclined", alpha = 3 }"#;
+        let cases = [
+            (FIVE.replace("alpha = 3", "alpha = 95"), "positioning.alpha"),
+            (FIVE.replace("alpha = 3", "alpha = -1"), "positioning.alpha"),
+            (
+                FIVE.replace("alpha = 3", "alpha = 3, tilt = 91"),
+                "positioning.tilt",
+            ),
+            (
+                FIVE.replace("alpha = 3", "alpha = 3, sections = 0"),
+                "positioning.sections",
+            ),
+            (
+                FIVE.replace(inclined, r#"{ method = "gouge-free", max_alpha = 0 }"#),
+                "positioning.max_alpha",
+            ),
+            (
+                FIVE.replace(
+                    inclined,
+                    r#"{ method = "gouge-free", max_alpha = 15, max_rate = -1 }"#,
+                ),
+                "positioning.max_rate",
+            ),
+            (
+                FIVE.replace(
+                    inclined,
+                    r#"{ method = "gouge-free", max_alpha = 15, tolerance = -0.1 }"#,
+                ),
+                "positioning.tolerance",
+            ),
+            // Unknown method, unknown key, missing field: the TOML line.
+            (FIVE.replace("\"inclined\"", "\"tilted\""), "line 4"),
+            (FIVE.replace("alpha = 3", "alpha = 3, beta = 2"), "beta"),
+            (
+                FIVE.replace(inclined, r#"{ method = "gouge-free" }"#),
+                "max_alpha",
+            ),
+            (
+                FIVE.replace("machine = \"builtin:xyzac-trunnion\"", ""),
+                "output.machine: a tilted tool path needs a machine file for G-code",
+            ),
+            (
+                FIVE.replace("machine = \"builtin:xyzac-trunnion\"", "machine = \"\""),
+                "output.machine",
+            ),
+            (
+                FIVE.replace("gcode = ", "feed_mode = \"g93\"\ngcode = "),
+                "line 11: unknown variant `g93`, expected `inverse-time`",
+            ),
+            (
+                FIVE.replace("gcode = ", "tool_length = -5\ngcode = "),
+                "output.tool_length",
+            ),
+            (
+                FIVE.replace("stepover = 3.5", "stepover = 40"),
+                "strategy.stepover",
+            ),
+            (
+                FIVE.replace("stepover = 3.5", "stepover = 3.5\nscallop = 0.1"),
+                "strategy.stepover",
+            ),
+            (
+                FIVE.replace("iso-planar", "iso-scallop"),
+                "strategy.stepover",
+            ),
+        ];
+        for (text, want) in cases {
+            let e = Job::parse(&text, "die.toml").unwrap_err().to_string();
+            assert!(e.starts_with("die.toml: "), "{e}");
+            assert!(e.contains(want), "want {want:?} in {e}");
+        }
+    }
+}

@@ -1,0 +1,149 @@
+//! Checks of a job's parameter ranges that the TOML types cannot express: the
+//! strategy, feeds and linking, a cleanup job's parent and regions, and what a
+//! five-axis job can write.
+
+use super::{Job, RestSource};
+use swarf_path::StrategyKind;
+
+impl Job {
+    /// Checks parameter ranges that the TOML types cannot express.
+    pub(super) fn validate(&self) -> Result<(), String> {
+        let s = &self.strategy;
+        positive("strategy.tolerance", Some(s.tolerance))?;
+        positive("strategy.scallop", s.scallop)?;
+        positive("strategy.stepover", s.stepover)?;
+        if s.scallop.is_none() && s.stepover.is_none() {
+            return Err(
+                "strategy: expected `scallop` (scallop height limit, mm) or `stepover` (mm)".into(),
+            );
+        }
+        match (s.kind, s.scallop, s.stepover) {
+            (StrategyKind::Raster | StrategyKind::Cleanup, _, _) | (_, _, None) => {}
+            (StrategyKind::IsoPlanar, Some(_), Some(_)) => {
+                return Err(
+                    "strategy.stepover: give either `scallop` (plane spacing from a scallop limit) or `stepover` (a fixed cross feed), not both"
+                        .into(),
+                );
+            }
+            (StrategyKind::IsoPlanar, None, Some(step)) => {
+                let d = 2.0 * self.tool.radius();
+                if step >= d {
+                    return Err(format!(
+                        "strategy.stepover: {step} mm is not smaller than the tool diameter {d} mm"
+                    ));
+                }
+            }
+            (_, _, Some(_)) => {
+                return Err(
+                    "strategy.stepover: only the raster and iso-planar strategies take a fixed stepover; use `scallop`"
+                        .into(),
+                );
+            }
+        }
+        if let Some(h) = s.scallop {
+            let r = self.tool.radius();
+            if h >= r {
+                return Err(format!(
+                    "strategy.scallop: {h} mm is not smaller than the tool radius {r} mm; expected 0 < scallop < tool radius"
+                ));
+            }
+        }
+        if let Some(a) = s.max_ramp
+            && (a.is_nan() || a <= 0.0 || a >= 90.0)
+        {
+            return Err(format!(
+                "strategy.max_ramp: {a} degrees: expected an angle between 0 and 90 degrees"
+            ));
+        }
+        if !s.angle.is_finite() {
+            return Err("strategy.angle: expected a finite angle in degrees".into());
+        }
+        if let Some(b) = s.boundary
+            && !(b.iter().all(|x| x.is_finite()) && b[0] < b[2] && b[1] < b[3])
+        {
+            return Err(format!(
+                "strategy.boundary: expected [xmin, ymin, xmax, ymax] with xmin < xmax and ymin < ymax, found {b:?}"
+            ));
+        }
+        self.validate_cleanup()?;
+        let f = &self.feeds;
+        for (name, v) in [
+            ("feeds.feed", f.feed),
+            ("feeds.plunge", f.plunge),
+            ("feeds.rapid", f.rapid),
+            ("feeds.spindle", f.spindle),
+        ] {
+            positive(name, Some(v))?;
+        }
+        if self.linking.clearance.is_some_and(|c| !c.is_finite()) {
+            return Err("linking.clearance: expected a finite height in mm".into());
+        }
+        positive("linking.approach", Some(self.linking.approach))?;
+        self.validate_five_axis()
+    }
+
+    /// A cleanup job's parent and region parameters; other jobs have no parent.
+    fn validate_cleanup(&self) -> Result<(), String> {
+        let s = &self.strategy;
+        let Some(parent) = &self.parent else {
+            if s.kind == StrategyKind::Cleanup {
+                return Err("parent: a cleanup job needs a [parent] table with `job` (a finishing job file) or `tool` (a reference tool)".into());
+            }
+            return Ok(());
+        };
+        if s.kind != StrategyKind::Cleanup {
+            return Err(
+                "parent: only a cleanup job (strategy.kind = \"cleanup\") has a parent".into(),
+            );
+        }
+        match (&parent.job, &parent.tool) {
+            (Some(_), Some(_)) | (None, None) => {
+                return Err("parent: expected exactly one of `job` (a finishing job file) and `tool` (a reference tool)".into());
+            }
+            (None, Some(_)) if s.source != RestSource::Reference => {
+                return Err(format!(
+                    "strategy.source: {:?} needs a parent job (parent.job); a reference tool gives source = \"reference\" only",
+                    s.source
+                ));
+            }
+            _ => {}
+        }
+        if s.scallop.is_none() {
+            return Err(
+                "strategy.scallop: a cleanup job needs the scallop height of its passes, mm".into(),
+            );
+        }
+        if self.positioning.is_some() {
+            return Err("positioning: cleanup paths are three-axis".into());
+        }
+        self.region_params().validate().map_err(|e| e.to_string())
+    }
+
+    /// The positioning's ranges and the outputs a five-axis job can write.
+    fn validate_five_axis(&self) -> Result<(), String> {
+        if let Some(p) = &self.positioning {
+            p.validate()
+                .map_err(|(field, message)| format!("{field}: {message}"))?;
+        }
+        let o = &self.output;
+        if self.positioning.is_some() && o.gcode.is_some() && o.machine.is_none() {
+            return Err(
+                "output.machine: a tilted tool path needs a machine file for G-code (e.g. machine = \"builtin:xyzac-trunnion\"); or drop output.gcode (output.cl and output.csv carry the tool axis)"
+                    .into(),
+            );
+        }
+        if o.machine.as_deref().is_some_and(str::is_empty) {
+            return Err("output.machine: expected a machine file or builtin:NAME".into());
+        }
+        positive("output.tool_length", o.tool_length)
+    }
+}
+
+fn positive(name: &str, v: Option<f64>) -> Result<(), String> {
+    match v {
+        Some(x) if !(x.is_finite() && x > 0.0) => {
+            Err(format!("{name}: expected a finite number > 0, found {x}"))
+        }
+        _ => Ok(()),
+    }
+}
