@@ -28,7 +28,7 @@ use crate::detect::reference_pairs;
 use crate::directory::group;
 use crate::error::RestError;
 use crate::order::{chains, open_path};
-use crate::pair::RestPair;
+use crate::pair::{DepthProbe, RestPair};
 use crate::pencil::Pencil;
 use crate::pocket::follow_pocket;
 use crate::region::{LINK_PITCHES, RestRegion};
@@ -104,6 +104,7 @@ pub fn plan_cleanup(
     let pencil = Pencil {
         mesh,
         dropper: &dropper,
+        probe: DepthProbe::new(&dropper),
         tolerance: chord,
         passes: match params.pattern {
             Pattern::FlowCut => params.passes,

@@ -24,7 +24,7 @@
 //! ([`crate::stepping`]), dropped onto the part as any track
 //! ([`swarf_path::track::drop_track`]) and clipped to the region.
 
-use crate::pair::RestPair;
+use crate::pair::{DepthProbe, RestPair};
 use crate::pocket::MIN_STEP_FRACTION;
 use crate::region::RestRegion;
 use crate::stepping::step_out;
@@ -46,6 +46,8 @@ pub struct Pencil<'a> {
     pub mesh: &'a TriMesh,
     /// The part prepared for the cleanup tool.
     pub dropper: &'a MeshDropper,
+    /// Depths under the cleanup tool (made from `dropper`).
+    pub probe: DepthProbe<'a>,
     /// Chordal tolerance, mm.
     pub tolerance: f64,
     /// Parallel passes on each side.
@@ -157,10 +159,9 @@ impl Pencil<'_> {
         let Some(track) = Track::new(&[[mx - nx, my - ny], [mx + nx, my + ny]]) else {
             return false;
         };
-        let probe = crate::pair::DepthProbe::new(self.dropper);
         let found = crease_track(self.mesh, self.dropper, &track, self.tolerance, scratch)
             .into_iter()
-            .filter_map(|d| probe.valley(&d))
+            .filter_map(|d| self.probe.valley(&d))
             .min_by(|a, b| {
                 let d = |r: &RestPair| (r.cl.x - mx).hypot(r.cl.y - my);
                 d(a).total_cmp(&d(b))
