@@ -28,6 +28,7 @@ pub mod section_point;
 pub mod side_step;
 pub mod track;
 mod uncovered;
+pub mod waterline;
 
 pub use error::PathError;
 pub use params::{Finish, IsoParams, ParamDir, RasterParams, StartSide, StrategyKind};

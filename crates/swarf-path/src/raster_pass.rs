@@ -362,20 +362,7 @@ impl<'a> Sampler<'a> {
     /// The path point of a drop: CL on the axis, contact on the touched triangle
     /// (its upward normal; uv NaN on a mesh).
     fn point(&self, x: f64, y: f64, h: &DropResult) -> PathPoint {
-        let normal = self
-            .mesh
-            .normal(h.tri as usize)
-            .map_or(Vec3::z(), |n| if n.z < 0.0 { -n } else { n });
-        PathPoint {
-            pose: Pose::vertical(Point3::new(x, y, h.z)),
-            contact: Some(Contact {
-                point: h.cc,
-                normal,
-                face: h.tri as usize,
-                uv: [f64::NAN, f64::NAN],
-            }),
-            lifted: 0.0,
-        }
+        drop_point(self.mesh, [x, y], h.z, h)
     }
 }
 
@@ -391,5 +378,23 @@ fn staircase(ta: f64, za: f64, zm: f64, tb: f64, zb: f64, out: &mut Vec<Sample>)
                 corner: Some(top),
             });
         }
+    }
+}
+
+/// The path point with its tip at `(xy, z)` and the contact of drop `h` (face = its
+/// triangle, normal = the triangle's upward normal, `uv` NaN).
+pub(crate) fn drop_point(mesh: &TriMesh, xy: [f64; 2], z: f64, h: &DropResult) -> PathPoint {
+    let normal = mesh
+        .normal(h.tri as usize)
+        .map_or(Vec3::z(), |n| if n.z < 0.0 { -n } else { n });
+    PathPoint {
+        pose: Pose::vertical(Point3::new(xy[0], xy[1], z)),
+        contact: Some(Contact {
+            point: h.cc,
+            normal,
+            face: h.tri as usize,
+            uv: [f64::NAN, f64::NAN],
+        }),
+        lifted: 0.0,
     }
 }
