@@ -103,3 +103,26 @@ def batch_drop(triangles, spec, points, threads=2, surf=None):
         out.append((None if kind == "NONE" else p.z, kind))
     del bdc, cut
     return out
+
+
+def waterline(triangles, spec, z, sampling, adaptive=False, threads=2, surf=None):
+    """OpenCAMLib's Waterline (or AdaptiveWaterline, minimum sampling a tenth of
+    `sampling`) at tip height `z`: (loops as lists of (x, y), seconds in `run()`)."""
+    import time
+
+    surf = surf if surf is not None else surface(triangles)
+    cut = cutter(spec)
+    wl = ocl.AdaptiveWaterline() if adaptive else ocl.Waterline()
+    wl.setSTL(surf)
+    wl.setCutter(cut)
+    wl.setSampling(sampling)
+    if adaptive:
+        wl.setMinSampling(sampling / 10.0)
+    wl.setThreads(threads)
+    wl.setZ(z)
+    t0 = time.perf_counter()
+    wl.run()
+    elapsed = time.perf_counter() - t0
+    loops = [[(p.x, p.y) for p in lp] for lp in wl.getLoops()]
+    del wl, cut
+    return loops, elapsed

@@ -21,10 +21,11 @@ pub enum PlanInput<'a> {
 /// scallop height: the strategy has already rejected those).
 fn bound_for(job: &Job, part: &Part) -> Vec<PassBound> {
     let feed = match job.strategy.kind {
-        StrategyKind::Raster | StrategyKind::Cleanup => return Vec::new(),
-        StrategyKind::IsoParametric | StrategyKind::IsoScallop => {
-            Feed::Param(job.strategy.direction)
-        }
+        StrategyKind::Raster
+        | StrategyKind::Cleanup
+        | StrategyKind::Waterline
+        | StrategyKind::SteepShallow => return Vec::new(),
+        StrategyKind::IsoParametric | StrategyKind::IsoScallop => Feed::Param(job.param_dir()),
         StrategyKind::IsoPlanar => Feed::Plane(job.angle_rad()),
     };
     match job.strategy.scallop.map(|h| SideStep::new(&job.tool, h)) {
@@ -48,6 +49,16 @@ pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
             let mesh = part.tessellate(job.strategy.tolerance * 0.1)?;
             swarf_path::raster::plan(&mesh, &job.raster_params())?
         }
+        (StrategyKind::Waterline, PlanInput::Mesh(mesh)) => {
+            swarf_path::waterline::plan(mesh, &job.waterline_params())?
+        }
+        (StrategyKind::Waterline, PlanInput::Part(part)) => {
+            let mesh = part.tessellate(job.strategy.tolerance * 0.1)?;
+            swarf_path::waterline::plan(&mesh, &job.waterline_params())?
+        }
+        (StrategyKind::SteepShallow, _) => {
+            return Err(PathError::NoPath("steep-shallow: not wired yet".into()));
+        }
         (StrategyKind::Cleanup, _) => {
             return Err(PathError::NoPath(
                 "a cleanup job is planned with its parent (swarf plan, crate::cleanup)".into(),
@@ -55,7 +66,7 @@ pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
         }
         (kind, PlanInput::Mesh(_)) => {
             return Err(PathError::NoPath(format!(
-                "strategy {kind:?} plans on parametric patches; a mesh part needs strategy \"raster\""
+                "strategy {kind:?} plans on parametric patches; a mesh part needs strategy \"raster\", \"waterline\" or \"steep-shallow\""
             )));
         }
         (StrategyKind::IsoParametric, PlanInput::Part(part)) => {

@@ -21,6 +21,11 @@ pub enum StrategyKind {
     Raster,
     /// Cleanup of the rest material a parent job leaves (planned by swarf-rest).
     Cleanup,
+    /// Closed passes at constant heights around the part ([`crate::waterline`]).
+    Waterline,
+    /// Raster on the shallow areas, waterline on the steep ones
+    /// ([`crate::steep_shallow`]).
+    SteepShallow,
 }
 
 /// Which parameter a pass follows (iso-parametric) or which boundary the first pass

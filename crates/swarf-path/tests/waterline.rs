@@ -60,13 +60,21 @@ fn offset(tool: &str, z: f64) -> f64 {
     match tool {
         "ball:d=10" => {
             let c = z + r;
-            if c <= TOP { r } else { (r * r - (c - TOP).powi(2)).max(0.0).sqrt() }
+            if c <= TOP {
+                r
+            } else {
+                (r * r - (c - TOP).powi(2)).max(0.0).sqrt()
+            }
         }
         "flat:d=10" => r,
         // Corner radius 2: the torus's tube centre circle has radius 3 at z + 2.
         "bull:d=10,r=2" => {
             let c = z + 2.0;
-            if c <= TOP { r } else { 3.0 + (4.0 - (c - TOP).powi(2)).max(0.0).sqrt() }
+            if c <= TOP {
+                r
+            } else {
+                3.0 + (4.0 - (c - TOP).powi(2)).max(0.0).sqrt()
+            }
         }
         _ => unreachable!(),
     }
@@ -79,7 +87,11 @@ fn boss_contours_are_the_exact_offsets() {
         let wl = Waterline::new(&mesh, &params(tool)).unwrap();
         for z in [1.0, 5.0, 6.5, 8.0, 9.5] {
             let level = wl.level(z, Milling::Climb);
-            assert_eq!(level.loops.len(), 1, "{tool} at {z}: one loop around the boss");
+            assert_eq!(
+                level.loops.len(),
+                1,
+                "{tool} at {z}: one loop around the boss"
+            );
             let want = offset(tool, z);
             let pts: Vec<[f64; 2]> = level.loops[0]
                 .iter()
@@ -115,6 +127,14 @@ fn plan_levels_cover_the_walls_from_the_top_down() {
         .iter()
         .map(|p| p.points[0].pose.cl.z)
         .collect();
-    assert!(zs.windows(2).all(|w| w[0] >= w[1]), "levels descend: {zs:?}");
-    assert!(plan.toolpath.passes.iter().all(|p| p.points.first().map(|q| q.pose) == p.points.last().map(|q| q.pose)));
+    assert!(
+        zs.windows(2).all(|w| w[0] >= w[1]),
+        "levels descend: {zs:?}"
+    );
+    assert!(
+        plan.toolpath
+            .passes
+            .iter()
+            .all(|p| p.points.first().map(|q| q.pose) == p.points.last().map(|q| q.pose))
+    );
 }

@@ -14,6 +14,7 @@
 #[cfg(feature = "plan")]
 mod die;
 pub mod machines;
+pub mod ocl;
 pub mod parts;
 pub mod references;
 pub mod rs274;

@@ -7,7 +7,8 @@
 //! tool = "ball:d=8"              # a spec string or a table { shape = "bull", d = 10, r = 2 }
 //!
 //! [strategy]
-//! kind = "iso-scallop"           # iso-parametric | iso-planar | iso-scallop | raster
+//! kind = "iso-scallop"           # iso-parametric | iso-planar | iso-scallop | raster |
+//!                                # waterline | steep-shallow | cleanup
 //! scallop = 0.15                 # scallop height limit h, mm
 //! tolerance = 0.01               # chordal tolerance along passes, mm
 //!
@@ -57,6 +58,7 @@ use swarf_fiveaxis::post::FeedMode;
 use swarf_io::error::toml_message;
 use swarf_nc::{Dialect, Units};
 use swarf_path::params::{Finish, IsoParams, ParamDir, RasterParams, StartSide, StrategyKind};
+use swarf_path::waterline::{Milling, WaterlineParams};
 use swarf_rest::{Pattern, RegionParams};
 use swarf_tool::Cutter;
 use swarf_toolpath::{Feeds, LinkingSpec};
@@ -134,9 +136,11 @@ pub struct StrategyParams {
     /// Chordal tolerance along a pass (and gouge tolerance), mm.
     #[serde(default = "default_tolerance")]
     pub tolerance: f64,
-    /// Feed direction along a parameter (iso-parametric, iso-scallop).
+    /// Feed direction along a parameter (`u` or `v`: iso-parametric, iso-scallop),
+    /// or the milling direction (`climb` or `conventional`: waterline,
+    /// steep-shallow).
     #[serde(default)]
-    pub direction: ParamDir,
+    pub direction: Option<Direction>,
     /// Feed direction in the XY plane, degrees from +X (iso-planar, raster).
     #[serde(default)]
     pub angle: f64,
@@ -153,6 +157,24 @@ pub struct StrategyParams {
     /// steeper; the rest it leaves is ramp rest for a cleanup job).
     #[serde(default)]
     pub max_ramp: Option<f64>,
+    /// Waterline, steep-shallow: the scallop limit holds on walls this steep and
+    /// steeper with the base level spacing; steep-shallow: walls this steep are
+    /// steep. Degrees in `(0, 90)`.
+    #[serde(default)]
+    pub steep_angle: Option<f64>,
+    /// Waterline: adaptive levels stop at walls this flat; steep-shallow: areas this
+    /// flat are horizontal. Degrees in `(0, steep_angle)`.
+    #[serde(default)]
+    pub flat_angle: Option<f64>,
+    /// Waterline: fixed level spacing, mm (no adaptive levels).
+    #[serde(default)]
+    pub level_step: Option<f64>,
+    /// Waterline: add levels where walls flatten.
+    #[serde(default = "default_true")]
+    pub adaptive: bool,
+    /// Waterline: drop-field grid step, mm (default: a quarter of the tool radius).
+    #[serde(default)]
+    pub sampling: Option<f64>,
     /// Cleanup: the cut pattern (`flow-cut` or `follow-pocket`).
     #[serde(default)]
     pub pattern: Pattern,
@@ -183,6 +205,20 @@ pub struct StrategyParams {
     /// before it (the parent's tool first); the job's tool cleans up last.
     #[serde(default)]
     pub chain: Vec<Cutter>,
+}
+
+/// A feed direction along a parameter, or a milling direction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Direction {
+    /// Passes along u (iso-parametric, iso-scallop).
+    U,
+    /// Passes along v (iso-parametric, iso-scallop).
+    V,
+    /// Climb milling: the material on the right of travel (waterline).
+    Climb,
+    /// Conventional milling: the material on the left (waterline).
+    Conventional,
 }
 
 fn default_merge() -> f64 {
@@ -290,9 +326,38 @@ impl Job {
             finish: self.finish(),
             scallop: s.scallop,
             stepover: s.stepover,
-            direction: s.direction,
+            direction: self.param_dir(),
             angle: self.angle_rad(),
             start: s.start,
+        }
+    }
+
+    /// The parameter the iso passes follow (u unless `direction = "v"`).
+    pub fn param_dir(&self) -> ParamDir {
+        match self.strategy.direction {
+            Some(Direction::V) => ParamDir::V,
+            _ => ParamDir::U,
+        }
+    }
+
+    /// The parameters of the waterline strategy (steep angle 45 and flat angle 15
+    /// degrees unless given).
+    pub fn waterline_params(&self) -> WaterlineParams {
+        let s = &self.strategy;
+        WaterlineParams {
+            finish: self.finish(),
+            scallop: s.scallop,
+            level_step: s.level_step,
+            steep_angle: s.steep_angle.unwrap_or(45.0).to_radians(),
+            flat_angle: s.flat_angle.unwrap_or(15.0).to_radians(),
+            adaptive: s.adaptive,
+            sampling: s.sampling,
+            direction: match s.direction {
+                Some(Direction::Conventional) => Milling::Conventional,
+                _ => Milling::Climb,
+            },
+            top: None,
+            bottom: None,
         }
     }
 

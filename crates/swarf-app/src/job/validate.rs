@@ -2,7 +2,7 @@
 //! strategy, feeds and linking, a cleanup job's parent and regions, and what a
 //! five-axis job can write.
 
-use super::{Job, RestSource};
+use super::{Direction, Job, RestSource};
 use swarf_path::StrategyKind;
 
 impl Job {
@@ -12,13 +12,17 @@ impl Job {
         positive("strategy.tolerance", Some(s.tolerance))?;
         positive("strategy.scallop", s.scallop)?;
         positive("strategy.stepover", s.stepover)?;
-        if s.scallop.is_none() && s.stepover.is_none() {
+        positive("strategy.level_step", s.level_step)?;
+        positive("strategy.sampling", s.sampling)?;
+        let waterline = s.kind == StrategyKind::Waterline && s.level_step.is_some();
+        if s.scallop.is_none() && s.stepover.is_none() && !waterline {
             return Err(
                 "strategy: expected `scallop` (scallop height limit, mm) or `stepover` (mm)".into(),
             );
         }
         match (s.kind, s.scallop, s.stepover) {
-            (StrategyKind::Raster | StrategyKind::Cleanup, _, _) | (_, _, None) => {}
+            (StrategyKind::Raster | StrategyKind::Cleanup | StrategyKind::SteepShallow, _, _)
+            | (_, _, None) => {}
             (StrategyKind::IsoPlanar, Some(_), Some(_)) => {
                 return Err(
                     "strategy.stepover: give either `scallop` (plane spacing from a scallop limit) or `stepover` (a fixed cross feed), not both"
@@ -35,7 +39,7 @@ impl Job {
             }
             (_, _, Some(_)) => {
                 return Err(
-                    "strategy.stepover: only the raster and iso-planar strategies take a fixed stepover; use `scallop`"
+                    "strategy.stepover: only the raster, steep-shallow and iso-planar strategies take a fixed stepover; use `scallop`"
                         .into(),
                 );
             }
@@ -65,6 +69,7 @@ impl Job {
                 "strategy.boundary: expected [xmin, ymin, xmax, ymax] with xmin < xmax and ymin < ymax, found {b:?}"
             ));
         }
+        self.validate_slopes()?;
         self.validate_cleanup()?;
         let f = &self.feeds;
         for (name, v) in [
@@ -80,6 +85,43 @@ impl Job {
         }
         positive("linking.approach", Some(self.linking.approach))?;
         self.validate_five_axis()
+    }
+
+    /// Steep and flat angles, and the direction each strategy takes.
+    fn validate_slopes(&self) -> Result<(), String> {
+        let s = &self.strategy;
+        for (name, a) in [
+            ("strategy.steep_angle", s.steep_angle),
+            ("strategy.flat_angle", s.flat_angle),
+        ] {
+            if let Some(a) = a
+                && !(a > 0.0 && a < 90.0)
+            {
+                return Err(format!(
+                    "{name}: {a} degrees: expected an angle between 0 and 90 degrees"
+                ));
+            }
+        }
+        let (steep, flat) = (s.steep_angle.unwrap_or(45.0), s.flat_angle.unwrap_or(15.0));
+        if flat >= steep {
+            return Err(format!(
+                "strategy.steep_angle: {steep} degrees is not above strategy.flat_angle ({flat} degrees): expected flat_angle < steep_angle"
+            ));
+        }
+        let milling = matches!(s.kind, StrategyKind::Waterline | StrategyKind::SteepShallow);
+        match s.direction {
+            Some(Direction::U | Direction::V) if milling => Err(format!(
+                "strategy.direction: {:?} is a parameter direction; the {} strategy takes \"climb\" or \"conventional\"",
+                s.direction,
+                kind_name(s.kind)
+            )),
+            Some(Direction::Climb | Direction::Conventional) if !milling => Err(format!(
+                "strategy.direction: {:?} is a milling direction for waterline and steep-shallow; the {} strategy takes \"u\" or \"v\"",
+                s.direction,
+                kind_name(s.kind)
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// A cleanup job's parent and region parameters; other jobs have no parent.
@@ -146,4 +188,12 @@ fn positive(name: &str, v: Option<f64>) -> Result<(), String> {
         }
         _ => Ok(()),
     }
+}
+
+/// The strategy's name as a job file writes it.
+fn kind_name(kind: StrategyKind) -> String {
+    serde_json::to_value(kind)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_else(|| format!("{kind:?}"))
 }

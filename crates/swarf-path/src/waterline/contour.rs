@@ -45,9 +45,17 @@ impl Edges<'_> {
     /// The nodes at the ends of edge `id`.
     fn ends(&self, id: u64) -> ([usize; 2], [usize; 2]) {
         let (nx, ny) = (self.field.nx as u64, self.field.ny as u64);
-        let (k, vertical) = if id >= nx * ny { (id - nx * ny, true) } else { (id, false) };
+        let (k, vertical) = if id >= nx * ny {
+            (id - nx * ny, true)
+        } else {
+            (id, false)
+        };
         let (i, j) = ((k % nx) as usize, (k / nx) as usize);
-        if vertical { ([i, j], [i, j + 1]) } else { ([i, j], [i + 1, j]) }
+        if vertical {
+            ([i, j], [i, j + 1])
+        } else {
+            ([i, j], [i + 1, j])
+        }
     }
 
     fn index(&self, id: u64) -> usize {
@@ -89,7 +97,11 @@ pub(crate) fn level_loops(field: &DropField, probe: &Probe, tol: f64) -> Vec<Loo
         .par_iter()
         .map_init(DropScratch::default, |s, &id| {
             let (p, q) = edges.ends(id);
-            let (a, b) = if edges.node_inside(p[0], p[1]) { (p, q) } else { (q, p) };
+            let (a, b) = if edges.node_inside(p[0], p[1]) {
+                (p, q)
+            } else {
+                (q, p)
+            };
             probe.root(field.xy(a[0], a[1]), field.xy(b[0], b[1]), s)
         })
         .collect();
@@ -134,7 +146,9 @@ fn successors(edges: &Edges, probe: &Probe) -> Vec<usize> {
     cells.dedup();
     let pairs: Vec<[(u64, u64); 2]> = cells
         .par_iter()
-        .map_init(DropScratch::default, |s, &(i, j)| cell_segments(edges, probe, i, j, s))
+        .map_init(DropScratch::default, |s, &(i, j)| {
+            cell_segments(edges, probe, i, j, s)
+        })
         .collect();
     let mut next = vec![usize::MAX; edges.ids.len()];
     for (from, to) in pairs.into_iter().flatten() {
@@ -180,10 +194,7 @@ fn cell_segments(
             // Centre inside: each outside-to-inside edge pairs with the inside-to-
             // outside edge before it (clockwise); outside: with the one after it.
             let shift = if probe.inside(c, s) { 3 } else { 1 };
-            [
-                (e[*a0], e[(a0 + shift) % 4]),
-                (e[*a1], e[(a1 + shift) % 4]),
-            ]
+            [(e[*a0], e[(a0 + shift) % 4]), (e[*a1], e[(a1 + shift) % 4])]
         }
         _ => [none, none],
     }

@@ -62,7 +62,9 @@ impl DropField {
                 (0..nx)
                     .map(|i| {
                         let x = origin[0] + step * i as f64;
-                        dropper.drop(x, y, scratch).map_or(f64::NEG_INFINITY, |h| h.z)
+                        dropper
+                            .drop(x, y, scratch)
+                            .map_or(f64::NEG_INFINITY, |h| h.z)
                     })
                     .collect::<Vec<f64>>()
             })
@@ -92,6 +94,9 @@ impl DropField {
 
     /// The highest drop height (`-inf` when the cutter touches nothing).
     pub fn top(&self) -> f64 {
-        self.heights.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+        self.heights
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max)
     }
 }

@@ -124,10 +124,7 @@ impl<'a> Waterline<'a> {
     /// [`PathError::NoPath`] for a mesh without finite triangles;
     /// [`PathError::InvalidParameter`] for a sampling that is not positive or makes
     /// too large a grid, or a tolerance that is not positive.
-    pub fn new(
-        mesh: &'a TriMesh,
-        params: &WaterlineParams,
-    ) -> Result<Waterline<'a>, PathError> {
+    pub fn new(mesh: &'a TriMesh, params: &WaterlineParams) -> Result<Waterline<'a>, PathError> {
         let tool = &params.finish.tool;
         let sampling = params.sampling.unwrap_or(0.25 * tool.radius());
         positive("strategy.sampling", sampling)?;

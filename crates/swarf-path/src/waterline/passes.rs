@@ -20,7 +20,8 @@ pub(crate) fn order(levels: &[LevelContour]) -> Vec<Pass> {
                 .map(|(k, (i, _))| (k, i))
                 .unwrap_or((0, 0));
             let lp = left.remove(k);
-            let mut points: Vec<PathPoint> = lp[start..].iter().chain(&lp[..start]).copied().collect();
+            let mut points: Vec<PathPoint> =
+                lp[start..].iter().chain(&lp[..start]).copied().collect();
             points.push(points[0]);
             at = Some(xy(&points[0]));
             passes.push(Pass {

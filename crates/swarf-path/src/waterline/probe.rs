@@ -58,12 +58,7 @@ impl Probe<'_> {
     }
 
     /// The contour point between `a` (inside, drop `ha`) and `b` (outside).
-    pub fn root(
-        &self,
-        a: [f64; 2],
-        b: [f64; 2],
-        s: &mut DropScratch,
-    ) -> Option<ContourPoint> {
+    pub fn root(&self, a: [f64; 2], b: [f64; 2], s: &mut DropScratch) -> Option<ContourPoint> {
         let (fa0, ha) = self.eval(a, s);
         let mut hit = ha?;
         let (mut ta, mut tb) = (0.0f64, 1.0f64);
@@ -85,7 +80,11 @@ impl Probe<'_> {
             } else {
                 (ta - fa * (tb - ta) / (fb - fa)).clamp(ta, tb)
             };
-            let t = if t <= ta || t >= tb { 0.5 * (ta + tb) } else { t };
+            let t = if t <= ta || t >= tb {
+                0.5 * (ta + tb)
+            } else {
+                t
+            };
             let (f, h) = self.eval(at(t), s);
             if f > 0.0 {
                 (ta, fa) = (t, f);
@@ -167,7 +166,11 @@ impl Probe<'_> {
             for sgn in [1.0, -1.0] {
                 let q = along(sgn * t);
                 if self.inside(q, s) != m_inside {
-                    let (i, o) = if m_inside { (along(0.0), q) } else { (q, along(0.0)) };
+                    let (i, o) = if m_inside {
+                        (along(0.0), q)
+                    } else {
+                        (q, along(0.0))
+                    };
                     return self.root(i, o, s);
                 }
             }
