@@ -33,7 +33,7 @@ use std::path::Path;
 const DEMO_TOL: f64 = 0.01;
 
 /// The example jobs shipped in `jobs/`.
-const JOBS: [(&str, &str); 4] = [
+const JOBS: [(&str, &str); 5] = [
     (
         "wave-iso-parametric.toml",
         include_str!("../../../jobs/wave-iso-parametric.toml"),
@@ -49,6 +49,10 @@ const JOBS: [(&str, &str); 4] = [
     (
         "wave-raster.toml",
         include_str!("../../../jobs/wave-raster.toml"),
+    ),
+    (
+        "wave-steep-shallow.toml",
+        include_str!("../../../jobs/wave-steep-shallow.toml"),
     ),
 ];
 

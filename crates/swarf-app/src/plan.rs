@@ -56,8 +56,12 @@ pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
             let mesh = part.tessellate(job.strategy.tolerance * 0.1)?;
             swarf_path::waterline::plan(&mesh, &job.waterline_params())?
         }
-        (StrategyKind::SteepShallow, _) => {
-            return Err(PathError::NoPath("steep-shallow: not wired yet".into()));
+        (StrategyKind::SteepShallow, PlanInput::Mesh(mesh)) => {
+            swarf_path::steep_shallow::plan(mesh, &job.steep_shallow_params())?
+        }
+        (StrategyKind::SteepShallow, PlanInput::Part(part)) => {
+            let mesh = part.tessellate(job.strategy.tolerance * 0.1)?;
+            swarf_path::steep_shallow::plan(&mesh, &job.steep_shallow_params())?
         }
         (StrategyKind::Cleanup, _) => {
             return Err(PathError::NoPath(

@@ -58,6 +58,7 @@ use swarf_fiveaxis::post::FeedMode;
 use swarf_io::error::toml_message;
 use swarf_nc::{Dialect, Units};
 use swarf_path::params::{Finish, IsoParams, ParamDir, RasterParams, StartSide, StrategyKind};
+use swarf_path::steep_shallow::SteepShallowParams;
 use swarf_path::waterline::{Milling, WaterlineParams};
 use swarf_rest::{Pattern, RegionParams};
 use swarf_tool::Cutter;
@@ -358,6 +359,22 @@ impl Job {
             },
             top: None,
             bottom: None,
+        }
+    }
+
+    /// The parameters of steep-and-shallow finishing (steep angle 40 and flat angle
+    /// 15 degrees unless given; the overlap band is `overlap`).
+    pub fn steep_shallow_params(&self) -> SteepShallowParams {
+        let s = &self.strategy;
+        let base = SteepShallowParams::new(self.finish(), s.scallop.unwrap_or(f64::NAN));
+        SteepShallowParams {
+            steep_angle: s.steep_angle.map_or(base.steep_angle, f64::to_radians),
+            flat_angle: s.flat_angle.map_or(base.flat_angle, f64::to_radians),
+            overlap: s.overlap,
+            angle: self.angle_rad(),
+            direction: self.waterline_params().direction,
+            sampling: s.sampling,
+            ..base
         }
     }
 

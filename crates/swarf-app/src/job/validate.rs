@@ -108,6 +108,9 @@ impl Job {
                 "strategy.steep_angle: {steep} degrees is not above strategy.flat_angle ({flat} degrees): expected flat_angle < steep_angle"
             ));
         }
+        if s.kind == StrategyKind::SteepShallow && s.scallop.is_none() {
+            return Err("strategy.scallop: steep-shallow needs the scallop height limit, mm (both spacings follow from it)".into());
+        }
         let milling = matches!(s.kind, StrategyKind::Waterline | StrategyKind::SteepShallow);
         match s.direction {
             Some(Direction::U | Direction::V) if milling => Err(format!(
