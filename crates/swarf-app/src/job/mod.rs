@@ -153,6 +153,11 @@ pub struct StrategyParams {
     /// steeper; the rest it leaves is ramp rest for a cleanup job).
     #[serde(default)]
     pub max_ramp: Option<f64>,
+    /// Raster: steepest slope across the passes on which `scallop` must hold,
+    /// degrees in `(0, 90)`: the stepover then keeps the scallop within it on every
+    /// plane sloping up to this angle (default: a level floor).
+    #[serde(default)]
+    pub max_slope: Option<f64>,
     /// Cleanup: the cut pattern (`flow-cut` or `follow-pocket`).
     #[serde(default)]
     pub pattern: Pattern,
@@ -307,6 +312,7 @@ impl Job {
             start: s.start,
             boundary: s.boundary,
             max_ramp: s.max_ramp.map(f64::to_radians),
+            max_slope: s.max_slope.map(f64::to_radians),
         }
     }
 }
