@@ -76,7 +76,10 @@ fn raster_max_slope_is_degrees_in_the_file() {
     let plan = crate::plan::plan(&job, crate::plan::PlanInput::Mesh(&mesh)).unwrap();
     let spacing = plan.report.side_step_range.unwrap()[1];
     let level = 2.0 * (0.15f64 * (8.0 - 0.15)).sqrt();
-    assert!(spacing <= 0.5 * level + 1e-12 && spacing > 0.45 * level, "{spacing}");
+    assert!(
+        spacing <= 0.5 * level + 1e-12 && spacing > 0.45 * level,
+        "{spacing}"
+    );
     let h = plan.report.predicted_max_scallop.unwrap();
     assert!(h <= 0.15 + 1e-12 && h > 0.12, "{h}");
     for bad in ["0", "90", "-5", "nan"] {
