@@ -133,6 +133,11 @@ pub struct RasterParams {
     /// Ramp angle limit, radians in `(0, pi/2)`: passes climb and descend no steeper
     /// (thesis 002 §3.1.3, [`crate::ramp`]); none by default.
     pub max_ramp: Option<f64>,
+    /// Steepest slope across the passes on which the scallop limit must hold,
+    /// radians in `(0, pi/2)`: with `scallop`, the stepover is the slope-aware
+    /// spacing of [`crate::slope_step::raster_spacing`] and the predicted scallop
+    /// the largest over slopes up to it; none by default (a level floor).
+    pub max_slope: Option<f64>,
 }
 
 impl RasterParams {
@@ -146,6 +151,7 @@ impl RasterParams {
             start: StartSide::Min,
             boundary: None,
             max_ramp: None,
+            max_slope: None,
         }
     }
 }

@@ -10,8 +10,9 @@
 //!
 //! - **Side step**: `stepover` when given, else from `scallop`
 //!   ([`crate::raster_step`]: exact for a ball on a horizontal plane, a conservative
-//!   effective radius for the other shapes). The side range is divided evenly so that
-//!   no step exceeds it.
+//!   effective radius for the other shapes); with `max_slope`, from the scallop on
+//!   every slope up to it ([`crate::slope_step`]). The side range is divided evenly
+//!   so that no step exceeds it.
 //! - **Region**: with `boundary = [xmin, ymin, xmax, ymax]` the tool centre stays in
 //!   that rectangle; without it the side range is the mesh's extent across the passes
 //!   and each pass runs over the mesh's extent along them plus the tool radius, kept
@@ -29,7 +30,8 @@
 //!   sample go to [`Plan::double_contacts`] (`raster_double.rs`).
 //!
 //! Report: `side_step_range` is the even spacing used (both ends), and
-//! `predicted_max_scallop` the exact scallop it leaves on a horizontal plane.
+//! `predicted_max_scallop` the exact scallop it leaves on a horizontal plane, or with
+//! `max_slope` the largest over the planes sloping up to it across the passes.
 
 use crate::error::PathError;
 use crate::params::RasterParams;
@@ -38,6 +40,7 @@ use crate::ramp::limit_ramp;
 use crate::raster_frame::Frame;
 use crate::raster_pass::Sampler;
 use crate::raster_step::flat_scallop;
+use crate::slope_step::raster_max_scallop;
 use swarf_geom::TriMesh;
 use swarf_tool::drop::MeshDropper;
 use swarf_toolpath::{Pass, Toolpath, top_z};
@@ -120,7 +123,10 @@ pub fn plan(mesh: &TriMesh, params: &RasterParams) -> Result<Plan, PathError> {
         )));
     }
     let report = PlanReport {
-        predicted_max_scallop: flat_scallop(&params.finish.tool, frame.spacing),
+        predicted_max_scallop: match params.max_slope {
+            Some(slope) => raster_max_scallop(&params.finish.tool, frame.spacing, slope),
+            None => flat_scallop(&params.finish.tool, frame.spacing),
+        },
         side_step_range: Some([frame.spacing, frame.spacing]),
         ..PlanReport::default()
     };

@@ -5,6 +5,7 @@ use crate::error::PathError;
 use crate::params::{RasterParams, StartSide};
 use crate::raster_pass::{Line, PassOut, Sampler};
 use crate::raster_step::stepover_for_scallop;
+use crate::slope_step::{check_slope, raster_spacing};
 use rayon::prelude::*;
 use swarf_geom::TriMesh;
 use swarf_tool::drop::DropScratch;
@@ -31,8 +32,8 @@ impl Frame {
     /// The frame of `job`'s passes over `mesh` (see [`crate::raster`]).
     ///
     /// # Errors
-    /// [`PathError::InvalidParameter`] for a stepover wider than the tool or a
-    /// scallop the tool cannot leave.
+    /// [`PathError::InvalidParameter`] for a stepover wider than the tool, a
+    /// scallop the tool cannot leave or a slope limit outside `(0, pi/2)`.
     pub(crate) fn new(
         mesh: &TriMesh,
         params: &RasterParams,
@@ -41,9 +42,15 @@ impl Frame {
         let (sa, ca) = params.angle.sin_cos();
         let (d, n) = ([ca, sa], [-sa, ca]);
         let radius = dropper.tool().radius();
+        if let Some(slope) = params.max_slope {
+            check_slope("strategy.max_slope", slope)?;
+        }
         let stepover = match (params.stepover, params.scallop) {
             (Some(s), _) => s,
-            (None, Some(h)) => stepover_for_scallop(&params.finish.tool, h)?,
+            (None, Some(h)) => match params.max_slope {
+                Some(slope) => raster_spacing(&params.finish.tool, h, slope)?,
+                None => stepover_for_scallop(&params.finish.tool, h)?,
+            },
             (None, None) => {
                 return Err(PathError::InvalidParameter {
                     field: "strategy".into(),

@@ -165,13 +165,7 @@ impl SideStep {
     /// [`PathError::InvalidParameter`] on `strategy.scallop` when `h` is not in
     /// `(0, tool radius)`.
     pub fn new(cutter: &Cutter, h: f64) -> Result<SideStep, PathError> {
-        let r = cutter.radius();
-        if !(h.is_finite() && h > 0.0 && h < r) {
-            return Err(PathError::InvalidParameter {
-                field: "strategy.scallop".into(),
-                message: format!("expected 0 < scallop < tool radius {r} mm, found {h} mm"),
-            });
-        }
+        check_scallop(cutter, h)?;
         if let Cutter::Ball { radius, .. } = cutter {
             return Ok(SideStep {
                 h,
@@ -286,6 +280,21 @@ impl SideStep {
     }
 }
 
+/// Checks a scallop limit `h` (mm) for `cutter`: finite, in `(0, tool radius)`.
+///
+/// # Errors
+/// [`PathError::InvalidParameter`] on `strategy.scallop` otherwise.
+pub(crate) fn check_scallop(cutter: &Cutter, h: f64) -> Result<(), PathError> {
+    let r = cutter.radius();
+    if h.is_finite() && h > 0.0 && h < r {
+        return Ok(());
+    }
+    Err(PathError::InvalidParameter {
+        field: "strategy.scallop".into(),
+        message: format!("expected 0 < scallop < tool radius {r} mm, found {h} mm"),
+    })
+}
+
 /// Radius of the cutter's rounded corner: the ball's radius, the torus's, the tip
 /// ball of a tapered ball, the APT corner radius; 0 for a sharp rim.
 fn corner_radius(cutter: &Cutter) -> f64 {
@@ -373,6 +382,22 @@ impl<'a> TiltedGap<'a> {
         let crest = |x: f64| self.at(x).min(self.at(x - dx));
         crest(lo).max(crest(hi)) * tilt.cos()
     }
+}
+
+/// Scallop (mm, normal to the plane) that two outlines of `profile` a distance `step`
+/// apart along a plane tilted by `tilt` leave on it: the exact 2D model of the module
+/// doc, the inverse of the step it tabulates. `None` for a tilt outside `[0, pi/2)`,
+/// a negative or non-finite step, or where the outlines leave a strip uncut.
+///
+/// # Units
+/// mm, radians.
+pub fn plane_scallop(profile: &Profile, tilt: f64, step: f64) -> Option<f64> {
+    let valid = (0.0..std::f64::consts::FRAC_PI_2).contains(&tilt) && step.is_finite();
+    if !valid || step < 0.0 {
+        return None;
+    }
+    let h = TiltedGap::new(profile, tilt).scallop(step, tilt);
+    h.is_finite().then_some(h.max(0.0))
 }
 
 /// Step along a plane tilted by `tilt` that leaves scallop `h` between two outlines

@@ -176,6 +176,11 @@ pub struct StrategyParams {
     /// Waterline: drop-field grid step, mm (default: a quarter of the tool radius).
     #[serde(default)]
     pub sampling: Option<f64>,
+    /// Raster: steepest slope across the passes on which `scallop` must hold,
+    /// degrees in `(0, 90)`: the stepover then keeps the scallop within it on every
+    /// plane sloping up to this angle (default: a level floor).
+    #[serde(default)]
+    pub max_slope: Option<f64>,
     /// Cleanup: the cut pattern (`flow-cut` or `follow-pocket`).
     #[serde(default)]
     pub pattern: Pattern,
@@ -389,6 +394,7 @@ impl Job {
             start: s.start,
             boundary: s.boundary,
             max_ramp: s.max_ramp.map(f64::to_radians),
+            max_slope: s.max_slope.map(f64::to_radians),
         }
     }
 }

@@ -63,6 +63,33 @@ fn bad_jobs_name_the_field() {
     }
 }
 
+#[test]
+fn raster_max_slope_is_degrees_in_the_file() {
+    let text = GOOD
+        .replace("iso-scallop", "raster")
+        .replace("scallop = 0.15", "scallop = 0.15\nmax_slope = 60");
+    let job = Job::parse(&text, "job.toml").unwrap();
+    let params = job.raster_params();
+    assert_eq!(params.max_slope, Some(60f64.to_radians()));
+    // The stepover it gives: a ball's 2 cos(60) sqrt(2Rh - h^2), half the level one.
+    let mesh = swarf_io::builtin_mesh("v-grooves").unwrap();
+    let plan = crate::plan::plan(&job, crate::plan::PlanInput::Mesh(&mesh)).unwrap();
+    let spacing = plan.report.side_step_range.unwrap()[1];
+    let level = 2.0 * (0.15f64 * (8.0 - 0.15)).sqrt();
+    assert!(
+        spacing <= 0.5 * level + 1e-12 && spacing > 0.45 * level,
+        "{spacing}"
+    );
+    let h = plan.report.predicted_max_scallop.unwrap();
+    assert!(h <= 0.15 + 1e-12 && h > 0.12, "{h}");
+    for bad in ["0", "90", "-5", "nan"] {
+        let text = text.replace("max_slope = 60", &format!("max_slope = {bad}"));
+        let e = Job::parse(&text, "job.toml").unwrap_err().to_string();
+        assert!(e.contains("strategy.max_slope"), "{bad}: {e}");
+        assert!(e.contains("degrees"), "{bad}: {e}");
+    }
+}
+
 mod five_axis {
     use super::*;
     use swarf_fiveaxis::positioning::Positioning;

@@ -59,6 +59,13 @@ impl Job {
                 "strategy.max_ramp: {a} degrees: expected an angle between 0 and 90 degrees"
             ));
         }
+        if let Some(a) = s.max_slope
+            && (a.is_nan() || a <= 0.0 || a >= 90.0)
+        {
+            return Err(format!(
+                "strategy.max_slope: {a} degrees: expected a slope between 0 and 90 degrees"
+            ));
+        }
         if !s.angle.is_finite() {
             return Err("strategy.angle: expected a finite angle in degrees".into());
         }

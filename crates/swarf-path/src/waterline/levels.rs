@@ -2,12 +2,9 @@
 //! extra levels where the wall between two levels flattens.
 //!
 //! Levels `dz` apart meet a wall of slope `theta` (from horizontal) `dz / sin(theta)`
-//! apart along it; the scallop between two passes a surface distance `w` apart on a
-//! plane at that slope is the side-step model's ([`crate::side_step::SideStep`],
-//! exact for a ball: `w = 2 sqrt(2Rh - h^2)`). The base spacing is the least
-//! `w(theta) sin(theta)` over slopes from `steep_angle` to vertical (for a ball
-//! `2 sin(steep_angle) sqrt(2Rh - h^2)`), so every wall at least that steep keeps the
-//! scallop within `h`.
+//! apart along it. The base spacing is [`crate::slope_step::zlevel_spacing`] for the
+//! steep angle (a ball's `2 sin(steep_angle) sqrt(2Rh - h^2)`), so every wall at least
+//! that steep keeps the scallop within `h`.
 //!
 //! Adaptive levels (as OpenCAMLib's AdaptiveWaterline refines where the contour
 //! changes): for two consecutive levels the points of the lower contour are measured
@@ -23,20 +20,6 @@ use crate::side_step::SideStep;
 
 /// Most levels one waterline may cut.
 pub const MAX_LEVELS: usize = 20_000;
-/// Slope samples of the base spacing's minimum over `[steep_angle, 90 deg]`.
-const SLOPE_SAMPLES: usize = 90;
-
-/// Least Z spacing (mm) that keeps the scallop of `model` within its `h` on every
-/// wall from `steep_angle` (radians) to vertical.
-pub(crate) fn base_spacing(model: &SideStep, steep_angle: f64) -> f64 {
-    let top = std::f64::consts::FRAC_PI_2;
-    (0..=SLOPE_SAMPLES)
-        .map(|k| {
-            let theta = steep_angle + (top - steep_angle) * k as f64 / SLOPE_SAMPLES as f64;
-            model.step(0.0, theta) * theta.sin()
-        })
-        .fold(f64::INFINITY, f64::min)
-}
 
 /// Levels from `top` (excluded) down to `bottom` (included), evenly spaced at most
 /// `dz` apart, descending.

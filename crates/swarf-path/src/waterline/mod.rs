@@ -32,6 +32,7 @@ use crate::params::Finish;
 use crate::plan::{Plan, PlanReport};
 use crate::raster_pass::drop_point;
 use crate::side_step::SideStep;
+use crate::slope_step::zlevel_spacing;
 use contour::{Loop, level_loops};
 use field::DropField;
 use probe::Probe;
@@ -273,6 +274,7 @@ fn schedule(
     top: f64,
     bottom: f64,
 ) -> Result<Vec<LevelContour>, PathError> {
+    let tool = &params.finish.tool;
     let model = match params.scallop {
         Some(h) => Some(SideStep::new(&params.finish.tool, h)?),
         None => None,
@@ -282,7 +284,7 @@ fn schedule(
             positive("strategy.level_step", dz)?;
             dz
         }
-        (None, Some(m)) => levels::base_spacing(m, params.steep_angle),
+        (None, Some(_)) => zlevel_spacing(tool, params.scallop.unwrap_or(0.0), params.steep_angle)?,
         (None, None) => {
             return Err(PathError::InvalidParameter {
                 field: "strategy.scallop".into(),
@@ -293,7 +295,7 @@ fn schedule(
     let zs = levels::even_levels(top, bottom, dz)?;
     let mut raw: Vec<(f64, Vec<Loop>)> = zs.iter().map(|&z| (z, wl.raw_level(z))).collect();
     if let (Some(m), true, None) = (&model, params.adaptive, params.level_step) {
-        let min_dz = levels::base_spacing(m, params.flat_angle).min(dz);
+        let min_dz = zlevel_spacing(tool, m.h(), params.flat_angle)?.min(dz);
         raw = levels::refine(raw, |z| wl.raw_level(z), m, params.flat_angle, min_dz)?;
     }
     Ok(raw
