@@ -3,6 +3,7 @@
 
 mod boundary;
 pub mod cl_curve;
+pub mod classify;
 pub mod envelope;
 pub mod error;
 pub mod forward_step;

@@ -17,6 +17,7 @@
 //! strip whose two edges carry the breaks of the bands beside it, triangulated by
 //! zipping the two sorted break lists, so no vertex lies inside another edge.
 
+use super::extrude;
 use std::f64::consts::{FRAC_PI_3, FRAC_PI_4, FRAC_PI_6};
 use swarf_geom::{Point3, TriMesh};
 
@@ -46,19 +47,7 @@ pub(super) fn v_grooves() -> TriMesh {
         section.extend([[x0 - w, V_TOP], [x0, 0.0], [x0 + w, V_TOP]]);
     }
     section.push([V_SIZE[0], V_TOP]);
-    let at = |q: [f64; 2], y: f64| Point3::new(q[0], y, q[1]);
-    let tris: Vec<[Point3; 3]> = section
-        .windows(2)
-        .flat_map(|s| {
-            quad(
-                at(s[0], 0.0),
-                at(s[1], 0.0),
-                at(s[1], V_SIZE[1]),
-                at(s[0], V_SIZE[1]),
-            )
-        })
-        .collect();
-    TriMesh::from_triangles(&tris)
+    extrude(&section, V_SIZE[1], false)
 }
 
 /// The `short-grooves` mesh: top bands, groove flanks and end walls.

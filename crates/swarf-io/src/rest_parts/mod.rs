@@ -1,5 +1,5 @@
-//! Built-in mesh parts for rest-material detection and cleanup (issue 11, item 7),
-//! built in code from their formulas (all mm, z up; `parts/README.md` lists them).
+//! Built-in mesh parts for rest-material detection and cleanup (issue 11, item 7)
+//! and for steep/shallow classification (issue 12, item 7), built in code from their formulas (all mm, z up; `parts/README.md` lists them).
 //!
 //! Each mesh is the part's upper surface as seen along +z, with the material below:
 //! the top, the pocket or groove walls (vertical faces included) and floors, wound
@@ -28,6 +28,28 @@
 //!   1.5 mm and 5 mm apart. The valley rest of each groove is a strip along its bottom
 //!   ending at its end walls, so merging regions at 2 mm joins the first pair but not
 //!   the second: 4 regions become 3.
+//! - `boss` (`walls.rs`): 80 x 140 plate at z = 0 with four ribs along x, 10 high,
+//!   flat tops 6 wide, both sides of rib k at `a_k` = 45, 65, 80 and 90 degrees from
+//!   horizontal (centre lines y = 30, 65, 95, 120; at least 14.3 of floor between
+//!   ribs, room for a ball d = 10). Wall areas, two sides of 80 x `10 / sin a` each:
+//!   3D `1600 / sin a` = 2262.742, 1765.405, 1624.683 and 1600 mm²; projected on XY
+//!   `1600 / tan a` = 1600, 746.092, 282.123 and 0 mm² (6400 mm² of steep surface,
+//!   2628.215 mm² of it seen from above). A raster along x steps across the walls:
+//!   passes `s` apart in y lie `w = s / cos a` apart along a wall, and a ball of
+//!   radius R leaves the scallop `R - sqrt(R² - w²/4)` between them. For a ball
+//!   d = 10 and h = 0.01 the flat-model step is `s = 2 sqrt(2 R h - h²)` = 0.632,
+//!   which leaves 0.020, 0.056 and 0.343 mm on the 45, 65 and 80 degree walls; the
+//!   vertical walls are not covered at all (their whole height lies over one y, and
+//!   a pass touches a vertical face along one line at most).
+//! - `ramp-step` (`walls.rs`): 120 x 40 block, plateau z = 20 for x <= 40, a
+//!   45-degree wall down to the floor z = 0 at x = 60, extruded along y: a raster
+//!   along x with a ramp limit of 20 degrees (thesis 002 §3.1.3) cannot follow it.
+//!   For a ball of radius 5 the limited CL profile leaves the plateau edge where the
+//!   ball rolling over it descends at 20 degrees (CL x = 40 + 5 sin 20 = 41.710, tip
+//!   z = 15 + 5 cos 20 = 19.698), goes down straight at `tan 20` and lands on the
+//!   floor at x = 41.710 + 19.698 / tan 20 = 95.831: the ramp rest spans x in
+//!   [40, 95.831] (contacts on the edge and on the floor), lifted most (12.288) at
+//!   CL x = 55 + 5 sqrt 2 = 62.071, where the free ball first touches the floor.
 //!
 //! Segment count: the chord of an arc of radius r over angle t / n sags
 //! `r (1 - cos(t / 2n))` from it, so an arc needs the smallest n with that at most the
@@ -37,8 +59,9 @@
 
 mod fillet_pocket;
 mod grooves;
+mod walls;
 
-use swarf_geom::TriMesh;
+use swarf_geom::{Point3, TriMesh};
 
 /// Chord tolerance of the curved built-in mesh parts: every triangle lies within this
 /// of the analytic surface.
@@ -48,9 +71,15 @@ use swarf_geom::TriMesh;
 pub const MESH_PART_CHORD: f64 = 0.001;
 
 /// Names of the built-in mesh parts: `"fillet-pocket"`, `"v-grooves"`,
-/// `"short-grooves"`.
-pub fn builtin_mesh_names() -> [&'static str; 3] {
-    ["fillet-pocket", "v-grooves", "short-grooves"]
+/// `"short-grooves"`, `"boss"`, `"ramp-step"`.
+pub fn builtin_mesh_names() -> [&'static str; 5] {
+    [
+        "fillet-pocket",
+        "v-grooves",
+        "short-grooves",
+        "boss",
+        "ramp-step",
+    ]
 }
 
 /// The built-in mesh part `name` (with or without a `.stl` suffix), built exactly from
@@ -70,8 +99,47 @@ pub fn builtin_mesh(name: &str) -> Option<TriMesh> {
         "fillet-pocket" => Some(fillet_pocket::fillet_pocket()),
         "v-grooves" => Some(grooves::v_grooves()),
         "short-grooves" => Some(grooves::short_grooves()),
+        "boss" => Some(walls::boss()),
+        "ramp-step" => Some(walls::ramp_step()),
         _ => None,
     }
+}
+
+/// The cross-section `section` (a polyline of `[across, z]` in increasing `across`)
+/// extruded over `[0, length]`, one quad per segment: along x (`across` is y) when
+/// `along_x`, else along y (`across` is x). Each quad is wound counter-clockwise seen
+/// from above the section (normals up on rising and falling faces alike, into the
+/// open side on vertical ones).
+fn extrude(section: &[[f64; 2]], length: f64, along_x: bool) -> TriMesh {
+    let at = |q: [f64; 2], t: f64| {
+        if along_x {
+            Point3::new(t, q[0], q[1])
+        } else {
+            Point3::new(q[0], t, q[1])
+        }
+    };
+    let tris: Vec<[Point3; 3]> = section
+        .windows(2)
+        .flat_map(|s| {
+            let [a, b, c, d] = if along_x {
+                [
+                    at(s[0], 0.0),
+                    at(s[0], length),
+                    at(s[1], length),
+                    at(s[1], 0.0),
+                ]
+            } else {
+                [
+                    at(s[0], 0.0),
+                    at(s[1], 0.0),
+                    at(s[1], length),
+                    at(s[0], length),
+                ]
+            };
+            [[a, b, c], [a, c, d]]
+        })
+        .collect();
+    TriMesh::from_triangles(&tris)
 }
 
 /// The fewest segments `n` that keep the chords of an arc of `radius` over `angle`

@@ -136,6 +136,54 @@ pub(super) fn v_normal(p: &Point3) -> Vec3 {
     graph_normal(v_height, p)
 }
 
+// ---- boss and ramp-step oracles ----
+
+/// Boss ribs: (y of the centre line, side angle in degrees); tops 6 wide at z = 10.
+pub(super) const RIB: [(f64, f64); 4] = [(30.0, 45.0), (65.0, 65.0), (95.0, 80.0), (120.0, 90.0)];
+
+pub(super) fn boss_height(_x: f64, y: f64) -> f64 {
+    RIB.iter().fold(0.0, |h: f64, &(yc, deg)| {
+        let off = (y - yc).abs() - 3.0;
+        let rib = if off <= 0.0 {
+            10.0
+        } else if deg == 90.0 {
+            0.0
+        } else {
+            (10.0 - off * deg.to_radians().tan()).max(0.0)
+        };
+        h.max(rib)
+    })
+}
+
+/// The vertical rib's sides y = 117 (facing -y) and y = 123 (facing +y) for z in
+/// [0, 10]: (distance, outward normal's y) of the nearer one within `slack`.
+pub(super) fn boss_wall(p: &Point3, slack: f64) -> Option<(f64, f64)> {
+    if p.z < -1e-9 || p.z > 10.0 + 1e-9 {
+        return None;
+    }
+    [(117.0, -1.0), (123.0, 1.0)]
+        .into_iter()
+        .map(|(y, side)| ((p.y - y).abs(), side))
+        .filter(|(d, _)| *d <= slack)
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+}
+
+pub(super) fn boss_dist(p: &Point3) -> f64 {
+    let graph = (p.z - boss_height(p.x, p.y)).abs();
+    boss_wall(p, f64::INFINITY).map_or(graph, |(d, _)| graph.min(d))
+}
+
+pub(super) fn boss_normal(p: &Point3) -> Vec3 {
+    match boss_wall(p, 1e-9) {
+        Some((_, side)) => Vec3::new(0.0, side, 0.0),
+        None => graph_normal(boss_height, p),
+    }
+}
+
+pub(super) fn step_height(x: f64, _y: f64) -> f64 {
+    (60.0 - x).clamp(0.0, 20.0)
+}
+
 /// Each part: name, block size, distance oracle, height oracle, normal oracle.
 pub(super) type Oracle = (
     &'static str,
@@ -144,7 +192,7 @@ pub(super) type Oracle = (
     fn(f64, f64) -> f64,
     fn(&Point3) -> Vec3,
 );
-pub(super) const PARTS: [Oracle; 3] = [
+pub(super) const PARTS: [Oracle; 5] = [
     (
         "fillet-pocket",
         [100.0, 80.0],
@@ -165,5 +213,13 @@ pub(super) const PARTS: [Oracle; 3] = [
         short_dist,
         short_height,
         short_normal,
+    ),
+    ("boss", [80.0, 140.0], boss_dist, boss_height, boss_normal),
+    (
+        "ramp-step",
+        [120.0, 40.0],
+        |p| (p.z - step_height(p.x, p.y)).abs(),
+        step_height,
+        |p| graph_normal(step_height, p),
     ),
 ];

@@ -89,6 +89,8 @@ fn names_suffix_counts_and_determinism() {
     }
     assert_eq!(mesh("v-grooves").len(), 20);
     assert_eq!(mesh("short-grooves").len(), 58);
+    assert_eq!(mesh("boss").len(), 34);
+    assert_eq!(mesh("ramp-step").len(), 6);
 }
 
 #[test]
@@ -271,4 +273,70 @@ fn short_groove_bottoms_merge_four_into_three() {
         merged += gaps.iter().filter(|&&g| g > 2.0).count() + 1;
     }
     assert_eq!((strips, merged), (4, 3));
+}
+
+/// The boss's wall areas of the module doc, summed per slope over the triangles (3D
+/// by the cross product, XY by the shoelace formula), against `1600 / sin a` and
+/// `1600 / tan a`; the rest of the surface is flat and fills the plate.
+#[test]
+fn boss_wall_areas_per_angle() {
+    let m = mesh("boss");
+    let mut per_deg = std::collections::BTreeMap::<i64, [f64; 2]>::new();
+    for i in 0..m.len() {
+        let [a, b, c] = m.triangle(i);
+        let n = (b - a).cross(&(c - a));
+        let deg = (n.z / n.norm()).acos().to_degrees().round() as i64;
+        let e = per_deg.entry(deg).or_default();
+        e[0] += n.norm() / 2.0;
+        e[1] += n.z / 2.0;
+    }
+    let flat = per_deg.remove(&0).unwrap();
+    let expect = [
+        (45, 2262.742, 1600.0),
+        (65, 1765.405, 746.092),
+        (80, 1624.683, 282.123),
+        (90, 1600.0, 0.0),
+    ];
+    assert_eq!(per_deg.len(), expect.len(), "{per_deg:?}");
+    let mut steep_xy = 0.0;
+    for (deg, area, xy) in expect {
+        let got = per_deg[&deg];
+        let a = (deg as f64).to_radians();
+        assert!((got[0] - 1600.0 / a.sin()).abs() < 1e-9, "{deg}: {got:?}");
+        assert!((got[0] - area).abs() < 5e-4 && (got[1] - xy).abs() < 5e-4);
+        steep_xy += got[1];
+    }
+    assert!((steep_xy - 2628.215).abs() < 1e-3);
+    assert!((flat[0] - flat[1]).abs() < 1e-9 && (flat[1] + steep_xy - 80.0 * 140.0).abs() < 1e-9);
+}
+
+/// The raster figures of the boss's doc: step 0.632 for h = 0.01 with a ball d = 10,
+/// and the scallops it leaves on the 45, 65 and 80 degree walls.
+#[test]
+fn boss_scallops_of_the_flat_step() {
+    let (r, h) = (5.0_f64, 0.01_f64);
+    let s = 2.0 * (2.0 * r * h - h * h).sqrt();
+    assert!((s - 0.632).abs() < 5e-4, "{s}");
+    for (deg, doc) in [(45.0_f64, 0.020), (65.0, 0.056), (80.0, 0.343)] {
+        let w = s / deg.to_radians().cos();
+        let scallop = r - (r * r - w * w / 4.0).sqrt();
+        assert!((scallop - doc).abs() < 5e-4, "{deg}: {scallop}");
+    }
+}
+
+/// The ramp-step's profile: plateau, 45-degree wall, floor, measured on the mesh.
+#[test]
+fn ramp_step_drops_twenty_at_45_degrees() {
+    let upper = Upper::new(&mesh("ramp-step"), [120.0, 40.0]);
+    for (x, z) in [
+        (10.0, 20.0),
+        (39.9, 20.0),
+        (45.0, 15.0),
+        (55.0, 5.0),
+        (60.1, 0.0),
+        (119.0, 0.0),
+    ] {
+        let got = upper.at(x, 20.0).unwrap();
+        assert!((got - z).abs() < 1e-9, "at {x}: {got}");
+    }
 }
