@@ -27,6 +27,7 @@ pub mod scallop_crest;
 pub mod scallop_step;
 pub mod section_point;
 pub mod side_step;
+pub mod steep_shallow;
 pub mod slope_step;
 pub mod track;
 mod uncovered;

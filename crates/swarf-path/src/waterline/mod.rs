@@ -39,7 +39,7 @@ use probe::Probe;
 use serde::{Deserialize, Serialize};
 use swarf_geom::TriMesh;
 use swarf_tool::drop::MeshDropper;
-use swarf_toolpath::{Pass, PathPoint, Toolpath, top_z};
+use swarf_toolpath::{PathPoint, Toolpath, top_z};
 
 pub use field::MAX_FIELD_NODES;
 pub use probe::{ROOT_TOL, Z_EPS};
