@@ -17,7 +17,8 @@
 //! the steep cells grown by the overlap (cells of the classification's Go board,
 //! grown and shrunk by whole cells, at least the overlap). Passes are split where
 //! points are dropped; the waterline pieces are cut first, level by level from the
-//! top, then the raster. A part without steep cells gets the raster alone, one
+//! top, then the raster, whose lines reach a tool radius past the mesh so that the
+//! cutter reaches edges the surface falls toward. A part without steep cells gets the raster alone, one
 //! without shallow cells the levels alone.
 
 use crate::classify::{ClassGrid, ClassifyParams, SurfaceClass, classify};
@@ -205,12 +206,14 @@ pub fn plan(mesh: &TriMesh, params: &SteepShallowParams) -> Result<Plan, PathErr
         let levels = crate::waterline::plan(mesh, &wl)?;
         passes.extend(trim(levels.toolpath.passes, |p| grown.contains(p)));
     }
+    // Lines out to a tool radius past the mesh, so that the cutter reaches the
+    // part's edges where the surface falls toward them.
+    let b = mesh.aabb();
+    let r = tool.radius();
     let raster = RasterParams {
-        finish: params.finish.clone(),
-        scallop: None,
-        stepover: Some(step),
         angle: params.angle,
         start: StartSide::Min,
+        boundary: Some([b.min.x - r, b.min.y - r, b.max.x + r, b.max.y + r]),
         ..RasterParams::new(params.finish.clone(), step)
     };
     let rows = crate::raster::plan(mesh, &raster)?;
