@@ -5,6 +5,7 @@
 //! and runs the demo ([`demo`]). It calls the kernel crates; it does not compute
 //! geometry. The `swarf` command line and the Python package are thin layers over it.
 
+pub mod classify;
 pub mod cleanup;
 pub mod compare;
 pub mod demo;

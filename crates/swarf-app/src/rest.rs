@@ -128,25 +128,15 @@ fn write_rest(f: &RestFound, part: &str, mesh: &swarf_geom::TriMesh, out: &Path)
 
 /// The regions over the part's relief (PNG bytes).
 fn picture(f: &RestFound, part: &str, mesh: &swarf_geom::TriMesh) -> Result<Vec<u8>> {
-    let surface = DesignSurface::new(Design::Mesh(mesh))?;
-    let b = surface.bounds();
-    let cell = (b.max.x - b.min.x).max(b.max.y - b.min.y) / PICTURE_CELLS;
-    let grid = Grid::covering([b.min.x, b.min.y], [b.max.x, b.max.y], cell, 1 << 28)?;
-    let heights = surface.heights(&grid, false, &Quiet).heights;
-    let rings = |p: &geo::Polygon<f64>| -> Vec<Vec<[f64; 2]>> {
-        std::iter::once(p.exterior())
-            .chain(p.interiors())
-            .map(|r| r.coords().map(|c| [c.x, c.y]).collect())
-            .collect()
-    };
+    let (grid, heights) = relief_heights(mesh)?;
     let outlines: Vec<RegionOutline> = f
         .detection
         .regions
         .iter()
         .enumerate()
         .map(|(k, r)| RegionOutline {
-            boundary: rings(&r.boundary),
-            raw: r.raw.0.iter().flat_map(rings).collect(),
+            boundary: polygon_rings(&r.boundary),
+            raw: r.raw.0.iter().flat_map(polygon_rings).collect(),
             label: (k + 1).to_string(),
         })
         .collect();
@@ -164,4 +154,26 @@ fn picture(f: &RestFound, part: &str, mesh: &swarf_geom::TriMesh) -> Result<Vec<
         f.detection.samples
     )];
     Ok(rest_png(&grid, &heights, &outlines, &title, &footer)?)
+}
+
+/// The part's heights seen from above on a grid of [`PICTURE_CELLS`] cells along
+/// its longer side, for the relief under a picture.
+///
+/// # Errors
+/// A mesh the height query refuses; a grid too large.
+pub(crate) fn relief_heights(mesh: &swarf_geom::TriMesh) -> Result<(Grid, Vec<f64>)> {
+    let surface = DesignSurface::new(Design::Mesh(mesh))?;
+    let b = surface.bounds();
+    let cell = (b.max.x - b.min.x).max(b.max.y - b.min.y) / PICTURE_CELLS;
+    let grid = Grid::covering([b.min.x, b.min.y], [b.max.x, b.max.y], cell, 1 << 28)?;
+    let heights = surface.heights(&grid, false, &Quiet).heights;
+    Ok((grid, heights))
+}
+
+/// The rings of a polygon (outer first, then holes) as XY points, mm.
+pub(crate) fn polygon_rings(p: &geo::Polygon<f64>) -> Vec<Vec<[f64; 2]>> {
+    std::iter::once(p.exterior())
+        .chain(p.interiors())
+        .map(|r| r.coords().map(|c| [c.x, c.y]).collect())
+        .collect()
 }

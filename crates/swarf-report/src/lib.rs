@@ -10,10 +10,13 @@
 //! Pictures of results:
 //! - [`picture`]: the deviation heat map and the tool-path picture of a dexel
 //!   verification (swarf-sim).
+//! - [`rest_picture`]: rest regions over the part.
+//! - [`classify_picture`]: steep, horizontal and other areas over the part.
 //!
 //! Units: millimetres in the world, pixels on the canvas.
 
 pub mod canvas;
+pub mod classify_picture;
 pub mod error;
 pub mod page;
 pub mod picture;

@@ -34,6 +34,9 @@ enum Command {
     /// Find the rest material a finishing tool or job leaves: regions as JSON, their
     /// boundaries as CSV, and a picture over the part.
     Rest(cmd::rest::Args),
+    /// Classify a part's surface into steep, horizontal and other areas (thesis 002
+    /// §6.1): areas as JSON and a picture over the part.
+    Classify(cmd::classify::Args),
     /// Plan jobs, verify their programs and print paper 004's Table 1 for them.
     Compare(cmd::compare::Args),
     /// Drop a cutter onto a triangle mesh at many XY points (CSV in, CSV out).
@@ -54,6 +57,7 @@ fn main() -> ExitCode {
         Command::Verify(a) => cmd::verify::run(&a),
         Command::Compare(a) => cmd::compare::run(&a),
         Command::Rest(a) => cmd::rest::run(&a),
+        Command::Classify(a) => cmd::classify::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -39,6 +39,8 @@ fn help_lists_every_subcommand() {
         "verify",
         "compare",
         "demo",
+        "rest",
+        "classify",
     ] {
         assert!(
             text.contains(&format!("  {sub}")),
@@ -159,4 +161,57 @@ fn bad_input_names_the_file_and_field() {
     }
     assert!(!stl.exists(), "a failed run must not write its output");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `swarf classify` on the built-in boss: the steep surface is the walls' closed
+/// form (two sides of 80 x 10 / sin a for a = 45, 65, 80, 90 degrees), the regions
+/// tile the 80 x 140 plate; bad angles and parts name what is wrong.
+#[test]
+fn classify_the_boss() {
+    let dir = temp_dir("classify");
+    let out = dir.to_str().unwrap();
+    let o = swarf(&["classify", "boss", "-o", out]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("steep: "), "{}", stdout(&o));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("classify.json")).unwrap()).unwrap();
+    let walls: f64 = [45.0_f64, 65.0, 80.0, 90.0]
+        .iter()
+        .map(|a| 1600.0 / a.to_radians().sin())
+        .sum();
+    let area = |class: &str, what: &str| v["classes"][class][what].as_f64().unwrap();
+    assert!(
+        (area("steep", "surface_area_mm2") - walls).abs() < 1e-6,
+        "{v}"
+    );
+    let xy: f64 = ["steep", "horizontal", "other"]
+        .iter()
+        .map(|c| area(c, "xy_area_mm2"))
+        .sum();
+    assert!((xy - 11200.0).abs() < 1e-3, "{xy}");
+    assert_eq!(v["parameters"]["steep_angle_deg"], 40.0);
+    assert_eq!(v["triangles"], 34);
+    assert!(
+        std::fs::read(dir.join("classify.png"))
+            .unwrap()
+            .starts_with(b"\x89PNG")
+    );
+    // Only the 80 and 90 degree walls are steeper than 70 degrees.
+    let o = swarf(&["classify", "boss", "--steep-angle", "70", "-o", out]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("classify.json")).unwrap()).unwrap();
+    assert_eq!(v["classes"]["steep"]["triangles"], 8);
+    let o = swarf(&["classify", "boss", "--steep-angle", "5", "-o", out]);
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(
+        e.contains("classify.steep_angle") && e.contains("classify.flat_angle = 10"),
+        "{e}"
+    );
+    let o = swarf(&["classify", "boss", "--cell", "0", "-o", out]);
+    assert!(!o.status.success() && stderr(&o).contains("classify.cell"));
+    let o = swarf(&["classify", "no-such-part", "-o", out]);
+    assert!(!o.status.success() && stderr(&o).contains("no-such-part"));
+    std::fs::remove_dir_all(&dir).ok();
 }

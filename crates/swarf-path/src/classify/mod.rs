@@ -284,7 +284,7 @@ pub fn classify(mesh: &TriMesh, params: &ClassifyParams) -> Result<Classificatio
         ClassRegion {
             xy_area: geo::Area::unsigned_area(&region),
             region,
-            surface_area: of.clone().map(|t| t.area).sum(),
+            surface_area: of.clone().fold(0.0, |sum, t| sum + t.area),
             triangles: of.count(),
             cells: grid.classes.iter().filter(|c| **c == Some(class)).count(),
         }
