@@ -34,7 +34,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect::<Result<_, _>>()?;
     let mut out = std::fs::File::create(&args[5])?;
     writeln!(out, "z,loop,x,y")?;
-    pool.install(|| -> Result<(), Box<dyn std::error::Error>> {
+    let result = pool.install(|| -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
         let t1 = Instant::now();
         let wl = Waterline::new(&mesh, &params)?;
         println!(
@@ -58,5 +58,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
         }
         Ok(())
-    })
+    });
+    result.map_err(|e| e.to_string().into())
 }
