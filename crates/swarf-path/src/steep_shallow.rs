@@ -136,7 +136,10 @@ fn trim(passes: Vec<Pass>, keep: impl Fn(&PathPoint) -> bool) -> Vec<Pass> {
             0
         };
         let order: Vec<&PathPoint> = if closed && start > 0 {
-            pass.points[start..n - 1].iter().chain(&pass.points[..=start]).collect()
+            pass.points[start..n - 1]
+                .iter()
+                .chain(&pass.points[..=start])
+                .collect()
         } else {
             pass.points.iter().collect()
         };
@@ -176,7 +179,10 @@ pub fn plan(mesh: &TriMesh, params: &SteepShallowParams) -> Result<Plan, PathErr
     if !(params.overlap.is_finite() && params.overlap >= 0.0) {
         return Err(PathError::InvalidParameter {
             field: "strategy.overlap".into(),
-            message: format!("expected a length of 0 mm or more, found {}", params.overlap),
+            message: format!(
+                "expected a length of 0 mm or more, found {}",
+                params.overlap
+            ),
         });
     }
     let cell = params.sampling.unwrap_or(0.25 * tool.radius());

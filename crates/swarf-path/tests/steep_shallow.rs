@@ -48,7 +48,11 @@ fn wave_stays_within_the_scallop_where_the_raster_does_not() {
         d.measured_cells, d.excess.cells, d.gouge.cells, d.scallop.max
     );
     assert_eq!(d.gouge.cells, 0, "gouges");
-    assert_eq!(d.excess.cells, 0, "cells above h + tol, worst {}", d.excess.worst);
+    assert_eq!(
+        d.excess.cells, 0,
+        "cells above h + tol, worst {}",
+        d.excess.worst
+    );
     assert!(d.measured_cells > 7_000_000);
     // The flat-model raster at the same scallop leaves far more on the flanks.
     let mut raster = RasterParams::new(finish(&tool, TOL), 1.0);
@@ -56,7 +60,10 @@ fn wave_stays_within_the_scallop_where_the_raster_does_not() {
     let r = swarf_path::raster::plan(&mesh, &raster).unwrap();
     let vr = cut(&mesh, &r.toolpath, &tool, h, 0.1);
     let dr = &vr.deviation.summary;
-    eprintln!("raster on wave: excess {} cells, worst {}", dr.excess.cells, dr.excess.worst);
+    eprintln!(
+        "raster on wave: excess {} cells, worst {}",
+        dr.excess.cells, dr.excess.worst
+    );
     assert!(dr.excess.cells > 100_000 && dr.excess.worst > 0.25);
 }
 
@@ -106,7 +113,9 @@ fn boss_stays_within_the_scallop_wherever_the_ball_reaches() {
             }
         }
     }
-    eprintln!("steep-shallow on boss: {counted} reachable cells, worst {worst} at {at:?}, deepest {gouge}");
+    eprintln!(
+        "steep-shallow on boss: {counted} reachable cells, worst {worst} at {at:?}, deepest {gouge}"
+    );
     assert!(counted > 3_000_000);
     assert!(gouge >= -TOL, "gouge {gouge}");
     assert!(worst <= h + TOL, "worst reachable deviation {worst}");
@@ -118,7 +127,10 @@ fn one_and_two_threads_write_the_same_program() {
     let mesh = swarf_io::builtin_mesh("fillet-pocket").unwrap();
     let tool: Cutter = "ball:d=8".parse().unwrap();
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
         pool.install(|| {
             let ss = plan(&mesh, &SteepShallowParams::new(finish(&tool, TOL), 0.1)).unwrap();
             let mut wl = swarf_path::waterline::WaterlineParams::new(finish(&tool, TOL), 0.1);
