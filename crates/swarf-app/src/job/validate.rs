@@ -9,6 +9,52 @@ impl Job {
     /// Checks parameter ranges that the TOML types cannot express.
     pub(super) fn validate(&self) -> Result<(), String> {
         let s = &self.strategy;
+        self.validate_spacing()?;
+        if let Some(a) = s.max_ramp
+            && (a.is_nan() || a <= 0.0 || a >= 90.0)
+        {
+            return Err(format!(
+                "strategy.max_ramp: {a} degrees: expected an angle between 0 and 90 degrees"
+            ));
+        }
+        if let Some(a) = s.max_slope
+            && (a.is_nan() || a <= 0.0 || a >= 90.0)
+        {
+            return Err(format!(
+                "strategy.max_slope: {a} degrees: expected a slope between 0 and 90 degrees"
+            ));
+        }
+        if !s.angle.is_finite() {
+            return Err("strategy.angle: expected a finite angle in degrees".into());
+        }
+        if let Some(b) = s.boundary
+            && !(b.iter().all(|x| x.is_finite()) && b[0] < b[2] && b[1] < b[3])
+        {
+            return Err(format!(
+                "strategy.boundary: expected [xmin, ymin, xmax, ymax] with xmin < xmax and ymin < ymax, found {b:?}"
+            ));
+        }
+        self.validate_slopes()?;
+        self.validate_cleanup()?;
+        let f = &self.feeds;
+        for (name, v) in [
+            ("feeds.feed", f.feed),
+            ("feeds.plunge", f.plunge),
+            ("feeds.rapid", f.rapid),
+            ("feeds.spindle", f.spindle),
+        ] {
+            positive(name, Some(v))?;
+        }
+        if self.linking.clearance.is_some_and(|c| !c.is_finite()) {
+            return Err("linking.clearance: expected a finite height in mm".into());
+        }
+        positive("linking.approach", Some(self.linking.approach))?;
+        self.validate_five_axis()
+    }
+
+    /// Tolerance, scallop, stepover and level step, and which strategy takes which.
+    fn validate_spacing(&self) -> Result<(), String> {
+        let s = &self.strategy;
         positive("strategy.tolerance", Some(s.tolerance))?;
         positive("strategy.scallop", s.scallop)?;
         positive("strategy.stepover", s.stepover)?;
@@ -52,46 +98,7 @@ impl Job {
                 ));
             }
         }
-        if let Some(a) = s.max_ramp
-            && (a.is_nan() || a <= 0.0 || a >= 90.0)
-        {
-            return Err(format!(
-                "strategy.max_ramp: {a} degrees: expected an angle between 0 and 90 degrees"
-            ));
-        }
-        if let Some(a) = s.max_slope
-            && (a.is_nan() || a <= 0.0 || a >= 90.0)
-        {
-            return Err(format!(
-                "strategy.max_slope: {a} degrees: expected a slope between 0 and 90 degrees"
-            ));
-        }
-        if !s.angle.is_finite() {
-            return Err("strategy.angle: expected a finite angle in degrees".into());
-        }
-        if let Some(b) = s.boundary
-            && !(b.iter().all(|x| x.is_finite()) && b[0] < b[2] && b[1] < b[3])
-        {
-            return Err(format!(
-                "strategy.boundary: expected [xmin, ymin, xmax, ymax] with xmin < xmax and ymin < ymax, found {b:?}"
-            ));
-        }
-        self.validate_slopes()?;
-        self.validate_cleanup()?;
-        let f = &self.feeds;
-        for (name, v) in [
-            ("feeds.feed", f.feed),
-            ("feeds.plunge", f.plunge),
-            ("feeds.rapid", f.rapid),
-            ("feeds.spindle", f.spindle),
-        ] {
-            positive(name, Some(v))?;
-        }
-        if self.linking.clearance.is_some_and(|c| !c.is_finite()) {
-            return Err("linking.clearance: expected a finite height in mm".into());
-        }
-        positive("linking.approach", Some(self.linking.approach))?;
-        self.validate_five_axis()
+        Ok(())
     }
 
     /// Steep and flat angles, and the direction each strategy takes.

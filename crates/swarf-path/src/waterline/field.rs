@@ -42,7 +42,8 @@ impl DropField {
         let origin = [b.min.x - grow, b.min.y - grow];
         let count = |lo: f64, hi: f64| ((hi - lo + 2.0 * grow) / step).ceil() + 1.0;
         let (fx, fy) = (count(b.min.x, b.max.x), count(b.min.y, b.max.y));
-        if !(fx * fy <= MAX_FIELD_NODES as f64) {
+        let nodes = fx * fy;
+        if nodes.is_nan() || nodes > MAX_FIELD_NODES as f64 {
             return Err(PathError::InvalidParameter {
                 field: "strategy.sampling".into(),
                 message: format!(

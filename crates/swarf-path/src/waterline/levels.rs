@@ -32,7 +32,7 @@ pub(crate) fn even_levels(top: f64, bottom: f64, dz: f64) -> Result<Vec<f64>, Pa
         return Ok(Vec::new());
     }
     let n = ((top - bottom) / dz).ceil();
-    if !(n <= MAX_LEVELS as f64) {
+    if n.is_nan() || n > MAX_LEVELS as f64 {
         return Err(too_many(top - bottom, dz));
     }
     let n = (n as usize).max(1);
