@@ -4,11 +4,11 @@
 //! `z`; the pass is the boundary of that set, the contour `drop(x, y) = z` of the
 //! drop-height field (thesis 002 §6.2.2: Z-slicing of the tool offset surface, with
 //! the trimming "keep the points whose drop height is at most z" built in). The
-//! contour is not sampled: one grid of exact drops ([`field`]) tells on which side of
-//! each level every node lies, marching squares ([`contour`]) link the crossings of
+//! contour is not sampled: one grid of exact drops (`field.rs`) tells on which side of
+//! each level every node lies, marching squares (`contour.rs`) link the crossings of
 //! the grid edges into closed loops, and every crossing and every point inserted to
 //! keep the chords within the tolerance is an exact contour point, found by root
-//! finding on the drop height ([`probe`]). The grid serves every level, so a level
+//! finding on the drop height (`probe.rs`). The grid serves every level, so a level
 //! costs only its contour. Loops smaller than the grid step can be missed, as a
 //! sampled waterline misses loops between its fibers: the default step is a quarter
 //! of the tool radius, the raster's first step (a bump of the drop height is as wide
