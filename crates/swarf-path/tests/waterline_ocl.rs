@@ -95,7 +95,7 @@ fn loops_match_opencamlib_waterline() {
         .filter(|p| p.extension().is_some_and(|e| e == "csv"))
         .collect();
     files.sort();
-    assert!(files.len() >= 3, "references missing: {files:?}");
+    assert!(files.len() >= 14, "references missing: {files:?}");
     for path in files {
         let r = read(&path);
         let mesh = swarf_io::stl::read_stl(&mesh_path(&r.mesh)).unwrap();
