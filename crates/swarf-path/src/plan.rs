@@ -1,9 +1,10 @@
 //! What a strategy gives: the tool path and the figures it reports beside it.
 
+use crate::params::Finish;
 use crate::pass_bound::PassBound;
 use serde::{Deserialize, Serialize};
 use swarf_geom::{Point3, Vec3};
-use swarf_toolpath::Toolpath;
+use swarf_toolpath::{Pass, Toolpath, top_z};
 
 /// A region a strategy could not cover, and why.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -71,6 +72,26 @@ pub struct Plan {
 }
 
 impl Plan {
+    /// The plan of `passes` cut with `finish`'s feeds, linked above their highest
+    /// point by `finish`'s linking rule.
+    pub fn from_passes(
+        passes: Vec<Pass>,
+        finish: &Finish,
+        report: PlanReport,
+        double_contacts: Vec<DoubleContact>,
+    ) -> Plan {
+        let linking = finish.linking.for_top(top_z(&passes));
+        Plan {
+            toolpath: Toolpath {
+                passes,
+                feeds: finish.feeds,
+                linking,
+            },
+            report,
+            double_contacts,
+        }
+    }
+
     /// Double contacts as CSV (`x,y,z,cx,cy,cz` per contact point; the CL point
     /// repeated for each of its contacts), or `None` when the strategy records none.
     pub fn double_contacts_csv(&self) -> Option<String> {

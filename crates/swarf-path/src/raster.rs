@@ -43,7 +43,7 @@ use crate::raster_step::flat_scallop;
 use crate::slope_step::raster_max_scallop;
 use swarf_geom::TriMesh;
 use swarf_tool::drop::MeshDropper;
-use swarf_toolpath::{Pass, Toolpath, top_z};
+use swarf_toolpath::Pass;
 
 /// First sampling step along a pass, as a fraction of the tool radius.
 pub const INIT_STEP_RADII: f64 = 0.25;
@@ -130,16 +130,12 @@ pub fn plan(mesh: &TriMesh, params: &RasterParams) -> Result<Plan, PathError> {
         side_step_range: Some([frame.spacing, frame.spacing]),
         ..PlanReport::default()
     };
-    let linking = params.finish.linking.for_top(top_z(&passes));
-    Ok(Plan {
-        toolpath: Toolpath {
-            passes,
-            feeds: params.finish.feeds,
-            linking,
-        },
+    Ok(Plan::from_passes(
+        passes,
+        &params.finish,
         report,
         double_contacts,
-    })
+    ))
 }
 
 /// `tan` of the ramp angle limit, if any.

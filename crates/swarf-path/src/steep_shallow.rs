@@ -28,7 +28,7 @@ use crate::plan::{Plan, PlanReport};
 use crate::slope_step::{raster_spacing, zlevel_spacing};
 use crate::waterline::{Milling, WaterlineParams};
 use swarf_geom::TriMesh;
-use swarf_toolpath::{Pass, PathPoint, Toolpath, top_z};
+use swarf_toolpath::{Pass, PathPoint};
 
 /// Parameters of steep-and-shallow finishing.
 #[derive(Debug, Clone, PartialEq)]
@@ -235,14 +235,10 @@ pub fn plan(mesh: &TriMesh, params: &SteepShallowParams) -> Result<Plan, PathErr
         side_step_range: Some([dz.min(step), dz.max(step)]),
         ..PlanReport::default()
     };
-    let linking = params.finish.linking.for_top(top_z(&passes));
-    Ok(Plan {
-        toolpath: Toolpath {
-            passes,
-            feeds: params.finish.feeds,
-            linking,
-        },
+    Ok(Plan::from_passes(
+        passes,
+        &params.finish,
         report,
         double_contacts,
-    })
+    ))
 }

@@ -112,7 +112,8 @@ pub(crate) fn level_loops(field: &DropField, probe: &Probe, tol: f64) -> Vec<Loo
         .map_init(DropScratch::default, |s, lp| {
             let mut out = Vec::with_capacity(lp.len());
             for k in 0..lp.len() {
-                probe.refine(lp[k], lp[(k + 1) % lp.len()], tol, true, s, &mut out);
+                out.push(lp[k]);
+                probe.refine(lp[k], lp[(k + 1) % lp.len()], tol, true, s, &mut out, 0);
             }
             out
         })

@@ -39,7 +39,7 @@ use probe::Probe;
 use serde::{Deserialize, Serialize};
 use swarf_geom::TriMesh;
 use swarf_tool::drop::MeshDropper;
-use swarf_toolpath::{PathPoint, Toolpath, top_z};
+use swarf_toolpath::PathPoint;
 
 pub use field::MAX_FIELD_NODES;
 pub use probe::{ROOT_TOL, Z_EPS};
@@ -225,16 +225,12 @@ pub fn plan(mesh: &TriMesh, params: &WaterlineParams) -> Result<Plan, PathError>
         }),
         ..PlanReport::default()
     };
-    let linking = params.finish.linking.for_top(top_z(&passes));
-    Ok(Plan {
-        toolpath: Toolpath {
-            passes,
-            feeds: params.finish.feeds,
-            linking,
-        },
+    Ok(Plan::from_passes(
+        passes,
+        &params.finish,
         report,
-        double_contacts: Vec::new(),
-    })
+        Vec::new(),
+    ))
 }
 
 fn check_angles(params: &WaterlineParams) -> Result<(), PathError> {

@@ -104,24 +104,11 @@ impl Probe<'_> {
         Some(ContourPoint { xy: at(ta), hit })
     }
 
-    /// `a`, then the points inserted between `a` and `b` so that every chord's
-    /// midpoint is within `tol` of the contour, in order (`b` not included).
-    /// `right_inside`: the inside lies to the right of `a -> b`.
-    pub fn refine(
-        &self,
-        a: ContourPoint,
-        b: ContourPoint,
-        tol: f64,
-        right_inside: bool,
-        s: &mut DropScratch,
-        out: &mut Vec<ContourPoint>,
-    ) {
-        out.push(a);
-        self.refine_between(a, b, tol, right_inside, s, out, 0);
-    }
-
+    /// The points to insert between `a` and `b` so that every chord's midpoint is
+    /// within `tol` of the contour, appended to `out` in order (`a` and `b` not
+    /// included). `right_inside`: the inside lies to the right of `a -> b`.
     #[allow(clippy::too_many_arguments)]
-    fn refine_between(
+    pub fn refine(
         &self,
         a: ContourPoint,
         b: ContourPoint,
@@ -146,9 +133,9 @@ impl Probe<'_> {
         let Some(c) = self.nearest_crossing(along, tol, len, s) else {
             return;
         };
-        self.refine_between(a, c, tol, right_inside, s, out, depth + 1);
+        self.refine(a, c, tol, right_inside, s, out, depth + 1);
         out.push(c);
-        self.refine_between(c, b, tol, right_inside, s, out, depth + 1);
+        self.refine(c, b, tol, right_inside, s, out, depth + 1);
     }
 
     /// The contour crossing of the normal line `along(t)` nearest `t = 0`, searched
