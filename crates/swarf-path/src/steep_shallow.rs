@@ -25,7 +25,6 @@ use crate::classify::{ClassGrid, ClassifyParams, SurfaceClass, classify};
 use crate::error::PathError;
 use crate::params::{Finish, RasterParams, StartSide};
 use crate::plan::{Plan, PlanReport};
-use crate::slope_step::{raster_spacing, zlevel_spacing};
 use crate::waterline::{Milling, WaterlineParams};
 use swarf_geom::TriMesh;
 use swarf_toolpath::{Pass, PathPoint};
@@ -83,25 +82,9 @@ impl Zone {
             .iter()
             .map(|c| *c == Some(SurfaceClass::Steep))
             .collect();
-        let (nx, ny) = (grid.nx as i64, grid.ny as i64);
-        let r = k.abs();
-        let grow = k > 0;
-        let steep = (0..nx * ny)
-            .map(|c| {
-                let (i, j) = (c % nx, c / nx);
-                let mut any = false;
-                let mut all = true;
-                for dj in -r..=r {
-                    for di in -r..=r {
-                        let (a, b) = (i + di, j + dj);
-                        let v = a >= 0 && b >= 0 && a < nx && b < ny && base[(b * nx + a) as usize];
-                        any |= v;
-                        all &= v;
-                    }
-                }
-                if grow { any } else { all }
-            })
-            .collect();
+        // A square window is a row window then a column window.
+        let rows = window(&base, grid.nx, grid.ny, k, [1, grid.nx]);
+        let steep = window(&rows, grid.nx, grid.ny, k, [grid.nx, 1]);
         Zone {
             grid: grid.clone(),
             steep,
@@ -120,6 +103,28 @@ impl Zone {
         }
         self.steep[j as usize * g.nx + i as usize]
     }
+}
+
+/// Each cell of the `nx` x `ny` board `cells` (row-major) set to whether any
+/// (`k > 0`) or every (`k < 0`) cell within `|k|` of it along one axis is set; `stride`
+/// is `[step along the axis, step across it]` in cell indices (`[1, nx]` along x).
+/// Cells past the board count as unset.
+fn window(cells: &[bool], nx: usize, ny: usize, k: i64, stride: [usize; 2]) -> Vec<bool> {
+    let (len, lines) = if stride[0] == 1 { (nx, ny) } else { (ny, nx) };
+    let r = k.unsigned_abs() as usize;
+    let mut out = vec![false; cells.len()];
+    for line in 0..lines {
+        let at = |t: usize| cells[t * stride[0] + line * stride[1]];
+        for t in 0..len {
+            let (lo, hi) = (t.saturating_sub(r), t + r);
+            out[t * stride[0] + line * stride[1]] = if k > 0 {
+                (lo..=hi.min(len - 1)).any(at)
+            } else {
+                t >= r && hi < len && (lo..=hi).all(at)
+            };
+        }
+    }
+    out
 }
 
 /// The runs of `passes` whose points `keep` holds (runs of one point dropped).
@@ -196,12 +201,10 @@ pub fn plan(mesh: &TriMesh, params: &SteepShallowParams) -> Result<Plan, PathErr
     )?;
     let k = (params.overlap / cell).ceil() as i64;
     let (grown, shrunk) = (Zone::new(&classes.grid, k), Zone::new(&classes.grid, -k));
-    let step = raster_spacing(tool, params.scallop, params.steep_angle)?;
-    let dz = zlevel_spacing(tool, params.scallop, params.steep_angle)?;
     let mut passes = Vec::new();
+    let mut steps = Vec::new();
     if classes.steep.cells > 0 {
         let wl = WaterlineParams {
-            level_step: Some(dz),
             steep_angle: params.steep_angle,
             flat_angle: params.flat_angle,
             adaptive: false,
@@ -210,6 +213,7 @@ pub fn plan(mesh: &TriMesh, params: &SteepShallowParams) -> Result<Plan, PathErr
             ..WaterlineParams::new(params.finish.clone(), params.scallop)
         };
         let levels = crate::waterline::plan(mesh, &wl)?;
+        steps.extend(levels.report.side_step_range.into_iter().flatten());
         passes.extend(trim(levels.toolpath.passes, |p| grown.contains(p)));
     }
     // Lines out to a tool radius past the mesh, so that the cutter reaches the
@@ -217,12 +221,16 @@ pub fn plan(mesh: &TriMesh, params: &SteepShallowParams) -> Result<Plan, PathErr
     let b = mesh.aabb();
     let r = tool.radius();
     let raster = RasterParams {
+        scallop: Some(params.scallop),
+        stepover: None,
+        max_slope: Some(params.steep_angle),
         angle: params.angle,
         start: StartSide::Min,
         boundary: Some([b.min.x - r, b.min.y - r, b.max.x + r, b.max.y + r]),
-        ..RasterParams::new(params.finish.clone(), step)
+        ..RasterParams::new(params.finish.clone(), 1.0)
     };
     let rows = crate::raster::plan(mesh, &raster)?;
+    steps.extend(rows.report.side_step_range.into_iter().flatten());
     let double_contacts = rows.double_contacts;
     passes.extend(trim(rows.toolpath.passes, |p| !shrunk.contains(p)));
     if passes.is_empty() {
@@ -232,7 +240,10 @@ pub fn plan(mesh: &TriMesh, params: &SteepShallowParams) -> Result<Plan, PathErr
     }
     let report = PlanReport {
         predicted_max_scallop: Some(params.scallop),
-        side_step_range: Some([dz.min(step), dz.max(step)]),
+        side_step_range: Some([
+            steps.iter().copied().fold(f64::INFINITY, f64::min),
+            steps.iter().copied().fold(0.0, f64::max),
+        ]),
         ..PlanReport::default()
     };
     Ok(Plan::from_passes(

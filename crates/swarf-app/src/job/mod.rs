@@ -346,6 +346,14 @@ impl Job {
         }
     }
 
+    /// The milling direction (climb unless `direction = "conventional"`).
+    pub fn milling(&self) -> Milling {
+        match self.strategy.direction {
+            Some(Direction::Conventional) => Milling::Conventional,
+            _ => Milling::Climb,
+        }
+    }
+
     /// The parameters of the waterline strategy (steep angle 45 and flat angle 15
     /// degrees unless given).
     pub fn waterline_params(&self) -> WaterlineParams {
@@ -358,10 +366,7 @@ impl Job {
             flat_angle: s.flat_angle.unwrap_or(15.0).to_radians(),
             adaptive: s.adaptive,
             sampling: s.sampling,
-            direction: match s.direction {
-                Some(Direction::Conventional) => Milling::Conventional,
-                _ => Milling::Climb,
-            },
+            direction: self.milling(),
             top: None,
             bottom: None,
         }
@@ -377,7 +382,7 @@ impl Job {
             flat_angle: s.flat_angle.map_or(base.flat_angle, f64::to_radians),
             overlap: s.overlap,
             angle: self.angle_rad(),
-            direction: self.waterline_params().direction,
+            direction: self.milling(),
             sampling: s.sampling,
             ..base
         }

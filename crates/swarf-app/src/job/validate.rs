@@ -127,15 +127,15 @@ impl Job {
         }
         let milling = matches!(s.kind, StrategyKind::Waterline | StrategyKind::SteepShallow);
         match s.direction {
-            Some(Direction::U | Direction::V) if milling => Err(format!(
-                "strategy.direction: {:?} is a parameter direction; the {} strategy takes \"climb\" or \"conventional\"",
-                s.direction,
-                kind_name(s.kind)
+            Some(d @ (Direction::U | Direction::V)) if milling => Err(format!(
+                "strategy.direction: \"{}\" is a parameter direction; the {} strategy takes \"climb\" or \"conventional\"",
+                file_name(d),
+                file_name(s.kind)
             )),
-            Some(Direction::Climb | Direction::Conventional) if !milling => Err(format!(
-                "strategy.direction: {:?} is a milling direction for waterline and steep-shallow; the {} strategy takes \"u\" or \"v\"",
-                s.direction,
-                kind_name(s.kind)
+            Some(d @ (Direction::Climb | Direction::Conventional)) if !milling => Err(format!(
+                "strategy.direction: \"{}\" is a milling direction for waterline and steep-shallow; the {} strategy takes \"u\" or \"v\"",
+                file_name(d),
+                file_name(s.kind)
             )),
             _ => Ok(()),
         }
@@ -207,10 +207,10 @@ fn positive(name: &str, v: Option<f64>) -> Result<(), String> {
     }
 }
 
-/// The strategy's name as a job file writes it.
-fn kind_name(kind: StrategyKind) -> String {
-    serde_json::to_value(kind)
+/// A value's name as a job file writes it.
+fn file_name<T: serde::Serialize + std::fmt::Debug>(value: T) -> String {
+    serde_json::to_value(&value)
         .ok()
         .and_then(|v| v.as_str().map(str::to_string))
-        .unwrap_or_else(|| format!("{kind:?}"))
+        .unwrap_or_else(|| format!("{value:?}"))
 }

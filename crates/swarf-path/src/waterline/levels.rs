@@ -86,7 +86,7 @@ pub(crate) fn needs_split(
 /// As [`even_levels`] when the total exceeds [`MAX_LEVELS`].
 pub(crate) fn refine(
     levels: Vec<(f64, Vec<Loop>)>,
-    contour: impl Fn(f64) -> Vec<Loop> + Sync,
+    contour: impl Fn(f64) -> Vec<Loop>,
     model: &SideStep,
     flat_angle: f64,
     min_dz: f64,

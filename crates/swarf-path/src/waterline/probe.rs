@@ -11,7 +11,12 @@
 //! has it at most `z + Z_EPS`.
 //!
 //! Between two consecutive contour points the chord is checked at its midpoint: the
-//! contour must cross the normal there within the tolerance (two drops). Where it
+//! contour must cross the normal there within the tolerance, and the drop height at
+//! the chord's quarter points and midpoint may stand at most the tolerance above the
+//! level (five drops; the second test matters where the drop height rises steeply, so
+//! that a chord a little inside the contour cuts deep). Where the drop height is too
+//! high, the chord is split at the crossing nearest that point, unless the height
+//! jumps there (a cliff, the mesh's edge: the XY test alone holds). Where it
 //! does not, the crossing nearest the midpoint is searched along the normal and
 //! inserted, and both halves are checked again.
 
@@ -26,6 +31,10 @@ pub const ROOT_TOL: f64 = 1e-9;
 const ROOT_STEPS: usize = 200;
 /// Chords shorter than this are not refined, mm.
 pub const MIN_CHORD: f64 = 1e-4;
+/// Where along a chord its gouge is checked (fractions of its length).
+const GOUGE_PROBES: [f64; 3] = [0.25, 0.5, 0.75];
+/// A drop height rising faster than this per mm across the contour is a jump.
+const CLIFF_SLOPE: f64 = 100.0;
 /// Deepest chord refinement of one segment.
 const MAX_DEPTH: usize = 24;
 
@@ -105,7 +114,7 @@ impl Probe<'_> {
     }
 
     /// The points to insert between `a` and `b` so that every chord's midpoint is
-    /// within `tol` of the contour, appended to `out` in order (`a` and `b` not
+    /// within `tol` of the contour and no chord gouges more than `tol` at its checks, appended to `out` in order (`a` and `b` not
     /// included). `right_inside`: the inside lies to the right of `a -> b`.
     #[allow(clippy::too_many_arguments)]
     pub fn refine(
@@ -125,17 +134,54 @@ impl Probe<'_> {
         }
         let sign = if right_inside { 1.0 } else { -1.0 };
         let n_in = [sign * d[1] / len, -sign * d[0] / len];
-        let m = [0.5 * (a.xy[0] + b.xy[0]), 0.5 * (a.xy[1] + b.xy[1])];
-        let along = |t: f64| [m[0] + t * n_in[0], m[1] + t * n_in[1]];
-        if self.inside(along(tol), s) && !self.inside(along(-tol), s) {
-            return;
-        }
-        let Some(c) = self.nearest_crossing(along, tol, len, s) else {
+        let at = |t: f64| [a.xy[0] + t * d[0], a.xy[1] + t * d[1]];
+        let split = match self.gouge_split(at, n_in, tol, len, s) {
+            Some(c) => Some(c),
+            None => {
+                let m = at(0.5);
+                let along = |t: f64| [m[0] + t * n_in[0], m[1] + t * n_in[1]];
+                if self.inside(along(tol), s) && !self.inside(along(-tol), s) {
+                    return;
+                }
+                self.nearest_crossing(along, tol, len, s)
+            }
+        };
+        let Some(c) = split else {
             return;
         };
         self.refine(a, c, tol, right_inside, s, out, depth + 1);
         out.push(c);
         self.refine(c, b, tol, right_inside, s, out, depth + 1);
+    }
+
+    /// Where a chord `at(t)` (`t` in `[0, 1]`, inward normal `n_in`) gouges more than
+    /// `tol` below the drop height at one of its [`GOUGE_PROBES`], the contour
+    /// crossing nearest the deepest probe to split it at. A probe within `tol` of the
+    /// contour in XY whose drop height rises faster than [`CLIFF_SLOPE`] stands at a
+    /// jump (a cliff, the mesh's edge), where the XY distance is the interference and
+    /// the height says nothing.
+    fn gouge_split(
+        &self,
+        at: impl Fn(f64) -> [f64; 2],
+        n_in: [f64; 2],
+        tol: f64,
+        len: f64,
+        s: &mut DropScratch,
+    ) -> Option<ContourPoint> {
+        let (worst, excess) = GOUGE_PROBES
+            .iter()
+            .map(|&t| (t, self.eval(at(t), s).0))
+            .fold(
+                (0.5, f64::NEG_INFINITY),
+                |w, p| if p.1 > w.1 { p } else { w },
+            );
+        if excess <= tol {
+            return None;
+        }
+        let m = at(worst);
+        let c = self.nearest_crossing(|t| [m[0] + t * n_in[0], m[1] + t * n_in[1]], tol, len, s)?;
+        let e = (c.xy[0] - m[0]).hypot(c.xy[1] - m[1]);
+        (e > tol || excess <= CLIFF_SLOPE * e).then_some(c)
     }
 
     /// The contour crossing of the normal line `along(t)` nearest `t = 0`, searched
