@@ -3,7 +3,7 @@
 //! requested output: G-code (three-axis, or five-axis for `output.machine`), APT CL,
 //! pose CSV, double contacts and the JSON summary.
 
-use crate::cleanup::{plan_cleanup_job, rest_json, stage_file};
+use crate::cleanup::{plan_cleanup_job, rest_json, stage_file, steep_json};
 use crate::error::{Result, bail};
 use crate::five_axis::{position_plan, write_job_gcode};
 use crate::job::Job;
@@ -74,14 +74,22 @@ pub fn plan_model(
             bail!("positioning: five-axis positioning needs a parametric part (.toml), not a mesh")
         }
     };
-    write_outputs(
-        job,
-        &name,
-        &plan,
-        machine.as_ref(),
-        positioning.as_ref(),
-        out_dir,
-    )
+    let written = Written {
+        part_name: &name,
+        machine: machine.as_ref(),
+        positioning: positioning.as_ref(),
+        notes: &[],
+    };
+    write_outputs(job, &plan, &written, out_dir)
+}
+
+/// What a job's outputs say besides its plan.
+struct Written<'a> {
+    part_name: &'a str,
+    machine: Option<&'a Machine>,
+    positioning: Option<&'a PositioningReport>,
+    /// Extra header comments of the program.
+    notes: &'a [String],
 }
 
 /// Plans a cleanup job ([`crate::cleanup`]) and writes each stage's outputs (stage
@@ -112,10 +120,22 @@ fn cleanup_outputs(
             }
         }
         let summary_file = staged.output.summary.take();
-        let mut s = write_outputs(&staged, &name, &stage.plan, machine, None, out_dir)?;
+        let written = Written {
+            part_name: &name,
+            machine,
+            positioning: None,
+            notes: &stage.notes,
+        };
+        let mut s = write_outputs(&staged, &stage.plan, &written, out_dir)?;
         s["reference_tool"] = serde_json::json!(stage.reference.to_string());
         s["rest_source"] = serde_json::json!(stage.source);
         s["rest"] = rest_json(&stage.detection);
+        if let Some(rest) = &stage.steep {
+            s["steep_rest"] = steep_json(rest);
+        }
+        if !stage.notes.is_empty() {
+            s["notes"] = serde_json::json!(stage.notes);
+        }
         if let Some(rel) = summary_file {
             let text = serde_json::to_string_pretty(&s)? + "\n";
             swarf_io::write_atomic(&out_dir.join(rel), text.as_bytes())?;
@@ -142,12 +162,16 @@ pub fn part_arg(job: &Job, job_dir: &Path) -> String {
 
 fn write_outputs(
     job: &Job,
-    part_name: &str,
     plan: &Plan,
-    machine: Option<&Machine>,
-    positioning: Option<&PositioningReport>,
+    written: &Written<'_>,
     out_dir: &Path,
 ) -> Result<serde_json::Value> {
+    let Written {
+        part_name,
+        machine,
+        positioning,
+        notes,
+    } = *written;
     let moves = plan.toolpath.moves();
     let stats = motion_stats(&moves, job.feeds.rapid);
     let strategy = serde_json::to_value(job.strategy.kind)?;
@@ -162,6 +186,7 @@ fn write_outputs(
     if plan.toolpath.passes.is_empty() {
         comments.push("no passes: nothing to cut".into());
     }
+    comments.extend(notes.iter().cloned());
     if let Some(p) = &job.positioning {
         comments.push(format!("positioning {}", describe(p)));
     }

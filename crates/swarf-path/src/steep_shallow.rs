@@ -169,6 +169,26 @@ fn push_run(out: &mut Vec<Pass>, points: Vec<PathPoint>) {
     }
 }
 
+/// The waterline passes of `wl` over `mesh` kept where their contacts lie in the
+/// steep cells of `grid` grown by `overlap` (mm; module doc), and the range of
+/// Z-level side steps they were spaced by.
+///
+/// # Errors
+/// As [`crate::waterline::plan`].
+pub fn steep_levels(
+    mesh: &TriMesh,
+    grid: &ClassGrid,
+    wl: &WaterlineParams,
+    overlap: f64,
+) -> Result<(Vec<Pass>, Option<[f64; 2]>), PathError> {
+    let grown = Zone::new(grid, (overlap / grid.cell).ceil() as i64);
+    let levels = crate::waterline::plan(mesh, wl)?;
+    Ok((
+        trim(levels.toolpath.passes, |p| grown.contains(p)),
+        levels.report.side_step_range,
+    ))
+}
+
 /// Plans steep-and-shallow finishing over `mesh` (module doc).
 ///
 /// # Units
@@ -197,10 +217,10 @@ pub fn plan(mesh: &TriMesh, params: &SteepShallowParams) -> Result<Plan, PathErr
             steep_angle: params.steep_angle,
             flat_angle: params.flat_angle,
             cell,
+            feed_angle: None,
         },
     )?;
-    let k = (params.overlap / cell).ceil() as i64;
-    let (grown, shrunk) = (Zone::new(&classes.grid, k), Zone::new(&classes.grid, -k));
+    let shrunk = Zone::new(&classes.grid, -((params.overlap / cell).ceil() as i64));
     let mut passes = Vec::new();
     let mut steps = Vec::new();
     if classes.steep.cells > 0 {
@@ -212,9 +232,9 @@ pub fn plan(mesh: &TriMesh, params: &SteepShallowParams) -> Result<Plan, PathErr
             direction: params.direction,
             ..WaterlineParams::new(params.finish.clone(), params.scallop)
         };
-        let levels = crate::waterline::plan(mesh, &wl)?;
-        steps.extend(levels.report.side_step_range.into_iter().flatten());
-        passes.extend(trim(levels.toolpath.passes, |p| grown.contains(p)));
+        let (levels, range) = steep_levels(mesh, &classes.grid, &wl, params.overlap)?;
+        passes.extend(levels);
+        steps.extend(range.into_iter().flatten());
     }
     // Lines out to a tool radius past the mesh, so that the cutter reaches the
     // part's edges where the surface falls toward them.

@@ -3,13 +3,15 @@
 //! raster leaves scallops far above the limit on the flanks; steep-and-shallow leaves
 //! no cell above `h + tol` and gouges none. On the boss the same holds everywhere a
 //! ball can reach: the concave feet of the ribs keep the ball's fillet (valley rest
-//! for a cleanup job), which is left out of the count by its closed form.
+//! for a cleanup job), which is left out of the count by its closed form
+//! ([`swarf_testkit::boss`]).
 
 use swarf_geom::TriMesh;
 use swarf_nc::read::{GcodeReadOptions, parse_gcode};
 use swarf_path::steep_shallow::{SteepShallowParams, plan};
 use swarf_path::{Finish, RasterParams};
 use swarf_sim::{Design, Quiet, Verification, VerifyOptions, verify};
+use swarf_testkit::boss::reach;
 use swarf_tool::Cutter;
 use swarf_toolpath::Toolpath;
 
@@ -67,16 +69,6 @@ fn wave_stays_within_the_scallop_where_the_raster_does_not() {
     assert!(dr.excess.cells > 100_000 && dr.excess.worst > 0.25);
 }
 
-/// Cells this close to the plate's open ends are left out, mm.
-const END: f64 = 1.0;
-
-/// Distance in XY (across y) from the foot of a rib wall within which a ball of
-/// radius `r` cannot reach a corner of wall angle `a` (degrees): it touches the floor
-/// `r tan(a / 2)` from the foot, and the wall as far up along it.
-fn fillet_band(r: f64, a: f64) -> f64 {
-    r * (0.5 * a.to_radians()).tan()
-}
-
 #[test]
 fn boss_stays_within_the_scallop_wherever_the_ball_reaches() {
     let mesh = swarf_io::builtin_mesh("boss").unwrap();
@@ -84,41 +76,16 @@ fn boss_stays_within_the_scallop_wherever_the_ball_reaches() {
     let h = 0.01;
     let ss = plan(&mesh, &SteepShallowParams::new(finish(&tool, 0.005), h)).unwrap();
     let v = cut(&mesh, &ss.toolpath, &tool, h, 0.05);
-    // Ribs (centre y, wall angle): flat tops 6 wide, 10 high (parts/README.md).
-    let ribs: [(f64, f64); 4] = [(30.0, 45.0), (65.0, 65.0), (95.0, 80.0), (120.0, 90.0)];
     let g = &v.grid;
-    let (mut counted, mut worst, mut gouge) = (0usize, 0.0f64, 0.0f64);
-    let mut at = (0.0, 0.0);
-    for (k, &dev) in v.deviation.values.iter().enumerate() {
-        if !dev.is_finite() {
-            continue;
-        }
-        let y = g.y(k / g.nx);
-        let unreachable = ribs.iter().any(|&(yc, a)| {
-            let foot = 3.0 + 10.0 / a.to_radians().tan();
-            let off = (y - yc).abs() - foot;
-            off > -fillet_band(5.0, a) * a.to_radians().cos() - 0.1
-                && off < fillet_band(5.0, a) + 0.1
-        });
-        gouge = gouge.min(dev);
-        // The plate ends at x = 0 and 80 with the ribs cut off open: the tool rounds
-        // the open ends there, which is no wall to hold a scallop limit on.
-        let x = g.x(k % g.nx);
-        let open_end = !(END..=80.0 - END).contains(&x);
-        if !unreachable && !open_end {
-            counted += 1;
-            if dev > worst {
-                worst = dev;
-                at = (x, y);
-            }
-        }
-    }
-    eprintln!(
-        "steep-shallow on boss: {counted} reachable cells, worst {worst} at {at:?}, deepest {gouge}"
+    let r = reach(&v.deviation.values, |k| [g.x(k % g.nx), g.y(k / g.nx)], 5.0);
+    eprintln!("steep-shallow on boss: {r:?}");
+    assert!(r.counted > 3_000_000);
+    assert!(r.deepest >= -TOL, "gouge {}", r.deepest);
+    assert!(
+        r.worst.0 <= h + TOL,
+        "worst reachable deviation {:?}",
+        r.worst
     );
-    assert!(counted > 3_000_000);
-    assert!(gouge >= -TOL, "gouge {gouge}");
-    assert!(worst <= h + TOL, "worst reachable deviation {worst}");
 }
 
 /// The same plan in one thread and in two: identical G-code.

@@ -64,7 +64,7 @@ impl Source<'_> {
 }
 
 /// What detection found.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Detection {
     /// The regions, after the boundary operations.
     pub regions: Vec<RestRegion>,

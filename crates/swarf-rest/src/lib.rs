@@ -11,6 +11,8 @@
 //! - [`cleanup`]: the cleanup tool path, with the patterns [`pencil`] (flow-cut) and
 //!   [`pocket`] (follow-pocket) (§5.4), their offsets at a constant stepover along
 //!   the surface ([`stepping`]).
+//! - [`steep`]: the walls a raster leaves too much on, cleaned up by Z-level passes
+//!   (§3.1.2, §6.2.2).
 //!
 //! Units: millimetres, radians.
 
@@ -23,6 +25,7 @@ pub mod pair;
 pub mod pencil;
 pub mod pocket;
 pub mod region;
+pub mod steep;
 pub mod stepping;
 pub mod stock;
 
@@ -31,3 +34,4 @@ pub use detect::{Detection, Source, detect};
 pub use error::RestError;
 pub use pair::{RestKind, RestPair};
 pub use region::{RegionParams, RestRegion};
+pub use steep::{RasterParent, SteepParams, SteepRest, plan_steep};

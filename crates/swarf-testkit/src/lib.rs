@@ -1,6 +1,7 @@
 //! swarf-testkit: the fixtures that the workspace's tests share, written once (dev-only,
 //! never published; every crate takes it as a dev-dependency).
 //!
+//! - [`boss`]: the built-in boss measured where a ball reaches it.
 //! - [`parts`]: the built-in die and wave, the exact cylinder and the groove.
 //! - [`machines`]: the example machine files and the repository root.
 //! - [`references`]: whether independent references (OpenCAMLib, `rs274`) are
@@ -11,6 +12,7 @@
 //! Fixtures only: independent oracles (brute-force samplers, closed forms) stay next
 //! to the tests they serve and share no code with what they check.
 
+pub mod boss;
 #[cfg(feature = "plan")]
 mod die;
 pub mod machines;

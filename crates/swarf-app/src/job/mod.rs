@@ -211,6 +211,27 @@ pub struct StrategyParams {
     /// before it (the parent's tool first); the job's tool cleans up last.
     #[serde(default)]
     pub chain: Vec<Cutter>,
+    /// Cleanup: the rest to clean up (default `["valley", "ramp"]`).
+    #[serde(default = "default_restmaterial")]
+    pub restmaterial: Vec<RestMaterial>,
+}
+
+/// A kind of rest a cleanup job cleans up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RestMaterial {
+    /// Valleys the parent's tool touched on two sides at once (regions from the
+    /// source; regions found on the stock count as valley and ramp rest).
+    Valley,
+    /// Where the parent's ramp limit held its tool above the part (regions).
+    Ramp,
+    /// Walls whose slope across a parent raster's passes leaves a scallop above the
+    /// threshold, cleaned up by Z-levels ([`swarf_rest::steep`]).
+    Steep,
+}
+
+fn default_restmaterial() -> Vec<RestMaterial> {
+    vec![RestMaterial::Valley, RestMaterial::Ramp]
 }
 
 /// A feed direction along a parameter, or a milling direction.

@@ -2,7 +2,7 @@
 //! strategy, feeds and linking, a cleanup job's parent and regions, and what a
 //! five-axis job can write.
 
-use super::{Direction, Job, RestSource};
+use super::{Direction, Job, RestMaterial, RestSource};
 use swarf_path::StrategyKind;
 
 impl Job {
@@ -125,7 +125,8 @@ impl Job {
         if s.kind == StrategyKind::SteepShallow && s.scallop.is_none() {
             return Err("strategy.scallop: steep-shallow needs the scallop height limit, mm (both spacings follow from it)".into());
         }
-        let milling = matches!(s.kind, StrategyKind::Waterline | StrategyKind::SteepShallow);
+        let milling = matches!(s.kind, StrategyKind::Waterline | StrategyKind::SteepShallow)
+            || (s.kind == StrategyKind::Cleanup && s.restmaterial.contains(&RestMaterial::Steep));
         match s.direction {
             Some(d @ (Direction::U | Direction::V)) if milling => Err(format!(
                 "strategy.direction: \"{}\" is a parameter direction; the {} strategy takes \"climb\" or \"conventional\"",
@@ -133,7 +134,7 @@ impl Job {
                 file_name(s.kind)
             )),
             Some(d @ (Direction::Climb | Direction::Conventional)) if !milling => Err(format!(
-                "strategy.direction: \"{}\" is a milling direction for waterline and steep-shallow; the {} strategy takes \"u\" or \"v\"",
+                "strategy.direction: \"{}\" is a milling direction for waterline, steep-shallow and steep cleanup; the {} strategy takes \"u\" or \"v\"",
                 file_name(d),
                 file_name(s.kind)
             )),
@@ -175,7 +176,41 @@ impl Job {
         if self.positioning.is_some() {
             return Err("positioning: cleanup paths are three-axis".into());
         }
+        self.validate_restmaterial()?;
         self.region_params().validate().map_err(|e| e.to_string())
+    }
+
+    /// The rest kinds a cleanup job names: some, each once; steep rest needs a
+    /// parent job and is cleaned up by the job's tool alone.
+    fn validate_restmaterial(&self) -> Result<(), String> {
+        let s = &self.strategy;
+        let kinds = &s.restmaterial;
+        if kinds.is_empty() {
+            return Err(
+                "strategy.restmaterial: expected one or more of \"valley\", \"ramp\" and \"steep\""
+                    .into(),
+            );
+        }
+        if let Some(k) = kinds
+            .iter()
+            .enumerate()
+            .find(|(i, k)| kinds[..*i].contains(k))
+        {
+            return Err(format!(
+                "strategy.restmaterial: \"{}\" is listed twice",
+                file_name(*k.1)
+            ));
+        }
+        if !kinds.contains(&RestMaterial::Steep) {
+            return Ok(());
+        }
+        if self.parent.as_ref().is_some_and(|p| p.job.is_none()) {
+            return Err("strategy.restmaterial: \"steep\" needs a parent raster job (parent.job): its stepover and feed direction decide where its scallop is too high".into());
+        }
+        if kinds.len() == 1 && !s.chain.is_empty() {
+            return Err("strategy.chain: steep rest alone is cleaned up by the job's tool in one stage; add \"valley\" or \"ramp\" to strategy.restmaterial for a chain".into());
+        }
+        Ok(())
     }
 
     /// The positioning's ranges and the outputs a five-axis job can write.

@@ -5,7 +5,11 @@
 //! normal, `n . a = cos s` where `s` is the facet's slope from horizontal. A triangle
 //! is *steep* when `n . a < cos(steep_angle)` (walls, vertical faces and overhangs
 //! included), *horizontal* when `n . a > cos(flat_angle)`, *other* in between;
-//! `flat_angle < steep_angle` keeps the two apart. Degenerate triangles (no normal)
+//! `flat_angle < steep_angle` keeps the two apart. With a feed angle `phi` the slope
+//! is the one raster passes fed along `phi` see instead (thesis 002 §3.1.2): with
+//! `c = (-sin phi, cos phi, 0)` across the passes, `sin s_c = |n . c|`, the slope of
+//! the facet's section normal to the feed (the passes then lie `d / cos(s_c)` apart
+//! along the facet); a wall the passes run down has `s_c = 0`. Degenerate triangles (no normal)
 //! have no class and no area; nor have triangles facing down (`n . a < 0` beyond
 //! vertical), which a tool coming from above never sees: the bottom of a closed
 //! solid would otherwise cover the whole part as steep.
@@ -64,6 +68,9 @@ pub struct ClassifyParams {
     pub flat_angle: f64,
     /// Side of the square Go-board cells, mm; finite and `> 0`. Default 1.
     pub cell: f64,
+    /// Slopes measured across raster passes fed along this XY angle (from +X,
+    /// radians; module doc) instead of the steepest slope. Default `None`.
+    pub feed_angle: Option<f64>,
 }
 
 impl Default for ClassifyParams {
@@ -72,6 +79,7 @@ impl Default for ClassifyParams {
             steep_angle: 40f64.to_radians(),
             flat_angle: 10f64.to_radians(),
             cell: 1.0,
+            feed_angle: None,
         }
     }
 }
@@ -126,14 +134,30 @@ impl ClassifyParams {
                 format!("{} mm: expected a finite cell size above 0", self.cell),
             );
         }
+        if self.feed_angle.is_some_and(|a| !a.is_finite()) {
+            return bad("classify.feed_angle", "expected a finite angle".to_string());
+        }
         Ok(())
     }
 
     /// The class of a facet with unit normal `normal` (module doc).
     pub fn class_of(&self, normal: &Vec3) -> SurfaceClass {
-        if normal.z < self.steep_angle.cos() {
+        let (steep, flat) = match self.feed_angle {
+            None => (
+                normal.z < self.steep_angle.cos(),
+                normal.z > self.flat_angle.cos(),
+            ),
+            Some(phi) => {
+                let across = (normal.y * phi.cos() - normal.x * phi.sin()).abs();
+                (
+                    across > self.steep_angle.sin(),
+                    across < self.flat_angle.sin(),
+                )
+            }
+        };
+        if steep {
             SurfaceClass::Steep
-        } else if normal.z > self.flat_angle.cos() {
+        } else if flat {
             SurfaceClass::Horizontal
         } else {
             SurfaceClass::Other

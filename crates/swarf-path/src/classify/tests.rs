@@ -39,6 +39,47 @@ fn walls_above(min_deg: f64) -> (f64, f64, f64) {
         })
 }
 
+/// Across passes fed at `phi` a wall of slope `a` facing y slopes by `s` with
+/// `sin s = sin a cos phi`: at 45 degrees the 40-degree limit keeps the walls above
+/// `asin(sin 40 / cos 45)` = 65.4 degrees; passes along y see no wall at all.
+#[test]
+fn slopes_across_the_feed_are_what_a_raster_sees() {
+    let mesh = boss();
+    let across = |phi: f64| {
+        let params = ClassifyParams {
+            feed_angle: Some(deg(phi)),
+            ..ClassifyParams::default()
+        };
+        classify(&mesh, &params).unwrap()
+    };
+    let limit = (deg(40.0).sin() / deg(45.0).cos()).asin().to_degrees();
+    for (phi, min_deg) in [(0.0, 40.0), (180.0, 40.0), (45.0, limit), (-45.0, limit)] {
+        let c = across(phi);
+        let (surface, _, _) = walls_above(min_deg);
+        assert!(
+            (c.steep.surface_area - surface).abs() < 1e-6,
+            "{phi}: {:?}",
+            c.steep
+        );
+    }
+    let along = across(90.0);
+    assert_eq!((along.steep.cells, along.steep.triangles), (0, 0));
+    // Every wall then slopes 0 across the passes: horizontal, as the floor.
+    assert_eq!(
+        (along.horizontal.triangles, along.other.triangles),
+        (mesh.len(), 0)
+    );
+    let e = classify(
+        &mesh,
+        &ClassifyParams {
+            feed_angle: Some(f64::NAN),
+            ..ClassifyParams::default()
+        },
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("classify.feed_angle"), "{e}");
+}
+
 fn plate(size: f64, z: impl Fn(f64, f64) -> f64) -> TriMesh {
     let p = |x: f64, y: f64| Point3::new(x, y, z(x, y));
     let n = 8;

@@ -37,6 +37,7 @@ pub fn run(args: &Args) -> Result<()> {
             steep_angle: args.steep_angle.to_radians(),
             flat_angle: args.flat_angle.to_radians(),
             cell: args.cell,
+            feed_angle: None,
         },
         tol: args.tol,
         out: &args.out,

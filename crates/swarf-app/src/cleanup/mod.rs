@@ -20,7 +20,15 @@
 //! min_area = 0.5
 //! smoothness = 0.5
 //! chain = ["ball:d=6"]            # intermediate tools: 12 -> 6 -> 4
+//! restmaterial = ["valley", "ramp"] # and/or "steep" (after a raster parent job)
 //! ```
+//!
+//! Steep rest ([`swarf_rest::steep`]) is the walls the parent raster's passes lie
+//! too far apart on: the job's tool cleans them up with Z-levels at the job's
+//! scallop (`direction` climb or conventional, `sampling`, `overlap` past the
+//! walls), after its own region passes in the last stage. A job that cleans up only
+//! steep rest has one stage; where the parent leaves none, its program is empty and
+//! says why.
 //!
 //! The first stage finds the rest from the chosen source; every later stage of a
 //! chain uses the previous stage's tool as its reference (crease scans). The last
@@ -28,16 +36,22 @@
 //! writes the same files with `.k` before the extension.
 
 use crate::error::{AppError, Context, Result, bail};
-use crate::job::{Job, RestSource};
+use crate::job::{Job, RestMaterial, RestSource};
 use crate::model::Model;
 use crate::plan::{PlanInput, plan};
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use swarf_geom::TriMesh;
+use swarf_path::waterline::WaterlineParams;
 use swarf_path::{Plan, PlanReport, StrategyKind};
-use swarf_rest::{CleanupParams, Detection, RegionParams, Source, detect, plan_cleanup};
+use swarf_rest::steep::SteepRest;
+use swarf_rest::{
+    CleanupParams, Detection, RasterParent, RegionParams, RestKind, Source, SteepParams, detect,
+    plan_cleanup, plan_steep,
+};
 use swarf_sim::{Design, Quiet, StockSpec, VerifyOptions};
 use swarf_tool::Cutter;
+use swarf_toolpath::top_z;
 
 /// One stage of a cleanup: its tool, what it was asked to clean up, its plan.
 #[derive(Debug)]
@@ -52,6 +66,11 @@ pub struct CleanupStage {
     pub detection: Detection,
     /// The cleanup tool path.
     pub plan: Plan,
+    /// The steep rest the stage cleans up too (the last stage of a job with
+    /// `restmaterial` "steep").
+    pub steep: Option<SteepRest>,
+    /// What the program's header says besides the usual (why it is empty).
+    pub notes: Vec<String>,
 }
 
 /// The part as a mesh: a mesh part as it is, patches tessellated within a tenth of
@@ -166,7 +185,8 @@ fn simulate_parent(
 ///
 /// # Errors
 /// A parent that cannot be read, planned or verified; a tool larger than the tool
-/// before it; the detection's and the planning's errors.
+/// before it; steep rest after a parent that is not a raster; the detection's and
+/// the planning's errors.
 pub fn plan_cleanup_job(job: &Job, model: &Model, job_dir: &Path) -> Result<Vec<CleanupStage>> {
     let Some(parent_spec) = &job.parent else {
         bail!("parent: a cleanup job needs a [parent] table");
@@ -176,11 +196,44 @@ pub fn plan_cleanup_job(job: &Job, model: &Model, job_dir: &Path) -> Result<Vec<
         (Some(rel), _) => Some(read_parent(rel, job_dir)?.0),
         (None, _) => None,
     };
-    let mut reference = parent
+    let reference = parent
         .as_ref()
         .map(|p| p.tool)
         .or(parent_spec.tool)
         .with_context(|| "parent: expected `job` or `tool`".into())?;
+    let kinds = &job.strategy.restmaterial;
+    let mut stages = if kinds.iter().any(|k| *k != RestMaterial::Steep) {
+        region_stages(job, parent.as_ref(), model, &mesh, reference)?
+    } else {
+        vec![CleanupStage {
+            tool: job.tool,
+            reference,
+            source: "raster",
+            detection: Detection::default(),
+            plan: Plan::from_passes(Vec::new(), &job.finish(), PlanReport::default(), Vec::new()),
+            steep: None,
+            notes: Vec::new(),
+        }]
+    };
+    if let (true, Some(parent), Some(last)) = (
+        kinds.contains(&RestMaterial::Steep),
+        &parent,
+        stages.last_mut(),
+    ) {
+        add_steep(job, parent, &mesh, last)?;
+    }
+    Ok(stages)
+}
+
+/// The stages that clean up the rest regions (valley and ramp rest): the job's chain
+/// of tools, then its own.
+fn region_stages(
+    job: &Job,
+    parent: Option<&Job>,
+    model: &Model,
+    mesh: &TriMesh,
+    mut reference: Cutter,
+) -> Result<Vec<CleanupStage>> {
     let tools: Vec<Cutter> = job
         .strategy
         .chain
@@ -188,26 +241,27 @@ pub fn plan_cleanup_job(job: &Job, model: &Model, job_dir: &Path) -> Result<Vec<
         .copied()
         .chain([job.tool])
         .collect();
+    let kinds = &job.strategy.restmaterial;
+    let wanted = |k: &RestKind| match k {
+        RestKind::Valley => kinds.contains(&RestMaterial::Valley),
+        RestKind::Ramp => kinds.contains(&RestMaterial::Ramp),
+        RestKind::Stock => true,
+    };
     let mut stages = Vec::with_capacity(tools.len());
     for (k, tool) in tools.into_iter().enumerate() {
         let start = std::time::Instant::now();
-        let (detection, source) = match (&parent, k) {
+        let settings = (job.strategy.tolerance, &job.region_params());
+        let (mut detection, source) = match (parent, k) {
             (Some(p), 0) => {
-                let settings = (job.strategy.tolerance, &job.region_params());
-                let d = detect_after(p, model, &mesh, job.strategy.source, settings)?;
+                let d = detect_after(p, model, mesh, job.strategy.source, settings)?;
                 (d, source_name(job.strategy.source))
             }
             _ => (
-                detect(
-                    &mesh,
-                    &reference,
-                    Source::Reference,
-                    job.strategy.tolerance,
-                    &job.region_params(),
-                )?,
+                detect(mesh, &reference, Source::Reference, settings.0, settings.1)?,
                 "reference",
             ),
         };
+        detection.regions.retain(|r| r.kinds.iter().any(wanted));
         let params = CleanupParams {
             finish: swarf_path::Finish {
                 tool,
@@ -218,7 +272,7 @@ pub fn plan_cleanup_job(job: &Job, model: &Model, job_dir: &Path) -> Result<Vec<
             scallop: job.strategy.scallop.unwrap_or(job.strategy.tolerance),
         };
         let toolpath =
-            plan_cleanup(&mesh, &detection.regions, &reference, &params).map_err(|e| {
+            plan_cleanup(mesh, &detection.regions, &reference, &params).map_err(|e| {
                 AppError::Message(format!("stage {} ({tool} after {reference}): {e}", k + 1))
             })?;
         let report = PlanReport {
@@ -235,10 +289,76 @@ pub fn plan_cleanup_job(job: &Job, model: &Model, job_dir: &Path) -> Result<Vec<
                 report,
                 double_contacts: Vec::new(),
             },
+            steep: None,
+            notes: Vec::new(),
         });
         reference = tool;
     }
     Ok(stages)
+}
+
+/// Adds the steep cleanup after the raster `parent` to `stage` (the job's tool): its
+/// Z-level passes after the stage's own, its steep rest, and a note where there is
+/// none.
+fn add_steep(job: &Job, parent: &Job, mesh: &TriMesh, stage: &mut CleanupStage) -> Result<()> {
+    let start = std::time::Instant::now();
+    if parent.strategy.kind != StrategyKind::Raster {
+        bail!(
+            "strategy.restmaterial: \"steep\" is the rest a raster leaves on walls, but the parent job is {:?}; use a raster parent or leave \"steep\" out",
+            parent.strategy.kind
+        );
+    }
+    let rows = plan(parent, PlanInput::Mesh(mesh))
+        .map_err(|e| AppError::Message(format!("parent.job: the parent job fails: {e}")))?;
+    let spacing = rows
+        .report
+        .side_step_range
+        .map(|r| r[0])
+        .with_context(|| "parent.job: the parent raster reports no spacing".into())?;
+    let raster = RasterParent {
+        tool: parent.tool,
+        spacing,
+        feed_angle: parent.angle_rad(),
+    };
+    let finish = swarf_path::Finish {
+        tool: job.tool,
+        ..job.finish()
+    };
+    let threshold = job.region_params().threshold;
+    let params = SteepParams {
+        waterline: WaterlineParams {
+            direction: job.milling(),
+            sampling: job.strategy.sampling,
+            ..WaterlineParams::new(finish.clone(), job.strategy.scallop.unwrap_or(threshold))
+        },
+        threshold,
+        overlap: job.strategy.overlap,
+    };
+    let (rest, passes) = plan_steep(mesh, &raster, &params)?;
+    if rest.region.cells == 0 {
+        stage.notes.push(format!(
+            "no steep rest: passes {spacing:.4} mm apart leave more than {threshold} mm only on slopes above {:.2} degrees across them, and the part has none",
+            rest.angle.to_degrees()
+        ));
+    }
+    let tp = &mut stage.plan.toolpath;
+    tp.passes.extend(passes);
+    tp.linking = finish.linking.for_top(top_z(&tp.passes));
+    stage.plan.report.elapsed_s += start.elapsed().as_secs_f64();
+    stage.steep = Some(rest);
+    Ok(())
+}
+
+/// The steep rest of a stage as JSON: the angle, the area, the level steps.
+pub fn steep_json(rest: &SteepRest) -> serde_json::Value {
+    serde_json::json!({
+        "angle_deg": rest.angle.to_degrees(),
+        "xy_area_mm2": rest.region.xy_area,
+        "surface_area_mm2": rest.region.surface_area,
+        "triangles": rest.region.triangles,
+        "cells": rest.region.cells,
+        "level_step_mm": rest.level_step,
+    })
 }
 
 /// The name of a rest source in reports.
@@ -309,137 +429,4 @@ pub fn boundaries_csv(d: &Detection) -> String {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::model::load_model;
-
-    fn job(text: &str) -> Result<Job> {
-        Job::parse(text, "test.toml")
-    }
-
-    const PENCIL: &str = r#"
-        part = "builtin:v-grooves"
-        tool = "ball:d=4"
-        [parent]
-        tool = "ball:d=12"
-        [strategy]
-        kind = "cleanup"
-        pattern = "flow-cut"
-        scallop = 0.01
-    "#;
-
-    #[test]
-    fn a_chain_cleans_up_after_each_tool_in_turn() {
-        let text = PENCIL.replace(
-            "kind = \"cleanup\"",
-            "kind = \"cleanup\"\nchain = [\"ball:d=8\"]",
-        );
-        let j = job(&text).unwrap();
-        let model = load_model(&j.part).unwrap();
-        let stages = plan_cleanup_job(&j, &model, Path::new(".")).unwrap();
-        assert_eq!(stages.len(), 2);
-        assert_eq!(
-            (stages[0].reference.to_string(), stages[0].tool.to_string()),
-            ("ball:d=12".into(), "ball:d=8".into())
-        );
-        assert_eq!(
-            (stages[1].reference.to_string(), stages[1].tool.to_string()),
-            ("ball:d=8".into(), "ball:d=4".into())
-        );
-        // Each stage's rest is the closed form of its reference ball in the 90 degree
-        // groove: R / sin 45 - R.
-        for s in &stages {
-            let r = s.reference.radius();
-            let exact = r * 2f64.sqrt() - r;
-            let groove = s
-                .detection
-                .regions
-                .iter()
-                .find(|g| (g.deepest.x - 55.0).abs() < 1.0)
-                .unwrap();
-            assert!(
-                (groove.depth - exact).abs() < 1e-6,
-                "{} vs {exact}",
-                groove.depth
-            );
-            assert!(!s.plan.toolpath.passes.is_empty());
-        }
-        assert_eq!(stage_file("out/pocket.ngc", 1), "out/pocket.1.ngc");
-    }
-
-    #[test]
-    fn cleanup_jobs_say_what_is_wrong() {
-        let bad = |from: &str, to: &str| job(&PENCIL.replace(from, to)).unwrap_err().to_string();
-        assert!(bad("[parent]\n        tool = \"ball:d=12\"", "").contains("[parent]"));
-        assert!(
-            bad(
-                "tool = \"ball:d=12\"",
-                "tool = \"ball:d=12\"\n        job = \"f.toml\""
-            )
-            .contains("exactly one")
-        );
-        assert!(
-            bad(
-                "pattern = \"flow-cut\"",
-                "pattern = \"flow-cut\"\n        merge = 0"
-            )
-            .contains("strategy.merge")
-        );
-        assert!(
-            bad(
-                "pattern = \"flow-cut\"",
-                "pattern = \"flow-cut\"\n        overlap = -1"
-            )
-            .contains("strategy.overlap")
-        );
-        assert!(
-            bad(
-                "pattern = \"flow-cut\"",
-                "pattern = \"flow-cut\"\n        min_area = 0"
-            )
-            .contains("strategy.min_area")
-        );
-        assert!(
-            bad(
-                "pattern = \"flow-cut\"",
-                "pattern = \"flow-cut\"\n        source = \"stock\""
-            )
-            .contains("parent job")
-        );
-        assert!(
-            bad("pattern = \"flow-cut\"", "pattern = \"spiral\"").contains("expected `flow-cut`")
-        );
-        // A parent job that does not exist; a cleanup tool larger than the parent's.
-        let j =
-            job(&PENCIL.replace("tool = \"ball:d=12\"", "job = \"no-such-finish.toml\"")).unwrap();
-        let model = load_model(&j.part).unwrap();
-        let e = plan_cleanup_job(&j, &model, Path::new("/nonexistent"))
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("no-such-finish.toml"), "{e}");
-        let j = job(&PENCIL.replace("tool = \"ball:d=4\"", "tool = \"ball:d=16\"")).unwrap();
-        let e = plan_cleanup_job(&j, &model, Path::new("."))
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("ball:d=16") && e.contains("ball:d=12"), "{e}");
-    }
-
-    #[test]
-    fn no_rest_gives_an_empty_program_that_says_so() {
-        let dir = std::env::temp_dir().join(format!("swarf-cleanup-empty-{}", std::process::id()));
-        // Rest thinner than 100 mm is left alone: none is left to clean up.
-        let text = PENCIL.replace("scallop = 0.01", "scallop = 0.01\n        threshold = 100")
-            + "[output]\ngcode = \"empty.ngc\"\n";
-        let j = job(&text).unwrap();
-        let summary =
-            crate::plan_job::plan_job(&j, Path::new("."), &dir, &swarf_sim::Quiet).unwrap();
-        assert_eq!(summary["passes"], 0);
-        assert_eq!(summary["rest"]["regions"].as_array().unwrap().len(), 0);
-        let g = std::fs::read_to_string(dir.join("empty.ngc")).unwrap();
-        assert!(
-            g.contains("no passes: nothing to cut") && g.contains("M30"),
-            "{g}"
-        );
-        std::fs::remove_dir_all(&dir).ok();
-    }
-}
+mod tests;
