@@ -101,8 +101,8 @@ fn the_boss_rest_is_the_walls_above_the_angle() {
         assert!((rest.region.surface_area - surface).abs() < 1e-6 * surface);
         // The XY region is the walls' projection plus the cells the vertical walls
         // meet, which are steep whole (two sides, 80 long, cells of a quarter radius).
-        assert!(rest.region.xy_area >= xy - 1e-6);
-        assert!(rest.region.xy_area <= xy + 2.0 * 80.0 * 1.25 + 1e-6);
+        assert!(rest.region.xy_area >= xy - 1e-3);
+        assert!(rest.region.xy_area <= xy + 2.0 * 80.0 * 1.25 + 1e-3);
         assert!(!passes.is_empty());
         // Every level stays on the steep walls and the overlap past them.
         for p in passes.iter().flat_map(|p| &p.points) {
