@@ -79,3 +79,73 @@ fn a_ramp_limited_raster_leaves_ramp_rest_where_the_flanks_are_steeper() {
         lift_90.depth
     );
 }
+
+/// The ramp step under a 20-degree limit (parts/README.md): a ball of radius 5
+/// leaves the plateau at CL x = 41.710 (tip z = 19.698), goes down at tan 20 and
+/// lands on the floor at x = 95.831, lifted most (12.288 mm) at x = 62.071; the ramp
+/// rest spans x in [40, 95.831].
+#[test]
+fn the_ramp_step_is_cut_at_the_limit_and_its_rest_found() {
+    let mesh = swarf_io::builtin_mesh("ramp-step").unwrap();
+    let ball: Cutter = "ball:d=10".parse().unwrap();
+    let mut params = RasterParams::new(Finish::new(ball), 2.0);
+    params.max_ramp = Some(20f64.to_radians());
+    let plan = swarf_path::raster::plan(&mesh, &params).unwrap();
+    let k = 20f64.to_radians().tan();
+    // Exact: the ball rolls off the edge (x = 40, z = 20) where its CL arc falls at
+    // 20 degrees, 5 sin 20 past it.
+    let (x0, z0) = (
+        40.0 + 5.0 * 20f64.to_radians().sin(),
+        15.0 + 5.0 * 20f64.to_radians().cos(),
+    );
+    let limited = |x: f64| (z0 - k * (x - x0)).clamp(0.0, 20.0);
+    let dropper = MeshDropper::new(&mesh, &ball);
+    let mut s = DropScratch::default();
+    let mut lift = (0.0f64, 0.0);
+    for q in plan.toolpath.passes.iter().flat_map(|p| &p.points) {
+        let c = q.pose.cl;
+        if (41.8..95.7).contains(&c.x) {
+            // The limit holds between CL points, which the planner spaces to its
+            // tolerance: the descent starts up to that late.
+            assert!(
+                (c.z - limited(c.x)).abs() < 0.01,
+                "{c:?} vs {}",
+                limited(c.x)
+            );
+        }
+        let drop = dropper.drop(c.x, c.y, &mut s).unwrap().z;
+        if c.z - drop > lift.0 {
+            lift = (c.z - drop, c.x);
+        }
+    }
+    assert!(
+        (lift.0 - 12.288).abs() < 0.01 && (lift.1 - 62.071).abs() < 0.1,
+        "{lift:?}"
+    );
+    let det = detect(
+        &mesh,
+        &ball,
+        Source::Contacts(&plan.double_contacts),
+        0.01,
+        &RegionParams {
+            overlap: 0.01,
+            ..RegionParams::default()
+        },
+    )
+    .unwrap();
+    let ramp: Vec<_> = det
+        .regions
+        .iter()
+        .filter(|r| r.kinds.contains(&RestKind::Ramp))
+        .collect();
+    assert_eq!(ramp.len(), 1);
+    let xs = ramp[0].boundary.exterior().coords().map(|c| c.x);
+    let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+        (l.min(x), h.max(x))
+    });
+    eprintln!("ramp rest x in [{lo}, {hi}], depth {}", ramp[0].depth);
+    assert!(
+        (lo - 40.0).abs() < 1.0 && (hi - 95.831).abs() < 1.0,
+        "[{lo}, {hi}]"
+    );
+}
