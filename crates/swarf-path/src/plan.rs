@@ -60,6 +60,19 @@ pub struct PlanReport {
     pub elapsed_s: f64,
 }
 
+impl PlanReport {
+    /// The smallest and largest of `steps` (mm) as a side step range; `None` for
+    /// none.
+    pub fn step_range(steps: &[f64]) -> Option<[f64; 2]> {
+        (!steps.is_empty()).then(|| {
+            [
+                steps.iter().copied().fold(f64::INFINITY, f64::min),
+                steps.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            ]
+        })
+    }
+}
+
 /// A planned job: the tool path and what the strategy reports about it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plan {

@@ -260,10 +260,7 @@ pub fn plan(mesh: &TriMesh, params: &SteepShallowParams) -> Result<Plan, PathErr
     }
     let report = PlanReport {
         predicted_max_scallop: Some(params.scallop),
-        side_step_range: Some([
-            steps.iter().copied().fold(f64::INFINITY, f64::min),
-            steps.iter().copied().fold(0.0, f64::max),
-        ]),
+        side_step_range: PlanReport::step_range(&steps),
         ..PlanReport::default()
     };
     Ok(Plan::from_passes(

@@ -217,12 +217,7 @@ pub fn plan(mesh: &TriMesh, params: &WaterlineParams) -> Result<Plan, PathError>
     let steps: Vec<f64> = contours.windows(2).map(|w| w[0].z - w[1].z).collect();
     let report = PlanReport {
         predicted_max_scallop: params.scallop.filter(|_| params.level_step.is_none()),
-        side_step_range: (!steps.is_empty()).then(|| {
-            [
-                steps.iter().copied().fold(f64::INFINITY, f64::min),
-                steps.iter().copied().fold(0.0, f64::max),
-            ]
-        }),
+        side_step_range: PlanReport::step_range(&steps),
         ..PlanReport::default()
     };
     Ok(Plan::from_passes(
