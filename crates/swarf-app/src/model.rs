@@ -21,8 +21,10 @@ pub enum Model {
 /// Names of the built-in parts (patches, then meshes), for messages.
 pub fn builtin_names() -> Vec<&'static str> {
     let parts = swarf_io::builtin_parts().map(|(n, _)| n);
+    let own = swarf_io::project_parts().map(|(n, _)| n);
     parts
         .into_iter()
+        .chain(own)
         .chain(swarf_io::builtin_mesh_names())
         .collect()
 }

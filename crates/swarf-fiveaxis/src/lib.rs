@@ -5,6 +5,8 @@
 //! - [`autotilt`]: the smallest gouge-free lead at every CC point, smoothed (§7.3).
 //! - [`lead_bound`]: the least lead the design's curvature along the feed allows (ch. 7-8).
 //! - [`positioning`]: both as a job's `positioning` table asks, with gouge reports.
+//! - [`dsm`]: multipoint drop-and-spin positioning at the common edge of two faces
+//!   (paper 003).
 //!
 //! Swept surfaces and gouges (thesis 000 ch. 3, 5, 7):
 //! - [`motion`]: the velocity field of the tool at a pose of a path.
@@ -24,6 +26,7 @@
 pub mod autotilt;
 pub mod cc_paths;
 pub mod design;
+pub mod dsm;
 pub mod error;
 pub mod gencurve;
 pub mod gouge;

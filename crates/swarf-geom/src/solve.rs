@@ -82,6 +82,90 @@ pub fn golden_max(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, steps: usize) 
     }
 }
 
+/// The bracket [`illinois`] ends with: each end and its value, the first end keeping
+/// the sign of `f(a)`.
+pub type Bracket = [(f64, f64); 2];
+
+/// A root of a continuous `f` between `a` and `b`, where `fa = f(a)` and `fb = f(b)`
+/// have opposite signs (or one is 0): the Illinois variant of regula falsi (the
+/// retained end's value halved when the same end is kept twice), with a bisection
+/// step whenever a step shrinks the bracket by less than half. Stops when the
+/// bracket is `tol` wide, `f` is exactly 0, or after `max_steps` evaluations.
+///
+/// ```
+/// use swarf_geom::solve::illinois;
+/// let f = |x: f64| x * x - 2.0;
+/// let [lo, hi] = illinois(f, 0.0, 2.0, f(0.0), f(2.0), 1e-12, 200);
+/// assert!((lo.0 - 2f64.sqrt()).abs() < 1e-12 && lo.1 <= 0.0 && hi.1 >= 0.0);
+/// ```
+pub fn illinois(
+    mut f: impl FnMut(f64) -> f64,
+    a: f64,
+    b: f64,
+    fa: f64,
+    fb: f64,
+    tol: f64,
+    max_steps: usize,
+) -> Bracket {
+    let (mut lo, mut hi) = ((a, fa), (b, fb));
+    if fa == 0.0 {
+        return [lo, lo];
+    }
+    if fb == 0.0 {
+        return [hi, hi];
+    }
+    let (mut wa, mut wb) = (fa, fb);
+    let mut side = 0i8;
+    for _ in 0..max_steps {
+        let width = (hi.0 - lo.0).abs();
+        if width <= tol {
+            break;
+        }
+        let mut x = hi.0 - wb * (hi.0 - lo.0) / (wb - wa);
+        let (near, far) = (lo.0.min(hi.0), lo.0.max(hi.0));
+        if !(x > near && x < far) {
+            x = 0.5 * (lo.0 + hi.0);
+        }
+        let fx = f(x);
+        if fx == 0.0 {
+            return [(x, fx), (x, fx)];
+        }
+        let old = width;
+        if (fx < 0.0) == (fa < 0.0) {
+            lo = (x, fx);
+            wa = fx;
+            if side == -1 {
+                wb *= 0.5;
+            }
+            side = -1;
+        } else {
+            hi = (x, fx);
+            wb = fx;
+            if side == 1 {
+                wa *= 0.5;
+            }
+            side = 1;
+        }
+        if (hi.0 - lo.0).abs() > 0.5 * old {
+            // A slow step: bisect once.
+            let m = 0.5 * (lo.0 + hi.0);
+            let fm = f(m);
+            if fm == 0.0 {
+                return [(m, fm), (m, fm)];
+            }
+            if (fm < 0.0) == (fa < 0.0) {
+                lo = (m, fm);
+                wa = fm;
+            } else {
+                hi = (m, fm);
+                wb = fm;
+            }
+            side = 0;
+        }
+    }
+    [lo, hi]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

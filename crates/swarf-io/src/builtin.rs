@@ -1,6 +1,7 @@
 //! The four shared test parts, embedded in the binary so that `swarf demo` and the
 //! benches need no files. The texts are the project's copies in `parts/`, which a
-//! test keeps byte-identical to `../shared/parts` where that folder exists.
+//! test keeps byte-identical to `../shared/parts` where that folder exists. The
+//! project's own patch parts (`parts/README.md`) are embedded beside them.
 
 use crate::part::parse_part;
 use swarf_geom::Part;
@@ -9,6 +10,17 @@ const DIE: &str = include_str!("../../../parts/die.toml");
 const WAVE: &str = include_str!("../../../parts/wave.toml");
 const EDGE_CONVEX: &str = include_str!("../../../parts/edge-convex.toml");
 const EDGE_CONCAVE: &str = include_str!("../../../parts/edge-concave.toml");
+const WEDGE_SYMMETRIC: &str = include_str!("../../../parts/wedge-symmetric.toml");
+const WEDGE_30_45: &str = include_str!("../../../parts/wedge-30-45.toml");
+
+/// `(name, part file text)` of the project's own built-in patch parts: the planar
+/// wedges of paper 003's closed forms.
+pub fn project_parts() -> [(&'static str, &'static str); 2] {
+    [
+        ("wedge-symmetric", WEDGE_SYMMETRIC),
+        ("wedge-30-45", WEDGE_30_45),
+    ]
+}
 
 /// `(name, part file text)` of the built-in parts: `die`, `wave`, `edge-convex`,
 /// `edge-concave`.
@@ -32,7 +44,10 @@ pub fn builtin_parts() -> [(&'static str, &'static str); 4] {
 /// ```
 pub fn builtin_part(name: &str) -> Option<Part> {
     let name = name.strip_suffix(".toml").unwrap_or(name);
-    let (file, text) = builtin_parts().into_iter().find(|(n, _)| *n == name)?;
+    let (file, text) = builtin_parts()
+        .into_iter()
+        .chain(project_parts())
+        .find(|(n, _)| *n == name)?;
     parse_part(text, &format!("{file}.toml (built in)")).ok()
 }
 
@@ -74,6 +89,12 @@ mod tests {
             assert!(!part.patches.is_empty());
         }
         assert_eq!(builtin_part("edge-convex").unwrap().patches.len(), 2);
+        for (name, text) in project_parts() {
+            let file = format!("{name}.toml");
+            let project = std::fs::read_to_string(dir("../../parts").join(&file)).unwrap();
+            assert_eq!(project, text, "parts/{file} differs from the embedded text");
+            assert_eq!(builtin_part(name).unwrap().patches.len(), 2);
+        }
     }
 
     /// The control points are the file's, read independently through `toml::Table`.

@@ -21,7 +21,7 @@ pub mod rest_parts;
 pub mod stl;
 
 pub use atomic::{write_atomic, write_atomic_with};
-pub use builtin::{builtin_part, builtin_parts};
+pub use builtin::{builtin_part, builtin_parts, project_parts};
 pub use csv::{parse_xy_points, read_xy_points};
 pub use error::{At, IoError};
 pub use mesh_file::read_mesh;
