@@ -41,6 +41,10 @@ enum Command {
     Compare(cmd::compare::Args),
     /// Drop a cutter onto a triangle mesh at many XY points (CSV in, CSV out).
     Drop(cmd::drop::Args),
+    /// Drop-and-spin five-axis positioning at the common edge of two faces (paper
+    /// 003): the edge, the spin zone and both spins at a footprint or across a
+    /// reference line, as JSON.
+    Dsm(cmd::dsm::Args),
     /// Run the main job on the built-in shared parts and write the results.
     Demo(cmd::demo::Args),
 }
@@ -54,6 +58,7 @@ fn main() -> ExitCode {
         Command::Plan(a) => cmd::plan::run(&a),
         Command::Demo(a) => cmd::demo::run(&a),
         Command::Drop(a) => cmd::drop::run(&a),
+        Command::Dsm(a) => cmd::dsm::run(&a),
         Command::Verify(a) => cmd::verify::run(&a),
         Command::Compare(a) => cmd::compare::run(&a),
         Command::Rest(a) => cmd::rest::run(&a),

@@ -41,6 +41,7 @@ fn help_lists_every_subcommand() {
         "demo",
         "rest",
         "classify",
+        "dsm",
     ] {
         assert!(
             text.contains(&format!("  {sub}")),

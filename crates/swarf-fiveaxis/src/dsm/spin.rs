@@ -4,7 +4,7 @@ use super::{CONTACT_TOL, Clearance, Dsm, ROOT_TOL, SPIN_SCAN};
 use crate::error::FiveAxisError;
 use crate::machine::kinematics::rotate;
 use serde::Serialize;
-use swarf_geom::solve::illinois;
+use swarf_geom::solve::{golden_max, illinois};
 use swarf_geom::{Point3, Vec3};
 use swarf_tool::Pose;
 
@@ -148,6 +148,7 @@ impl Dsm {
             let steps = (std::f64::consts::PI / SPIN_SCAN).ceil() as usize;
             let (mut prev, mut fp) = (0.0, f0);
             let mut found = None;
+            let mut best = (0.0, f0);
             for i in 1..=steps {
                 let a = i as f64 * SPIN_SCAN;
                 let fa = f(a);
@@ -156,9 +157,24 @@ impl Dsm {
                     found = Some(hi.0);
                     break;
                 }
+                if fa > best.1 {
+                    best = (a, fa);
+                }
                 (prev, fp) = (a, fa);
             }
-            found?
+            // At the zone's end the clearance only touches 0 (a double root the scan
+            // steps over): the best spin, where it clears within the tolerance.
+            match found {
+                Some(a) => a,
+                None => {
+                    let g = golden_max(f, best.0 - SPIN_SCAN, best.0 + SPIN_SCAN, 60);
+                    let (a, v) = g.best?;
+                    if v < -CONTACT_TOL {
+                        return None;
+                    }
+                    a
+                }
+            }
         };
         let pose = self.spun(drop, sign * root);
         let c = self.clearance(other, &pose)?;

@@ -84,16 +84,19 @@ impl Dsm {
     /// from `>= 0` to `< 0`, refined; `None` where it does not.
     fn descent(f: impl Fn(f64) -> Option<f64>, from: f64, to: f64, step: f64) -> Option<f64> {
         let n = ((to - from) / step).ceil().clamp(1.0, 1e5) as usize;
-        let mut prev = (from, f(from)?);
-        for i in 1..=n {
+        let mut prev: Option<(f64, f64)> = None;
+        for i in 0..=n {
             let w = from + (to - from) * i as f64 / n as f64;
             let Some(v) = f(w) else { continue };
-            if prev.1 >= 0.0 && v < 0.0 {
+            if let Some(prev) = prev
+                && prev.1 >= 0.0
+                && v < 0.0
+            {
                 let g = |x: f64| f(x).unwrap_or(f64::NAN);
                 let [ok, _] = illinois(g, prev.0, w, prev.1, v, ROOT_TOL, 200);
                 return Some(ok.0);
             }
-            prev = (w, v);
+            prev = Some((w, v));
         }
         None
     }
@@ -119,8 +122,19 @@ impl Dsm {
             bad("the dropped tool never touches the other face within two tool radii of the edge")
         })?;
         let ball = |w: f64| self.ball_gap(station, k, w);
-        let t2_ball = Self::descent(ball, t1, t1 + 3.0 * radius, step)
-            .ok_or_else(|| bad("the insert's ball never reaches the other face past T1"))?;
+        let t2_ball = Self::descent(ball, t1, t1 + 3.0 * radius, step).ok_or_else(|| {
+            // Say why: usually the drops past T1 fall off a face (a cutter too large
+            // for the faces).
+            let why = (1..=12)
+                .find_map(|i| {
+                    let w = t1 + 0.25 * radius * f64::from(i);
+                    self.drop_on(k, self.footprint(station, k, w)).err()
+                })
+                .map_or_else(String::new, |e| format!(" ({e})"));
+            bad(&format!(
+                "the insert's ball never reaches the other face past T1 = {t1:.6}{why}"
+            ))
+        })?;
         let best = |w: f64| self.best_spin(station, k, w).map(|b| b.0);
         let inside = t1 + 1e-9 * radius;
         let t2 = Self::descent(best, inside, t2_ball + step, 0.1 * (t2_ball - t1).max(1e-6))

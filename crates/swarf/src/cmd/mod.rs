@@ -4,6 +4,7 @@ pub mod classify;
 pub mod compare;
 pub mod demo;
 pub mod drop;
+pub mod dsm;
 pub mod eval;
 pub mod inspect;
 pub mod plan;

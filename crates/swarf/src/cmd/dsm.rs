@@ -1,0 +1,53 @@
+//! `swarf dsm PART --tool bull:d=12,r=2 --station 50 [--offset W] [--faces 0,1]
+//! [--along DEG] [--footprints N]`: the drop-and-spin method at one footprint or
+//! along one reference line across the common edge of two faces, as JSON on stdout
+//! ([`swarf_app::dsm`]).
+
+use anyhow::Result;
+use swarf_app::dsm::{DsmRequest, dsm_report};
+use swarf_tool::Cutter;
+
+/// Arguments of `swarf dsm`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The part: a part file (.toml) or a built-in part name (edge-convex, ...).
+    part: String,
+    /// The cutter: a bull (`bull:d=12,r=2,length=30`) or a ball.
+    #[arg(long)]
+    tool: Cutter,
+    /// The two faces (patch indices): dropped on the first, spun onto the second.
+    #[arg(long, value_delimiter = ',', default_values_t = [0, 1])]
+    faces: Vec<usize>,
+    /// The edge's overall direction in XY, degrees from +X.
+    #[arg(long, default_value_t = 0.0)]
+    along: f64,
+    /// Position of the reference line along that direction, mm.
+    #[arg(long)]
+    station: f64,
+    /// One footprint: its offset from the edge toward the second face, mm (default:
+    /// the whole zone on the reference line).
+    #[arg(long, allow_negative_numbers = true)]
+    offset: Option<f64>,
+    /// Footprints across the zone, its ends included.
+    #[arg(long, default_value_t = 5)]
+    footprints: usize,
+}
+
+/// Runs the subcommand.
+pub fn run(args: &Args) -> Result<()> {
+    let [a, b] = args.faces[..] else {
+        anyhow::bail!("--faces: expected two patch indices, as 0,1");
+    };
+    let req = DsmRequest {
+        part: args.part.clone(),
+        tool: args.tool,
+        faces: [a, b],
+        along: args.along,
+        station: args.station,
+        offset: args.offset,
+        footprints: args.footprints,
+    };
+    let report = dsm_report(&req)?;
+    println!("{}", serde_json::to_string_pretty(&report)?);
+    Ok(())
+}

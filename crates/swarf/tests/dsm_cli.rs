@@ -1,0 +1,101 @@
+//! `swarf dsm` as a user runs it: the zone and spins on a wedge against the closed
+//! forms, and errors that say what is wrong.
+
+use std::process::{Command, Output};
+
+fn swarf(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_swarf"))
+        .args(args)
+        .output()
+        .expect("the swarf binary runs")
+}
+
+#[test]
+fn the_wedge_zone_and_spins() {
+    let o = swarf(&[
+        "dsm",
+        "wedge-30-45",
+        "--tool",
+        "bull:d=12,r=2,length=30",
+        "--station",
+        "50",
+        "--footprints",
+        "3",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    // b = 30, g = 45 degrees, R = 4, r = 2 (parts/README.md).
+    let (tb, tg) = (30f64.to_radians().tan(), 1.0);
+    let (sb, sg) = (1.0 / 30f64.to_radians().cos(), 2f64.sqrt());
+    let t1 = (4.0 * (tb - tg) + 2.0 * (sb - sg)) / (tb + tg);
+    let z = &v["zone"];
+    assert!((z["t1_mm"].as_f64().unwrap() - t1).abs() < 1e-9, "{z}");
+    let line = v["footprints"].as_array().unwrap();
+    assert_eq!(line.len(), 3);
+    // Inside the zone each spin clears the other face and touches it; at its end
+    // (a double root) within the contact tolerance.
+    for (k, f) in line.iter().enumerate() {
+        let lo = if k + 1 < line.len() { 0.0 } else { -1e-6 };
+        for side in ["spin_plus", "spin_minus"] {
+            let c = f[side]["clearance_mm"].as_f64().unwrap();
+            assert!((lo..1e-6).contains(&c), "{f}");
+        }
+    }
+}
+
+#[test]
+fn dsm_says_what_is_wrong() {
+    let err = |args: &[&str]| {
+        let o = swarf(args);
+        assert!(!o.status.success());
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let e = err(&["dsm", "die", "--tool", "bull:d=12,r=2", "--station", "50"]);
+    assert!(e.contains("faces") && e.contains("below 1"), "{e}");
+    let e = err(&["dsm", "boss", "--tool", "bull:d=12,r=2", "--station", "50"]);
+    assert!(e.contains("patch part"), "{e}");
+    let e = err(&[
+        "dsm",
+        "edge-convex",
+        "--tool",
+        "bull:d=12,r=2",
+        "--station",
+        "500",
+    ]);
+    assert!(
+        e.contains("station 500") && e.contains("do not cross"),
+        "{e}"
+    );
+    let e = err(&[
+        "dsm",
+        "edge-convex",
+        "--tool",
+        "flat:d=12",
+        "--station",
+        "50",
+    ]);
+    assert!(e.contains("bull or ball"), "{e}");
+    let e = err(&[
+        "dsm",
+        "edge-convex",
+        "--tool",
+        "bull:d=80,r=30",
+        "--station",
+        "50",
+    ]);
+    assert!(
+        e.contains("station 50") && e.contains("does not lie under"),
+        "{e}"
+    );
+    let e = err(&[
+        "dsm",
+        "edge-convex",
+        "--tool",
+        "bull:d=12,r=2",
+        "--station",
+        "50",
+        "--faces",
+        "0",
+    ]);
+    assert!(e.contains("--faces"), "{e}");
+}
