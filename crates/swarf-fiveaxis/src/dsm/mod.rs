@@ -52,8 +52,8 @@ pub use edge::Station;
 pub use spin::{Drop, Spin, SpinSide};
 pub use zone::{Binding, Zone};
 
-/// Spin angles are scanned in steps of this, radians (half a degree).
-pub const SPIN_SCAN: f64 = 0.5 * std::f64::consts::PI / 180.0;
+/// Spin angles are scanned in steps of this, radians (two degrees).
+pub const SPIN_SCAN: f64 = 2.0 * std::f64::consts::PI / 180.0;
 /// Roots (heights, angles, offsets) are refined until their bracket is this narrow.
 pub const ROOT_TOL: f64 = 1e-12;
 /// A pose clears a face when its clearance is at least minus this, mm.
