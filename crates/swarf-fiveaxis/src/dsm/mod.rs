@@ -31,6 +31,8 @@
 //!   spin): the real limit is where the best spin's clearance, maximised over the
 //!   full turn, drops to 0, and the tool part holding the deepest point there is
 //!   named.
+//! - **Passes** ([`passes`]). One pass per zone fraction along the edge, a pose per
+//!   station, cutting with the leading or trailing side.
 //!
 //! Two planes meeting in a valley give closed forms (offsets `w` from the edge toward
 //! S2, S1 falling at `b` toward it, S2 rising at `g`, insert-centre radius `R`, insert
@@ -44,11 +46,13 @@
 
 pub mod clearance;
 pub mod edge;
+pub mod passes;
 pub mod spin;
 pub mod zone;
 
 pub use clearance::{Clearance, Face};
 pub use edge::Station;
+pub use passes::{EdgePasses, EdgePose, PassParams, Side, StationIssue};
 pub use spin::{Drop, Spin, SpinSide};
 pub use zone::{Binding, Zone};
 
