@@ -45,57 +45,39 @@ fn the_wedge_zone_and_spins() {
 
 #[test]
 fn dsm_says_what_is_wrong() {
-    let err = |args: &[&str]| {
-        let o = swarf(args);
-        assert!(!o.status.success());
-        String::from_utf8_lossy(&o.stderr).into_owned()
-    };
-    let e = err(&["dsm", "die", "--tool", "bull:d=12,r=2", "--station", "50"]);
-    assert!(e.contains("faces") && e.contains("below 1"), "{e}");
-    let e = err(&["dsm", "boss", "--tool", "bull:d=12,r=2", "--station", "50"]);
-    assert!(e.contains("patch part"), "{e}");
-    let e = err(&[
-        "dsm",
-        "edge-convex",
-        "--tool",
-        "bull:d=12,r=2",
-        "--station",
-        "500",
-    ]);
-    assert!(
-        e.contains("station 500") && e.contains("do not cross"),
-        "{e}"
-    );
-    let e = err(&[
-        "dsm",
-        "edge-convex",
-        "--tool",
-        "flat:d=12",
-        "--station",
-        "50",
-    ]);
-    assert!(e.contains("bull or ball"), "{e}");
-    let e = err(&[
-        "dsm",
-        "edge-convex",
-        "--tool",
-        "bull:d=80,r=30",
-        "--station",
-        "50",
-    ]);
-    assert!(
-        e.contains("station 50") && e.contains("does not lie under"),
-        "{e}"
-    );
-    let e = err(&[
-        "dsm",
-        "edge-convex",
-        "--tool",
-        "bull:d=12,r=2",
-        "--station",
-        "50",
-        "--faces",
-        "0",
-    ]);
-    assert!(e.contains("--faces"), "{e}");
+    // (part, tool, station, extra arguments, what the error must say)
+    let cases: [(&str, &str, &str, &[&str], &[&str]); 6] = [
+        ("die", "bull:d=12,r=2", "50", &[], &["faces", "below 1"]),
+        ("boss", "bull:d=12,r=2", "50", &[], &["patch part"]),
+        (
+            "edge-convex",
+            "bull:d=12,r=2",
+            "500",
+            &[],
+            &["station 500", "do not cross"],
+        ),
+        ("edge-convex", "flat:d=12", "50", &[], &["bull or ball"]),
+        (
+            "edge-convex",
+            "bull:d=80,r=30",
+            "50",
+            &[],
+            &["station 50", "does not lie under"],
+        ),
+        (
+            "edge-convex",
+            "bull:d=12,r=2",
+            "50",
+            &["--faces", "0"],
+            &["--faces"],
+        ),
+    ];
+    for (part, tool, station, extra, want) in cases {
+        let mut args = vec!["dsm", part, "--tool", tool, "--station", station];
+        args.extend_from_slice(extra);
+        let o = swarf(&args);
+        assert!(!o.status.success(), "{args:?}");
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert!(want.iter().all(|w| e.contains(w)), "{args:?}: {e}");
+    }
 }
