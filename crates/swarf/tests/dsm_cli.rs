@@ -43,10 +43,12 @@ fn the_wedge_zone_and_spins() {
     }
 }
 
+/// A bad request: part, tool, station, extra arguments, what the error must say.
+type Case<'a> = (&'a str, &'a str, &'a str, &'a [&'a str], &'a [&'a str]);
+
 #[test]
 fn dsm_says_what_is_wrong() {
-    // (part, tool, station, extra arguments, what the error must say)
-    let cases: [(&str, &str, &str, &[&str], &[&str]); 6] = [
+    let cases: [Case<'_>; 6] = [
         ("die", "bull:d=12,r=2", "50", &[], &["faces", "below 1"]),
         ("boss", "bull:d=12,r=2", "50", &[], &["patch part"]),
         (
