@@ -10,6 +10,7 @@ pub mod cleanup;
 pub mod compare;
 pub mod demo;
 mod demo_rest;
+pub mod drop_spin;
 pub mod dsm;
 pub mod error;
 pub mod five_axis;

@@ -24,7 +24,8 @@ fn bound_for(job: &Job, part: &Part) -> Vec<PassBound> {
         StrategyKind::Raster
         | StrategyKind::Cleanup
         | StrategyKind::Waterline
-        | StrategyKind::SteepShallow => return Vec::new(),
+        | StrategyKind::SteepShallow
+        | StrategyKind::DropSpin => return Vec::new(),
         StrategyKind::IsoParametric | StrategyKind::IsoScallop => Feed::Param(job.param_dir()),
         StrategyKind::IsoPlanar => Feed::Plane(job.angle_rad()),
     };
@@ -66,6 +67,12 @@ pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
         (StrategyKind::Cleanup, _) => {
             return Err(PathError::NoPath(
                 "a cleanup job is planned with its parent (swarf plan, crate::cleanup)".into(),
+            ));
+        }
+        (StrategyKind::DropSpin, _) => {
+            return Err(PathError::NoPath(
+                "a drop-spin job is planned by swarf-fiveaxis (swarf plan, crate::drop_spin)"
+                    .into(),
             ));
         }
         (kind, PlanInput::Mesh(_)) => {

@@ -4,6 +4,7 @@
 //! pose CSV, double contacts and the JSON summary.
 
 use crate::cleanup::{plan_cleanup_job, rest_json, stage_file, steep_json};
+use crate::drop_spin::{contacts_csv, drop_spin_json, plan_drop_spin};
 use crate::error::{Result, bail};
 use crate::five_axis::{position_plan, write_job_gcode};
 use crate::job::Job;
@@ -54,6 +55,9 @@ pub fn plan_model(
     if job.strategy.kind == StrategyKind::Cleanup {
         return cleanup_outputs(job, model, job_dir, machine.as_ref(), out_dir);
     }
+    if job.strategy.kind == StrategyKind::DropSpin {
+        return drop_spin_outputs(job, model, machine.as_ref(), out_dir);
+    }
     let (name, mut plan) = match model {
         Model::Patches(part) => (part.name.clone(), plan(job, PlanInput::Part(part))?),
         Model::Mesh { name, mesh } => (name.clone(), plan(job, PlanInput::Mesh(mesh))?),
@@ -90,6 +94,43 @@ struct Written<'a> {
     positioning: Option<&'a PositioningReport>,
     /// Extra header comments of the program.
     notes: &'a [String],
+}
+
+/// Plans a drop-spin job ([`crate::drop_spin`]) and writes its outputs, the
+/// contacts CSV among them; the summary has its zones and station reports.
+fn drop_spin_outputs(
+    job: &Job,
+    model: &Model,
+    machine: Option<&Machine>,
+    out_dir: &Path,
+) -> Result<serde_json::Value> {
+    let Model::Patches(part) = model else {
+        bail!(
+            "strategy.kind: drop-spin needs a parametric part (.toml) with two faces, not a mesh"
+        );
+    };
+    let ds = plan_drop_spin(job, part)?;
+    if let Some(rel) = &job.output.contacts {
+        swarf_io::write_atomic(
+            &out_dir.join(rel),
+            contacts_csv(&ds.passes.poses).as_bytes(),
+        )?;
+    }
+    let written = Written {
+        part_name: &part.name,
+        machine,
+        positioning: None,
+        notes: &[],
+    };
+    let mut quiet = job.clone();
+    let summary_file = quiet.output.summary.take();
+    let mut s = write_outputs(&quiet, &ds.plan, &written, out_dir)?;
+    s["drop_spin"] = drop_spin_json(&ds.passes);
+    if let Some(rel) = &summary_file {
+        let text = serde_json::to_string_pretty(&s)? + "\n";
+        swarf_io::write_atomic(&out_dir.join(rel), text.as_bytes())?;
+    }
+    Ok(s)
 }
 
 /// Plans a cleanup job ([`crate::cleanup`]) and writes each stage's outputs (stage

@@ -26,6 +26,9 @@ pub enum StrategyKind {
     /// Raster on the shallow areas, waterline on the steep ones
     /// ([`crate::steep_shallow`]).
     SteepShallow,
+    /// Five-axis multipoint passes along the common edge of two faces, by drop and
+    /// spin (paper 003; planned by `swarf_fiveaxis::dsm`).
+    DropSpin,
 }
 
 /// Which parameter a pass follows (iso-parametric) or which boundary the first pass

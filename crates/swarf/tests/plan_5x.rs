@@ -110,6 +110,70 @@ fn rs274_feeds(program: &Path) -> Option<Vec<Joints>> {
     Some(feeds)
 }
 
+/// Every pose of `cl` is a feed end of `feeds` (through the trunnion's forward
+/// kinematics), in order; the post's extra blocks (where a rotary axis turns) keep
+/// the tip on the chord between two poses (path_tol 0.01 mm).
+fn assert_feeds_reach(feeds: &[Joints], cl: &[(Point3, Vec3)]) {
+    let m = Machine::parse(&machine_text(), "trunnion").unwrap();
+    let mut k = 0;
+    for j in feeds {
+        let pose = m.forward(j, 0.0);
+        let on = |i: usize| (pose.cl - cl[i].0).norm() < 2e-3;
+        if k < cl.len() && on(k) {
+            assert!(
+                (pose.axis - cl[k].1).norm() < 1e-5,
+                "{pose:?} vs {:?}",
+                cl[k]
+            );
+            k += 1;
+        } else {
+            assert!(k > 0 && k < cl.len(), "a feed before or after the poses");
+            let (a, b) = (cl[k - 1].0, cl[k].0);
+            let t = ((pose.cl - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+            let off = (pose.cl - (a + t * (b - a))).norm();
+            assert!(off < 0.01 + 2e-3, "{off} mm off the chord before pose {k}");
+        }
+    }
+    assert_eq!(k, cl.len(), "every pose is reached, in order");
+}
+
+/// The shipped drop-spin job (paper 003) on edge-concave: four passes over 37
+/// stations, every pose reported in the contacts CSV with both contacts on the
+/// valley's faces, the CL tilted, and the G-code accepted by `rs274` with its feeds
+/// reaching the CL's poses in order.
+#[test]
+fn drop_spin_job_writes_checked_five_axis_outputs() {
+    let dir = temp_dir("drop-spin");
+    let job = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs/edge-concave-drop-spin.toml");
+    let o = swarf(&[
+        "plan",
+        job.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let read = |f: &str| std::fs::read_to_string(dir.join(f)).unwrap();
+    let summary: serde_json::Value =
+        serde_json::from_str(&read("edge-concave-drop-spin.json")).unwrap();
+    assert_eq!(summary["passes"], 4);
+    let poses = summary["poses"].as_u64().unwrap() as usize;
+    assert_eq!(summary["drop_spin"]["issues"].as_array().unwrap().len(), 0);
+    let contacts = read("edge-concave-drop-spin-contacts.csv");
+    assert_eq!(contacts.lines().count(), poses + 1);
+    for line in contacts.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|s| s.parse().unwrap()).collect();
+        // P on face 0's side of the edge (y < 0), Q on face 1's (y > 0).
+        assert!(v[5] < 0.0 && v[8] > 0.0, "{line}");
+    }
+    let cl = cl_feed_poses(&read("edge-concave-drop-spin.cl"));
+    assert_eq!(cl.len(), poses);
+    assert!(cl.iter().all(|(_, a)| a.angle(&Vec3::z()) > 0.3), "tilted");
+    if let Some(feeds) = rs274_feeds(&dir.join("edge-concave-drop-spin.ngc")) {
+        assert_feeds_reach(&feeds, &cl);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// The same job planned in-process: the positioned passes with their contacts.
 fn positioned(text: &str) -> Vec<swarf_toolpath::Pass> {
     let job = swarf_app::Job::parse(text, "job.toml").unwrap();
@@ -162,29 +226,7 @@ fn inclined_die_job_writes_checked_five_axis_outputs() {
         assert!(ngc.contains(want), "{want}");
     }
     if let Some(feeds) = rs274_feeds(&dir.join("die.ngc")) {
-        // Every pose is a feed end, in order; the post's extra blocks (where a rotary
-        // axis turns) keep the tip on the chord between two poses (path_tol 0.01 mm).
-        let m = Machine::parse(&machine_text(), "trunnion").unwrap();
-        let mut k = 0;
-        for j in &feeds {
-            let pose = m.forward(j, 0.0);
-            let on = |i: usize| (pose.cl - cl[i].0).norm() < 2e-3;
-            if k < cl.len() && on(k) {
-                assert!(
-                    (pose.axis - cl[k].1).norm() < 1e-5,
-                    "{pose:?} vs {:?}",
-                    cl[k]
-                );
-                k += 1;
-            } else {
-                assert!(k > 0 && k < cl.len(), "a feed before or after the poses");
-                let (a, b) = (cl[k - 1].0, cl[k].0);
-                let t = ((pose.cl - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
-                let off = (pose.cl - (a + t * (b - a))).norm();
-                assert!(off < 0.01 + 2e-3, "{off} mm off the chord before pose {k}");
-            }
-        }
-        assert_eq!(k, poses, "every pose is reached, in order");
+        assert_feeds_reach(&feeds, &cl);
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

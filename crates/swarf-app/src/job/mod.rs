@@ -8,7 +8,7 @@
 //!
 //! [strategy]
 //! kind = "iso-scallop"           # iso-parametric | iso-planar | iso-scallop | raster |
-//!                                # waterline | steep-shallow | cleanup
+//!                                # waterline | steep-shallow | cleanup | drop-spin
 //! scallop = 0.15                 # scallop height limit h, mm
 //! tolerance = 0.01               # chordal tolerance along passes, mm
 //!
@@ -142,7 +142,8 @@ pub struct StrategyParams {
     /// steep-shallow).
     #[serde(default)]
     pub direction: Option<Direction>,
-    /// Feed direction in the XY plane, degrees from +X (iso-planar, raster).
+    /// Feed direction in the XY plane, degrees from +X (iso-planar, raster; the
+    /// edge's overall direction for drop-spin).
     #[serde(default)]
     pub angle: f64,
     /// Side the first pass starts on.
@@ -185,6 +186,7 @@ pub struct StrategyParams {
     #[serde(default)]
     pub pattern: Pattern,
     /// Cleanup, flow-cut: parallel passes on each side of the pencil pass.
+    /// Drop-spin: passes across the spin zone (or `stepover`).
     #[serde(default)]
     pub passes: usize,
     /// Cleanup: where the rest comes from.
@@ -214,6 +216,44 @@ pub struct StrategyParams {
     /// Cleanup: the rest to clean up (default `["valley", "ramp"]`).
     #[serde(default = "default_restmaterial")]
     pub restmaterial: Vec<RestMaterial>,
+    /// Drop-spin: the two faces (patch indices), dropped on the first and spun onto
+    /// the second (default `[0, 1]`).
+    #[serde(default)]
+    pub faces: Option<[usize; 2]>,
+    /// Drop-spin: spacing of the stations along the edge, mm (default: half the
+    /// tool radius).
+    #[serde(default)]
+    pub step: Option<f64>,
+    /// Drop-spin: which side of the tool cuts the second face.
+    #[serde(default)]
+    pub spin: SpinChoice,
+    /// Drop-spin: the whole zone, or only its snug limit.
+    #[serde(default)]
+    pub zone: ZoneChoice,
+}
+
+/// The cutting side of drop-spin passes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SpinChoice {
+    /// The second contact ahead of the axis along the feed.
+    #[default]
+    Leading,
+    /// Behind it.
+    Trailing,
+    /// Both, leading passes first.
+    Both,
+}
+
+/// Which passes of the spin zone a drop-spin job cuts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ZoneChoice {
+    /// Passes across the zone, the last at its limit.
+    #[default]
+    Full,
+    /// The one pass at the zone's limit, nearest the edge on the second face.
+    Snug,
 }
 
 /// A kind of rest a cleanup job cleans up.
@@ -279,6 +319,9 @@ pub struct Output {
     /// RS274/NGC G-code.
     #[serde(default)]
     pub gcode: Option<String>,
+    /// Drop-spin: the contact trajectories, a CSV row per pose.
+    #[serde(default)]
+    pub contacts: Option<String>,
     /// APT CL data.
     #[serde(default)]
     pub cl: Option<String>,

@@ -238,3 +238,48 @@ cl = "die.cl"
         }
     }
 }
+
+#[test]
+fn drop_spin_jobs_name_the_field() {
+    let good = include_str!("../../../../jobs/edge-concave-drop-spin.toml");
+    let job = Job::parse(good, "ds.toml").unwrap();
+    assert_eq!(job.strategy.kind, StrategyKind::DropSpin);
+    assert_eq!(job.strategy.faces, Some([0, 1]));
+    assert_eq!(
+        (job.strategy.spin, job.strategy.zone),
+        (SpinChoice::Leading, ZoneChoice::Full)
+    );
+    let cases = [
+        (good.replace("step = 2.5", "step = 0"), "strategy.step"),
+        (good.replace("passes = 4", "passes = 0"), "strategy.passes"),
+        (good.replace("passes = 4", "passes = 5000"), "at most 1000"),
+        (
+            good.replace("faces = [0, 1]", "faces = [1, 1]"),
+            "strategy.faces",
+        ),
+        (
+            good.replace("machine = \"builtin:xyzac-trunnion\"", ""),
+            "output.machine",
+        ),
+        (
+            good.replace("spin = \"leading\"", "spin = \"up\""),
+            "`leading`",
+        ),
+        (
+            good.replace(
+                "[strategy]",
+                "positioning = { method = \"inclined\", alpha = 3 }\n[strategy]",
+            ),
+            "positioning",
+        ),
+    ];
+    for (text, want) in cases {
+        let e = Job::parse(&text, "ds.toml").unwrap_err().to_string();
+        assert!(e.contains(want), "{want}: {e}");
+    }
+    // Snug needs no pass count.
+    let snug = good
+        .replace("passes = 4", "passes = 0")
+        .replace("zone = \"full\"", "zone = \"snug\"");
+    assert!(Job::parse(&snug, "ds.toml").is_ok());
+}

@@ -2,7 +2,10 @@
 //! strategy, feeds and linking, a cleanup job's parent and regions, and what a
 //! five-axis job can write.
 
-use super::{Direction, Job, RestMaterial, RestSource};
+use super::{Direction, Job, RestMaterial, RestSource, ZoneChoice};
+
+/// Most drop-spin passes across a zone.
+pub const MAX_DROP_SPIN_PASSES: usize = 1000;
 use swarf_path::StrategyKind;
 
 impl Job {
@@ -61,13 +64,21 @@ impl Job {
         positive("strategy.level_step", s.level_step)?;
         positive("strategy.sampling", s.sampling)?;
         let waterline = s.kind == StrategyKind::Waterline && s.level_step.is_some();
-        if s.scallop.is_none() && s.stepover.is_none() && !waterline {
+        let drop_spin = s.kind == StrategyKind::DropSpin;
+        if s.scallop.is_none() && s.stepover.is_none() && !waterline && !drop_spin {
             return Err(
                 "strategy: expected `scallop` (scallop height limit, mm) or `stepover` (mm)".into(),
             );
         }
         match (s.kind, s.scallop, s.stepover) {
-            (StrategyKind::Raster | StrategyKind::Cleanup | StrategyKind::SteepShallow, _, _)
+            (
+                StrategyKind::Raster
+                | StrategyKind::Cleanup
+                | StrategyKind::SteepShallow
+                | StrategyKind::DropSpin,
+                _,
+                _,
+            )
             | (_, _, None) => {}
             (StrategyKind::IsoPlanar, Some(_), Some(_)) => {
                 return Err(
@@ -213,6 +224,35 @@ impl Job {
         Ok(())
     }
 
+    /// A drop-spin job's stations, passes and faces.
+    fn validate_drop_spin(&self) -> Result<(), String> {
+        let s = &self.strategy;
+        positive("strategy.step", s.step)?;
+        if self.positioning.is_some() {
+            return Err(
+                "positioning: drop-spin places the tool itself; leave out the positioning table"
+                    .into(),
+            );
+        }
+        if s.zone == ZoneChoice::Full && s.passes == 0 && s.stepover.is_none() {
+            return Err("strategy.passes: drop-spin over the full zone needs `passes` (across the zone) or `stepover` (mm)".into());
+        }
+        if s.passes > MAX_DROP_SPIN_PASSES {
+            return Err(format!(
+                "strategy.passes: {}: expected at most {MAX_DROP_SPIN_PASSES} passes across the zone",
+                s.passes
+            ));
+        }
+        if let Some([a, b]) = s.faces
+            && a == b
+        {
+            return Err(format!(
+                "strategy.faces: [{a}, {b}]: expected two different faces"
+            ));
+        }
+        Ok(())
+    }
+
     /// The positioning's ranges and the outputs a five-axis job can write.
     fn validate_five_axis(&self) -> Result<(), String> {
         if let Some(p) = &self.positioning {
@@ -220,7 +260,11 @@ impl Job {
                 .map_err(|(field, message)| format!("{field}: {message}"))?;
         }
         let o = &self.output;
-        if self.positioning.is_some() && o.gcode.is_some() && o.machine.is_none() {
+        if self.strategy.kind == StrategyKind::DropSpin {
+            self.validate_drop_spin()?;
+        }
+        let tilted = self.positioning.is_some() || self.strategy.kind == StrategyKind::DropSpin;
+        if tilted && o.gcode.is_some() && o.machine.is_none() {
             return Err(
                 "output.machine: a tilted tool path needs a machine file for G-code (e.g. machine = \"builtin:xyzac-trunnion\"); or drop output.gcode (output.cl and output.csv carry the tool axis)"
                     .into(),

@@ -1,0 +1,185 @@
+//! Drop-and-spin jobs (`kind = "drop-spin"`, paper 003): five-axis passes along the
+//! common edge of two faces ([`swarf_fiveaxis::dsm`]).
+//!
+//! ```toml
+//! [strategy]
+//! kind = "drop-spin"
+//! faces = [0, 1]       # dropped on the first, spun onto the second
+//! angle = 0            # the edge's overall direction in XY, degrees
+//! step = 2.5           # stations along the edge, mm (default: half the tool radius)
+//! passes = 4           # passes across the spin zone, the last at its limit (or stepover)
+//! spin = "leading"     # "trailing", "both"
+//! zone = "full"        # "snug": the one pass at the zone's limit
+//!
+//! [output]
+//! machine = "builtin:xyzac-trunnion"   # tilted poses need a machine for G-code
+//! contacts = "edge-contacts.csv"       # P and Q per pose
+//! ```
+//!
+//! Stations run along the faces' common extent in that direction, a tool radius in
+//! from each end. Pass `j` of `n` keeps the zone fraction `j / n` at every station.
+
+use crate::error::{Result, bail};
+use crate::job::{Job, SpinChoice, ZoneChoice};
+use swarf_fiveaxis::dsm::{Dsm, EdgePasses, EdgePose, PassParams, Side};
+use swarf_geom::{Part, Vec3};
+use swarf_path::{Plan, PlanReport};
+
+/// Most stations along an edge.
+pub const MAX_STATIONS: usize = 100_000;
+/// Largest axis turn per mm of travel before a pair of poses is reported, degrees.
+pub const MAX_TURN_DEG: f64 = 10.0;
+
+/// A planned drop-spin job: the tool path and the passes with their contacts.
+#[derive(Debug, Clone)]
+pub struct DropSpinPlan {
+    /// The tool path.
+    pub plan: Plan,
+    /// The passes, their contacts, zones and station reports.
+    pub passes: EdgePasses,
+}
+
+/// The stations of `dsm`'s faces along `along`, `step` apart, a tool radius in from
+/// the ends of their common extent.
+fn stations(job: &Job, part: &Part, faces: [usize; 2], along: Vec3) -> Result<Vec<f64>> {
+    let range = |k: usize| {
+        let b = part.patches[k].control_box();
+        let xs = [b.min.x, b.max.x];
+        let ys = [b.min.y, b.max.y];
+        let s: Vec<f64> = xs
+            .iter()
+            .flat_map(|&x| ys.iter().map(move |&y| x * along.x + y * along.y))
+            .collect();
+        (
+            s.iter().copied().fold(f64::INFINITY, f64::min),
+            s.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        )
+    };
+    let (a, b) = (range(faces[0]), range(faces[1]));
+    let r = job.tool.radius();
+    let (lo, hi) = (a.0.max(b.0) + r, a.1.min(b.1) - r);
+    if hi <= lo {
+        bail!(
+            "strategy.faces: the faces' common extent along the edge ({:.3} mm) is not longer than the tool's diameter",
+            hi - lo + 2.0 * r
+        );
+    }
+    let step = job.strategy.step.unwrap_or(0.5 * r);
+    let n = ((hi - lo) / step).ceil();
+    if n > MAX_STATIONS as f64 {
+        bail!(
+            "strategy.step: {step} mm gives {n} stations over {:.3} mm; expected at most {MAX_STATIONS}",
+            hi - lo
+        );
+    }
+    let n = n.max(1.0) as usize;
+    Ok((0..=n)
+        .map(|i| lo + (hi - lo) * i as f64 / n as f64)
+        .collect())
+}
+
+/// Plans the drop-spin job `job` on `part` (module doc).
+///
+/// # Errors
+/// Faces, tool or direction out of their domains; no edge or an empty zone at the
+/// middle station (where the pass count is set from `stepover`); too many stations.
+pub fn plan_drop_spin(job: &Job, part: &Part) -> Result<DropSpinPlan> {
+    let start = std::time::Instant::now();
+    let s = &job.strategy;
+    let faces = s.faces.unwrap_or([0, 1]);
+    let a = job.angle_rad();
+    let along = Vec3::new(a.cos(), a.sin(), 0.0);
+    let dsm = Dsm::new(part, faces, &job.tool, along)?;
+    let stations = stations(job, part, faces, along)?;
+    let fractions: Vec<f64> = match s.zone {
+        ZoneChoice::Snug => vec![1.0],
+        ZoneChoice::Full => {
+            let n = match (s.passes, s.stepover) {
+                (0, Some(step)) => {
+                    let mid = dsm.station(stations[stations.len() / 2])?;
+                    let z = dsm.zone(&mid, 0)?;
+                    ((z.t2 - z.t1) / step).ceil().max(1.0) as usize
+                }
+                (n, _) => n.max(1),
+            };
+            (1..=n).map(|j| j as f64 / n as f64).collect()
+        }
+    };
+    let sides: &[Side] = match s.spin {
+        SpinChoice::Leading => &[Side::Leading],
+        SpinChoice::Trailing => &[Side::Trailing],
+        SpinChoice::Both => &[Side::Leading, Side::Trailing],
+    };
+    let mut all = EdgePasses::default();
+    for &side in sides {
+        let params = PassParams {
+            stations: stations.clone(),
+            fractions: fractions.clone(),
+            side,
+            face: 0,
+            max_turn: MAX_TURN_DEG.to_radians(),
+        };
+        let out = dsm.passes(&params)?;
+        all.passes.extend(out.passes);
+        all.poses.extend(out.poses);
+        all.issues.extend(out.issues);
+        if all.zones.is_empty() {
+            all.zones = out.zones;
+        }
+    }
+    if all.passes.is_empty() {
+        bail!(
+            "strategy: no drop-spin pass: {}",
+            all.issues.first().map_or_else(
+                || "no station gave a pose".to_string(),
+                |i| format!("station {:.4}: {}", i.station, i.reason)
+            )
+        );
+    }
+    let report = PlanReport {
+        elapsed_s: start.elapsed().as_secs_f64(),
+        ..PlanReport::default()
+    };
+    let plan = Plan::from_passes(all.passes.clone(), &job.finish(), report, Vec::new());
+    Ok(DropSpinPlan { plan, passes: all })
+}
+
+/// The contact trajectories as CSV: per pose its pass, station, offset, spin angle
+/// (degrees), `P` and `Q`.
+pub fn contacts_csv(poses: &[Vec<EdgePose>]) -> String {
+    let mut s = String::from("pass,station,offset,angle_deg,px,py,pz,qx,qy,qz\n");
+    for (k, run) in poses.iter().enumerate() {
+        for e in run {
+            let (p, q) = (e.p, e.spin.q);
+            s += &format!(
+                "{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}\n",
+                k + 1,
+                e.station,
+                e.offset,
+                e.spin.angle.to_degrees(),
+                p.x,
+                p.y,
+                p.z,
+                q.x,
+                q.y,
+                q.z
+            );
+        }
+    }
+    s
+}
+
+/// The zones and station reports as JSON.
+pub fn drop_spin_json(p: &EdgePasses) -> serde_json::Value {
+    let zones: Vec<serde_json::Value> = p
+        .zones
+        .iter()
+        .map(|(s, z)| match z {
+            Some(z) => serde_json::json!({
+                "station_mm": s, "t1_mm": z.t1, "t2_mm": z.t2, "t2_ball_mm": z.t2_ball, "binding": z.binding,
+            }),
+            None => serde_json::json!({ "station_mm": s, "zone": null }),
+        })
+        .collect();
+    serde_json::json!({ "zones": zones, "issues": p.issues })
+}
