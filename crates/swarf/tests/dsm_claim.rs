@@ -21,7 +21,7 @@ fn cut_at_edge(tp: &Toolpath, tool: &Cutter, x: f64) -> f64 {
     let text = swarf_nc::write_cl(&tp.moves(), &tp.feeds, tool, "edge", Units::Mm).unwrap();
     let program = parse_cl(&text, "edge.cl").unwrap();
     let grid = Grid::covering([x - 1.0, -1.0], [x + 1.0, 1.0], CELL, 1 << 20).unwrap();
-    let mut stock = Dexel::new(grid.clone(), StockInit::Box { top: 40.0 }).unwrap();
+    let mut stock = Dexel::new(grid, StockInit::Box { top: 40.0 }).unwrap();
     let opts = SimOptions {
         sample_tol: 0.0025,
         known_start: false,
