@@ -41,23 +41,10 @@ pub struct DropSpinPlan {
 
 /// The stations of `dsm`'s faces along `along`, `step` apart, a tool radius in from
 /// the ends of their common extent.
-fn stations(job: &Job, part: &Part, faces: [usize; 2], along: Vec3) -> Result<Vec<f64>> {
-    let range = |k: usize| {
-        let b = part.patches[k].control_box();
-        let xs = [b.min.x, b.max.x];
-        let ys = [b.min.y, b.max.y];
-        let s: Vec<f64> = xs
-            .iter()
-            .flat_map(|&x| ys.iter().map(move |&y| x * along.x + y * along.y))
-            .collect();
-        (
-            s.iter().copied().fold(f64::INFINITY, f64::min),
-            s.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-        )
-    };
-    let (a, b) = (range(faces[0]), range(faces[1]));
+fn stations(job: &Job, dsm: &Dsm, along: Vec3) -> Result<Vec<f64>> {
+    let (a, b) = (dsm.span(0, along), dsm.span(1, along));
     let r = job.tool.radius();
-    let (lo, hi) = (a.0.max(b.0) + r, a.1.min(b.1) - r);
+    let (lo, hi) = (a[0].max(b[0]) + r, a[1].min(b[1]) - r);
     if hi <= lo {
         bail!(
             "strategy.faces: the faces' common extent along the edge ({:.3} mm) is not longer than the tool's diameter",
@@ -90,7 +77,7 @@ pub fn plan_drop_spin(job: &Job, part: &Part) -> Result<DropSpinPlan> {
     let a = job.angle_rad();
     let along = Vec3::new(a.cos(), a.sin(), 0.0);
     let dsm = Dsm::new(part, faces, &job.tool, along)?;
-    let stations = stations(job, part, faces, along)?;
+    let stations = stations(job, &dsm, along)?;
     let fractions: Vec<f64> = match s.zone {
         ZoneChoice::Snug => vec![1.0],
         ZoneChoice::Full => {
@@ -105,28 +92,19 @@ pub fn plan_drop_spin(job: &Job, part: &Part) -> Result<DropSpinPlan> {
             (1..=n).map(|j| j as f64 / n as f64).collect()
         }
     };
-    let sides: &[Side] = match s.spin {
-        SpinChoice::Leading => &[Side::Leading],
-        SpinChoice::Trailing => &[Side::Trailing],
-        SpinChoice::Both => &[Side::Leading, Side::Trailing],
+    let sides = match s.spin {
+        SpinChoice::Leading => vec![Side::Leading],
+        SpinChoice::Trailing => vec![Side::Trailing],
+        SpinChoice::Both => vec![Side::Leading, Side::Trailing],
     };
-    let mut all = EdgePasses::default();
-    for &side in sides {
-        let params = PassParams {
-            stations: stations.clone(),
-            fractions: fractions.clone(),
-            side,
-            face: 0,
-            max_turn: MAX_TURN_DEG.to_radians(),
-        };
-        let out = dsm.passes(&params)?;
-        all.passes.extend(out.passes);
-        all.poses.extend(out.poses);
-        all.issues.extend(out.issues);
-        if all.zones.is_empty() {
-            all.zones = out.zones;
-        }
-    }
+    let params = PassParams {
+        stations,
+        fractions,
+        sides,
+        face: 0,
+        max_turn: MAX_TURN_DEG.to_radians(),
+    };
+    let all = dsm.passes(&params)?;
     if all.passes.is_empty() {
         bail!(
             "strategy: no drop-spin pass: {}",

@@ -18,7 +18,7 @@ fn params(side: Side) -> PassParams {
     PassParams {
         stations: (0..=16).map(|i| 10.0 + 5.0 * f64::from(i)).collect(),
         fractions: vec![0.25, 0.5, 0.75, 1.0],
-        side,
+        sides: vec![side],
         face: 0,
         max_turn: 10f64.to_radians(),
     }

@@ -52,6 +52,15 @@ pub const MIN_STEP_FLOOR: f64 = 1e-3;
 /// Contacts this many tool radii apart can make a double contact.
 pub const DOUBLE_SEPARATION_RADII: f64 = 0.05;
 
+/// The even XY spacing of the passes [`plan`] makes for `params` over `mesh`, mm,
+/// without planning them.
+///
+/// # Errors
+/// As [`plan`] for the stepover, the scallop and the slope limit.
+pub fn spacing(mesh: &TriMesh, params: &RasterParams) -> Result<f64, PathError> {
+    Ok(Frame::new(mesh, params)?.spacing)
+}
+
 /// Plans raster passes over `mesh` for `job` (module doc).
 ///
 /// # Units
@@ -74,7 +83,7 @@ pub fn plan(mesh: &TriMesh, params: &RasterParams) -> Result<Plan, PathError> {
         ));
     }
     let slope = ramp_slope(params)?;
-    let frame = Frame::new(mesh, params, &dropper)?;
+    let frame = Frame::new(mesh, params)?;
     let sampler = Sampler::new(mesh, &dropper, params.finish.tolerance, true);
     let rows = frame.rows(&sampler);
     let mut passes = Vec::new();
@@ -181,7 +190,7 @@ pub fn crease_scan(
             "crease scan: the mesh has no triangle with finite corners".into(),
         ));
     }
-    let frame = Frame::new(mesh, &params, dropper)?;
+    let frame = Frame::new(mesh, &params)?;
     let sampler = Sampler::new(mesh, dropper, tolerance, false);
     Ok(frame
         .rows(&sampler)

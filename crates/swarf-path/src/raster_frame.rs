@@ -9,7 +9,6 @@ use crate::slope_step::{check_slope, raster_spacing};
 use rayon::prelude::*;
 use swarf_geom::TriMesh;
 use swarf_tool::drop::DropScratch;
-use swarf_tool::drop::MeshDropper;
 
 /// A given boundary is widened by this (relative to its largest coordinate) so that
 /// passes on its edges survive rounding.
@@ -34,14 +33,10 @@ impl Frame {
     /// # Errors
     /// [`PathError::InvalidParameter`] for a stepover wider than the tool, a
     /// scallop the tool cannot leave or a slope limit outside `(0, pi/2)`.
-    pub(crate) fn new(
-        mesh: &TriMesh,
-        params: &RasterParams,
-        dropper: &MeshDropper,
-    ) -> Result<Frame, PathError> {
+    pub(crate) fn new(mesh: &TriMesh, params: &RasterParams) -> Result<Frame, PathError> {
         let (sa, ca) = params.angle.sin_cos();
         let (d, n) = ([ca, sa], [-sa, ca]);
-        let radius = dropper.tool().radius();
+        let radius = params.finish.tool.radius();
         if let Some(slope) = params.max_slope {
             check_slope("strategy.max_slope", slope)?;
         }

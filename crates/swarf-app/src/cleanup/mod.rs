@@ -308,13 +308,8 @@ fn add_steep(job: &Job, parent: &Job, mesh: &TriMesh, stage: &mut CleanupStage) 
             parent.strategy.kind
         );
     }
-    let rows = plan(parent, PlanInput::Mesh(mesh))
+    let spacing = swarf_path::raster::spacing(mesh, &parent.raster_params())
         .map_err(|e| AppError::Message(format!("parent.job: the parent job fails: {e}")))?;
-    let spacing = rows
-        .report
-        .side_step_range
-        .map(|r| r[0])
-        .with_context(|| "parent.job: the parent raster reports no spacing".into())?;
     let raster = RasterParent {
         tool: parent.tool,
         spacing,

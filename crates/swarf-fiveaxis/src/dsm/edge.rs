@@ -41,24 +41,20 @@ impl Dsm {
         self.heights[k].at(xy[0], xy[1]).map(|h| h.z)
     }
 
+    /// The range of face `k`'s control box along the horizontal unit direction
+    /// `dir` (`p . dir` over its XY corners), mm.
+    pub fn span(&self, k: usize, dir: Vec3) -> [f64; 2] {
+        let b = self.face(k).patch().control_box();
+        let centre = 0.5 * ((b.min.x + b.max.x) * dir.x + (b.min.y + b.max.y) * dir.y);
+        let half = 0.5 * ((b.max.x - b.min.x) * dir.x.abs() + (b.max.y - b.min.y) * dir.y.abs());
+        [centre - half, centre + half]
+    }
+
     /// The edge's crossing parameter `t` on station `s`'s line and the sign of
     /// `z1 - z0` past it (the first crossing from the line's start).
     fn crossing(&self, s: f64) -> Result<(f64, f64), FiveAxisError> {
-        let b0 = self.faces[0].patch().control_box();
-        let b1 = self.faces[1].patch().control_box();
         let m = self.across_dir();
-        let span = |b: &swarf_geom::Aabb| {
-            let c = [b.min.x * m.x + b.min.y * m.y, b.max.x * m.x + b.max.y * m.y];
-            let d = [b.min.x * m.x + b.max.y * m.y, b.max.x * m.x + b.min.y * m.y];
-            let lo = c.iter().chain(&d).copied().fold(f64::INFINITY, f64::min);
-            let hi = c
-                .iter()
-                .chain(&d)
-                .copied()
-                .fold(f64::NEG_INFINITY, f64::max);
-            [lo, hi]
-        };
-        let (r0, r1) = (span(&b0), span(&b1));
+        let (r0, r1) = (self.span(0, m), self.span(1, m));
         let (lo, hi) = (r0[0].max(r1[0]), r0[1].min(r1[1]));
         let diff = |t: f64| -> Option<f64> {
             let xy = self.line_xy(s, t);

@@ -34,8 +34,8 @@ pub struct PassParams {
     pub stations: Vec<f64>,
     /// Zone fractions of the passes, each in `[0, 1]`.
     pub fractions: Vec<f64>,
-    /// The cutting side.
-    pub side: Side,
+    /// The cutting sides: every fraction is cut with each, in this order.
+    pub sides: Vec<Side>,
     /// The face dropped on (0 or 1).
     pub face: usize,
     /// Largest axis turn per mm of travel before a pair of poses is reported,
@@ -87,9 +87,8 @@ impl Dsm {
         st: &Station,
         zone: &Zone,
         f: f64,
-        params: &PassParams,
+        (side, k): (Side, usize),
     ) -> Result<EdgePose, String> {
-        let k = params.face;
         let w = zone.t1 + f * (zone.t2 - zone.t1);
         let drop = self
             .drop_on(k, self.footprint(st, k, w))
@@ -104,7 +103,7 @@ impl Dsm {
             .filter(|s| s.own_clearance >= -super::CONTACT_TOL)
             .max_by(|a, b| {
                 let (x, y) = (ahead(a), ahead(b));
-                match params.side {
+                match side {
                     Side::Leading => x.total_cmp(&y),
                     Side::Trailing => y.total_cmp(&x),
                 }
@@ -122,7 +121,7 @@ impl Dsm {
     ///
     /// # Errors
     /// [`FiveAxisError::InvalidParameter`] on `stations` (fewer than two, not finite),
-    /// `fractions` (none, or outside `[0, 1]`), `face` (not 0 or 1) or `max_turn`
+    /// `fractions` (none, or outside `[0, 1]`), `sides` (none), `face` (not 0 or 1) or `max_turn`
     /// (not above 0).
     pub fn passes(&self, params: &PassParams) -> Result<EdgePasses, FiveAxisError> {
         validate(params)?;
@@ -146,12 +145,16 @@ impl Dsm {
             .zip(&stations)
             .map(|(&s, x)| (s, x.1))
             .collect();
-        for &f in &params.fractions {
+        let runs = params
+            .sides
+            .iter()
+            .flat_map(|&side| params.fractions.iter().map(move |&f| (side, f)));
+        for (side, f) in runs {
             let mut run: Vec<EdgePose> = Vec::new();
             let mut runs: Vec<Vec<EdgePose>> = Vec::new();
             for (&s, (st, zone, why)) in params.stations.iter().zip(&stations) {
                 let pose = match (st, zone) {
-                    (Some(st), Some(z)) => self.edge_pose(st, z, f, params),
+                    (Some(st), Some(z)) => self.edge_pose(st, z, f, (side, params.face)),
                     _ => Err(why.clone().unwrap_or_default()),
                 };
                 match pose {
@@ -246,6 +249,9 @@ fn validate(p: &PassParams) -> Result<(), FiveAxisError> {
                 p.fractions
             ),
         );
+    }
+    if p.sides.is_empty() {
+        return bad("sides", "expected one or more cutting sides".to_string());
     }
     if p.face > 1 {
         return bad("face", format!("{}: expected 0 or 1", p.face));
