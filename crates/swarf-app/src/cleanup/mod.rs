@@ -304,8 +304,8 @@ fn add_steep(job: &Job, parent: &Job, mesh: &TriMesh, stage: &mut CleanupStage) 
     let start = std::time::Instant::now();
     if parent.strategy.kind != StrategyKind::Raster {
         bail!(
-            "strategy.restmaterial: \"steep\" is the rest a raster leaves on walls, but the parent job is {:?}; use a raster parent or leave \"steep\" out",
-            parent.strategy.kind
+            "strategy.restmaterial: \"steep\" is the rest a raster leaves on walls, but the parent job is {}; use a raster parent or leave \"steep\" out",
+            serde_json::to_value(parent.strategy.kind)?
         );
     }
     let spacing = swarf_path::raster::spacing(mesh, &parent.raster_params())

@@ -221,6 +221,6 @@ fn steep_cleanup_jobs_say_what_is_wrong() {
     let j = steep_job(|t| t).unwrap();
     let model = load_model(&j.part).unwrap();
     let e = plan_cleanup_job(&j, &model, &dir).unwrap_err().to_string();
-    assert!(e.contains("the parent job is Waterline"), "{e}");
+    assert!(e.contains("the parent job is \"waterline\""), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
