@@ -15,6 +15,11 @@
 //! 5. Thesis 002 on the built-in fillet pocket: finish, detect the rest, clean it
 //!    up, verify both on one stock and tabulate the rest before and after
 //!    (`rest/`, `demo_rest.rs`).
+//! 6. Paper 003 on the two edge parts: the shipped drop-and-spin job (bull d = 12,
+//!    r = 2, four passes per band, five-axis G-code for the A/C trunnion), and the
+//!    snug drop-and-spin passes against the best three-axis pass and inclined
+//!    single-point positioning along the same edge, cut on a dexel stock through
+//!    their CL (`edges/edges.md`, `edges/edges.json`; [`crate::edge_compare`]).
 //!
 //! The jobs are embedded so that the demo needs no files; their parts and machine are
 //! built-in.
@@ -72,6 +77,9 @@ const DIE_JOBS: [(&str, &str); 3] = [
     ),
 ];
 
+/// Paper 003's job on the concave edge part (`jobs/edge-concave-drop-spin.toml`).
+const DROP_SPIN_JOB: &str = include_str!("../../../jobs/edge-concave-drop-spin.toml");
+
 /// Runs the demo into the directory `out`, writing what it does to `text`.
 ///
 /// # Errors
@@ -122,6 +130,11 @@ pub fn demo(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
     crate::demo_rest::cleanup_section(out, text, reporter)?;
     writeln!(
         text,
+        "\n== drop and spin at the common edge (paper 003 on the edge parts)"
+    )?;
+    edges(out, text, reporter)?;
+    writeln!(
+        text,
         "\nall results in {} ({:.1} s)",
         out.display(),
         start.elapsed().as_secs_f64()
@@ -154,6 +167,41 @@ fn die(out: &Path, jobs_dir: &Path, text: &mut dyn Write, reporter: &dyn Reporte
         "pictures: {}/die-*.deviation.png, die-*.toolpath.png",
         dir.display()
     )?;
+    Ok(())
+}
+
+/// Plans the shipped drop-spin job into `out/edges` and prints the comparison of
+/// the methods on both edge parts.
+fn edges(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<()> {
+    let dir = out.join("edges");
+    let job = Job::parse(DROP_SPIN_JOB, "edge-concave-drop-spin.toml")?;
+    let summary = plan_job(&job, Path::new("."), &dir, reporter)?;
+    let ranges = &summary["rotary_ranges_deg"];
+    writeln!(
+        text,
+        "edge-concave-drop-spin.toml: {} passes, {} poses, planned in {:.1} s; A {} deg, C {} deg",
+        summary["passes"],
+        summary["poses"],
+        summary["report"]["elapsed_s"].as_f64().unwrap_or(f64::NAN),
+        ranges["A"],
+        ranges["C"]
+    )?;
+    let mut all = Vec::new();
+    for name in ["edge-concave", "edge-convex"] {
+        let job = Job::parse(&DROP_SPIN_JOB.replace("edge-concave", name), name)?;
+        let part =
+            swarf_io::builtin_part(name).with_context(|| format!("no built-in part {name}"))?;
+        all.push(crate::edge_compare::compare_edge(&job, &part)?);
+    }
+    let table = format!(
+        "tool {}, material left at the edge a quarter, half and three quarters along it:\n\n{}",
+        job.tool,
+        crate::edge_compare::edge_markdown(&all)
+    );
+    swarf_io::write_atomic(&dir.join("edges.md"), table.as_bytes())?;
+    let json = serde_json::to_string_pretty(&all)? + "\n";
+    swarf_io::write_atomic(&dir.join("edges.json"), json.as_bytes())?;
+    write!(text, "{table}")?;
     Ok(())
 }
 

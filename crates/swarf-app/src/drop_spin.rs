@@ -10,6 +10,7 @@
 //! passes = 4           # passes across the spin zone, the last at its limit (or stepover)
 //! spin = "leading"     # "trailing", "both"
 //! zone = "full"        # "snug": the one pass at the zone's limit
+//! bands = "both"       # "first", "second": the faces dropped on
 //!
 //! [output]
 //! machine = "builtin:xyzac-trunnion"   # tilted poses need a machine for G-code
@@ -18,12 +19,19 @@
 //!
 //! Stations run along the faces' common extent in that direction, a tool radius in
 //! from each end. Pass `j` of `n` keeps the zone fraction `j / n` at every station.
+//! With a machine, a pass whose side the rotary limits do not reach is cut with the
+//! other side (and the summary says so).
 
 use crate::error::{Result, bail};
+use crate::five_axis::post_options;
 use crate::job::{Job, SpinChoice, ZoneChoice};
-use swarf_fiveaxis::dsm::{Dsm, EdgePasses, EdgePose, PassParams, Side};
+use swarf_fiveaxis::FiveAxisError;
+use swarf_fiveaxis::dsm::{Dsm, EdgePasses, EdgePose, PassParams, Reachable, Side};
+use swarf_fiveaxis::machine::Machine;
+use swarf_fiveaxis::machine::joints::solve_pass;
 use swarf_geom::{Part, Vec3};
 use swarf_path::{Plan, PlanReport};
+use swarf_tool::Pose;
 
 /// Most stations along an edge.
 pub const MAX_STATIONS: usize = 100_000;
@@ -65,12 +73,38 @@ fn stations(job: &Job, dsm: &Dsm, along: Vec3) -> Result<Vec<f64>> {
         .collect())
 }
 
-/// Plans the drop-spin job `job` on `part` (module doc).
+/// Whether `machine` reaches every pose of a run (no machine: any pose).
+fn reach_on<'a>(
+    job: &Job,
+    machine: Option<&'a Machine>,
+) -> Result<impl Fn(&[Pose]) -> Reachable + 'a> {
+    let tool_length = match machine {
+        Some(m) => post_options(job, m, Vec::new())?.tool_length,
+        None => 0.0,
+    };
+    Ok(move |poses: &[Pose]| {
+        let Some(m) = machine else { return Ok(()) };
+        solve_pass(m, poses, None, tool_length, 0)
+            .map(|_| ())
+            .map_err(|e| match e {
+                FiveAxisError::Unreachable {
+                    index,
+                    axis,
+                    message,
+                    ..
+                } => (index, format!("{axis}: {message}")),
+                e => (0, e.to_string()),
+            })
+    })
+}
+
+/// Plans the drop-spin job `job` on `part` (module doc), reachable on `machine`.
 ///
 /// # Errors
 /// Faces, tool or direction out of their domains; no edge or an empty zone at the
-/// middle station (where the pass count is set from `stepover`); too many stations.
-pub fn plan_drop_spin(job: &Job, part: &Part) -> Result<DropSpinPlan> {
+/// middle station (where the pass count is set from `stepover`); too many stations;
+/// no pass at all (the first station report says why).
+pub fn plan_drop_spin(job: &Job, part: &Part, machine: Option<&Machine>) -> Result<DropSpinPlan> {
     let start = std::time::Instant::now();
     let s = &job.strategy;
     let faces = s.faces.unwrap_or([0, 1]);
@@ -84,7 +118,7 @@ pub fn plan_drop_spin(job: &Job, part: &Part) -> Result<DropSpinPlan> {
             let n = match (s.passes, s.stepover) {
                 (0, Some(step)) => {
                     let mid = dsm.station(stations[stations.len() / 2])?;
-                    let z = dsm.zone(&mid, 0)?;
+                    let z = dsm.zone(&mid, s.bands.faces()[0])?;
                     ((z.t2 - z.t1) / step).ceil().max(1.0) as usize
                 }
                 (n, _) => n.max(1),
@@ -101,10 +135,11 @@ pub fn plan_drop_spin(job: &Job, part: &Part) -> Result<DropSpinPlan> {
         stations,
         fractions,
         sides,
-        face: 0,
+        bands: s.bands.faces(),
         max_turn: MAX_TURN_DEG.to_radians(),
     };
-    let all = dsm.passes(&params)?;
+    let reach = reach_on(job, machine)?;
+    let all = dsm.passes(&params, &reach)?;
     if all.passes.is_empty() {
         bail!(
             "strategy: no drop-spin pass: {}",
@@ -122,16 +157,18 @@ pub fn plan_drop_spin(job: &Job, part: &Part) -> Result<DropSpinPlan> {
     Ok(DropSpinPlan { plan, passes: all })
 }
 
-/// The contact trajectories as CSV: per pose its pass, station, offset, spin angle
-/// (degrees), `P` and `Q`.
-pub fn contacts_csv(poses: &[Vec<EdgePose>]) -> String {
-    let mut s = String::from("pass,station,offset,angle_deg,px,py,pz,qx,qy,qz\n");
+/// The contact trajectories as CSV: per pose its pass, band (the face of `faces`
+/// dropped on), side, station, offset, spin angle (degrees), `P` and `Q`.
+pub fn contacts_csv(poses: &[Vec<EdgePose>], faces: [usize; 2]) -> String {
+    let mut s = String::from("pass,dropped_on,side,station,offset,angle_deg,px,py,pz,qx,qy,qz\n");
     for (k, run) in poses.iter().enumerate() {
         for e in run {
             let (p, q) = (e.p, e.spin.q);
             s += &format!(
-                "{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}\n",
+                "{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}\n",
                 k + 1,
+                faces[e.band],
+                e.side,
                 e.station,
                 e.offset,
                 e.spin.angle.to_degrees(),
@@ -152,11 +189,12 @@ pub fn drop_spin_json(p: &EdgePasses) -> serde_json::Value {
     let zones: Vec<serde_json::Value> = p
         .zones
         .iter()
-        .map(|(s, z)| match z {
+        .map(|sz| match sz.zone {
             Some(z) => serde_json::json!({
-                "station_mm": s, "t1_mm": z.t1, "t2_mm": z.t2, "t2_ball_mm": z.t2_ball, "binding": z.binding,
+                "band": sz.band, "station_mm": sz.station, "t1_mm": z.t1, "t2_mm": z.t2,
+                "t2_ball_mm": z.t2_ball, "binding": z.binding,
             }),
-            None => serde_json::json!({ "station_mm": s, "zone": null }),
+            None => serde_json::json!({ "band": sz.band, "station_mm": sz.station, "zone": null }),
         })
         .collect();
     serde_json::json!({ "zones": zones, "issues": p.issues })

@@ -9,7 +9,7 @@
 //! 3. **Post** ([`write_job_gcode`]): the machine named by `output.machine`
 //!    ([`load_machine`]: a file relative to the job file, or `builtin:NAME` for the
 //!    machines shipped in `machines/`), G93 or G94, the tool length for machines with
-//!    head axes, through [`write_gcode_5x`].
+//!    head axes, through [`post_5x`].
 //!
 //! The 3-axis plan's figures that describe the vertical tool (its lifts and predicted
 //! scallop) are cleared from a positioned plan's report; the sectioning report says
@@ -22,7 +22,7 @@ use swarf_fiveaxis::FiveAxisError;
 use swarf_fiveaxis::cc_paths::{cc_paths, linking};
 use swarf_fiveaxis::machine::{Machine, MachineKind};
 use swarf_fiveaxis::positioning::{PositioningReport, position_with_progress};
-use swarf_fiveaxis::post::{PostOptions, write_gcode_5x};
+use swarf_fiveaxis::post::{Post5x, PostOptions, post_5x};
 use swarf_geom::Part;
 use swarf_path::Plan;
 use swarf_toolpath::{Contact, Toolpath};
@@ -114,19 +114,20 @@ pub fn post_options(
     })
 }
 
-/// `toolpath` as five-axis G-code for `machine`, with the job's post options.
+/// `toolpath` as five-axis G-code for `machine`, with the job's post options, and
+/// what the post did (the rotary ranges among it).
 ///
 /// # Errors
-/// As [`post_options`] and [`write_gcode_5x`] (an unreachable pose names the pass,
-/// the point and the axis).
+/// As [`post_options`] and [`post_5x`] (an unreachable pose names the pass, the
+/// point and the axis).
 pub fn write_job_gcode(
     job: &Job,
     machine: &Machine,
     toolpath: &Toolpath,
     comments: Vec<String>,
-) -> Result<String, FiveAxisError> {
+) -> Result<Post5x, FiveAxisError> {
     let opts = post_options(job, machine, comments)?;
-    write_gcode_5x(machine, toolpath, &opts)
+    post_5x(machine, toolpath, &opts)
 }
 
 #[cfg(test)]

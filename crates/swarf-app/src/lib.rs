@@ -12,6 +12,7 @@ pub mod demo;
 mod demo_rest;
 pub mod drop_spin;
 pub mod dsm;
+pub mod edge_compare;
 pub mod error;
 pub mod five_axis;
 pub mod inspect;

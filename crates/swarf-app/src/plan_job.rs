@@ -109,11 +109,11 @@ fn drop_spin_outputs(
             "strategy.kind: drop-spin needs a parametric part (.toml) with two faces, not a mesh"
         );
     };
-    let ds = plan_drop_spin(job, part)?;
+    let ds = plan_drop_spin(job, part, machine)?;
     if let Some(rel) = &job.output.contacts {
         swarf_io::write_atomic(
             &out_dir.join(rel),
-            contacts_csv(&ds.passes.poses).as_bytes(),
+            contacts_csv(&ds.passes.poses, job.strategy.faces.unwrap_or([0, 1])).as_bytes(),
         )?;
     }
     let written = Written {
@@ -218,23 +218,13 @@ fn write_outputs(
     let strategy = serde_json::to_value(job.strategy.kind)?;
     let strategy = strategy.as_str().unwrap_or("?").to_string();
     let out = |rel: &str| out_dir.join(rel);
-    let mut comments = vec![
-        format!("swarf {}", env!("CARGO_PKG_VERSION")),
-        format!("part {part_name}"),
-        format!("tool {}", job.tool),
-        format!("strategy {strategy}"),
-    ];
-    if plan.toolpath.passes.is_empty() {
-        comments.push("no passes: nothing to cut".into());
-    }
-    comments.extend(notes.iter().cloned());
-    if let Some(p) = &job.positioning {
-        comments.push(format!("positioning {}", describe(p)));
-    }
+    let comments = header_comments(job, plan, part_name, &strategy, notes);
+    let mut rotary = None;
     match (&job.output.gcode, machine) {
         (Some(rel), Some(m)) => {
-            let text = write_job_gcode(job, m, &plan.toolpath, comments)?;
-            swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+            let post = write_job_gcode(job, m, &plan.toolpath, comments)?;
+            swarf_io::write_atomic(&out(rel), post.gcode.as_bytes())?;
+            rotary = post.rotary_ranges;
         }
         (Some(rel), None) => {
             let opts = GcodeOptions {
@@ -275,6 +265,9 @@ fn write_outputs(
     });
     if let Some(m) = machine {
         summary["machine"] = serde_json::json!(m.name);
+        if let Some(ranges) = rotary {
+            summary["rotary_ranges_deg"] = rotary_json(m, ranges);
+        }
     }
     if let Some(p) = positioning {
         summary["positioning"] = serde_json::to_value(p)?;
@@ -284,6 +277,40 @@ fn write_outputs(
         swarf_io::write_atomic(&out(rel), text.as_bytes())?;
     }
     Ok(summary)
+}
+
+/// The program's header comments.
+fn header_comments(
+    job: &Job,
+    plan: &Plan,
+    part_name: &str,
+    strategy: &str,
+    notes: &[String],
+) -> Vec<String> {
+    let mut comments = vec![
+        format!("swarf {}", env!("CARGO_PKG_VERSION")),
+        format!("part {part_name}"),
+        format!("tool {}", job.tool),
+        format!("strategy {strategy}"),
+    ];
+    if plan.toolpath.passes.is_empty() {
+        comments.push("no passes: nothing to cut".into());
+    }
+    comments.extend(notes.iter().cloned());
+    if let Some(p) = &job.positioning {
+        comments.push(format!("positioning {}", describe(p)));
+    }
+    comments
+}
+
+/// The rotary axes' ranges by name, degrees.
+fn rotary_json(m: &Machine, ranges: [[f64; 2]; 2]) -> serde_json::Value {
+    let names = m.rotary_names();
+    let deg = |r: [f64; 2]| [r[0].to_degrees(), r[1].to_degrees()];
+    serde_json::json!({
+        names[0].to_string(): deg(ranges[0]),
+        names[1].to_string(): deg(ranges[1]),
+    })
 }
 
 /// The positioning as one line for the G-code header (degrees, mm).

@@ -108,6 +108,9 @@ pub struct Post5x {
     pub gcode: String,
     /// The subdivision between poses.
     pub report: PostReport,
+    /// The range `[least, greatest]` each rotary axis (in the machine's order) takes
+    /// over the program, radians; `None` for a program without moves.
+    pub rotary_ranges: Option<[[f64; 2]; 2]>,
 }
 
 /// The machine axis positions at the end of every move of `moves =
@@ -251,9 +254,19 @@ pub fn post_5x(
         w.motion(index, code, &position, feed)?;
         prev = Some(j);
     }
+    let rotary_ranges = (!blocks.is_empty()).then(|| {
+        std::array::from_fn(|k| {
+            blocks
+                .iter()
+                .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], b| {
+                    [lo.min(b.joints.rotary[k]), hi.max(b.joints.rotary[k])]
+                })
+        })
+    });
     Ok(Post5x {
         gcode: w.finish(),
         report,
+        rotary_ranges,
     })
 }
 

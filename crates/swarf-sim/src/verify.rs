@@ -77,6 +77,9 @@ pub struct VerifyOptions {
     /// Measure along the design normals ("mow the grass", [`crate::mow`]) instead
     /// of vertically.
     pub along_normals: bool,
+    /// Verify only inside this XY rectangle `[min, max]`, mm, clipped to the design's
+    /// box (default: the whole design).
+    pub window: Option<[[f64; 2]; 2]>,
 }
 
 impl Default for VerifyOptions {
@@ -91,6 +94,7 @@ impl Default for VerifyOptions {
             rapid_rate: 5000.0,
             max_regions: 20,
             along_normals: false,
+            window: None,
         }
     }
 }
@@ -234,7 +238,7 @@ pub fn verify_stages(
     let t0 = Instant::now();
     let surface = DesignSurface::new(design)?;
     let b = surface.bounds();
-    let grid = Grid::covering([b.min.x, b.min.y], [b.max.x, b.max.y], cell, opts.max_bytes)?;
+    let grid = window_grid(&b, opts.window, cell, opts.max_bytes)?;
     let field = surface.heights(&grid, opts.along_normals, progress);
     let mut stock = initial_stock(grid, &opts.stock, &field, b.max.z, progress)?;
     let t1 = Instant::now();
@@ -295,6 +299,28 @@ pub fn verify_stages(
             deviation_s: (t3 - t2).as_secs_f64(),
         },
     })
+}
+
+/// The grid over `window` clipped to the design box `b` (all of it without one).
+fn window_grid(
+    b: &swarf_geom::Aabb,
+    window: Option<[[f64; 2]; 2]>,
+    cell: f64,
+    max_bytes: u64,
+) -> Result<Grid, SimError> {
+    let [lo, hi] = window.unwrap_or([[b.min.x, b.min.y], [b.max.x, b.max.y]]);
+    let (lo, hi) = (
+        [lo[0].max(b.min.x), lo[1].max(b.min.y)],
+        [hi[0].min(b.max.x), hi[1].min(b.max.y)],
+    );
+    if !(lo[0] < hi[0] && lo[1] < hi[1]) {
+        return Err(SimError::InvalidParameter {
+            name: "window".into(),
+            value: hi[0] - lo[0],
+            expected: "a rectangle that overlaps the design".into(),
+        });
+    }
+    Grid::covering(lo, hi, cell, max_bytes)
 }
 
 /// The stock before any cut, over `grid`: `spec` with the design `field` (and its

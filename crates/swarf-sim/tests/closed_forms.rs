@@ -229,6 +229,70 @@ fn a_planted_gouge_is_found_where_and_as_deep_as_planted() {
     );
 }
 
+/// A window verifies the cells it covers as the whole design does, finds the planted
+/// gouge inside it, and nothing from outside it; a window off the design is refused.
+#[test]
+fn a_window_verifies_its_cells_as_the_whole_design_does() {
+    let part = flat_part();
+    let cutter: Cutter = "ball:d=6".parse().unwrap();
+    let opts = VerifyOptions {
+        cell: Some(0.125),
+        stock: StockSpec::Offset { allowance: 0.5 },
+        ..VerifyOptions::default()
+    };
+    let (dirty, _) = raster(true);
+    let whole = verify(Design::Part(&part), &dirty, &cutter, &opts, &Quiet).unwrap();
+    let inside = |lo: [f64; 2], hi: [f64; 2]| VerifyOptions {
+        window: Some([lo, hi]),
+        ..opts.clone()
+    };
+    let w = verify(
+        Design::Part(&part),
+        &dirty,
+        &cutter,
+        &inside([15.0, 5.0], [25.0, 12.0]),
+        &Quiet,
+    )
+    .unwrap();
+    assert_eq!((w.grid.nx, w.grid.ny), (80, 56));
+    for j in 0..w.grid.ny {
+        for i in 0..w.grid.nx {
+            let (x, y) = (w.grid.x(i), w.grid.y(j));
+            let (a, b) = whole.grid.cell_of(x, y).unwrap();
+            assert!((whole.grid.x(a) - x).abs() < 1e-9 && (whole.grid.y(b) - y).abs() < 1e-9);
+            assert_eq!(
+                w.stock.height(i, j),
+                whole.stock.height(a, b),
+                "cell ({x}, {y})"
+            );
+        }
+    }
+    assert_eq!(w.deviation.summary.gouge.regions, 1);
+    let away = verify(
+        Design::Part(&part),
+        &dirty,
+        &cutter,
+        &inside([30.0, 0.0], [60.0, 5.0]),
+        &Quiet,
+    )
+    .unwrap();
+    assert_eq!(away.deviation.summary.gouge.cells, 0);
+    assert!(away.grid.x(away.grid.nx - 1) < 40.0);
+    let e = verify(
+        Design::Part(&part),
+        &dirty,
+        &cutter,
+        &inside([50.0, 0.0], [60.0, 5.0]),
+        &Quiet,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("window") && e.contains("overlaps the design"),
+        "{e}"
+    );
+}
+
 #[test]
 fn tilted_ball_passes_leave_the_same_scallop_within_the_sampling_bound() {
     // A ball tilted 20 degrees about y is still a sphere at its tip: two five-axis

@@ -137,10 +137,11 @@ fn assert_feeds_reach(feeds: &[Joints], cl: &[(Point3, Vec3)]) {
     assert_eq!(k, cl.len(), "every pose is reached, in order");
 }
 
-/// The shipped drop-spin job (paper 003) on edge-concave: four passes over 37
-/// stations, every pose reported in the contacts CSV with both contacts on the
-/// valley's faces, the CL tilted, and the G-code accepted by `rs274` with its feeds
-/// reaching the CL's poses in order.
+/// The shipped drop-spin job (paper 003) on edge-concave: four passes in each band
+/// over 19 stations, every pose reported in the contacts CSV with `P` on the face
+/// dropped on and `Q` on the other, the CL tilted, the G-code accepted by `rs274`
+/// with its feeds reaching the CL's poses in order, and the summary's A/C ranges
+/// those of the program.
 #[test]
 fn drop_spin_job_writes_checked_five_axis_outputs() {
     let dir = temp_dir("drop-spin");
@@ -155,21 +156,44 @@ fn drop_spin_job_writes_checked_five_axis_outputs() {
     let read = |f: &str| std::fs::read_to_string(dir.join(f)).unwrap();
     let summary: serde_json::Value =
         serde_json::from_str(&read("edge-concave-drop-spin.json")).unwrap();
-    assert_eq!(summary["passes"], 4);
+    assert_eq!(summary["passes"], 8);
     let poses = summary["poses"].as_u64().unwrap() as usize;
     assert_eq!(summary["drop_spin"]["issues"].as_array().unwrap().len(), 0);
     let contacts = read("edge-concave-drop-spin-contacts.csv");
     assert_eq!(contacts.lines().count(), poses + 1);
     for line in contacts.lines().skip(1) {
-        let v: Vec<f64> = line.split(',').map(|s| s.parse().unwrap()).collect();
-        // P on face 0's side of the edge (y < 0), Q on face 1's (y > 0).
-        assert!(v[5] < 0.0 && v[8] > 0.0, "{line}");
+        let v: Vec<&str> = line.split(',').collect();
+        let y = |i: usize| v[i].parse::<f64>().unwrap();
+        // Face 0 lies at y < 0, face 1 at y > 0.
+        match v[1] {
+            "0" => assert!(y(7) < 0.0 && y(10) > 0.0, "{line}"),
+            _ => assert!(y(7) > 0.0 && y(10) < 0.0, "{line}"),
+        }
     }
+    assert_eq!(poses, 8 * 19);
     let cl = cl_feed_poses(&read("edge-concave-drop-spin.cl"));
     assert_eq!(cl.len(), poses);
     assert!(cl.iter().all(|(_, a)| a.angle(&Vec3::z()) > 0.3), "tilted");
     if let Some(feeds) = rs274_feeds(&dir.join("edge-concave-drop-spin.ngc")) {
         assert_feeds_reach(&feeds, &cl);
+        for (k, name) in ["A", "C"].into_iter().enumerate() {
+            let range = &summary["rotary_ranges_deg"][name];
+            let (lo, hi) = feeds
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |r, j| {
+                    let a = j.rotary[k].to_degrees();
+                    (r.0.min(a), r.1.max(a))
+                });
+            eprintln!("{name}: summary {range}, rs274 feeds [{lo:.4}, {hi:.4}]");
+            assert!(
+                (range[0].as_f64().unwrap() - lo).abs() < 1e-3,
+                "{name} {range} {lo}"
+            );
+            assert!(
+                (range[1].as_f64().unwrap() - hi).abs() < 1e-3,
+                "{name} {range} {hi}"
+            );
+        }
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -230,6 +230,33 @@ pub struct StrategyParams {
     /// Drop-spin: the whole zone, or only its snug limit.
     #[serde(default)]
     pub zone: ZoneChoice,
+    /// Drop-spin: the faces dropped on (the bands of the valley).
+    #[serde(default)]
+    pub bands: BandChoice,
+}
+
+/// The bands of drop-spin passes: which faces the tool is dropped on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BandChoice {
+    /// Dropped on the first face, spun onto the second: the second face's band.
+    First,
+    /// Dropped on the second, spun onto the first.
+    Second,
+    /// Both, the first's passes first: the whole valley.
+    #[default]
+    Both,
+}
+
+impl BandChoice {
+    /// The faces dropped on (0 for the first), in cutting order.
+    pub fn faces(self) -> Vec<usize> {
+        match self {
+            BandChoice::First => vec![0],
+            BandChoice::Second => vec![1],
+            BandChoice::Both => vec![0, 1],
+        }
+    }
 }
 
 /// The cutting side of drop-spin passes.

@@ -249,8 +249,14 @@ fn drop_spin_jobs_name_the_field() {
         (job.strategy.spin, job.strategy.zone),
         (SpinChoice::Leading, ZoneChoice::Full)
     );
+    assert_eq!(job.strategy.bands, BandChoice::Both);
+    assert_eq!(BandChoice::default().faces(), vec![0, 1]);
     let cases = [
-        (good.replace("step = 2.5", "step = 0"), "strategy.step"),
+        (good.replace("step = 5 ", "step = 0 "), "strategy.step"),
+        (
+            good.replace("bands = \"both\"", "bands = \"all\""),
+            "unknown variant `all`, expected one of `first`, `second`, `both`",
+        ),
         (good.replace("passes = 4", "passes = 0"), "strategy.passes"),
         (good.replace("passes = 4", "passes = 5000"), "at most 1000"),
         (

@@ -3,6 +3,7 @@
 
 use super::{Dsm, ROOT_TOL};
 use crate::error::FiveAxisError;
+use swarf_geom::height::Height;
 use swarf_geom::solve::illinois;
 use swarf_geom::{Point3, Vec3};
 
@@ -38,7 +39,13 @@ impl Dsm {
 
     /// Height of face `k` at `xy`, if the face covers it.
     pub(super) fn height(&self, k: usize, xy: [f64; 2]) -> Option<f64> {
-        self.heights[k].at(xy[0], xy[1]).map(|h| h.z)
+        self.surface_at(k, xy).map(|h| h.z)
+    }
+
+    /// Face `k`'s exact height, upward normal and parameters at `xy`, if it covers
+    /// it.
+    pub fn surface_at(&self, k: usize, xy: [f64; 2]) -> Option<Height> {
+        self.heights[k.min(1)].at(xy[0], xy[1])
     }
 
     /// The range of face `k`'s control box along the horizontal unit direction

@@ -52,7 +52,9 @@ pub mod zone;
 
 pub use clearance::{Clearance, Face};
 pub use edge::Station;
-pub use passes::{EdgePasses, EdgePose, PassParams, Side, StationIssue};
+pub use passes::{
+    EdgePasses, EdgePose, PassParams, Reach, Reachable, Side, StationIssue, StationZone,
+};
 pub use spin::{Drop, Spin, SpinSide};
 pub use zone::{Binding, Zone};
 
@@ -72,6 +74,7 @@ use swarf_tool::{Cutter, Profile};
 #[derive(Debug, Clone)]
 pub struct Dsm {
     faces: [Face; 2],
+    ids: [usize; 2],
     heights: [PartHeights; 2],
     cutter: Cutter,
     profile: Profile,
@@ -130,6 +133,7 @@ impl Dsm {
         };
         Ok(Dsm {
             faces: [face(0), face(1)],
+            ids: faces,
             heights: [heights(0)?, heights(1)?],
             cutter: *cutter,
             profile: cutter.profile(),
@@ -140,6 +144,16 @@ impl Dsm {
     /// The cutter.
     pub fn cutter(&self) -> &Cutter {
         &self.cutter
+    }
+
+    /// The faces' patch indices in the part, in the order given.
+    pub fn ids(&self) -> [usize; 2] {
+        self.ids
+    }
+
+    /// The cutter's profile.
+    pub fn profile(&self) -> &Profile {
+        &self.profile
     }
 
     /// Face `k` (0 or 1 in the order given).

@@ -11,10 +11,17 @@
 //! that gives no pose (an empty zone, a drop off a face, no spin) is reported with
 //! its reason and the pass is split there; consecutive poses whose axes turn more
 //! than `max_turn` per mm of travel are reported too.
+//!
+//! Each band (the tool dropped on face 0 and spun onto face 1, or the reverse) has
+//! its own zone on the other face's side of the edge, so both bands together cover
+//! the valley. A pass the machine cannot reach (its rotary limits) is cut with the
+//! other side where that one is reachable and not cut anyway: the spin sign the
+//! machine allows.
 
 use super::{Dsm, Spin, SpinSide, Station, Zone};
 use crate::error::FiveAxisError;
 use serde::Serialize;
+use swarf_tool::Pose;
 use swarf_toolpath::{Contact, Pass, PathPoint};
 
 /// Which side of the tool cuts the second face.
@@ -27,6 +34,25 @@ pub enum Side {
     Trailing,
 }
 
+impl Side {
+    /// The other side.
+    pub fn other(self) -> Side {
+        match self {
+            Side::Leading => Side::Trailing,
+            Side::Trailing => Side::Leading,
+        }
+    }
+}
+
+impl std::fmt::Display for Side {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Side::Leading => "leading",
+            Side::Trailing => "trailing",
+        })
+    }
+}
+
 /// Parameters of drop-and-spin passes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PassParams {
@@ -36,8 +62,8 @@ pub struct PassParams {
     pub fractions: Vec<f64>,
     /// The cutting sides: every fraction is cut with each, in this order.
     pub sides: Vec<Side>,
-    /// The face dropped on (0 or 1).
-    pub face: usize,
+    /// The bands: the faces dropped on (each 0 or 1), in cutting order.
+    pub bands: Vec<usize>,
     /// Largest axis turn per mm of travel before a pair of poses is reported,
     /// radians per mm.
     pub max_turn: f64,
@@ -50,6 +76,10 @@ pub struct EdgePose {
     pub station: f64,
     /// Offset from the edge, mm.
     pub offset: f64,
+    /// The band: the face dropped on (0 or 1).
+    pub band: usize,
+    /// The side cutting the other face.
+    pub side: Side,
     /// The spun pose and its contacts.
     pub spin: Spin,
     /// First contact `P`.
@@ -61,6 +91,8 @@ pub struct EdgePose {
 pub struct StationIssue {
     /// Station, mm.
     pub station: f64,
+    /// The band (the face dropped on).
+    pub band: usize,
     /// Zone fraction of the pass.
     pub fraction: f64,
     /// Why.
@@ -76,16 +108,41 @@ pub struct EdgePasses {
     pub poses: Vec<Vec<EdgePose>>,
     /// Stations without a pose, and axis turns above the limit.
     pub issues: Vec<StationIssue>,
-    /// The zone at each station (`None` where it could not be found).
-    pub zones: Vec<(f64, Option<Zone>)>,
+    /// The zone at each station of each band.
+    pub zones: Vec<StationZone>,
 }
 
+/// The zone of one band at one station.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StationZone {
+    /// The band (the face dropped on).
+    pub band: usize,
+    /// Station, mm.
+    #[serde(rename = "station_mm")]
+    pub station: f64,
+    /// The zone, `None` where it could not be found.
+    pub zone: Option<Zone>,
+}
+
+/// What the machine says of a run of poses: `Err((index, reason))` for the first
+/// pose it cannot reach.
+pub type Reachable = Result<(), (usize, String)>;
+
+/// Whether the machine reaches a run of poses.
+pub type Reach<'a> = &'a dyn Fn(&[Pose]) -> Reachable;
+
+/// A station's edge and zone for one band, or why there is none.
+type Prepared = Result<(Station, Zone), String>;
+
+/// The runs of one pass (split where a station gives no pose) and its issues.
+type Runs = (Vec<Vec<EdgePose>>, Vec<StationIssue>);
+
 impl Dsm {
-    /// The pose of fraction `f` at `station` to `side`, or the reason there is none.
+    /// The pose of fraction `f` at `station` to `side`, dropped on face `k`, or the
+    /// reason there is none.
     fn edge_pose(
         &self,
-        st: &Station,
-        zone: &Zone,
+        (st, zone): &(Station, Zone),
         f: f64,
         (side, k): (Side, usize),
     ) -> Result<EdgePose, String> {
@@ -112,87 +169,169 @@ impl Dsm {
         Ok(EdgePose {
             station: st.s,
             offset: w,
+            band: k,
+            side,
             spin: chosen,
             p: drop.p,
         })
     }
 
-    /// Drop-and-spin passes (module doc).
+    /// The runs of the pass at fraction `f` to `side` in `band`.
+    fn runs(
+        &self,
+        params: &PassParams,
+        prepared: &[Prepared],
+        (band, side, f): (usize, Side, f64),
+    ) -> Runs {
+        let issue = |station: f64, reason: String| StationIssue {
+            station,
+            band,
+            fraction: f,
+            reason,
+        };
+        let (mut runs, mut issues) = (Vec::new(), Vec::new());
+        let mut run: Vec<EdgePose> = Vec::new();
+        for (&s, prep) in params.stations.iter().zip(prepared) {
+            let pose = prep
+                .as_ref()
+                .map_err(Clone::clone)
+                .and_then(|sz| self.edge_pose(sz, f, (side, band)));
+            match pose {
+                Ok(p) => {
+                    if let Some(prev) = run.last() {
+                        let travel = (p.spin.pose.cl - prev.spin.pose.cl).norm().max(1e-12);
+                        let turn = prev.spin.pose.axis.angle(&p.spin.pose.axis);
+                        if turn / travel > params.max_turn {
+                            issues.push(issue(
+                                s,
+                                format!(
+                                    "the axis turns {:.3} degrees over {travel:.4} mm, above the limit",
+                                    turn.to_degrees()
+                                ),
+                            ));
+                        }
+                    }
+                    run.push(p);
+                }
+                Err(reason) => {
+                    issues.push(issue(s, reason));
+                    if !run.is_empty() {
+                        runs.push(std::mem::take(&mut run));
+                    }
+                }
+            }
+        }
+        runs.push(run);
+        runs.retain(|r| r.len() > 1);
+        (runs, issues)
+    }
+
+    /// The runs of `runs` the machine cannot reach, with the station and reason.
+    fn unreachable(runs: &[Vec<EdgePose>], reach: Reach<'_>) -> Vec<(usize, f64, String)> {
+        runs.iter()
+            .enumerate()
+            .filter_map(|(k, run)| {
+                let poses: Vec<Pose> = run.iter().map(|e| e.spin.pose).collect();
+                reach(&poses)
+                    .err()
+                    .map(|(i, why)| (k, run[i.min(run.len() - 1)].station, why))
+            })
+            .collect()
+    }
+
+    /// The pass at fraction `f` to `side` in `band`, cut with the other side where the
+    /// machine reaches only that one (and it is not cut anyway).
+    fn reachable_runs(
+        &self,
+        params: &PassParams,
+        prepared: &[Prepared],
+        (band, side, f): (usize, Side, f64),
+        reach: Reach<'_>,
+    ) -> Runs {
+        let (mut runs, mut issues) = self.runs(params, prepared, (band, side, f));
+        let bad = Self::unreachable(&runs, reach);
+        if bad.is_empty() {
+            return (runs, issues);
+        }
+        let other = side.other();
+        let mut also = String::new();
+        if !params.sides.contains(&other) {
+            let (alt, alt_issues) = self.runs(params, prepared, (band, other, f));
+            let alt_bad = Self::unreachable(&alt, reach);
+            if let Some((_, _, why)) = alt_bad.first() {
+                also = format!("; so is the {other} spin ({why})");
+            }
+            if !alt.is_empty() && alt_bad.is_empty() {
+                let (_, s, why) = &bad[0];
+                let mut issues = alt_issues;
+                issues.push(StationIssue {
+                    station: *s,
+                    band,
+                    fraction: f,
+                    reason: format!(
+                        "the {side} spin is out of the machine's reach ({why}): the pass cuts with the {other} side"
+                    ),
+                });
+                return (alt, issues);
+            }
+        }
+        for (k, s, why) in bad.iter().rev() {
+            runs.remove(*k);
+            issues.push(StationIssue {
+                station: *s,
+                band,
+                fraction: f,
+                reason: format!("the {side} spin is out of the machine's reach: {why}{also}"),
+            });
+        }
+        (runs, issues)
+    }
+
+    /// Drop-and-spin passes (module doc): per band, side and fraction in that order;
+    /// `reach` says which runs the machine can cut.
     ///
     /// # Errors
     /// [`FiveAxisError::InvalidParameter`] on `stations` (fewer than two, not finite),
-    /// `fractions` (none, or outside `[0, 1]`), `sides` (none), `face` (not 0 or 1) or `max_turn`
-    /// (not above 0).
-    pub fn passes(&self, params: &PassParams) -> Result<EdgePasses, FiveAxisError> {
+    /// `fractions` (none, or outside `[0, 1]`), `sides` (none), `bands` (none, or not
+    /// 0 or 1) or `max_turn` (not above 0).
+    pub fn passes(
+        &self,
+        params: &PassParams,
+        reach: Reach<'_>,
+    ) -> Result<EdgePasses, FiveAxisError> {
         validate(params)?;
         let mut out = EdgePasses::default();
-        let stations: Vec<(Option<Station>, Option<Zone>, Option<String>)> = params
-            .stations
-            .iter()
-            .map(|&s| {
-                match self
-                    .station(s)
-                    .and_then(|st| self.zone(&st, params.face).map(|z| (st, z)))
-                {
-                    Ok((st, z)) => (Some(st), Some(z), None),
-                    Err(e) => (None, None, Some(e.to_string())),
-                }
-            })
-            .collect();
-        out.zones = params
-            .stations
-            .iter()
-            .zip(&stations)
-            .map(|(&s, x)| (s, x.1))
-            .collect();
-        let runs = params
-            .sides
-            .iter()
-            .flat_map(|&side| params.fractions.iter().map(move |&f| (side, f)));
-        for (side, f) in runs {
-            let mut run: Vec<EdgePose> = Vec::new();
-            let mut runs: Vec<Vec<EdgePose>> = Vec::new();
-            for (&s, (st, zone, why)) in params.stations.iter().zip(&stations) {
-                let pose = match (st, zone) {
-                    (Some(st), Some(z)) => self.edge_pose(st, z, f, (side, params.face)),
-                    _ => Err(why.clone().unwrap_or_default()),
-                };
-                match pose {
-                    Ok(p) => {
-                        if let Some(prev) = run.last() {
-                            let travel = (p.spin.pose.cl - prev.spin.pose.cl).norm().max(1e-12);
-                            let turn = prev.spin.pose.axis.angle(&p.spin.pose.axis);
-                            if turn / travel > params.max_turn {
-                                out.issues.push(StationIssue {
-                                    station: s,
-                                    fraction: f,
-                                    reason: format!(
-                                        "the axis turns {:.3} degrees over {travel:.4} mm, above the limit",
-                                        turn.to_degrees()
-                                    ),
-                                });
-                            }
-                        }
-                        run.push(p);
-                    }
-                    Err(reason) => {
-                        out.issues.push(StationIssue {
-                            station: s,
-                            fraction: f,
-                            reason,
-                        });
-                        if !run.is_empty() {
-                            runs.push(std::mem::take(&mut run));
-                        }
+        for &band in &params.bands {
+            let prepared: Vec<Prepared> = params
+                .stations
+                .iter()
+                .map(|&s| {
+                    self.station(s)
+                        .and_then(|st| self.zone(&st, band).map(|z| (st, z)))
+                        .map_err(|e| e.to_string())
+                })
+                .collect();
+            out.zones.extend(
+                params
+                    .stations
+                    .iter()
+                    .zip(&prepared)
+                    .map(|(&s, p)| StationZone {
+                        band,
+                        station: s,
+                        zone: p.as_ref().ok().map(|p| p.1),
+                    }),
+            );
+            for &side in &params.sides {
+                for &f in &params.fractions {
+                    let (runs, issues) =
+                        self.reachable_runs(params, &prepared, (band, side, f), reach);
+                    out.issues.extend(issues);
+                    for run in runs {
+                        out.passes.push(self.pass_of(&run, band));
+                        out.poses.push(run);
                     }
                 }
-            }
-            if !run.is_empty() {
-                runs.push(run);
-            }
-            for run in runs.into_iter().filter(|r| r.len() > 1) {
-                out.passes.push(self.pass_of(&run, params.face));
-                out.poses.push(run);
             }
         }
         Ok(out)
@@ -216,7 +355,7 @@ impl Dsm {
                     contact: Some(Contact {
                         point: s.q,
                         normal,
-                        face: other,
+                        face: self.ids[other],
                         uv: s.q_uv,
                     }),
                     lifted: 0.0,
@@ -253,8 +392,14 @@ fn validate(p: &PassParams) -> Result<(), FiveAxisError> {
     if p.sides.is_empty() {
         return bad("sides", "expected one or more cutting sides".to_string());
     }
-    if p.face > 1 {
-        return bad("face", format!("{}: expected 0 or 1", p.face));
+    if p.bands.is_empty() || p.bands.iter().any(|&b| b > 1) {
+        return bad(
+            "bands",
+            format!(
+                "{:?}: expected one or more faces dropped on, each 0 or 1",
+                p.bands
+            ),
+        );
     }
     if p.max_turn.is_nan() || p.max_turn <= 0.0 {
         return bad(
