@@ -145,7 +145,12 @@ pub fn plan_drop_spin(job: &Job, part: &Part, machine: Option<&Machine>) -> Resu
             "strategy: no drop-spin pass: {}",
             all.issues.first().map_or_else(
                 || "no station gave a pose".to_string(),
-                |i| format!("station {:.4}: {}", i.station, i.reason)
+                |i| format!(
+                    "station {:.4}: {}{}",
+                    i.station,
+                    i.reason,
+                    fit_note(&dsm, i.station, i.band)
+                )
             )
         );
     }
@@ -155,6 +160,21 @@ pub fn plan_drop_spin(job: &Job, part: &Part, machine: Option<&Machine>) -> Resu
     };
     let plan = Plan::from_passes(all.passes.clone(), &job.finish(), report, Vec::new());
     Ok(DropSpinPlan { plan, passes: all })
+}
+
+/// Where the cutter has no zone at station `s` in `band`: the largest cutter of its
+/// shape that has one, as a note to an error (empty otherwise).
+pub fn fit_note(dsm: &Dsm, s: f64, band: usize) -> String {
+    let Ok(st) = dsm.station(s) else {
+        return String::new();
+    };
+    if dsm.zone(&st, band).is_ok() {
+        return String::new();
+    }
+    dsm.largest_fit(&st, band).map_or_else(
+        || " (no smaller cutter of this shape fits there either)".to_string(),
+        |c| format!(" (the largest cutter of this shape that fits there: {c})"),
+    )
 }
 
 /// The contact trajectories as CSV: per pose its pass, band (the face of `faces`

@@ -121,7 +121,10 @@ pub fn dsm_report(req: &DsmRequest) -> Result<Value> {
                     req.footprints
                 );
             }
-            let z = dsm.zone(&st, 0)?;
+            let z = match dsm.zone(&st, 0) {
+                Ok(z) => z,
+                Err(e) => bail!("{e}{}", crate::drop_spin::fit_note(&dsm, st.s, 0)),
+            };
             out["zone"] = json!({
                 "t1_mm": z.t1,
                 "t2_ball_mm": z.t2_ball,

@@ -83,3 +83,62 @@ fn dsm_says_what_is_wrong() {
         assert!(want.iter().all(|w| e.contains(w)), "{args:?}: {e}");
     }
 }
+
+/// A bull too large for the symmetric wedge's faces (each runs 20 mm past the edge):
+/// the ball limit there is `R` (closed form, `g = b`), so the footprint at the limit
+/// leaves face 0 for `R > 20`, and the largest bull of the shape d = 100, r = 10
+/// that fits is half of it, d = 50, r = 5 (to the bisection's 2^-12).
+#[test]
+fn a_cutter_too_large_is_told_the_largest_that_fits() {
+    let o = swarf(&[
+        "dsm",
+        "wedge-symmetric",
+        "--tool",
+        "bull:d=100,r=10",
+        "--station",
+        "50",
+    ]);
+    assert!(!o.status.success());
+    let e = String::from_utf8_lossy(&o.stderr);
+    let fit = e
+        .split("the largest cutter of this shape that fits there: ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("{e}"));
+    let d: f64 = fit
+        .trim_start_matches("bull:d=")
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((d - 50.0).abs() <= 100.0 / 4096.0 + 1e-9, "{e}");
+}
+
+/// A ridge (two faces meeting at a convex edge, each on its own side) has no valley
+/// for the tool: refused at the station with the reason.
+#[test]
+fn a_ridge_is_refused() {
+    let dir = std::env::temp_dir().join(format!("swarf-dsm-ridge-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let roof = dir.join("roof.toml");
+    // z = 20 + y / 2 for y in [-40, 0], z = 20 - y / 2 for y in [0, 40].
+    std::fs::write(
+        &roof,
+        "name = \"roof\"\nunits = \"mm\"\n\
+         [[patch]]\ndegree = [1, 1]\npoints = [[0, -40, 0], [0, 0, 20], [100, -40, 0], [100, 0, 20]]\n\
+         [[patch]]\ndegree = [1, 1]\npoints = [[0, 0, 20], [0, 40, 0], [100, 0, 20], [100, 40, 0]]\n",
+    )
+    .unwrap();
+    let o = swarf(&[
+        "dsm",
+        roof.to_str().unwrap(),
+        "--tool",
+        "bull:d=12,r=2",
+        "--station",
+        "50",
+    ]);
+    assert!(!o.status.success());
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("station 50") && e.contains("ridge"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -88,7 +88,7 @@ impl Dsm {
         Err(FiveAxisError::parameter(
             "faces",
             format!(
-                "station {s:.4}: the two faces do not cross on the reference line (no common edge there)"
+                "station {s:.4}: the two faces do not cross on the reference line (no valley there: faces that meet at a ridge, or only abut, give the tool nothing to drop into)"
             ),
         ))
     }

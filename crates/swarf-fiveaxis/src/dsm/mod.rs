@@ -46,6 +46,7 @@
 
 pub mod clearance;
 pub mod edge;
+pub mod fit;
 pub mod passes;
 pub mod spin;
 pub mod zone;
@@ -102,16 +103,7 @@ impl Dsm {
                 format!("{faces:?}: expected two different patch indices below {n}"),
             ));
         }
-        let corner = match *cutter {
-            Cutter::Bull { corner, .. } if corner > 0.0 => corner,
-            Cutter::Ball { radius, .. } => radius,
-            _ => {
-                return Err(FiveAxisError::parameter(
-                    "tool",
-                    format!("{cutter}: expected a bull or ball cutter (an insert circle to spin)"),
-                ));
-            }
-        };
+        let corner = insert_radius(cutter)?;
         let xy = Vec3::new(along.x, along.y, 0.0);
         let Some(along) = xy
             .try_normalize(1e-12)
@@ -167,5 +159,20 @@ impl Dsm {
             Cutter::Bull { radius, corner, .. } => (corner, radius - corner),
             _ => (self.cutter.radius(), 0.0),
         }
+    }
+}
+
+/// The insert radius of a cutter that can spin (a bull's corner, a ball's radius).
+///
+/// # Errors
+/// [`FiveAxisError::InvalidParameter`] on `tool` for any other cutter.
+fn insert_radius(cutter: &Cutter) -> Result<f64, FiveAxisError> {
+    match *cutter {
+        Cutter::Bull { corner, .. } if corner > 0.0 => Ok(corner),
+        Cutter::Ball { radius, .. } => Ok(radius),
+        _ => Err(FiveAxisError::parameter(
+            "tool",
+            format!("{cutter}: expected a bull or ball cutter (an insert circle to spin)"),
+        )),
     }
 }
