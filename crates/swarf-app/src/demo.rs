@@ -175,16 +175,24 @@ fn die(out: &Path, jobs_dir: &Path, text: &mut dyn Write, reporter: &dyn Reporte
 fn edges(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<()> {
     let dir = out.join("edges");
     let job = Job::parse(DROP_SPIN_JOB, "edge-concave-drop-spin.toml")?;
+    let start = std::time::Instant::now();
     let summary = plan_job(&job, Path::new("."), &dir, reporter)?;
-    let ranges = &summary["rotary_ranges_deg"];
+    let range = |axis: &str| {
+        let r = |k: usize| {
+            summary["rotary_ranges_deg"][axis][k]
+                .as_f64()
+                .unwrap_or(f64::NAN)
+        };
+        format!("[{:.2}, {:.2}]", r(0), r(1))
+    };
     writeln!(
         text,
-        "edge-concave-drop-spin.toml: {} passes, {} poses, planned in {:.1} s; A {} deg, C {} deg",
+        "edge-concave-drop-spin.toml: {} passes, {} poses, planned and posted in {:.1} s; A {} deg, C {} deg",
         summary["passes"],
         summary["poses"],
-        summary["report"]["elapsed_s"].as_f64().unwrap_or(f64::NAN),
-        ranges["A"],
-        ranges["C"]
+        start.elapsed().as_secs_f64(),
+        range("A"),
+        range("C")
     )?;
     let mut all = Vec::new();
     for name in ["edge-concave", "edge-convex"] {

@@ -1,7 +1,8 @@
 //! Drop-and-spin passes on a machine's rotary limits (issue 13): with the C table
 //! limited to one half turn a pass is cut with the side that half turn reaches (the
 //! spin sign the machine allows), the other half turn gives the other side, and a
-//! machine that reaches neither is refused with the reason.
+//! machine that reaches neither is refused with the reason; one thread or two give
+//! the same passes.
 
 use swarf_app::drop_spin::plan_drop_spin;
 use swarf_fiveaxis::dsm::Side;
@@ -86,4 +87,31 @@ fn a_machine_that_reaches_neither_side_is_refused() {
         e.contains("A:") && e.contains("so is the trailing spin"),
         "{e}"
     );
+}
+
+/// The same job in one thread and in two: identical contacts (the zones are found
+/// in parallel).
+#[test]
+fn one_thread_or_two_give_the_same_passes() {
+    let job = swarf_app::Job::parse(
+        &JOB.replace("bands = \"first\"", "bands = \"both\""),
+        "job.toml",
+    )
+    .unwrap();
+    let part = swarf_io::builtin_part("edge-concave").unwrap();
+    let csv: Vec<String> = [1, 2]
+        .into_iter()
+        .map(|threads| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let ds = plan_drop_spin(&job, &part, None).unwrap();
+                swarf_app::drop_spin::contacts_csv(&ds.passes.poses, [0, 1])
+            })
+        })
+        .collect();
+    assert_eq!(csv[0].lines().count(), 21);
+    assert_eq!(csv[0], csv[1]);
 }

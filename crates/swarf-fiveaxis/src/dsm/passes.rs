@@ -17,9 +17,13 @@
 //! the valley. A pass the machine cannot reach (its rotary limits) is cut with the
 //! other side where that one is reachable and not cut anyway: the spin sign the
 //! machine allows.
+//!
+//! The stations' zones (most of the time) are found in parallel, each on its own,
+//! so the result does not depend on the threads.
 
 use super::{Dsm, Spin, SpinSide, Station, Zone};
 use crate::error::FiveAxisError;
+use rayon::prelude::*;
 use serde::Serialize;
 use swarf_tool::Pose;
 use swarf_toolpath::{Contact, Pass, PathPoint};
@@ -304,7 +308,7 @@ impl Dsm {
         for &band in &params.bands {
             let prepared: Vec<Prepared> = params
                 .stations
-                .iter()
+                .par_iter()
                 .map(|&s| {
                     self.station(s)
                         .and_then(|st| self.zone(&st, band).map(|z| (st, z)))
