@@ -192,15 +192,19 @@ fn flat_part() -> Part {
     }
 }
 
-#[test]
-fn a_planted_gouge_is_found_where_and_as_deep_as_planted() {
-    let part = flat_part();
-    let cutter: Cutter = "ball:d=6".parse().unwrap();
+/// The flat part, a ball d = 6 and cells of 0.125 mm over a 0.5 mm offset stock.
+fn planted_setup() -> (Part, Cutter, VerifyOptions) {
     let opts = VerifyOptions {
         cell: Some(0.125),
         stock: StockSpec::Offset { allowance: 0.5 },
         ..VerifyOptions::default()
     };
+    (flat_part(), "ball:d=6".parse().unwrap(), opts)
+}
+
+#[test]
+fn a_planted_gouge_is_found_where_and_as_deep_as_planted() {
+    let (part, cutter, opts) = planted_setup();
     let (clean, _) = raster(false);
     let v = verify(Design::Part(&part), &clean, &cutter, &opts, &Quiet).unwrap();
     let s = &v.deviation.summary;
@@ -233,13 +237,7 @@ fn a_planted_gouge_is_found_where_and_as_deep_as_planted() {
 /// gouge inside it, and nothing from outside it; a window off the design is refused.
 #[test]
 fn a_window_verifies_its_cells_as_the_whole_design_does() {
-    let part = flat_part();
-    let cutter: Cutter = "ball:d=6".parse().unwrap();
-    let opts = VerifyOptions {
-        cell: Some(0.125),
-        stock: StockSpec::Offset { allowance: 0.5 },
-        ..VerifyOptions::default()
-    };
+    let (part, cutter, opts) = planted_setup();
     let (dirty, _) = raster(true);
     let whole = verify(Design::Part(&part), &dirty, &cutter, &opts, &Quiet).unwrap();
     let inside = |lo: [f64; 2], hi: [f64; 2]| VerifyOptions {
