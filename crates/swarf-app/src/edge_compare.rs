@@ -2,7 +2,7 @@
 //! drop-and-spin passes (both bands, at the zone's limit) against the best
 //! three-axis pass and inclined single-point positioning along the same edge, each
 //! written as APT CL, read back and cut on a dexel stock over the strip along the
-//! edge between the outer stations measured ([`swarf_sim::verify`] with a window;
+//! edge between the outer stations measured ([`swarf_sim::verify()`] with a window;
 //! cells of [`CELL`], motions sampled to [`SAMPLE_TOL`]: the tilted sweeps dominate
 //! the time).
 //!
