@@ -233,6 +233,39 @@ fn a_planted_gouge_is_found_where_and_as_deep_as_planted() {
     );
 }
 
+/// Issue 14's three-line program: a positioning move to the assumed start (the
+/// origin), then two feeds at Z0 through a box stock 70 mm high. Both feeds cut down
+/// to the plane (a flat d = 6 at Z0 leaves 0 under its path); before the fix the
+/// first feed was taken for the program's unknown first move and cut nothing.
+#[test]
+fn the_first_feed_after_a_move_to_the_start_cuts() {
+    let text = "G0 X0 Y0 Z0\nG1 X20 Y20 F100\nG1 X40 Y20\n";
+    let program = swarf_nc::read::parse_gcode(
+        text,
+        "first.ngc",
+        &swarf_nc::read::GcodeReadOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(program.motions.len(), 3);
+    let (part, _, opts) = planted_setup();
+    let cutter: Cutter = "flat:d=6".parse().unwrap();
+    let opts = VerifyOptions {
+        stock: StockSpec::Box { top: Some(70.0) },
+        ..opts
+    };
+    let v = verify(Design::Part(&part), &program, &cutter, &opts, &Quiet).unwrap();
+    for (x, y) in [(5.0, 5.0), (10.0, 10.0), (15.0, 15.0), (30.0, 19.0)] {
+        let (i, j) = v.grid.cell_of(x, y).unwrap();
+        assert!(
+            v.stock.height(i, j).abs() < 1e-9,
+            "({x}, {y}): {}",
+            v.stock.height(i, j)
+        );
+    }
+    let (i, j) = v.grid.cell_of(30.0, 10.0).unwrap();
+    assert_eq!(v.stock.height(i, j), 70.0);
+}
+
 /// A window verifies the cells it covers as the whole design does, finds the planted
 /// gouge inside it, and nothing from outside it; a window off the design is refused.
 #[test]

@@ -12,7 +12,8 @@
 //! A program does not say where the machine stands before it, so the path of its
 //! first move is unknown whatever the kinematics: the first block that moves becomes
 //! one straight motion to its end, as in a three-axis program (a simulator then only
-//! places the tool there).
+//! places the tool there), even where its end is the assumed start: after it, the
+//! next move's path is known and cuts.
 
 use crate::read::feed::BlockFeed;
 use crate::read::kinematics::{AxisPosition, Kinematics, arc_in_part_frame, home_position};
@@ -85,7 +86,9 @@ impl<'k> Axes<'k> {
     ) -> Vec<Motion> {
         let from = self.position;
         let poses = match (kind, self.kinematics) {
-            (MotionKind::Rapid | MotionKind::Linear, Some(_)) if to == from => Vec::new(),
+            (MotionKind::Rapid | MotionKind::Linear, Some(_)) if to == from && self.moved => {
+                Vec::new()
+            }
             (MotionKind::Arc { .. }, _) | (_, None) => vec![self.end_pose(&to)],
             (_, Some(_)) if !self.moved => vec![self.end_pose(&to)],
             (_, Some(k)) => k.path(&from, &to, self.tol),
@@ -114,7 +117,9 @@ impl<'k> Axes<'k> {
         let mut motions = Vec::with_capacity(poses.len());
         let mut start = self.pose;
         for end in poses {
-            if straight && (to == from || end == start) {
+            // The first move is kept even where it does not change the assumed
+            // start: it is where the program puts the tool.
+            if straight && self.moved && (to == from || end == start) {
                 continue;
             }
             motions.push(Motion {
