@@ -75,6 +75,33 @@ fn binary_and_ascii_read_the_same_welded_mesh() {
     }
 }
 
+/// Float32 coordinates are read as the exact f64 of the stored bits, not through the
+/// shortest decimal of the float (issue 14: a stored -0.319627195596695 read as
+/// -0.3196272 moved drop heights by up to 1.6e-4 mm). (ASCII coordinates are the
+/// decimals as written, read as f64.)
+#[test]
+fn float32_coordinates_are_read_exactly() {
+    let c = [
+        -0.319_627_2_f32,
+        1.0e-7,
+        123.456_79,
+        -98.765_43,
+        0.1,
+        7.3e-3,
+    ];
+    let tris = [[[c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[2], c[0], c[4]]]];
+    let exact = |v: f32| f64::from(v);
+    assert!((exact(c[0]) - -0.319_627_195_596_695).abs() < 1e-16);
+    let mesh = parse_stl(&binary(b"", &tris), "f32.stl").unwrap();
+    let t = mesh.triangle(0);
+    for (k, v) in tris[0].iter().enumerate() {
+        assert_eq!(
+            [t[k].x, t[k].y, t[k].z].map(f64::to_bits),
+            v.map(|x| exact(x).to_bits())
+        );
+    }
+}
+
 #[test]
 fn write_then_read_round_trips() {
     let dir = scratch_dir("stl");
