@@ -10,6 +10,7 @@ use crate::five_axis::{position_plan, write_job_gcode};
 use crate::job::Job;
 use crate::model::{Model, load_model};
 use crate::plan::{PlanInput, plan};
+use crate::programs::SCALLOP_COMMENT;
 use crate::report::Reporter;
 use std::path::Path;
 use swarf_fiveaxis::machine::{Machine, load_machine};
@@ -295,6 +296,9 @@ fn header_comments(
     ];
     if plan.toolpath.passes.is_empty() {
         comments.push("no passes: nothing to cut".into());
+    }
+    if let Some(h) = job.strategy.scallop.or(plan.report.predicted_max_scallop) {
+        comments.push(format!("{SCALLOP_COMMENT}{h} mm"));
     }
     comments.extend(notes.iter().cloned());
     if let Some(p) = &job.positioning {

@@ -15,8 +15,8 @@
 
 use crate::error::{Context, Result, bail};
 use crate::model::{Model, load_model};
-use crate::programs::read_programs;
 pub use crate::programs::{machine_arg, parse_tools, read_with_machine, stage_cutters};
+use crate::programs::{planned_scallop, read_programs};
 use std::path::{Path, PathBuf};
 use swarf_nc::read::Motion;
 use swarf_sim::report::{ReportContext, flagged_csv, json_report};
@@ -42,8 +42,7 @@ pub struct SimSettings {
     /// Memory limit for the grid, MiB.
     pub max_memory: u64,
     /// How deviation is measured: `vertical` (along z) or `normal` (along the design
-    /// normals, "mow the grass"; the scallop height of paper 004). Default: vertical
-    /// for verify, normal for compare.
+    /// normals, "mow the grass"; the scallop height of paper 004; the default).
     pub deviation: Option<String>,
 }
 
@@ -201,10 +200,27 @@ pub fn verify_request(req: &VerifyRequest<'_>, progress: &dyn Progress) -> Resul
     }
     let tools = parse_tools(req.tools, req.programs.len())?;
     let model = load_model(req.part)?;
-    let opts = req.sim.options(0.01, 0.0, 5000.0, false)?;
+    let planned = match req.sim.scallop {
+        Some(_) => None,
+        None => planned_scallop(req.programs),
+    };
+    let opts = req
+        .sim
+        .options(0.01, planned.unwrap_or(0.0), 5000.0, true)?;
     let sample_tol = opts.sample_tol.unwrap_or(0.25 * opts.tol);
     let (mut programs, mut notes) =
         read_programs(req.programs, req.machine, req.tool_length, sample_tol)?;
+    match (req.sim.scallop, planned) {
+        (Some(_), _) => {}
+        (None, Some(h)) => notes.push(format!(
+            "note: scallop allowance {h} mm, as the program states it was planned (--scallop to change)"
+        )),
+        (None, None) => notes.push(
+            "note: no --scallop and no planned scallop in the program: any material more than \
+             the tolerance above the design counts as excess"
+                .to_string(),
+        ),
+    }
     if let Some(k) = programs.iter().position(|p| p.stopped.is_some())
         && k + 1 < programs.len()
     {

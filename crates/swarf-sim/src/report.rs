@@ -215,9 +215,6 @@ pub fn text_summary(v: &Verification, ctx: &ReportContext) -> String {
             o.amount
         );
     }
-    if let Some(stop) = &ctx.stopped {
-        let _ = writeln!(t, "error: the program stopped early: {stop}");
-    }
     t
 }
 

@@ -122,7 +122,8 @@ fn gcode_through_the_machine_verifies_like_the_cl_data() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("ignored"), "{}", stderr(&o));
     let (g, c) = (report(&dir.join("gcode")), report(&dir.join("cl")));
-    // The lead of 6 degrees gouges the die's corner near (-77, -92) by 3.4 mm (thesis
+    // The lead of 6 degrees gouges the die's corner near (-77, -92) by 2.8 mm along
+    // the design normal, 3.4 mm vertically (thesis
     // 000 ch. 8: alpha = 6 is not gouge-free there); the rest of the stock is uncut
     // (0.5 mm excess). Both programs find the same: the G-code's axes, interpolated
     // linearly, bend the tip off the CL chords by a few hundredths of a millimetre
@@ -140,7 +141,7 @@ fn gcode_through_the_machine_verifies_like_the_cl_data() {
         assert!(worst.abs() < 0.01, "{what}: {a} vs {b}");
     }
     let gouge = &g["deviation"]["gouge"];
-    assert!(gouge["worst"].as_f64().unwrap() < -3.0, "{gouge}");
+    assert!(gouge["worst"].as_f64().unwrap() < -2.5, "{gouge}");
     // Machining times agree too: G93 feeds read back as the tip's feed over the part.
     let time = |r: &serde_json::Value| r["program_stats"]["time_s"].as_f64().unwrap();
     let cutting = |r: &serde_json::Value| r["program_stats"]["cutting_length_mm"].as_f64().unwrap();

@@ -58,7 +58,8 @@ pub struct SimArgs {
     #[arg(long)]
     tol: Option<f64>,
     /// Material allowed above the design before it counts as excess (the scallop
-    /// limit), mm (compare: default from each job).
+    /// limit), mm (verify: default the scallop the program states it was planned for
+    /// by swarf, else 0; compare: default from each job).
     #[arg(long)]
     scallop: Option<f64>,
     /// Machine rapid rate for the time estimate, mm/min (compare: default from each job).
@@ -71,8 +72,7 @@ pub struct SimArgs {
     #[arg(long, default_value_t = 4096)]
     max_memory: u64,
     /// How deviation is measured: `vertical` (along z) or `normal` (along the design
-    /// normals, "mow the grass"; the scallop height of paper 004). Default: vertical
-    /// for verify, normal for compare.
+    /// normals, "mow the grass"; the scallop height of paper 004; the default).
     #[arg(long, value_parser = ["vertical", "normal"])]
     deviation: Option<String>,
 }
