@@ -156,6 +156,31 @@ pub fn machine_arg(spec: &str) -> Result<Machine> {
     Ok(Machine::parse(&text, spec)?)
 }
 
+/// The header comment in which swarf's G-code states the scallop its plan allows
+/// (the job's limit, else the plan's predicted largest): `(scallop limit H mm)`.
+pub const SCALLOP_COMMENT: &str = "scallop limit ";
+
+/// The largest planned scallop stated by the G-code programs at `paths`
+/// ([`SCALLOP_COMMENT`], in the header before the first motion); `None` where none
+/// states one or a program cannot be read (reading it reports that).
+pub fn planned_scallop(paths: &[PathBuf]) -> Option<f64> {
+    paths
+        .iter()
+        .filter(|p| ProgramFormat::of(p) == Some(ProgramFormat::Gcode))
+        .filter_map(|p| std::fs::read_to_string(p).ok())
+        .filter_map(|text| {
+            text.lines()
+                .take(MAX_HEADER_LINES)
+                .find_map(|l| l.trim().strip_prefix('(')?.strip_prefix(SCALLOP_COMMENT))
+                .and_then(|rest| rest.strip_suffix(" mm)")?.trim().parse::<f64>().ok())
+                .filter(|h| h.is_finite() && *h >= 0.0)
+        })
+        .reduce(f64::max)
+}
+
+/// Header lines searched for [`SCALLOP_COMMENT`].
+const MAX_HEADER_LINES: usize = 40;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -210,28 +235,3 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
     }
 }
-
-/// The header comment in which swarf's G-code states the scallop its plan allows
-/// (the job's limit, else the plan's predicted largest): `(scallop limit H mm)`.
-pub const SCALLOP_COMMENT: &str = "scallop limit ";
-
-/// The largest planned scallop stated by the G-code programs at `paths`
-/// ([`SCALLOP_COMMENT`], in the header before the first motion); `None` where none
-/// states one or a program cannot be read (reading it reports that).
-pub fn planned_scallop(paths: &[PathBuf]) -> Option<f64> {
-    paths
-        .iter()
-        .filter(|p| ProgramFormat::of(p) == Some(ProgramFormat::Gcode))
-        .filter_map(|p| std::fs::read_to_string(p).ok())
-        .filter_map(|text| {
-            text.lines()
-                .take(MAX_HEADER_LINES)
-                .find_map(|l| l.trim().strip_prefix('(')?.strip_prefix(SCALLOP_COMMENT))
-                .and_then(|rest| rest.strip_suffix(" mm)")?.trim().parse::<f64>().ok())
-                .filter(|h| h.is_finite() && *h >= 0.0)
-        })
-        .reduce(f64::max)
-}
-
-/// Header lines searched for [`SCALLOP_COMMENT`].
-const MAX_HEADER_LINES: usize = 40;

@@ -12,8 +12,16 @@ use crate::verify::Verification;
 use serde_json::{Value, json};
 use std::fmt::Write;
 
-/// Most rows of the flagged-cell CSV (the JSON keeps the full counts).
-pub const CSV_MAX_ROWS: usize = 1_000_000;
+/// Most rows of the flagged-cell CSV (about 6 MB; the JSON keeps the full counts and
+/// the regions, and both say when the CSV is cut).
+pub const CSV_MAX_ROWS: usize = 100_000;
+
+/// Cells flagged (gouge and excess) and the rows the CSV holds of them.
+pub fn flagged_rows(v: &Verification) -> (usize, usize) {
+    let s = &v.deviation.summary;
+    let flagged = s.gouge.cells + s.excess.cells;
+    (flagged, flagged.min(CSV_MAX_ROWS))
+}
 /// Most warnings listed one by one in the JSON.
 pub const JSON_MAX_WARNINGS: usize = 100;
 
@@ -62,6 +70,11 @@ pub fn json_report(v: &Verification, ctx: &ReportContext) -> Value {
         "program_stats": v.program,
         "simulation": v.sim,
         "deviation": v.deviation.summary,
+        "flagged_csv": {
+            "flagged_cells": flagged_rows(v).0,
+            "rows": flagged_rows(v).1,
+            "cap_rows": CSV_MAX_ROWS,
+        },
         "timings_s": v.timings,
     });
     if v.stages.len() > 1 {
@@ -197,6 +210,14 @@ pub fn text_summary(v: &Verification, ctx: &ReportContext) -> String {
         let _ = writeln!(
             t,
             "scallop crests: {lo:.4} - {hi:.4} mm (p5 - p95), highest {max:.4} mm"
+        );
+    }
+    let (flagged, rows) = flagged_rows(v);
+    if rows < flagged {
+        let _ = writeln!(
+            t,
+            "note: flagged.csv holds the first {rows} of {flagged} flagged cells (its cap, \
+             gouges first); report.json lists the regions"
         );
     }
     for r in &v.sim.rapid_cuts {
