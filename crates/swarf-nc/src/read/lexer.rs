@@ -49,6 +49,9 @@ impl Block {
     }
 }
 
+/// The refusal of LinuxCNC's polar words.
+const POLAR: &str = "polar coordinates (@ distance, ^ angle) are not supported by swarf";
+
 /// Lexes one line (`line` is its 1-based number, for diagnostics).
 ///
 /// # Errors
@@ -109,6 +112,7 @@ fn lex_words(cursor: &mut Cursor, block: &mut Block) -> Result<(), Diagnostic> {
             '[' => {
                 return Err(cursor.error(column, "expressions ([...]) are not supported by swarf"));
             }
+            '@' | '^' => return Err(cursor.error(column, POLAR)),
             'n' | 'N' => {
                 return Err(cursor.error(column, "line number N must be at the start of the block"));
             }
@@ -257,6 +261,7 @@ impl Cursor {
         match self.peek() {
             None | Some('(' | ';') => Ok(()),
             Some(c) if c.is_ascii_alphabetic() || c == '#' || c == '[' => Ok(()),
+            Some('@' | '^') => Err(self.error(self.column(), POLAR)),
             Some(c) => Err(self.error(
                 self.column(),
                 format!("bad number: unexpected '{c}' after the number"),
@@ -361,5 +366,11 @@ mod tests {
         assert_eq!(err("o100 sub").0, 1);
         assert_eq!(err("G0 X--1").0, 4);
         assert!(err("#1 = 5").1.contains("parameters"));
+        // LinuxCNC's polar words are named, not taken for a bad number.
+        for (text, column) in [("G1 @10 ^45", 4), ("G1 X1@10", 6), ("G1 X1 ^45", 7)] {
+            let (c, m) = err(text);
+            assert_eq!(c, column, "{text}");
+            assert!(m.contains("polar coordinates"), "{text}: {m}");
+        }
     }
 }
