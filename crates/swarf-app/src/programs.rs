@@ -161,25 +161,29 @@ pub fn machine_arg(spec: &str) -> Result<Machine> {
 pub const SCALLOP_COMMENT: &str = "scallop limit ";
 
 /// The largest planned scallop stated by the G-code programs at `paths`
-/// ([`SCALLOP_COMMENT`], in the header before the first motion); `None` where none
-/// states one or a program cannot be read (reading it reports that).
+/// ([`SCALLOP_COMMENT`], in the first [`MAX_HEADER_LINES`] lines, read alone);
+/// `None` where none states one or a program cannot be read (reading it reports
+/// that).
 pub fn planned_scallop(paths: &[PathBuf]) -> Option<f64> {
     paths
         .iter()
         .filter(|p| ProgramFormat::of(p) == Some(ProgramFormat::Gcode))
-        .filter_map(|p| std::fs::read_to_string(p).ok())
-        .filter_map(|text| {
-            text.lines()
+        .filter_map(|p| std::fs::File::open(p).ok())
+        .filter_map(|file| {
+            std::io::BufRead::lines(std::io::BufReader::new(file))
                 .take(MAX_HEADER_LINES)
-                .find_map(|l| l.trim().strip_prefix('(')?.strip_prefix(SCALLOP_COMMENT))
-                .and_then(|rest| rest.strip_suffix(" mm)")?.trim().parse::<f64>().ok())
+                .map_while(Result::ok)
+                .find_map(|l| {
+                    let rest = l.trim().strip_prefix('(')?.strip_prefix(SCALLOP_COMMENT)?;
+                    rest.strip_suffix(" mm)")?.trim().parse::<f64>().ok()
+                })
                 .filter(|h| h.is_finite() && *h >= 0.0)
         })
         .reduce(f64::max)
 }
 
 /// Header lines searched for [`SCALLOP_COMMENT`].
-const MAX_HEADER_LINES: usize = 40;
+pub const MAX_HEADER_LINES: usize = 40;
 
 #[cfg(test)]
 mod tests {

@@ -94,11 +94,7 @@ fn one_and_two_threads_write_the_same_program() {
     let mesh = swarf_io::builtin_mesh("fillet-pocket").unwrap();
     let tool: Cutter = "ball:d=8".parse().unwrap();
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        swarf_testkit::threads::on_threads(threads, || {
             let ss = plan(&mesh, &SteepShallowParams::new(finish(&tool, TOL), 0.1)).unwrap();
             let mut wl = swarf_path::waterline::WaterlineParams::new(finish(&tool, TOL), 0.1);
             wl.sampling = Some(0.7);

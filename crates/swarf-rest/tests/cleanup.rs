@@ -114,11 +114,7 @@ fn no_cleanup_cl_point_gouges_any_triangle() {
 fn the_same_path_on_one_and_two_threads() {
     let mesh = swarf_io::builtin_mesh("v-grooves").unwrap();
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        swarf_testkit::threads::on_threads(threads, || {
             [Pattern::FlowCut, Pattern::FollowPocket]
                 .map(|p| cleanup(&mesh, "ball:d=12", "ball:d=4", p))
         })

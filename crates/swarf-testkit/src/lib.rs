@@ -7,6 +7,7 @@
 //! - [`references`]: whether independent references (OpenCAMLib, `rs274`) are
 //!   required (`SWARF_REQUIRE_REFERENCES=1`), and skipping when they are not.
 //! - [`rs274`]: LinuxCNC's standalone interpreter `rs274 -g` as a reference.
+//! - [`threads`]: a computation on a given number of threads.
 //! - `die_cc` (feature `plan`): the CC paths of the die experiment.
 //!
 //! Fixtures only: independent oracles (brute-force samplers, closed forms) stay next
@@ -20,6 +21,7 @@ pub mod ocl;
 pub mod parts;
 pub mod references;
 pub mod rs274;
+pub mod threads;
 
 #[cfg(feature = "plan")]
 pub use die::die_cc;

@@ -102,11 +102,7 @@ fn one_thread_or_two_give_the_same_passes() {
     let csv: Vec<String> = [1, 2]
         .into_iter()
         .map(|threads| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
+            swarf_testkit::threads::on_threads(threads, || {
                 let ds = plan_drop_spin(&job, &part, None).unwrap();
                 swarf_app::drop_spin::contacts_csv(&ds.passes.poses, [0, 1])
             })

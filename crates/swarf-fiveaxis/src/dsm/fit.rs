@@ -7,7 +7,7 @@
 //! size or at none; the size matters where the faces are finite or curved (a drop
 //! falls off a face, the curvature closes the valley), which is where this answers.
 
-use super::{Dsm, Station, clearance::Face};
+use super::{Dsm, Station};
 use crate::error::FiveAxisError;
 use swarf_tool::Cutter;
 
@@ -42,11 +42,9 @@ impl Dsm {
     /// # Errors
     /// As [`Dsm::new`] on `tool`.
     pub fn with_cutter(&self, cutter: &Cutter) -> Result<Dsm, FiveAxisError> {
-        let corner = super::insert_radius(cutter)?;
-        let spacing = super::clearance::SAMPLE_SPACING * corner;
-        let face = |k: usize| Face::new(self.faces[k].patch(), spacing);
+        let patches = [self.faces[0].patch(), self.faces[1].patch()];
         Ok(Dsm {
-            faces: [face(0), face(1)],
+            faces: super::sampled_faces(patches, cutter)?,
             ids: self.ids,
             heights: self.heights.clone(),
             cutter: *cutter,

@@ -68,7 +68,7 @@ pub const CONTACT_TOL: f64 = 1e-6;
 
 use crate::error::FiveAxisError;
 use swarf_geom::height::PartHeights;
-use swarf_geom::{Part, Vec3};
+use swarf_geom::{Part, Patch, Vec3};
 use swarf_tool::{Cutter, Profile};
 
 /// Two faces of a part and a cutter, ready for drop-and-spin queries.
@@ -103,7 +103,7 @@ impl Dsm {
                 format!("{faces:?}: expected two different patch indices below {n}"),
             ));
         }
-        let corner = insert_radius(cutter)?;
+        let sampled = sampled_faces([&part.patches[faces[0]], &part.patches[faces[1]]], cutter)?;
         let xy = Vec3::new(along.x, along.y, 0.0);
         let Some(along) = xy
             .try_normalize(1e-12)
@@ -114,8 +114,6 @@ impl Dsm {
                 "expected a direction with an XY part".to_string(),
             ));
         };
-        let spacing = clearance::SAMPLE_SPACING * corner;
-        let face = |k: usize| Face::new(&part.patches[faces[k]], spacing);
         let heights = |k: usize| {
             let one = Part {
                 name: format!("{} face {}", part.name, faces[k]),
@@ -124,7 +122,7 @@ impl Dsm {
             PartHeights::new(&one).map_err(|e| FiveAxisError::parameter("part", e.to_string()))
         };
         Ok(Dsm {
-            faces: [face(0), face(1)],
+            faces: sampled,
             ids: faces,
             heights: [heights(0)?, heights(1)?],
             cutter: *cutter,
@@ -162,17 +160,23 @@ impl Dsm {
     }
 }
 
-/// The insert radius of a cutter that can spin (a bull's corner, a ball's radius).
+/// The two faces sampled for the clearance of `cutter`, at a spacing set by its
+/// insert radius (a bull's corner, a ball's radius).
 ///
 /// # Errors
-/// [`FiveAxisError::InvalidParameter`] on `tool` for any other cutter.
-fn insert_radius(cutter: &Cutter) -> Result<f64, FiveAxisError> {
-    match *cutter {
-        Cutter::Bull { corner, .. } if corner > 0.0 => Ok(corner),
-        Cutter::Ball { radius, .. } => Ok(radius),
-        _ => Err(FiveAxisError::parameter(
-            "tool",
-            format!("{cutter}: expected a bull or ball cutter (an insert circle to spin)"),
-        )),
-    }
+/// [`FiveAxisError::InvalidParameter`] on `tool` for a cutter without an insert
+/// circle to spin.
+fn sampled_faces(patches: [&Patch; 2], cutter: &Cutter) -> Result<[Face; 2], FiveAxisError> {
+    let corner = match *cutter {
+        Cutter::Bull { corner, .. } if corner > 0.0 => corner,
+        Cutter::Ball { radius, .. } => radius,
+        _ => {
+            return Err(FiveAxisError::parameter(
+                "tool",
+                format!("{cutter}: expected a bull or ball cutter (an insert circle to spin)"),
+            ));
+        }
+    };
+    let spacing = clearance::SAMPLE_SPACING * corner;
+    Ok(patches.map(|p| Face::new(p, spacing)))
 }
