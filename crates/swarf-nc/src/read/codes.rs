@@ -64,6 +64,8 @@ pub enum Action {
     ArcCw,
     /// Counter-clockwise arc (G3).
     ArcCcw,
+    /// A canned cycle: G73, G74, G81 ... G89 (the number).
+    Cycle(u8),
     /// Cancel the motion mode (G80): axis words are then an error.
     CancelMotion,
     /// Arc plane XY (G17).
@@ -88,8 +90,53 @@ pub enum Action {
     InverseTime,
     /// Units-per-minute feed (G94); sets the feed rate to 0, as LinuxCNC does.
     UnitsPerMinute,
-    /// Tool length offset on (G43): program coordinates are the tool tip.
+    /// Cutter radius compensation off (G40).
+    CompOff,
+    /// Cutter radius compensation: left (G41, G41.1) or right (G42, G42.1) of the
+    /// path; `diameter`: the D word is the tool diameter (G41.1, G42.1), not a tool
+    /// number.
+    Comp {
+        /// Left of the path (G41).
+        left: bool,
+        /// D is a diameter.
+        diameter: bool,
+    },
+    /// Tool length offset from the tool table (G43).
     LengthOffset,
+    /// Tool length offset cancelled (G49).
+    LengthOffsetOff,
+    /// Coordinate system 1 (G54) to 9 (G59.3).
+    CoordSystem(u8),
+    /// Canned cycles retract to the initial level (G98).
+    RetractOldZ,
+    /// Canned cycles retract to R (G99).
+    RetractR,
+    /// G10: coordinate systems (L2, L20) and the tool table (L1, L10, L11).
+    SetData,
+    /// Move to the stored position #5161 (G28) or #5181 (G30) through the axes given.
+    Home {
+        /// G30 rather than G28.
+        second: bool,
+    },
+    /// Store the current position as G28's (G28.1) or G30's (G30.1).
+    SaveHome {
+        /// G30.1 rather than G28.1.
+        second: bool,
+    },
+    /// Axis offsets: G52 (local), G92 (so that the point has these coordinates).
+    AxisOffset {
+        /// G52 rather than G92.
+        local: bool,
+    },
+    /// G92.1 (reset and zero the parameters), G92.2 (suspend).
+    AxisOffsetOff {
+        /// G92.1: also zero #5211-#5219.
+        zero_params: bool,
+    },
+    /// G92.3: restore the offsets from #5211-#5219.
+    AxisOffsetRestore,
+    /// Move in machine coordinates (G53).
+    MachineCoords,
     /// Dwell (G4), no motion.
     Dwell,
     /// Program stop (M0, M1): reading goes on.
@@ -98,9 +145,25 @@ pub enum Action {
     End,
     /// Tool change (M6).
     ToolChange,
+    /// Set the loaded tool without a change (M61 Q).
+    SetTool,
+    /// Spindle on clockwise (M3), counter-clockwise (M4), stopped (M5).
+    Spindle(SpindleTurn),
     /// Nothing to simulate: a mode swarf's model already assumes, or a machine
     /// function that does not move the tool.
     Nothing,
+}
+
+/// How the spindle turns (for the cycles that need it turning).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SpindleTurn {
+    /// M5, and at the start.
+    #[default]
+    Stopped,
+    /// M3.
+    Clockwise,
+    /// M4.
+    CounterClockwise,
 }
 
 /// The outcome of looking a code up.
@@ -114,11 +177,6 @@ pub enum Effect {
     Refuse(&'static str),
 }
 
-const CANNED: &str = "canned cycles are not supported: have the post expand them into G0/G1 moves";
-const COMP: &str = "cutter radius compensation (G41/G42) is not simulated: post the tool path \
-                    for the tool centre";
-const OFFSETS: &str = "work offsets other than G54 are not simulated: program coordinates are \
-                       taken as the part frame";
 
 /// The G code `code10` (ten times the number: G90.1 is 901).
 pub fn g_code(code10: u32) -> Option<(Group, Effect)> {
@@ -137,7 +195,9 @@ pub fn g_code(code10: u32) -> Option<(Group, Effect)> {
         ),
         330 | 331 | 760 => (Gr::Motion, Refuse("threading moves are not supported")),
         382..=385 => (Gr::Motion, Refuse("probing moves (G38) are not supported")),
-        730 | 740 | 810..=890 => (Gr::Motion, Refuse(CANNED)),
+        730 | 740 | 810..=890 if code10 % 10 == 0 => {
+            (Gr::Motion, Run(A::Cycle((code10 / 10) as u8)))
+        }
         170 => (Gr::Plane, Run(A::PlaneXy)),
         180 => (Gr::Plane, Run(A::PlaneXz)),
         190 => (Gr::Plane, Run(A::PlaneYz)),
@@ -157,10 +217,16 @@ pub fn g_code(code10: u32) -> Option<(Group, Effect)> {
         ),
         200 => (Gr::Units, Run(A::Inch)),
         210 => (Gr::Units, Run(A::Mm)),
-        400 => (Gr::CutterComp, Run(A::Nothing)),
-        410 | 411 | 420 | 421 => (Gr::CutterComp, Refuse(COMP)),
+        400 => (Gr::CutterComp, Run(A::CompOff)),
+        410 | 411 | 420 | 421 => (
+            Gr::CutterComp,
+            Run(A::Comp {
+                left: code10 < 420,
+                diameter: code10 % 10 == 1,
+            }),
+        ),
         430 => (Gr::ToolLength, Run(A::LengthOffset)),
-        490 => (Gr::ToolLength, Run(A::Nothing)),
+        490 => (Gr::ToolLength, Run(A::LengthOffsetOff)),
         431 | 432 => (
             Gr::ToolLength,
             Refuse("dynamic tool length offsets (G43.1, G43.2) are not supported"),
@@ -177,12 +243,12 @@ fn other_g_code(code10: u32) -> Option<(Group, Effect)> {
     use Effect::{Refuse, Run, Warn};
     use Group as Gr;
     let entry = match code10 {
-        980 | 990 => (
-            Gr::ReturnMode,
-            Warn("G98/G99 ignored: they only matter for canned cycles"),
-        ),
-        540 => (Gr::CoordSystem, Run(A::Nothing)),
-        550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => (Gr::CoordSystem, Refuse(OFFSETS)),
+        980 => (Gr::ReturnMode, Run(A::RetractOldZ)),
+        990 => (Gr::ReturnMode, Run(A::RetractR)),
+        540 | 550 | 560 | 570 | 580 | 590 => {
+            (Gr::CoordSystem, Run(A::CoordSystem((code10 / 10 - 53) as u8)))
+        }
+        591..=593 => (Gr::CoordSystem, Run(A::CoordSystem((code10 - 591 + 7) as u8))),
         610 | 611 => (Gr::PathControl, Run(A::Nothing)),
         640 => (
             Gr::PathControl,
@@ -196,34 +262,19 @@ fn other_g_code(code10: u32) -> Option<(Group, Effect)> {
         ),
         970 => (Gr::SpindleMode, Run(A::Nothing)),
         40 => (Gr::NonModal, Run(A::Dwell)),
-        100 => (
-            Gr::NonModal,
-            Refuse("G10 (offset and tool table changes) is not supported"),
-        ),
-        280 | 300 => (
-            Gr::NonModal,
-            Refuse("G28/G30 move to a stored position swarf does not know"),
-        ),
-        281 | 301 => (
-            Gr::NonModal,
-            Warn("G28.1/G30.1 ignored: they store a position and do not move"),
-        ),
-        520 => (
-            Gr::NonModal,
-            Refuse("local offsets (G52) are not supported"),
-        ),
-        530 => (
-            Gr::NonModal,
-            Refuse("machine coordinates (G53) are not supported"),
-        ),
-        920 | 923 => (
-            Gr::NonModal,
-            Refuse("coordinate offsets (G92, G92.3) are not simulated"),
-        ),
+        100 => (Gr::NonModal, Run(A::SetData)),
+        280 | 300 => (Gr::NonModal, Run(A::Home { second: code10 == 300 })),
+        281 | 301 => (Gr::NonModal, Run(A::SaveHome { second: code10 == 301 })),
+        520 => (Gr::NonModal, Run(A::AxisOffset { local: true })),
+        530 => (Gr::NonModal, Run(A::MachineCoords)),
+        920 => (Gr::NonModal, Run(A::AxisOffset { local: false })),
         921 | 922 => (
             Gr::NonModal,
-            Warn("G92.1/G92.2 ignored: swarf's model has no G92 offsets to cancel"),
+            Run(A::AxisOffsetOff {
+                zero_params: code10 == 921,
+            }),
         ),
+        923 => (Gr::NonModal, Run(A::AxisOffsetRestore)),
         70 | 80 => (
             Gr::Lathe,
             Refuse("lathe diameter/radius modes (G7/G8) are not supported"),
@@ -243,11 +294,10 @@ pub fn m_code(m: u32) -> Option<(Group, Effect)> {
         2 | 30 => (Gr::Stop, Run(A::End)),
         60 => (Gr::Stop, Warn("M60 pallet change ignored")),
         6 => (Gr::ToolChange, Run(A::ToolChange)),
-        61 => (
-            Gr::ToolChange,
-            Warn("M61 ignored: it sets the tool number without a tool change"),
-        ),
-        3..=5 => (Gr::Spindle, Run(A::Nothing)),
+        61 => (Gr::ToolChange, Run(A::SetTool)),
+        3 => (Gr::Spindle, Run(A::Spindle(SpindleTurn::Clockwise))),
+        4 => (Gr::Spindle, Run(A::Spindle(SpindleTurn::CounterClockwise))),
+        5 => (Gr::Spindle, Run(A::Spindle(SpindleTurn::Stopped))),
         7..=9 => (Gr::Coolant, Run(A::Nothing)),
         19 => (Gr::OtherM, Warn("spindle orientation (M19) ignored")),
         48..=53 => (
@@ -262,7 +312,7 @@ pub fn m_code(m: u32) -> Option<(Group, Effect)> {
         ),
         98 | 99 => (
             Gr::OtherM,
-            Refuse("subprogram calls and returns (M98/M99) are not supported"),
+            Refuse("subprogram calls and returns (M98/M99) belong to the Fanuc dialect: read the program with --dialect fanuc"),
         ),
         100..=199 => (
             Gr::OtherM,
@@ -291,13 +341,22 @@ mod tests {
             g_code(930),
             Some((Group::FeedMode, Effect::Run(Action::InverseTime)))
         );
-        for refused in [410, 420, 810, 830, 920, 280, 550, 950, 50] {
+        assert_eq!(g_code(830), Some((Group::Motion, Effect::Run(Action::Cycle(83)))));
+        assert_eq!(
+            g_code(592),
+            Some((Group::CoordSystem, Effect::Run(Action::CoordSystem(8))))
+        );
+        assert_eq!(
+            g_code(540),
+            Some((Group::CoordSystem, Effect::Run(Action::CoordSystem(1))))
+        );
+        for refused in [950, 50, 382, 331] {
             assert!(
                 matches!(g_code(refused), Some((_, Effect::Refuse(_)))),
                 "G{refused}"
             );
         }
-        for unknown in [120, 150, 680, 902, 11] {
+        for unknown in [120, 150, 680, 902, 11, 815] {
             assert_eq!(g_code(unknown), None, "G{}", f64::from(unknown) / 10.0);
         }
     }

@@ -1,7 +1,7 @@
-//! RS274/NGC G-code programs as LinuxCNC reads them, for what surface-finishing
-//! programs use: the line loop around the lexer ([`crate::read::lexer`]) and the modal
-//! state machine ([`crate::read::modal`]), program delimiters and the end of the
-//! program.
+//! RS274/NGC G-code programs as LinuxCNC 2.9 reads them (and Fanuc macro B programs
+//! with [`GcodeReadOptions::dialect`]): the runner ([`crate::read::flow`]) around the
+//! lexer ([`crate::read::lexer`]) and the modal state machine
+//! ([`crate::read::modal`]), program delimiters and the end of the program.
 //!
 //! - A first line `%` opens the program and the next `%` closes it; `M2`/`M30` end it.
 //!   Text after the end is not read (a warning says so, at its first line).
@@ -16,12 +16,18 @@
 //!   [`crate::read::kinematics`] for how the axes become poses over the part, and
 //!   [`crate::read::feed`] for G93 inverse-time and G94 feeds.
 
+use crate::block::Dialect;
 use crate::error::NcError;
 use crate::read::axes::Axes;
+use crate::read::flow::{End, FlowLimits, FlowOptions, Runner};
 use crate::read::kinematics::{DEFAULT_KINEMATICS_TOL, Kinematics};
-use crate::read::lexer::lex_line;
-use crate::read::modal::{Flow, Interpreter};
+use crate::read::lexer::{Syntax, lex_line};
+use crate::read::modal::{Interpreter, Setup};
+use crate::read::params::Params;
 use crate::read::program::{Diagnostic, Program};
+use crate::read::source::Source;
+use crate::read::tooltable::ToolTable;
+use std::path::{Path, PathBuf};
 use swarf_geom::Point3;
 use swarf_tool::Pose;
 
@@ -39,17 +45,37 @@ pub struct GcodeReadOptions<'k> {
     pub kinematics: Option<&'k dyn Kinematics>,
     /// Chordal tolerance of the motions a five-axis move is split into, mm.
     pub kinematics_tol: f64,
+    /// The language: LinuxCNC's RS274/NGC, or Fanuc macro B.
+    pub dialect: Dialect,
+    /// The tool table (G41/G42 diameters, G43 offsets), if any.
+    pub tool_table: Option<&'k ToolTable>,
+    /// The machine's units are inches: tool table values and offsets stored in
+    /// parameters are inches (LinuxCNC's standalone `rs274` is such a machine).
+    pub machine_inch: bool,
+    /// Parameter values at the start (a LinuxCNC var file), by number.
+    pub parameters: &'k [(usize, f64)],
+    /// Folders searched for subroutine files, in order (then the program's own).
+    pub sub_path: &'k [PathBuf],
+    /// Bounds on loops and on the lines run.
+    pub limits: FlowLimits,
 }
 
 impl Default for GcodeReadOptions<'_> {
     /// Tip at the origin, axis +Z; block delete off (LinuxCNC's defaults); no
-    /// kinematics.
+    /// kinematics; LinuxCNC's dialect, no tool table, a millimetre machine, all
+    /// parameters 0, no search path, [`FlowLimits::default`].
     fn default() -> Self {
         GcodeReadOptions {
             initial: Pose::vertical(Point3::origin()),
             block_delete: false,
             kinematics: None,
             kinematics_tol: DEFAULT_KINEMATICS_TOL,
+            dialect: Dialect::Linuxcnc,
+            tool_table: None,
+            machine_inch: false,
+            parameters: &[],
+            sub_path: &[],
+            limits: FlowLimits::default(),
         }
     }
 }
@@ -65,16 +91,23 @@ impl PartialEq for GcodeReadOptions<'_> {
         same && self.initial == other.initial
             && self.block_delete == other.block_delete
             && self.kinematics_tol == other.kinematics_tol
+            && self.dialect == other.dialect
+            && self.tool_table == other.tool_table
+            && self.machine_inch == other.machine_inch
+            && self.parameters == other.parameters
+            && self.sub_path == other.sub_path
+            && self.limits == other.limits
     }
 }
 
-/// Reads G-code text.
+/// Reads G-code text; `source` names it (a file path: its folder is searched for
+/// subroutine files after [`GcodeReadOptions::sub_path`]).
 ///
 /// Errors inside the program (an unknown or unsupported word, an arc whose radius does
 /// not match its end point, a feed move without feed, rotary axis words without
-/// kinematics, a malformed number ...) stop the reading: the result is `Ok` with the
-/// motions before the error and [`Program::stopped`] set, so that a verifier can still
-/// report on them.
+/// kinematics, a malformed number, a loop that does not end ...) stop the reading:
+/// the result is `Ok` with the motions before the error and [`Program::stopped`] set,
+/// so that a verifier can still report on them.
 ///
 /// # Units
 /// The program's units (G20/G21) are converted: motions in mm, feeds in mm/min of the
@@ -87,9 +120,10 @@ impl PartialEq for GcodeReadOptions<'_> {
 /// # Example
 /// ```
 /// use swarf_nc::read::{GcodeReadOptions, MotionKind, parse_gcode};
-/// let p = parse_gcode("G21 G90 F300\nG1 X10\nG2 X20 I5\nM30\n", "a.ngc", &GcodeReadOptions::default())
-///     .unwrap();
+/// let text = "G21 G90 F300\n#<r> = 5\nG1 X[2 * #<r>]\nG2 X20 I#<r>\nM30\n";
+/// let p = parse_gcode(text, "a.ngc", &GcodeReadOptions::default()).unwrap();
 /// assert_eq!(p.motions.len(), 2);
+/// assert_eq!(p.motions[0].end.cl.x, 10.0);
 /// assert!(matches!(p.motions[1].kind, MotionKind::Arc { clockwise: true, .. }));
 /// assert!(p.stopped.is_none());
 /// ```
@@ -105,86 +139,57 @@ pub fn parse_gcode(text: &str, source: &str, opts: &GcodeReadOptions) -> Result<
             ),
         });
     }
-    let mut program = Program::new(source);
+    let fanuc = opts.dialect == Dialect::Fanuc;
+    let syntax = Syntax { fanuc };
     let axes = Axes::new(&opts.initial, opts.kinematics, opts.kinematics_tol);
-    let mut machine = Interpreter::with_axes(axes);
-    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
-    let mut opened = false;
-    let mut started = false;
-    let mut delete_warned = false;
-    let mut ended: Option<&str> = None;
-    for (line, raw) in lines.by_ref() {
-        let block = match lex_line(raw, line) {
-            Ok(block) => block,
-            Err(d) => {
+    let setup = Setup {
+        tool_table: opts.tool_table,
+        machine_inch: opts.machine_inch,
+    };
+    let mut machine = Interpreter::with_axes(axes, setup, Params::with_values(opts.parameters));
+    machine.fanuc = fanuc;
+    let program_dir = Path::new(source)
+        .parent()
+        .filter(|d| d.is_dir())
+        .map(Path::to_path_buf);
+    let flow = FlowOptions {
+        sub_path: opts.sub_path.to_vec(),
+        program_dir,
+        fanuc,
+        block_delete: opts.block_delete,
+        limits: opts.limits,
+    };
+    let mut runner = Runner::new(machine, Source::new(source, text, syntax), flow);
+    let mut program = Program::new(source);
+    match runner.run() {
+        Ok(end) => {
+            let last = runner.pc.1;
+            if let Err(d) = runner.machine.finish(last.max(1)) {
                 program.stopped = Some(d);
-                break;
-            }
-        };
-        if block.percent {
-            if started {
-                ended = Some("the closing %");
-                break;
-            }
-            opened = true;
-            started = true;
-            continue;
-        }
-        if block.is_empty() {
-            continue;
-        }
-        started = true;
-        if block.block_delete && skip_deleted(&mut machine, opts, line, &mut delete_warned) {
-            continue;
-        }
-        if block.program_number.is_some() {
-            machine.fanuc = true;
-        }
-        match machine.execute(&block, line) {
-            Ok(Flow::Continue) => {}
-            Ok(Flow::End) => {
-                ended = Some("M2/M30");
-                break;
-            }
-            Err(d) => {
-                program.stopped = Some(d);
-                break;
+            } else if let End::Ended(after) = end {
+                if runner.pc.0 == 0 {
+                    warn_trailing(&mut runner.machine, text, last, after, syntax);
+                }
+            } else {
+                warn_unended(&mut runner.machine, text, syntax);
             }
         }
+        Err(d) => program.stopped = Some(d),
     }
-    if let Some(after) = ended {
-        warn_trailing(&mut machine, lines, after);
-    } else if program.stopped.is_none() {
-        warn_unended(&mut machine, text, opened);
-    }
-    program.motions = machine.motions;
-    program.warnings = machine.warnings.finish();
+    program.messages = std::mem::take(&mut runner.messages);
+    program.motions = std::mem::take(&mut runner.machine.motions);
+    program.warnings = std::mem::take(&mut runner.machine.warnings).finish();
     Ok(program)
 }
 
-/// Whether a block delete (`/`) line at `line` is skipped (the switch of `opts`);
-/// the first such line warns which way the switch is.
-fn skip_deleted(
-    machine: &mut Interpreter,
-    opts: &GcodeReadOptions,
-    line: usize,
-    warned: &mut bool,
-) -> bool {
-    if !*warned {
-        *warned = true;
-        let what = if opts.block_delete {
-            "block delete (/) lines are skipped: the block delete switch is on"
-        } else {
-            "block delete (/) lines run: the block delete switch is off, as LinuxCNC starts"
-        };
-        machine.warnings.push(Diagnostic::new(line, 1, what));
-    }
-    opts.block_delete
-}
-
 /// A warning at the last line of a program that ends without M2/M30 or `%`.
-fn warn_unended(machine: &mut Interpreter, text: &str, opened: bool) {
+fn warn_unended(machine: &mut Interpreter, text: &str, syntax: Syntax) {
     let last = text.lines().count().max(1);
+    let opened = text
+        .lines()
+        .enumerate()
+        .find_map(|(i, l)| lex_line(l, i + 1, syntax).ok().filter(|b| !b.is_empty()))
+        .is_some_and(|b| b.percent);
     let what = if opened {
         "the program opens with % but has no closing % (nor M2/M30)"
     } else {
@@ -193,17 +198,15 @@ fn warn_unended(machine: &mut Interpreter, text: &str, opened: bool) {
     machine.warnings.push(Diagnostic::new(last, 1, what));
 }
 
-/// A warning at the first non-blank, non-comment line after the end of the program.
-fn warn_trailing<'a>(
-    machine: &mut Interpreter,
-    mut lines: impl Iterator<Item = (usize, &'a str)>,
-    after: &str,
-) {
-    let content = lines
-        .find(|(line, raw)| lex_line(raw, *line).map_or(true, |b| !(b.is_empty() || b.percent)));
-    if let Some((line, _)) = content {
+/// A warning at the first non-blank, non-comment line after the end of the program
+/// (line index `from` on).
+fn warn_trailing(machine: &mut Interpreter, text: &str, from: usize, after: &str, syntax: Syntax) {
+    let content = text.lines().enumerate().skip(from).find(|(i, raw)| {
+        lex_line(raw, i + 1, syntax).map_or(true, |b| !(b.is_empty() || b.percent))
+    });
+    if let Some((i, _)) = content {
         machine.warnings.push(Diagnostic::new(
-            line,
+            i + 1,
             1,
             format!("text after the end of the program ({after}) is not read"),
         ));

@@ -1,322 +1,682 @@
-//! RS274/NGC lexer: one source line into a block of words, with columns.
+//! RS274/NGC lexer: one source line into a [`Line`]: its words (each value an
+//! [`Expr`]), parameter settings, an O-word statement or a Fanuc macro statement, with
+//! the source column of everything.
 //!
-//! As LinuxCNC reads a line: letters are case-insensitive and spaces and tabs are
-//! ignored everywhere, even inside numbers (`X 1 0.5` is `X10.5`); a line may start
-//! with `/` (block delete) and then an `N` line number; comments are `( ... )`
-//! (no nesting, closed on the same line) or `;` to the end of the line; a real
-//! number is an optional sign, digits with at most one decimal point and at least
-//! one digit (no exponent: `1e3` reads as `1` followed by an `E` word). A line holding
-//! only `%` delimits the program. An `O` number alone on a line is a Fanuc program
-//! number; any other `O` word starts a LinuxCNC subroutine or control-flow statement,
-//! which swarf does not run.
+//! As LinuxCNC reads a line (`interp_read.cc`): letters are case-insensitive and
+//! spaces and tabs are ignored everywhere outside comments, even inside numbers and
+//! names (`X 1 0.5` is `X10.5`, `#<my depth>` is `#<mydepth>`); a line may start with `/`
+//! (block delete) and then an `N` line number; comments are `( ... )` (no nesting,
+//! closed on the same line) or `;` to the end of the line; a number is signs, digits
+//! and at most one decimal point with at least one digit (no exponent: `1e3` reads
+//! as `1` then an `E` word). A word's value may be any value of [`crate::read::expr`]:
+//! `X#1`, `Y[#2 * 2]`, `Zsin[30]`, `X-#<depth>`. `#n = value` and `#<name> = value` set
+//! parameters; an `O` word starts a statement (`o100 sub`, `o<name> call [1] [2]`,
+//! `o101 while [#1 lt 3]` ...). A line holding only `%` delimits the program.
 //!
-//! Columns are 1-based and count characters, so that they match what an editor shows.
+//! In the Fanuc dialect ([`Syntax::fanuc`]), a line may instead be `IF [c] GOTO n`,
+//! `IF [c] THEN #i = e`, `GOTO n`, `WHILE [c] DOm`, `DOm` or `ENDm`; a setting's value is
+//! a whole expression without brackets (`#3 = #1 + #2 * 2`); an `O` number alone on
+//! its line starts a subprogram.
+//!
+//! Columns are 1-based and count characters, as an editor shows them.
 
+use crate::read::expr::{Expr, Func, Op};
 use crate::read::program::Diagnostic;
+use crate::read::statement::{Control, FanucStatement, control, fanuc_statement};
 
-/// One word: a letter and its number, with the column of the letter.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Word {
+/// Which language the lexer reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Syntax {
+    /// Fanuc macro B statements and expressions instead of LinuxCNC's O words.
+    pub fanuc: bool,
+}
+
+/// One word: a letter and its value, with the column of the letter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WordExpr {
     /// Upper-case letter.
     pub letter: char,
-    /// The number as written (program units).
-    pub value: f64,
-    /// Whether the number was written with a decimal point.
+    /// The value as written.
+    pub value: Expr,
+    /// A plain number written with a decimal point (or not a plain number).
     pub has_point: bool,
     /// 1-based column of the letter.
     pub column: usize,
 }
 
-/// What a line holds.
+/// `#n = value` or `#<name> = value`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Assignment {
+    /// Which parameter.
+    pub target: Target,
+    /// The value.
+    pub value: Expr,
+    /// Column of `#`.
+    pub column: usize,
+}
+
+/// The parameter an [`Assignment`] sets.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Target {
+    /// `#index`.
+    Numbered(Expr),
+    /// `#<name>`.
+    Named(Box<str>),
+}
+
+/// What a line holds besides its comments.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Block {
+pub enum Statement {
+    /// Nothing (blank or comments only).
+    #[default]
+    Empty,
+    /// Words and parameter settings.
+    Words {
+        /// The words, in order.
+        words: Vec<WordExpr>,
+        /// The settings, in order (they take effect after the line is read).
+        assignments: Vec<Assignment>,
+    },
+    /// A program number `O1234` alone on the line, with its column.
+    ProgramNumber(u32, usize),
+    /// A LinuxCNC O-word statement.
+    Control(Control),
+    /// A Fanuc macro statement.
+    Fanuc(FanucStatement),
+}
+
+/// A lexed source line.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Line {
     /// The line started with `/`.
     pub block_delete: bool,
     /// The line is a `%` program delimiter.
     pub percent: bool,
-    /// A Fanuc program number `O1234` alone on the line (with its column).
-    pub program_number: Option<(u32, usize)>,
-    /// The words after the optional line number, in order.
-    pub words: Vec<Word>,
+    /// The `N` number, if any.
+    pub number: Option<f64>,
+    /// What the line says.
+    pub statement: Statement,
     /// Comment texts, without the parentheses or `;`.
     pub comments: Vec<String>,
 }
 
-impl Block {
-    /// True when the line holds no word and is no delimiter (blank or comment only).
+impl Line {
+    /// True when the line holds no statement and is no delimiter.
     pub fn is_empty(&self) -> bool {
-        self.words.is_empty() && !self.percent && self.program_number.is_none()
+        self.statement == Statement::Empty && !self.percent
     }
 }
-
-/// The refusal of LinuxCNC's polar words.
-const POLAR: &str = "polar coordinates (@ distance, ^ angle) are not supported by swarf";
 
 /// Lexes one line (`line` is its 1-based number, for diagnostics).
 ///
 /// # Errors
-/// A [`Diagnostic`] at the offending character: nested or unclosed comment, a
-/// letter without a number, a malformed number, `#` parameters, `[` expressions,
-/// an `N` word away from the start, an `O` subroutine word, any other character.
-pub fn lex_line(text: &str, line: usize) -> Result<Block, Diagnostic> {
-    let mut cursor = Cursor {
-        chars: text.chars().collect(),
-        at: 0,
-        line,
-    };
-    let mut block = Block::default();
-    cursor.skip_space();
+/// A [`Diagnostic`] at the offending character: nested or unclosed comment, a letter
+/// without a value, a malformed number, an unknown function or operator, an
+/// unbalanced bracket, an `N` word away from the start, polar words (`@`, `^`), a
+/// malformed O-word statement, any other character.
+pub fn lex_line(text: &str, line: usize, syntax: Syntax) -> Result<Line, Diagnostic> {
+    let mut out = Line::default();
+    let mut cursor = Cursor::new(text, line, &mut out.comments)?;
     if cursor.peek() == Some('/') {
-        block.block_delete = true;
-        cursor.at += 1;
-        cursor.skip_space();
+        out.block_delete = true;
+        cursor.bump();
     }
-    if cursor.rest_is("%") {
-        block.percent = true;
-        return Ok(block);
+    if cursor.rest_is('%') {
+        out.percent = true;
+        return Ok(out);
     }
-    if matches!(cursor.peek(), Some('n' | 'N')) {
+    if cursor.peek() == Some('n') {
         let column = cursor.column();
-        cursor.at += 1;
-        let number = cursor.number(column, 'N')?;
-        if number.value < 0.0 || number.value.fract() != 0.0 {
+        cursor.bump();
+        let n = cursor.plain_number(column, 'N')?;
+        if n.0 < 0.0 || n.0.fract() != 0.0 {
             return Err(cursor.error(column, "line number N must be a whole number >= 0"));
         }
-        cursor.expect_separator()?;
+        out.number = Some(n.0);
     }
-    if matches!(cursor.peek(), Some('o' | 'O')) {
-        block.program_number = Some(cursor.program_number(&mut block.comments)?);
-        return Ok(block);
-    }
-    lex_words(&mut cursor, &mut block)?;
-    Ok(block)
+    out.statement = statement(&mut cursor, syntax)?;
+    Ok(out)
 }
 
-fn lex_words(cursor: &mut Cursor, block: &mut Block) -> Result<(), Diagnostic> {
-    loop {
-        cursor.skip_space();
-        let Some(c) = cursor.peek() else {
-            return Ok(());
-        };
+fn statement(cursor: &mut Cursor, syntax: Syntax) -> Result<Statement, Diagnostic> {
+    if cursor.at_end() {
+        return Ok(Statement::Empty);
+    }
+    if syntax.fanuc {
+        if let Some(s) = fanuc_statement(cursor)? {
+            return Ok(Statement::Fanuc(s));
+        }
+    }
+    if cursor.peek() == Some('o') {
+        let column = cursor.column();
+        if cursor.peek_at(1).is_some_and(|c| c.is_ascii_digit())
+            && cursor.all_digits_after(1)
+        {
+            cursor.bump();
+            let (value, _) = cursor.plain_number(column, 'O')?;
+            if value > f64::from(u32::MAX) {
+                return Err(cursor.error(column, "program number O out of range"));
+            }
+            return Ok(Statement::ProgramNumber(value as u32, column));
+        }
+        if syntax.fanuc {
+            return Err(cursor.error(
+                column,
+                "O word in the Fanuc dialect: only a program number O1234 alone on its line",
+            ));
+        }
+        return Ok(Statement::Control(control(cursor)?));
+    }
+    let mut words = Vec::new();
+    let mut assignments = Vec::new();
+    while let Some(c) = cursor.peek() {
         let column = cursor.column();
         match c {
-            '(' => block.comments.push(cursor.comment()?),
-            ';' => {
-                cursor.at += 1;
-                block.comments.push(cursor.rest().trim().to_string());
-                return Ok(());
-            }
-            '#' => {
-                return Err(cursor.error(column, "parameters (#) are not supported by swarf"));
-            }
-            '[' => {
-                return Err(cursor.error(column, "expressions ([...]) are not supported by swarf"));
-            }
-            '@' | '^' => return Err(cursor.error(column, POLAR)),
-            'n' | 'N' => {
-                return Err(cursor.error(column, "line number N must be at the start of the block"));
-            }
-            'o' | 'O' => {
-                return Err(cursor.error(
-                    column,
-                    "O words (subroutines, loops, conditions) are not supported by swarf",
-                ));
-            }
-            c if c.is_ascii_alphabetic() => {
+            '#' => assignments.push(assignment(cursor, syntax)?),
+            '@' | '^' | 'a'..='z' if c != 'n' && c != 'o' => {
                 let letter = c.to_ascii_uppercase();
-                cursor.at += 1;
-                let number = cursor.number(column, letter)?;
-                block.words.push(Word {
+                cursor.bump();
+                let (value, has_point) = cursor.word_value(column, letter)?;
+                words.push(WordExpr {
                     letter,
-                    value: number.value,
-                    has_point: number.has_point,
+                    value,
+                    has_point,
                     column,
                 });
-                cursor.expect_separator()?;
+            }
+            'n' => {
+                return Err(cursor.error(column, "line number N must be at the start of the block"));
+            }
+            'o' => {
+                return Err(cursor.error(
+                    column,
+                    "O word after other words: an O-word statement must be alone on its line",
+                ));
             }
             other => {
                 return Err(cursor.error(column, format!("unexpected character '{other}'")));
             }
         }
     }
+    Ok(Statement::Words { words, assignments })
 }
 
-/// A number as read.
-struct Number {
-    value: f64,
-    has_point: bool,
+/// `#index = value` or `#<name> = value` at the cursor; in the Fanuc dialect the value
+/// is an expression without brackets.
+pub(crate) fn assignment(cursor: &mut Cursor, syntax: Syntax) -> Result<Assignment, Diagnostic> {
+    let column = cursor.column();
+    cursor.bump();
+    let target = if cursor.peek() == Some('<') {
+        Target::Named(cursor.name()?)
+    } else {
+        Target::Numbered(cursor.value()?)
+    };
+    if cursor.peek() != Some('=') {
+        return Err(cursor.error(
+            cursor.column(),
+            "equal sign missing in parameter setting (expected '#n = value')",
+        ));
+    }
+    cursor.bump();
+    let value = if syntax.fanuc {
+        cursor.operations(None)?
+    } else {
+        cursor.value()?
+    };
+    Ok(Assignment {
+        target,
+        value,
+        column,
+    })
 }
 
-struct Cursor {
-    chars: Vec<char>,
+/// The significant characters of a line (lower case, spaces and comments removed),
+/// each with its 1-based source column.
+pub(crate) struct Cursor {
+    chars: Vec<(char, usize)>,
     at: usize,
     line: usize,
+    end_column: usize,
 }
 
 impl Cursor {
-    fn peek(&self) -> Option<char> {
-        self.chars.get(self.at).copied()
+    fn new(text: &str, line: usize, comments: &mut Vec<String>) -> Result<Cursor, Diagnostic> {
+        let raw: Vec<char> = text.chars().collect();
+        let mut chars = Vec::with_capacity(raw.len());
+        let mut i = 0;
+        let error = |column: usize, m: &str| Diagnostic::new(line, column, m);
+        while i < raw.len() {
+            match raw[i] {
+                ' ' | '\t' | '\r' | '\u{c}' => {}
+                '(' => {
+                    let close = raw[i + 1..].iter().position(|&c| c == ')' || c == '(');
+                    match close.map(|k| (i + 1 + k, raw[i + 1 + k])) {
+                        Some((k, ')')) => {
+                            comments.push(raw[i + 1..k].iter().collect());
+                            i = k;
+                        }
+                        Some((k, _)) => return Err(error(k + 1, "nested comment")),
+                        None => {
+                            return Err(error(i + 1, "unclosed comment: '(' without ')' on this line"));
+                        }
+                    }
+                }
+                ';' => {
+                    comments.push(raw[i + 1..].iter().collect::<String>().trim().to_string());
+                    break;
+                }
+                c => chars.push((c.to_ascii_lowercase(), i + 1)),
+            }
+            i += 1;
+        }
+        Ok(Cursor {
+            chars,
+            at: 0,
+            line,
+            end_column: raw.len() + 1,
+        })
     }
 
-    fn column(&self) -> usize {
-        self.at + 1
+    pub(crate) fn peek(&self) -> Option<char> {
+        self.peek_at(0)
     }
 
-    fn error(&self, column: usize, message: impl Into<String>) -> Diagnostic {
+    pub(crate) fn peek_at(&self, k: usize) -> Option<char> {
+        self.chars.get(self.at + k).map(|c| c.0)
+    }
+
+    pub(crate) fn bump(&mut self) {
+        self.at += 1;
+    }
+
+    pub(crate) fn unbump(&mut self) {
+        self.at = self.at.saturating_sub(1);
+    }
+
+    pub(crate) fn at_end(&self) -> bool {
+        self.at >= self.chars.len()
+    }
+
+    /// The column of the next character (one past the end at the end).
+    pub(crate) fn column(&self) -> usize {
+        self.chars.get(self.at).map_or(self.end_column, |c| c.1)
+    }
+
+    pub(crate) fn error(&self, column: usize, message: impl Into<String>) -> Diagnostic {
         Diagnostic::new(self.line, column, message)
     }
 
-    fn skip_space(&mut self) {
-        while matches!(self.peek(), Some(' ' | '\t' | '\r')) {
-            self.at += 1;
+    fn rest_is(&self, c: char) -> bool {
+        self.chars.len() == self.at + 1 && self.peek() == Some(c)
+    }
+
+    fn all_digits_after(&self, k: usize) -> bool {
+        self.chars[self.at + k..].iter().all(|c| c.0.is_ascii_digit())
+    }
+
+    /// Consumes `word` (lower case) if the characters at the cursor spell it.
+    pub(crate) fn eat(&mut self, word: &str) -> bool {
+        let n = word.chars().count();
+        let matches = word
+            .chars()
+            .enumerate()
+            .all(|(k, c)| self.peek_at(k) == Some(c));
+        if matches {
+            self.at += n;
+        }
+        matches
+    }
+
+    /// Expects `c` at the cursor.
+    pub(crate) fn expect(&mut self, c: char, what: &str) -> Result<(), Diagnostic> {
+        if self.peek() == Some(c) {
+            self.bump();
+            Ok(())
+        } else {
+            Err(self.error(self.column(), format!("expected '{c}' {what}, found {}", self.found())))
         }
     }
 
-    fn rest(&self) -> String {
-        self.chars[self.at.min(self.chars.len())..].iter().collect()
+    pub(crate) fn found(&self) -> String {
+        self.peek()
+            .map_or_else(|| "the end of the line".to_string(), |c| format!("'{c}'"))
     }
 
-    /// The rest of the line is `s` (spaces around it ignored).
-    fn rest_is(&self, s: &str) -> bool {
-        self.rest().trim() == s
-    }
-
-    /// A `( ... )` comment starting at the cursor.
-    fn comment(&mut self) -> Result<String, Diagnostic> {
+    /// `<name>` at the cursor: the name in lower case, spaces removed.
+    pub(crate) fn name(&mut self) -> Result<Box<str>, Diagnostic> {
         let open = self.column();
-        self.at += 1;
-        let start = self.at;
-        while let Some(c) = self.peek() {
-            match c {
-                ')' => {
-                    let text: String = self.chars[start..self.at].iter().collect();
-                    self.at += 1;
-                    return Ok(text);
-                }
-                '(' => return Err(self.error(self.column(), "nested comment")),
-                _ => self.at += 1,
+        self.expect('<', "to open a name")?;
+        let mut name = String::new();
+        loop {
+            match self.peek() {
+                Some('>') => break,
+                Some(c) => name.push(c),
+                None => return Err(self.error(open, "name without a closing '>'")),
             }
+            self.bump();
         }
-        Err(self.error(open, "unclosed comment: '(' without ')' on this line"))
+        self.bump();
+        if name.is_empty() {
+            return Err(self.error(open, "empty name '<>'"));
+        }
+        Ok(name.into())
     }
 
-    /// The number after a letter, spaces allowed anywhere inside it.
-    fn number(&mut self, letter_column: usize, letter: char) -> Result<Number, Diagnostic> {
-        let mut text = String::new();
-        let mut digits = 0;
-        let mut has_point = false;
-        self.skip_space();
-        if let Some(sign @ ('+' | '-')) = self.peek() {
-            text.push(sign);
-            self.at += 1;
+    /// A word's value after its letter; the flag tells a plain number with a point.
+    fn word_value(&mut self, column: usize, letter: char) -> Result<(Expr, bool), Diagnostic> {
+        if matches!(letter, '@' | '^') && self.at_end() {
+            return Err(self.error(column, format!("{letter} word without a value")));
         }
-        loop {
-            self.skip_space();
-            match self.peek() {
-                Some(c) if c.is_ascii_digit() => {
-                    text.push(c);
-                    digits += 1;
-                }
-                Some('.') if !has_point => {
-                    text.push('.');
-                    has_point = true;
-                }
-                _ => break,
-            }
-            self.at += 1;
-        }
-        if digits == 0 {
-            match self.peek() {
-                Some('#') => {
-                    return Err(
-                        self.error(self.column(), "parameters (#) are not supported by swarf")
-                    );
-                }
-                Some('[') => {
-                    return Err(self.error(
-                        self.column(),
-                        "expressions ([...]) are not supported by swarf",
-                    ));
-                }
-                _ => {}
-            }
-            let found = match self.peek() {
-                Some(c) => format!("'{c}'"),
-                None => "the end of the line".to_string(),
-            };
+        if self.at_end() {
             return Err(self.error(
-                letter_column,
-                format!("{letter} word without a number (found {found})"),
+                column,
+                format!("{letter} word without a number (found the end of the line)"),
             ));
         }
-        let value: f64 = text.parse().map_err(|_| {
-            self.error(letter_column, format!("{letter} word: bad number '{text}'"))
-        })?;
-        Ok(Number { value, has_point })
-    }
-
-    /// After a word: the next thing must start a word or comment, or end the line.
-    fn expect_separator(&mut self) -> Result<(), Diagnostic> {
-        self.skip_space();
-        match self.peek() {
-            None | Some('(' | ';') => Ok(()),
-            Some(c) if c.is_ascii_alphabetic() || c == '#' || c == '[' => Ok(()),
-            Some('@' | '^') => Err(self.error(self.column(), POLAR)),
-            Some(c) => Err(self.error(
-                self.column(),
-                format!("bad number: unexpected '{c}' after the number"),
-            )),
+        if self.starts_number() {
+            let (v, point) = self.plain_number(column, letter)?;
+            return Ok((Expr::Num(v), point));
         }
+        Ok((self.value()?, true))
     }
 
-    /// `O1234` alone on a line (comments allowed after it).
-    fn program_number(&mut self, comments: &mut Vec<String>) -> Result<(u32, usize), Diagnostic> {
-        let column = self.column();
-        self.at += 1;
-        let not_supported = |cursor: &Cursor| {
-            cursor.error(
+    fn starts_number(&self) -> bool {
+        let mut k = 0;
+        while matches!(self.peek_at(k), Some('+' | '-')) {
+            k += 1;
+        }
+        matches!(self.peek_at(k), Some(c) if c.is_ascii_digit() || c == '.')
+    }
+
+    /// Signs, digits and one point (LinuxCNC's `read_real_number`).
+    pub(crate) fn plain_number(
+        &mut self,
+        column: usize,
+        letter: char,
+    ) -> Result<(f64, bool), Diagnostic> {
+        let start = self.at;
+        let mut text = String::new();
+        while let Some(c @ ('+' | '-')) = self.peek() {
+            text.push(c);
+            self.bump();
+        }
+        while let Some(c) = self.peek().filter(|c| c.is_ascii_digit() || *c == '.') {
+            text.push(c);
+            self.bump();
+        }
+        let digits = text.chars().filter(char::is_ascii_digit).count();
+        let points = text.matches('.').count();
+        let signs = text.matches(['+', '-']).count();
+        if digits == 0 {
+            self.at = start;
+            return Err(self.error(
                 column,
-                "O words (subroutines, loops, conditions) are not supported by swarf; \
-                 only a program number O1234 alone on its line is",
-            )
-        };
-        let number = self.number(column, 'O').map_err(|_| not_supported(self))?;
-        let value = number.value;
-        if number.has_point || value < 0.0 || value > f64::from(u32::MAX) {
-            return Err(not_supported(self));
+                format!("{letter} word without a number (found {})", self.found()),
+            ));
         }
-        loop {
-            self.skip_space();
-            match self.peek() {
-                None => break,
-                Some('(') => comments.push(self.comment()?),
-                Some(';') => {
-                    self.at += 1;
-                    comments.push(self.rest().trim().to_string());
-                    break;
+        if points > 1 || signs > 1 {
+            return Err(self.error(column, format!("{letter} word: bad number '{text}'")));
+        }
+        let value: f64 = text
+            .parse()
+            .map_err(|_| self.error(column, format!("{letter} word: bad number '{text}'")))?;
+        if !value.is_finite() {
+            return Err(self.error(
+                column,
+                format!("{letter} word: number too large ({} digits)", digits),
+            ));
+        }
+        Ok((value, points == 1))
+    }
+
+    /// One value (LinuxCNC's `read_real_value`): number, parameter, bracketed
+    /// expression, function, or a sign before a value.
+    pub(crate) fn value(&mut self) -> Result<Expr, Diagnostic> {
+        let column = self.column();
+        match self.peek() {
+            None => Err(self.error(column, "value missing at the end of the line")),
+            Some('[') => self.bracketed(),
+            Some('#') => {
+                self.bump();
+                if self.peek() == Some('<') {
+                    Ok(Expr::Named {
+                        name: self.name()?,
+                        column,
+                    })
+                } else {
+                    Ok(Expr::Param {
+                        index: Box::new(self.value()?),
+                        column,
+                    })
                 }
-                Some(_) => return Err(not_supported(self)),
+            }
+            Some(s @ ('+' | '-')) if !self.starts_number() => {
+                self.bump();
+                let v = self.value()?;
+                Ok(if s == '-' { Expr::Neg(Box::new(v)) } else { v })
+            }
+            Some(c) if c.is_ascii_alphabetic() => self.function(column),
+            Some(_) if self.starts_number() => Ok(Expr::Num(self.plain_number(column, '#')?.0)),
+            Some(c) => Err(self.error(column, format!("expected a value, found '{c}'"))),
+        }
+    }
+
+    /// `[ expression ]`.
+    pub(crate) fn bracketed(&mut self) -> Result<Expr, Diagnostic> {
+        let open = self.column();
+        self.expect('[', "to open an expression")?;
+        let e = self.operations(Some(open))?;
+        self.expect(']', "to close the expression")?;
+        Ok(e)
+    }
+
+    /// Values joined by binary operators, bound by precedence, left to right; stops at
+    /// `]` (inside brackets, `open` is the `[` column), a `,`, or the end of the line.
+    pub(crate) fn operations(&mut self, open: Option<usize>) -> Result<Expr, Diagnostic> {
+        let mut values = vec![self.value()?];
+        let mut ops: Vec<(Op, usize)> = Vec::new();
+        loop {
+            match self.peek() {
+                Some(']' | ',') => break,
+                None if open.is_none() => break,
+                None => {
+                    return Err(self.error(open.unwrap_or(1), "unclosed expression: '[' without ']'"));
+                }
+                Some(_) if open.is_none() && !self.at_operator() => break,
+                _ => {}
+            }
+            let column = self.column();
+            let op = self.operator()?;
+            while ops
+                .last()
+                .is_some_and(|(top, _)| top.precedence() >= op.precedence())
+            {
+                reduce(&mut values, &mut ops);
+            }
+            ops.push((op, column));
+            values.push(self.value()?);
+        }
+        while !ops.is_empty() {
+            reduce(&mut values, &mut ops);
+        }
+        Ok(values.pop().unwrap_or(Expr::Num(0.0)))
+    }
+
+    /// Whether an operator starts at the cursor.
+    fn at_operator(&mut self) -> bool {
+        let at = self.at;
+        let found = self.operator().is_ok();
+        self.at = at;
+        found
+    }
+
+    fn operator(&mut self) -> Result<Op, Diagnostic> {
+        let column = self.column();
+        let table: [(&str, Op); 15] = [
+            ("**", Op::Pow),
+            ("*", Op::Mul),
+            ("/", Op::Div),
+            ("+", Op::Add),
+            ("-", Op::Sub),
+            ("mod", Op::Mod),
+            ("and", Op::And),
+            ("or", Op::Or),
+            ("xor", Op::Xor),
+            ("eq", Op::Eq),
+            ("ne", Op::Ne),
+            ("gt", Op::Gt),
+            ("ge", Op::Ge),
+            ("lt", Op::Lt),
+            ("le", Op::Le),
+        ];
+        for (text, op) in table {
+            if self.eat(text) {
+                return Ok(op);
             }
         }
-        Ok((value as u32, column))
+        Err(self.error(column, format!("unknown operation: expected an operator or ']', found {}", self.found())))
     }
+
+    /// A function name and its bracketed argument(s).
+    fn function(&mut self, column: usize) -> Result<Expr, Diagnostic> {
+        let table: [(&str, Option<Func>); 16] = [
+            ("abs", Some(Func::Abs)),
+            ("acos", Some(Func::Acos)),
+            ("asin", Some(Func::Asin)),
+            ("atan", None),
+            ("cos", Some(Func::Cos)),
+            ("exp", Some(Func::Exp)),
+            ("exists", None),
+            ("fix", Some(Func::Fix)),
+            ("fup", Some(Func::Fup)),
+            ("ln", Some(Func::Ln)),
+            ("round", Some(Func::Round)),
+            ("sin", Some(Func::Sin)),
+            ("sqrt", Some(Func::Sqrt)),
+            ("tan", Some(Func::Tan)),
+            ("adp", Some(Func::Adp)),
+            ("pow", None),
+        ];
+        let Some((name, func)) = table.into_iter().find(|(name, _)| self.eat(name)) else {
+            let word: String = (0..)
+                .map_while(|k| self.peek_at(k).filter(char::is_ascii_alphabetic))
+                .collect();
+            return Err(self.error(column, format!("unknown function or word '{word}'")));
+        };
+        if self.peek() != Some('[') {
+            return Err(self.error(
+                self.column(),
+                format!("left bracket missing after the function name {name}"),
+            ));
+        }
+        match (name, func) {
+            ("exists", _) => {
+                self.bump();
+                if !(self.peek() == Some('#') && self.peek_at(1) == Some('<')) {
+                    return Err(self.error(self.column(), "exists[] takes a named parameter #<name>"));
+                }
+                self.bump();
+                let n = self.name()?;
+                self.expect(']', "to close exists[")?;
+                Ok(Expr::Exists(n))
+            }
+            ("atan" | "pow", _) => self.two_arguments(name, column),
+            (_, Some(func)) => Ok(Expr::Unary {
+                func,
+                arg: Box::new(self.bracketed()?),
+                column,
+            }),
+            _ => Err(self.error(column, format!("unknown function {name}"))),
+        }
+    }
+
+    /// `atan[y]/[x]`, and Fanuc's `atan[y, x]` and `pow[a, b]`.
+    fn two_arguments(&mut self, name: &str, column: usize) -> Result<Expr, Diagnostic> {
+        let open = self.column();
+        self.bump();
+        let first = self.operations(Some(open))?;
+        let second = if self.peek() == Some(',') {
+            self.bump();
+            let e = self.operations(Some(open))?;
+            self.expect(']', "to close the arguments")?;
+            e
+        } else if name == "atan" {
+            self.expect(']', "to close atan's first argument")?;
+            self.expect('/', "after atan[y] (atan[y]/[x])")?;
+            if self.peek() != Some('[') {
+                return Err(self.error(self.column(), "left bracket missing after slash with atan"));
+            }
+            self.bracketed()?
+        } else {
+            return Err(self.error(column, "pow takes two arguments: pow[a, b]"));
+        };
+        let (a, b) = (Box::new(first), Box::new(second));
+        Ok(if name == "atan" {
+            Expr::Atan(a, b)
+        } else {
+            Expr::Binary {
+                op: Op::Pow,
+                left: a,
+                right: b,
+                column,
+            }
+        })
+    }
+}
+
+fn reduce(values: &mut Vec<Expr>, ops: &mut Vec<(Op, usize)>) {
+    let (op, column) = ops.pop().unwrap_or((Op::Add, 1));
+    let right = values.pop().unwrap_or(Expr::Num(0.0));
+    let left = values.pop().unwrap_or(Expr::Num(0.0));
+    values.push(Expr::Binary {
+        op,
+        left: Box::new(left),
+        right: Box::new(right),
+        column,
+    });
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::read::expr::ParamSource;
+
+    struct NoParams;
+    impl ParamSource for NoParams {
+        fn numbered(&self, index: i64) -> Result<f64, String> {
+            Ok(index as f64 * 10.0)
+        }
+        fn named(&self, name: &str) -> Result<f64, String> {
+            if name == "depth" { Ok(2.5) } else { Err(format!("#<{name}> undefined")) }
+        }
+        fn exists(&self, name: &str) -> bool {
+            name == "depth"
+        }
+        fn fanuc(&self) -> bool {
+            false
+        }
+    }
+
+    fn lex(text: &str) -> Line {
+        lex_line(text, 1, Syntax::default()).unwrap()
+    }
 
     fn words(text: &str) -> Vec<(char, f64, usize)> {
-        lex_line(text, 1)
-            .unwrap()
-            .words
-            .iter()
-            .map(|w| (w.letter, w.value, w.column))
-            .collect()
+        match lex(text).statement {
+            Statement::Words { words, .. } => words
+                .iter()
+                .map(|w| (w.letter, w.value.eval(&NoParams).unwrap(), w.column))
+                .collect(),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    fn value(text: &str) -> f64 {
+        words(&format!("X{text}"))[0].1
     }
 
     fn err(text: &str) -> (usize, String) {
-        let d = lex_line(text, 4).unwrap_err();
+        let d = lex_line(text, 4, Syntax::default()).unwrap_err();
         assert_eq!(d.line, 4);
         (d.column, d.message)
     }
@@ -325,52 +685,62 @@ mod tests {
     fn words_with_columns_and_spaces_inside_numbers() {
         assert_eq!(
             words("g1 x 1 0.5 Y-.5 z+2."),
-            vec![
-                ('G', 1.0, 1),
-                ('X', 10.5, 4),
-                ('Y', -0.5, 12),
-                ('Z', 2.0, 17)
-            ]
+            vec![('G', 1.0, 1), ('X', 10.5, 4), ('Y', -0.5, 12), ('Z', 2.0, 17)]
         );
         assert_eq!(words("G90.1"), vec![('G', 90.1, 1)]);
-        assert_eq!(
-            words("N0010 G0X1Y2"),
-            vec![('G', 0.0, 7), ('X', 1.0, 9), ('Y', 2.0, 11)]
-        );
+        assert_eq!(lex("N0010 G0X1Y2").number, Some(10.0));
+        assert_eq!(words("N0010 G0X1Y2")[2], ('Y', 2.0, 11));
     }
 
     #[test]
-    fn comments_delete_and_delimiters() {
-        let b = lex_line("/N5 G0 (move up) X1 ; done", 1).unwrap();
-        assert!(b.block_delete);
-        assert_eq!(b.comments, vec!["move up".to_string(), "done".to_string()]);
-        assert_eq!(b.words.len(), 2);
-        assert!(lex_line("  % ", 1).unwrap().percent);
-        assert!(lex_line("(only a comment)", 1).unwrap().is_empty());
-        assert!(lex_line("", 1).unwrap().is_empty());
-        let o = lex_line("O1000 (PART)", 1).unwrap();
-        assert_eq!(o.program_number, Some((1000, 1)));
+    fn expressions_precedence_and_functions() {
+        assert_eq!(value("[1 + 2 * 3]"), 7.0);
+        assert_eq!(value("[2 ** 3 ** 2]"), 64.0);
+        assert_eq!(value("[9+8*7/6+5-4*3**2+1]"), 9.0 + 56.0 / 6.0 + 5.0 - 36.0 + 1.0);
+        assert_eq!(value("[1 + 2 gt 2 and 1]"), 1.0);
+        assert_eq!(value("[7 mod 3]"), 1.0);
+        assert!((value("sin[30]") - 0.5).abs() < 1e-15);
+        assert!((value("atan[1]/[1]") - 45.0).abs() < 1e-12);
+        assert_eq!(value("-#2"), -20.0);
+        assert_eq!(value("#[1+1]"), 20.0);
+        assert_eq!(value("##1"), 100.0);
+        assert_eq!(value("-[#<depth> * 2]"), -5.0);
+        assert_eq!(value("exists[#<depth>]"), 1.0);
+        assert_eq!(value("exists[#<other>]"), 0.0);
+        assert_eq!(value("[fix[2.7] + fup[2.1]]"), 5.0);
+    }
+
+    #[test]
+    fn settings_and_statements() {
+        let l = lex("#1 = 5 #<depth>=[#1+1] G0 X#1 (c)");
+        let Statement::Words { words, assignments } = l.statement else {
+            panic!()
+        };
+        assert_eq!(words.len(), 2);
+        assert_eq!(assignments.len(), 2);
+        assert_eq!(assignments[1].target, Target::Named("depth".into()));
+        assert_eq!(l.comments, vec!["c".to_string()]);
+        assert!(matches!(lex("O1000 (PART)").statement, Statement::ProgramNumber(1000, 1)));
+        assert!(matches!(lex("o100 sub").statement, Statement::Control(_)));
+        assert!(lex("  % ").percent);
+        assert!(lex("(only a comment)").is_empty());
+        assert!(lex("/N5 G0 X1").block_delete);
     }
 
     #[test]
     fn errors_point_at_the_culprit() {
         assert_eq!(err("G0 X1 (a (b) c)").0, 10);
         assert_eq!(err("G0 X1 (abc").0, 7);
-        assert_eq!(err("G0 X1.2.3").0, 8);
-        assert_eq!(err("G0 Xabc").0, 4);
+        assert_eq!(err("G0 X1.2.3").0, 4);
+        assert_eq!(err("G0 Xabc").0, 5);
         assert_eq!(err("G0 X").0, 4);
-        assert_eq!(err("G0 X#1").0, 5);
-        assert_eq!(err("G0 X[1+2]").0, 5);
+        assert_eq!(err("G0 X[1+2").0, 5);
+        assert_eq!(err("G0 X[1 $ 2]").0, 8);
         assert_eq!(err("G0 X1 N20").0, 7);
         assert_eq!(err("G0 X1 $").0, 7);
-        assert_eq!(err("o100 sub").0, 1);
         assert_eq!(err("G0 X--1").0, 4);
-        assert!(err("#1 = 5").1.contains("parameters"));
-        // LinuxCNC's polar words are named, not taken for a bad number.
-        for (text, column) in [("G1 @10 ^45", 4), ("G1 X1@10", 6), ("G1 X1 ^45", 7)] {
-            let (c, m) = err(text);
-            assert_eq!(c, column, "{text}");
-            assert!(m.contains("polar coordinates"), "{text}: {m}");
-        }
+        assert_eq!(err("#1 5").0, 5);
+        assert!(err("G1 X1 o100 call").1.contains("O-word"));
+        assert!(err(&format!("G1 X1{}", "9".repeat(400))).1.contains("too large"));
     }
 }

@@ -1,37 +1,50 @@
-//! The RS274/NGC modal state machine: executes one lexed block against the modal
-//! state (motion mode, plane, distance modes, units, feed, tool) and emits motions.
+//! The RS274/NGC modal state machine, as LinuxCNC 2.9's interpreter keeps it
+//! (`interp_execute.cc`, `interp_convert.cc`): executes one block of evaluated words
+//! against the modal state and emits motions.
 //!
-//! Within a block the words act in RS274/NGC's order of execution (NIST RS274/NGC
-//! v3 §3.8, as LinuxCNC follows it): feed `F`, spindle `S`, tool select `T`, tool change
-//! `M6`, spindle and coolant, dwell `G4`, plane, units, cutter compensation, tool
-//! length offset, coordinate system, path control, distance modes, motion, stop. So
+//! Within a block the words act in LinuxCNC's order: feed mode, `F`, `S`, `T`, the M
+//! codes (tool change, spindle), dwell `G4`, plane, units, cutter compensation, tool
+//! length offset, coordinate system, path control, distance modes, retract mode, the
+//! non-modal codes (`G10 G28 G30 G52 G92` ...), motion, then stop (`M0 M1 M2 M30`). So
 //! `G20 F10` sets the feed in the units in force *before* the block (the reader warns
 //! about it), and `G91 X1` moves incrementally.
 //!
-//! Program coordinates are the tool tip in the part frame: the reader assumes the
-//! control applies the tool length (G43 H, or the tool table) so that the programmed
-//! point is the tip, and that the work offset (G54) puts the part frame where the
-//! program's zero is. With a machine's kinematics the program coordinates are the
-//! machine's axes (`X Y Z` and two rotary words, in degrees, absolute in G90 and
-//! incremental in G91, not scaled by G20), turned into part-frame motions by
-//! [`crate::read::axes`]. Feeds follow G93/G94 as [`crate::read::feed`] describes.
+//! Like LinuxCNC, the machine keeps the current point in *program* coordinates: the
+//! active coordinate system (`G54`-`G59.3`, with its XY rotation), the `G92`/`G52`
+//! offsets and the tool length offset (`G43`) in the program's units
+//! ([`crate::read::offsets`]). Every motion is carried into the part frame when it is
+//! emitted: `machine = rot(p + g92) + g5x + tool offset`, LinuxCNC's canonical
+//! transform, minus the loaded tool's own offset from the tool table, so that the
+//! motion is the path of the tool *tip* (with `G43` of the loaded tool the two cancel).
+//! With no offsets and no tool table the part frame is the program's.
+//!
+//! With a machine's kinematics the program coordinates are the machine's axes
+//! (`X Y Z` and two rotary words, in degrees, absolute in G90 and incremental in G91,
+//! not scaled by G20), turned into part-frame motions by [`crate::read::axes`]. Feeds
+//! follow G93/G94 as [`crate::read::feed`] describes.
 
-use crate::read::arc::{ArcRequest, CenterWords, Plane, arc_center};
+use crate::read::arc::Plane;
 use crate::read::axes::Axes;
-use crate::read::codes::Action;
-use crate::read::feed::BlockFeed;
-use crate::read::kinematics::{AxisPosition, DEFAULT_KINEMATICS_TOL};
-use crate::read::lexer::{Block, Word};
-use crate::read::program::{Diagnostic, Motion, MotionKind};
+use crate::read::codes::{Action, SpindleTurn};
+use crate::read::comp::Comp;
+use crate::read::cycle::CycleState;
+use crate::read::kinematics::DEFAULT_KINEMATICS_TOL;
+use crate::read::offsets::Offsets;
+use crate::read::params::Params;
+use crate::read::program::{Diagnostic, Motion};
+use crate::read::tooltable::ToolTable;
 use crate::read::warnings::Warnings;
-use crate::read::words::Words;
+use crate::read::words::{Word, Words};
+use swarf_geom::Point3;
 use swarf_geom::units::MM_PER_INCH;
-use swarf_geom::{Point3, Vec3};
 use swarf_tool::Pose;
 
 /// Most turns one G2/G3 block may make (`P`): thread milling needs tens; more is
 /// taken for a mistake rather than handed to a simulation that samples every turn.
 pub const MAX_TURNS: u32 = 10_000;
+
+/// A position `X Y Z A B C`: program units and degrees.
+pub type Pos = [f64; 6];
 
 /// What the caller does after a block.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -42,48 +55,79 @@ pub enum Flow {
     End,
 }
 
+/// The machine the program runs on: its tool table and units.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Setup<'k> {
+    /// The tool table (diameters for G41/G42, offsets for G43), if any.
+    pub tool_table: Option<&'k ToolTable>,
+    /// The machine's units are inches: tool table values and the offsets stored in
+    /// parameters (#5161-#5390) are inches (LinuxCNC's standalone `rs274`); otherwise mm.
+    pub machine_inch: bool,
+}
+
 /// The modal state and what has been read so far.
 pub struct Interpreter<'k> {
     /// Motions emitted so far.
     pub motions: Vec<Motion>,
     /// Warnings so far.
     pub warnings: Warnings,
-    /// Axis positions and the tool's pose.
-    axes: Axes<'k>,
-    motion: Option<Action>,
-    plane: Plane,
-    absolute: bool,
-    ijk_absolute: bool,
-    inch: bool,
+    /// Numbered and global named parameters.
+    pub params: Params,
+    pub(crate) setup: Setup<'k>,
+    /// The tool table as the program has changed it (G10 L1).
+    pub(crate) tools: ToolTable,
+    /// Axis positions and the tool's pose in the part frame (what was emitted).
+    pub(crate) axes: Axes<'k>,
+    /// The current point, program coordinates (LinuxCNC's `current_x` ...).
+    pub(crate) cur: Pos,
+    pub(crate) motion: Option<Action>,
+    pub(crate) plane: Plane,
+    pub(crate) absolute: bool,
+    pub(crate) ijk_absolute: bool,
+    pub(crate) inch: bool,
     units_seen: bool,
     /// Feed in G94, mm/min.
-    feed: f64,
+    pub(crate) feed: f64,
     /// Feed in G94 for moves of the rotary axes alone, degrees/min.
-    rotary_feed: f64,
+    pub(crate) rotary_feed: f64,
     /// G93 inverse-time feed mode.
-    inverse_time: bool,
+    pub(crate) inverse_time: bool,
     selected_tool: Option<u32>,
-    active_tool: Option<u32>,
+    /// The tool in the spindle (M6, M61).
+    pub(crate) loaded_tool: Option<u32>,
+    pub(crate) spindle: SpindleTurn,
+    pub(crate) offsets: Offsets,
+    pub(crate) cycle: CycleState,
+    pub(crate) comp: Comp,
     /// An `O` program number was read: numbers without a decimal point are suspicious.
     pub fanuc: bool,
     fanuc_warned: bool,
+    tool_warned: bool,
 }
 
 impl Interpreter<'static> {
-    /// A three-axis machine at `initial`, in G17 G21 G90 G91.1 G94 with no motion mode
-    /// and no feed (LinuxCNC's start-up state).
+    /// A three-axis machine at `initial`, in G17 G21 G90 G91.1 G94 G54 with no motion
+    /// mode and no feed (LinuxCNC's start-up state).
     pub fn new(initial: Pose) -> Self {
-        Interpreter::with_axes(Axes::new(&initial, None, DEFAULT_KINEMATICS_TOL))
+        Interpreter::with_axes(
+            Axes::new(&initial, None, DEFAULT_KINEMATICS_TOL),
+            Setup::default(),
+            Params::default(),
+        )
     }
 }
 
 impl<'k> Interpreter<'k> {
     /// A machine whose axes start at `axes`, otherwise as [`Interpreter::new`].
-    pub fn with_axes(axes: Axes<'k>) -> Self {
-        Interpreter {
+    pub fn with_axes(axes: Axes<'k>, setup: Setup<'k>, params: Params) -> Self {
+        let mut machine = Interpreter {
             motions: Vec::new(),
             warnings: Warnings::default(),
+            params,
+            setup,
+            tools: setup.tool_table.cloned().unwrap_or_default(),
             axes,
+            cur: [0.0; 6],
             motion: None,
             plane: Plane::Xy,
             absolute: true,
@@ -94,50 +138,132 @@ impl<'k> Interpreter<'k> {
             rotary_feed: 0.0,
             inverse_time: false,
             selected_tool: None,
-            active_tool: None,
+            loaded_tool: None,
+            spindle: SpindleTurn::Stopped,
+            offsets: Offsets::default(),
+            cycle: CycleState::default(),
+            comp: Comp::default(),
             fanuc: false,
             fanuc_warned: false,
-        }
+            tool_warned: false,
+        };
+        machine.start_in_g54();
+        machine.cur = machine.program_of_axes();
+        machine
     }
 
-    fn scale(&self) -> f64 {
+    /// mm per program unit.
+    pub(crate) fn scale(&self) -> f64 {
         if self.inch { MM_PER_INCH } else { 1.0 }
     }
 
-    fn warn(&mut self, line: usize, column: usize, message: impl Into<String>) {
+    /// A length in the machine's units (tool table, stored offsets) in program units.
+    pub(crate) fn user_to_program(&self, v: f64) -> f64 {
+        match (self.setup.machine_inch, self.inch) {
+            (true, false) => v * MM_PER_INCH,
+            (false, true) => v / MM_PER_INCH,
+            _ => v,
+        }
+    }
+
+    /// A length in program units in the machine's units.
+    pub(crate) fn program_to_user(&self, v: f64) -> f64 {
+        match (self.setup.machine_inch, self.inch) {
+            (true, false) => v / MM_PER_INCH,
+            (false, true) => v * MM_PER_INCH,
+            _ => v,
+        }
+    }
+
+    pub(crate) fn warn(&mut self, line: usize, column: usize, message: impl Into<String>) {
         self.warnings.push(Diagnostic::new(line, column, message));
     }
 
-    /// Executes one block.
+    /// Executes one block of evaluated words.
     ///
     /// # Errors
     /// A [`Diagnostic`] at the offending word; the state is then unspecified and the
     /// caller stops reading.
-    pub fn execute(&mut self, block: &Block, line: usize) -> Result<Flow, Diagnostic> {
+    pub fn execute(&mut self, block: &[Word], line: usize) -> Result<Flow, Diagnostic> {
         let parsed = Words::sort(block, line, &mut self.warnings)?;
-        let is_arc = matches!(
-            self.block_mode(&parsed),
-            Some(Action::ArcCw | Action::ArcCcw)
-        );
+        let to_be = self.motion_to_be(&parsed, line)?;
         let rotary = self.axes.rotary_letters();
-        parsed.check_letters(is_arc, rotary, line, &mut self.warnings)?;
+        let mode = to_be.or(self.motion);
+        parsed.check_letters(mode, rotary, line, &mut self.warnings)?;
         self.machine_words(&parsed, line)?;
-        self.set_modes(&parsed);
-        self.motion_words(&parsed, line)?;
-        let end = parsed.m.iter().any(|m| m.1 == Action::End);
-        Ok(if end { Flow::End } else { Flow::Continue })
-    }
-    /// The motion mode this block runs in.
-    fn block_mode(&self, parsed: &Words) -> Option<Action> {
-        match parsed.motion_code() {
-            Some((Action::CancelMotion, _)) => None,
-            Some((action, _)) => Some(action),
-            None => self.motion,
+        self.m_codes(&parsed, line)?;
+        self.set_modes(&parsed, line)?;
+        self.modal_zero(&parsed, line)?;
+        if let Some(action) = to_be {
+            self.motion_words(action, &parsed, line)?;
+        } else if parsed.has_g(Action::CancelMotion).is_some() {
+            self.motion = None;
         }
+        self.stop(&parsed, line)
     }
 
-    /// Feed mode, F, S, T, M6 and G4, in that order. In G93 the F word belongs to its
-    /// block's motion ([`Interpreter::block_feed`]).
+    /// The motion this block makes, with LinuxCNC's checks (`enhance_block`).
+    fn motion_to_be(&self, parsed: &Words, line: usize) -> Result<Option<Action>, Diagnostic> {
+        let axis = parsed.axis_word(self.axes.rotary_letters());
+        let polar = parsed.get('@').or(parsed.get('^'));
+        let ijk = ['I', 'J', 'K'].iter().find_map(|&l| parsed.get(l));
+        let covets = parsed.g.iter().find(|g| {
+            matches!(
+                g.2,
+                Action::SetData
+                    | Action::Home { .. }
+                    | Action::AxisOffset { .. }
+            )
+        });
+        let err = |column: usize, m: &str| Err(Diagnostic::new(line, column, m));
+        if let Some(p) = polar {
+            if self.plane != Plane::Xy {
+                return err(p.column, "polar coordinates (@, ^) can only be used in the G17 plane");
+            }
+            if let Some(w) = parsed.get('X').or(parsed.get('Y')) {
+                return err(w.column, "cannot give both polar coordinates (@, ^) and X or Y words");
+            }
+        }
+        let moved = axis.or(polar);
+        if let Some((action, word)) = parsed.motion_code() {
+            if action == Action::CancelMotion {
+                if let (Some(_), None) = (moved, covets) {
+                    return err(word.column, "axis words with G80 (motion cancelled)");
+                }
+                return Ok(None);
+            }
+            if let Some(g) = covets {
+                return err(
+                    g.3.column,
+                    "two G codes that both use axis values in one block (a motion and G10, \
+                     G28, G30, G52 or G92)",
+                );
+            }
+            if moved.is_none() && matches!(action, Action::Cycle(_)) {
+                return err(word.column, "all axes missing with a canned cycle");
+            }
+            return Ok(Some(action));
+        }
+        if covets.is_some() {
+            return Ok(None);
+        }
+        if let Some(w) = moved {
+            return match self.motion {
+                Some(mode) => Ok(Some(mode)),
+                None => err(
+                    w.column,
+                    "axis words without a motion mode: program G0, G1, G2 or G3 first",
+                ),
+            };
+        }
+        if ijk.is_some() && matches!(self.motion, Some(Action::ArcCw | Action::ArcCcw)) {
+            return Ok(self.motion);
+        }
+        Ok(None)
+    }
+
+    /// Feed mode, F, S, T, in that order. In G93 the F word belongs to its block's
+    /// motion ([`crate::read::motion`]).
     fn machine_words(&mut self, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
         if parsed.has_g(Action::InverseTime).is_some() {
             self.inverse_time = true;
@@ -168,246 +294,161 @@ impl<'k> Interpreter<'k> {
             return Err(Diagnostic::new(line, s.column, "negative spindle speed S"));
         }
         if let Some(t) = parsed.get('T') {
-            if t.value < 0.0 || t.value.fract() != 0.0 || t.value > f64::from(u32::MAX) {
-                return Err(Diagnostic::new(
-                    line,
-                    t.column,
-                    "tool number T must be a whole number >= 0",
-                ));
-            }
-            self.selected_tool = Some(t.value as u32);
-        }
-        if let Some(m6) = parsed.m.iter().find(|m| m.1 == Action::ToolChange) {
-            let tool = self.selected_tool.unwrap_or(0);
-            match self.active_tool {
-                Some(active) if active != tool && !self.motions.is_empty() => {
-                    return Err(Diagnostic::new(
-                        line,
-                        m6.2.column,
-                        format!(
-                            "tool change from T{active} to T{tool} after motions: swarf verifies \
-                             one tool per program; split the program at the tool change"
-                        ),
-                    ));
-                }
-                _ => self.active_tool = Some(tool),
-            }
-        }
-        if let Some(g4) = parsed.has_g(Action::Dwell) {
-            self.warn(
-                line,
-                g4.column,
-                "G4 dwell ignored: machining times exclude it",
-            );
+            self.selected_tool = Some(whole(t, line, "tool number T")?);
         }
         Ok(())
     }
 
-    /// Plane, units, distance modes.
-    fn set_modes(&mut self, parsed: &Words) {
-        for &(_, _, action, _) in &parsed.g {
+    /// M6, M61, M3/M4/M5.
+    fn m_codes(&mut self, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
+        for &(_, action, w) in &parsed.m {
             match action {
-                Action::PlaneXy => self.plane = Plane::Xy,
-                Action::PlaneXz => self.plane = Plane::Xz,
-                Action::PlaneYz => self.plane = Plane::Yz,
-                Action::Inch | Action::Mm => {
-                    self.inch = action == Action::Inch;
-                    self.units_seen = true;
+                Action::ToolChange => self.tool_change(self.selected_tool.unwrap_or(0), w, line)?,
+                Action::SetTool => {
+                    let Some(q) = parsed.get('Q') else {
+                        return Err(Diagnostic::new(line, w.column, "M61 requires a Q word"));
+                    };
+                    let tool = whole(q, line, "tool number Q of M61")?;
+                    self.tool_change(tool, w, line)?;
                 }
-                Action::Absolute => self.absolute = true,
-                Action::Incremental => self.absolute = false,
-                Action::ArcAbsolute => self.ijk_absolute = true,
-                Action::ArcIncremental => self.ijk_absolute = false,
+                Action::Spindle(turn) => self.spindle = turn,
                 _ => {}
+            }
+        }
+        if let Some(g4) = parsed.has_g(Action::Dwell) {
+            if parsed.get('P').is_none() {
+                return Err(Diagnostic::new(line, g4.column, "dwell time P word missing with G4"));
+            }
+            self.warn(line, g4.column, "G4 dwell ignored: machining times exclude it");
+        }
+        Ok(())
+    }
+
+    /// Loads `tool` (M6 or M61): one tool per program.
+    fn tool_change(&mut self, tool: u32, w: Word, line: usize) -> Result<(), Diagnostic> {
+        match self.loaded_tool {
+            Some(active) if active != tool && !self.motions.is_empty() => Err(Diagnostic::new(
+                line,
+                w.column,
+                format!(
+                    "tool change from T{active} to T{tool} after motions: swarf verifies one \
+                     tool per program; split the program at the tool change"
+                ),
+            )),
+            _ => {
+                self.loaded_tool = Some(tool);
+                Ok(())
             }
         }
     }
 
-    /// The motion this block commands, if any.
-    fn motion_words(&mut self, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
-        let mode = self.block_mode(parsed);
-        self.motion = mode;
-        let rotary = self.axes.rotary_letters().unwrap_or(['X'; 2]);
-        let axes: Vec<Word> = ['X', 'Y', 'Z', rotary[0], rotary[1]]
-            .iter()
-            .filter_map(|&l| parsed.get(l))
-            .collect();
-        let arc_words = ['I', 'J', 'K', 'R']
-            .iter()
-            .any(|&l| parsed.get(l).is_some());
-        if axes.is_empty() && !arc_words {
-            return Ok(());
+    /// Plane, units, cutter compensation, tool length offset, coordinate system,
+    /// distance modes and retract mode, in LinuxCNC's order.
+    fn set_modes(&mut self, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
+        let g = |action: Action| parsed.g.iter().find(|g| g.2 == action).map(|g| g.3);
+        for &(_, _, action, w) in &parsed.g {
+            if let Action::PlaneXy | Action::PlaneXz | Action::PlaneYz = action {
+                if self.comp.is_on() && action != Action::PlaneXy {
+                    return Err(Diagnostic::new(
+                        line,
+                        w.column,
+                        "cannot change to the XZ or YZ plane with cutter radius compensation on",
+                    ));
+                }
+                self.plane = match action {
+                    Action::PlaneXz => Plane::Xz,
+                    Action::PlaneYz => Plane::Yz,
+                    _ => Plane::Xy,
+                };
+            }
         }
-        let column = parsed
-            .motion_code()
-            .map(|(_, w)| w.column)
-            .or_else(|| axes.first().map(|w| w.column))
-            .unwrap_or(1);
-        let Some(mode) = mode else {
-            let why = if parsed.has_g(Action::CancelMotion).is_some() {
-                "axis words with G80 (motion cancelled)"
-            } else {
-                "axis words without a motion mode: program G0, G1, G2 or G3 first"
-            };
-            return Err(Diagnostic::new(line, column, why));
+        if g(Action::Inch).is_some() {
+            self.set_units(true);
+        } else if g(Action::Mm).is_some() {
+            self.set_units(false);
+        }
+        for &(_, _, action, w) in &parsed.g {
+            match action {
+                Action::CompOff => self.comp_off(line)?,
+                Action::Comp { left, diameter } => self.comp_on(left, diameter, parsed, w, line)?,
+                _ => {}
+            }
+        }
+        for &(_, _, action, w) in &parsed.g {
+            match action {
+                Action::LengthOffset | Action::LengthOffsetOff => {
+                    self.tool_length_offset(action == Action::LengthOffset, parsed, w, line)?;
+                }
+                Action::CoordSystem(n) => self.select_coordinate_system(n, w, line)?,
+                _ => {}
+            }
+        }
+        for &(_, _, action, _) in &parsed.g {
+            match action {
+                Action::Absolute => self.absolute = true,
+                Action::Incremental => self.absolute = false,
+                Action::ArcAbsolute => self.ijk_absolute = true,
+                Action::ArcIncremental => self.ijk_absolute = false,
+                Action::RetractOldZ => self.cycle.retract_to_r = false,
+                Action::RetractR => self.cycle.retract_to_r = true,
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// G20 (`inch`) or G21: the current point, the offsets and the compensation are
+    /// carried into the new units, as LinuxCNC's `convert_length_units` does.
+    fn set_units(&mut self, inch: bool) {
+        self.units_seen = true;
+        if inch == self.inch {
+            return;
+        }
+        let k = if inch { 1.0 / MM_PER_INCH } else { MM_PER_INCH };
+        for v in self.cur[..3].iter_mut() {
+            *v *= k;
+        }
+        self.comp.scale(k);
+        self.offsets.scale(k);
+        self.inch = inch;
+    }
+
+    /// M0 and M1 flush the compensation queue; M2 and M30 end the program.
+    fn stop(&mut self, parsed: &Words, line: usize) -> Result<Flow, Diagnostic> {
+        let stop = parsed
+            .m
+            .iter()
+            .find(|m| matches!(m.1, Action::End | Action::Pause));
+        let Some(&(_, action, _)) = stop else {
+            return Ok(Flow::Continue);
         };
-        self.suspicious_numbers(parsed, line);
+        self.comp_flush_here(line)?;
+        Ok(if action == Action::End {
+            Flow::End
+        } else {
+            Flow::Continue
+        })
+    }
+
+    /// Emits what the compensation still holds (the end of the program).
+    ///
+    /// # Errors
+    /// When a queued move cannot be finished (see [`crate::read::comp`]).
+    pub fn finish(&mut self, line: usize) -> Result<(), Diagnostic> {
+        self.comp_flush_here(line)
+    }
+
+    /// Fanuc-style programs read `X10` as ten least increments; LinuxCNC as 10 units.
+    pub(crate) fn suspicious_numbers(&mut self, parsed: &Words, line: usize) {
         if !self.units_seen {
             self.units_seen = true;
+            let column = self.motion_column(parsed);
             self.warn(
                 line,
                 column,
                 "no G20/G21 before the first motion: assuming millimetres (G21)",
             );
         }
-        let end = self.end_position(parsed);
-        let kind = match mode {
-            Action::Rapid => MotionKind::Rapid,
-            Action::Linear => MotionKind::Linear,
-            _ => self.arc_kind(parsed, mode == Action::ArcCw, &end, line, column)?,
-        };
-        let feed = self.block_feed(kind, parsed, line, column)?;
-        let motions = self.axes.move_to(kind, end, feed, line);
-        self.motions.extend(motions);
-        Ok(())
-    }
-
-    /// How the feed of a motion block is given (see [`crate::read::feed`]).
-    ///
-    /// # Errors
-    /// A feed move in G94 with no feed rate; in G93, one without an F word or with F0.
-    fn block_feed(
-        &self,
-        kind: MotionKind,
-        parsed: &Words,
-        line: usize,
-        column: usize,
-    ) -> Result<BlockFeed, Diagnostic> {
-        if kind == MotionKind::Rapid {
-            return Ok(BlockFeed::Rapid);
-        }
-        if self.inverse_time {
-            return match parsed.get('F') {
-                Some(f) if f.value > 0.0 => Ok(BlockFeed::InverseTime(f.value)),
-                Some(f) => Err(Diagnostic::new(
-                    line,
-                    f.column,
-                    "F0 in inverse-time feed mode (G93): the block would never end",
-                )),
-                None => Err(Diagnostic::new(
-                    line,
-                    column,
-                    "F word missing on a feed move in inverse-time mode (G93): every G1, \
-                     G2 and G3 block needs its own F (1 / minutes)",
-                )),
-            };
-        }
-        if self.feed <= 0.0 {
-            return Err(Diagnostic::new(
-                line,
-                column,
-                "feed move with zero feed rate: program F before the first G1, G2 or G3",
-            ));
-        }
-        Ok(BlockFeed::PerMinute {
-            linear: self.feed,
-            rotary: self.rotary_feed,
-        })
-    }
-
-    /// The axis position at the end of the block's motion: mm, and radians for the
-    /// rotary axes (whose words are degrees, not scaled by G20).
-    fn end_position(&self, parsed: &Words) -> AxisPosition {
-        let mut end = *self.axes.position();
-        let rotary = self.axes.rotary_letters();
-        let letters = ['X', 'Y', 'Z']
-            .into_iter()
-            .chain(rotary.into_iter().flatten());
-        for (k, letter) in letters.enumerate() {
-            if let Some(w) = parsed.get(letter) {
-                let v = if k < 3 {
-                    w.value * self.scale()
-                } else {
-                    w.value.to_radians()
-                };
-                end[k] = if self.absolute { v } else { end[k] + v };
-            }
-        }
-        end
-    }
-
-    fn arc_kind(
-        &self,
-        parsed: &Words,
-        clockwise: bool,
-        end: &AxisPosition,
-        line: usize,
-        column: usize,
-    ) -> Result<MotionKind, Diagnostic> {
-        let err = |column: usize, message: String| Err(Diagnostic::new(line, column, message));
-        let plane = self.plane;
-        let foreign = plane.foreign_offset();
-        if let Some(w) = parsed.get(foreign) {
-            return err(
-                w.column,
-                format!(
-                    "{foreign} word given for an arc in the {} plane",
-                    plane.name()
-                ),
-            );
-        }
-        let [oa, ob] = plane.offset_letters().map(|l| parsed.get(l));
-        let center = match (parsed.get('R'), oa.or(ob)) {
-            (Some(r), Some(_)) => {
-                return err(
-                    r.column,
-                    "mixed radius (R) and centre (I/J/K) format for an arc".into(),
-                );
-            }
-            (Some(r), None) => CenterWords::Radius(r.value),
-            (None, Some(_)) => CenterWords::Offsets([oa, ob].map(|w| w.map_or(0.0, |w| w.value))),
-            (None, None) => {
-                let [la, lb] = plane.offset_letters();
-                return err(column, format!("arc without R, {la} or {lb} words"));
-            }
-        };
-        let turns = match parsed.get('P') {
-            None => 1,
-            Some(p)
-                if p.value >= 1.0 && p.value.fract() == 0.0 && p.value <= f64::from(MAX_TURNS) =>
-            {
-                p.value as u32
-            }
-            Some(p) => {
-                return err(
-                    p.column,
-                    format!("P (turns) of an arc must be a whole number from 1 to {MAX_TURNS}"),
-                );
-            }
-        };
-        let scale = self.scale();
-        let request = ArcRequest {
-            plane,
-            clockwise,
-            start: xyz(self.axes.position()) / scale,
-            end: xyz(end) / scale,
-            center,
-            ijk_absolute: self.ijk_absolute,
-            inch: self.inch,
-        };
-        let center = arc_center(&request).map_err(|m| Diagnostic::new(line, column, m))?;
-        let mut normal = Vec3::zeros();
-        normal[plane.indices()[2]] = 1.0;
-        Ok(MotionKind::Arc {
-            center: Point3::from(center.coords * scale),
-            normal,
-            clockwise,
-            turns,
-        })
-    }
-
-    /// Fanuc-style programs read `X10` as ten least increments; LinuxCNC as 10 units.
-    fn suspicious_numbers(&mut self, parsed: &Words, line: usize) {
         if !self.fanuc || self.fanuc_warned {
             return;
         }
@@ -426,89 +467,118 @@ impl<'k> Interpreter<'k> {
         }
     }
 
-    /// The tool number of the last M6, if any.
-    pub fn tool_number(&self) -> Option<u32> {
-        self.active_tool
+    /// Warns once when the tool length offset in force is not the loaded tool's: the
+    /// tip is then off the programmed point.
+    pub(crate) fn check_tool_offset(&mut self, line: usize) {
+        if self.tool_warned {
+            return;
+        }
+        let loaded = self.loaded_offset();
+        let dz = (self.offsets.tool[2] - loaded[2]) * self.scale();
+        if dz.abs() > 1e-9 {
+            self.tool_warned = true;
+            let tool = self.loaded_tool.unwrap_or(0);
+            self.warn(
+                line,
+                1,
+                format!(
+                    "the tool length offset in force differs from the loaded tool T{tool}'s by \
+                     {dz:.4} mm: the tip is simulated {:.4} mm {} the programmed point",
+                    dz.abs(),
+                    if dz > 0.0 { "above" } else { "below" }
+                ),
+            );
+        }
     }
-}
 
-/// The `X Y Z` of an axis position.
-fn xyz(p: &AxisPosition) -> Point3 {
-    Point3::new(p[0], p[1], p[2])
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::read::lexer::lex_line;
-
-    fn run(lines: &[&str]) -> (Interpreter<'static>, Option<Diagnostic>) {
-        let mut machine = Interpreter::new(Pose::vertical(Point3::origin()));
-        for (i, text) in lines.iter().enumerate() {
-            let block = lex_line(text, i + 1).unwrap();
-            match machine.execute(&block, i + 1) {
-                Ok(Flow::Continue) => {}
-                Ok(Flow::End) => break,
-                Err(d) => return (machine, Some(d)),
+    /// The loaded tool's offsets from the tool table, program units.
+    pub(crate) fn loaded_offset(&self) -> Pos {
+        let tool = self
+            .loaded_tool
+            .and_then(|t| self.tools.get(t));
+        let mut out = [0.0; 6];
+        if let Some(t) = tool {
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = if k < 3 {
+                    self.user_to_program(t.offset[k])
+                } else {
+                    t.offset[k]
+                };
             }
         }
-        (machine, None)
+        out
     }
 
-    #[test]
-    fn order_of_execution_within_a_block() {
-        // F before units: F10 is mm/min; G91 before the motion: X1 is incremental inches
-        let (m, err) = run(&["G21 G0 X1", "G20 G91 F10 G1 X1"]);
-        assert!(err.is_none());
-        let last = m.motions[1];
-        assert_eq!(last.feed, 10.0);
-        assert!((last.end.cl.x - 26.4).abs() < 1e-12);
+    /// The loaded tool's diameter from the tool table, program units (0 without one).
+    pub(crate) fn loaded_diameter(&self) -> f64 {
+        let d = self
+            .loaded_tool
+            .and_then(|t| self.tools.get(t))
+            .map_or(0.0, |t| t.diameter);
+        self.user_to_program(d)
     }
 
-    #[test]
-    fn incremental_arcs_and_absolute_centres() {
-        let (m, err) = run(&[
-            "G21 G91 F100",
-            "G3 X10 Y10 I0 J10",
-            "G90 G90.1 G2 X20 Y0 I10 J0",
-        ]);
-        assert!(err.is_none(), "{err:?}");
-        let MotionKind::Arc {
-            center, clockwise, ..
-        } = m.motions[0].kind
-        else {
-            panic!("{:?}", m.motions[0]);
-        };
-        assert_eq!((center, clockwise), (Point3::new(0.0, 10.0, 0.0), false));
-        let MotionKind::Arc { center, .. } = m.motions[1].kind else {
-            panic!("{:?}", m.motions[1]);
-        };
-        assert_eq!(center, Point3::new(10.0, 0.0, 0.0));
+    /// The coordinate system as a G code times ten: 540 (G54) ... 593 (G59.3).
+    pub(crate) fn coord_system_code(&self) -> f64 {
+        let n = f64::from(self.offsets.index);
+        if n <= 6.0 { 530.0 + 10.0 * n } else { 590.0 + (n - 6.0) }
     }
 
-    #[test]
-    fn inverse_time_on_three_axes_as_rs274_reads_it() {
-        // rs274 -g: SET_FEED_RATE(20) for the 2 mm line at F10, 31.4159 for the half
-        // circle of radius 2 at F5; G0 needs no F.
-        let (m, err) = run(&["G21 G93", "G1 X2 F10", "G0 X0", "G2 X4 I2 F5"]);
-        assert!(err.is_none(), "{err:?}");
-        assert!((m.motions[0].feed - 20.0).abs() < 1e-12);
-        assert_eq!(m.motions[1].feed, 0.0);
-        assert!((m.motions[2].feed - 10.0 * std::f64::consts::PI).abs() < 1e-12);
-        let (_, err) = run(&["G21 G93", "G1 X2 F10", "X3"]);
-        assert_eq!(err.map(|d| (d.line, d.column)), Some((3, 1)));
+    /// The plane as a G code times ten: 170, 180, 190.
+    pub(crate) fn plane_code(&self) -> f64 {
+        match self.plane {
+            Plane::Xy => 170.0,
+            Plane::Xz => 180.0,
+            Plane::Yz => 190.0,
+        }
     }
 
-    #[test]
-    fn modes_persist_and_end_stops() {
-        let (m, err) = run(&["G21 G18 F50", "G2 X10 Z0 I5 K0", "M30", "G0 X99"]);
-        assert!(err.is_none());
-        assert_eq!(m.motions.len(), 1);
-        let MotionKind::Arc { normal, .. } = m.motions[0].kind else {
-            panic!();
-        };
-        assert_eq!(normal, Vec3::y());
-        let (_, err) = run(&["G21 G1 X1 F10", "G80", "X2"]);
-        assert_eq!(err.map(|d| (d.line, d.column)), Some((3, 1)));
+    /// Cutter compensation as a G code times ten: 400, 410, 420.
+    pub(crate) fn comp_code(&self) -> f64 {
+        match self.comp.side() {
+            None => 400.0,
+            Some(true) => 410.0,
+            Some(false) => 420.0,
+        }
     }
+
+    /// The motion mode as its G code number (80 when none).
+    pub(crate) fn motion_code(&self) -> f64 {
+        match self.motion {
+            Some(Action::Rapid) => 0.0,
+            Some(Action::Linear) => 1.0,
+            Some(Action::ArcCw) => 2.0,
+            Some(Action::ArcCcw) => 3.0,
+            Some(Action::Cycle(n)) => f64::from(n),
+            _ => 80.0,
+        }
+    }
+
+    /// The tool number of the last M6, if any.
+    pub fn tool_number(&self) -> Option<u32> {
+        self.loaded_tool
+    }
+
+    /// The current point in program coordinates (program units, degrees).
+    pub fn current(&self) -> Pos {
+        self.cur
+    }
+
+    /// The part-frame point of the program position `p` (see the module docs), mm.
+    pub fn part_point(&self, p: &Pos) -> Point3 {
+        let m = self.to_machine(p);
+        Point3::new(m[0], m[1], m[2])
+    }
+}
+
+/// A whole number >= 0 from a word (tool numbers).
+pub(crate) fn whole(w: Word, line: usize, what: &str) -> Result<u32, Diagnostic> {
+    if w.value < 0.0 || (w.value - w.value.round()).abs() > 1e-4 || w.value > f64::from(u32::MAX) {
+        return Err(Diagnostic::new(
+            line,
+            w.column,
+            format!("{what} must be a whole number >= 0"),
+        ));
+    }
+    Ok(w.value.round() as u32)
 }

@@ -42,6 +42,8 @@ pub struct Diagnostic {
     pub column: usize,
     /// What is wrong, for a user.
     pub message: String,
+    /// The file the line is in, when it is not the program itself (a subroutine file).
+    pub file: Option<String>,
 }
 
 impl Diagnostic {
@@ -51,18 +53,28 @@ impl Diagnostic {
             line,
             column,
             message: message.into(),
+            file: None,
         }
     }
 
-    /// `"source:line:column: message"`, the form compilers and editors understand.
+    /// The same diagnostic in `file` (a subroutine file).
+    pub fn in_file(mut self, file: impl Into<String>) -> Self {
+        self.file = Some(file.into());
+        self
+    }
+
+    /// `"source:line:column: message"`, the form compilers and editors understand
+    /// (the diagnostic's own file instead of `source` when it has one).
     ///
     /// ```
     /// use swarf_nc::read::Diagnostic;
     /// let d = Diagnostic::new(12, 5, "unknown G code G12");
     /// assert_eq!(d.with_source("part.ngc"), "part.ngc:12:5: unknown G code G12");
+    /// let d = d.in_file("subs/hole.ngc");
+    /// assert_eq!(d.with_source("part.ngc"), "subs/hole.ngc:12:5: unknown G code G12");
     /// ```
     pub fn with_source(&self, source: &str) -> String {
-        format!("{source}:{self}")
+        format!("{}:{self}", self.file.as_deref().unwrap_or(source))
     }
 }
 
@@ -108,7 +120,9 @@ pub struct Motion {
     /// without `# feed=`) and for five-axis blocks that turn the tool about its tip
     /// (see [`crate::read::feed`]).
     pub feed: f64,
-    /// 1-based source line of the block or record that commanded the motion.
+    /// 1-based source line of the block or record that commanded the motion; for a
+    /// motion of a subroutine read from another file, the line of the program's call
+    /// that led there.
     pub line: usize,
 }
 
@@ -269,6 +283,9 @@ pub struct Program {
     pub source: String,
     /// Set when reading stopped at an error: `motions` hold what came before it.
     pub stopped: Option<Diagnostic>,
+    /// What the program says to the operator: `(MSG, ...)` and `(DEBUG, ...)` comments
+    /// (parameters expanded), with their lines.
+    pub messages: Vec<Diagnostic>,
 }
 
 impl Program {
@@ -280,6 +297,7 @@ impl Program {
             tool: None,
             source: source.into(),
             stopped: None,
+            messages: Vec::new(),
         }
     }
 

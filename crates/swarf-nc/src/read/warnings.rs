@@ -30,6 +30,11 @@ impl Warnings {
         }
     }
 
+    /// Whether a warning with `message` was recorded.
+    pub fn has(&self, message: &str) -> bool {
+        self.seen.contains_key(message)
+    }
+
     /// The listed warnings, then one summary per message that had more.
     pub fn finish(mut self) -> Vec<Diagnostic> {
         for message in self.order {

@@ -9,9 +9,22 @@
 //! naming the machine's letters, and rotary words on an arc (G2/G3) are refused.
 
 use crate::read::codes::{Action, Effect, Group, g_code, m_code};
-use crate::read::lexer::{Block, Word};
 use crate::read::program::Diagnostic;
 use crate::read::warnings::Warnings;
+
+/// One word with its value evaluated: a letter and a number, with the column of
+/// the letter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Word {
+    /// Upper-case letter (or `@`, `^`).
+    pub letter: char,
+    /// The value (program units).
+    pub value: f64,
+    /// Whether the number was written with a decimal point (or was an expression).
+    pub has_point: bool,
+    /// 1-based column of the letter.
+    pub column: usize,
+}
 
 /// A block's words sorted out.
 #[derive(Debug, Default)]
@@ -20,18 +33,19 @@ pub struct Words {
     pub g: Vec<(u32, Group, Action, Word)>,
     /// M codes that do something: group, action, word.
     pub m: Vec<(Group, Action, Word)>,
-    letters: [Option<Word>; 26],
+    letters: [Option<Word>; LETTERS],
 }
 
 impl Words {
-    /// Sorts `block` (on `line`); harmless unsupported codes go to `warnings`.
+    /// Sorts the words of a block (on `line`); harmless unsupported codes go to
+    /// `warnings`.
     ///
     /// # Errors
     /// At the offending word: an unknown or refused G code, a refused M code, two codes
     /// of one modal group, a letter given twice.
-    pub fn sort(block: &Block, line: usize, warnings: &mut Warnings) -> Result<Words, Diagnostic> {
+    pub fn sort(block: &[Word], line: usize, warnings: &mut Warnings) -> Result<Words, Diagnostic> {
         let mut words = Words::default();
-        for &w in &block.words {
+        for &w in block {
             match w.letter {
                 'G' => words.g_word(w, line, warnings)?,
                 'M' => words.m_word(w, line, warnings)?,
@@ -112,6 +126,15 @@ impl Words {
         self.letters[letter_index(letter)]
     }
 
+    /// The first axis word of the block (`X Y Z`, and the machine's rotary letters).
+    pub fn axis_word(&self, rotary: Option<[char; 2]>) -> Option<Word> {
+        let [a, b] = rotary.unwrap_or(['X'; 2]);
+        ['X', 'Y', 'Z', a, b]
+            .into_iter()
+            .filter_map(|l| self.get(l))
+            .min_by_key(|w| w.column)
+    }
+
     /// The G word doing `action`, if any.
     pub fn has_g(&self, action: Action) -> Option<Word> {
         self.g.iter().find(|g| g.2 == action).map(|g| g.3)
@@ -125,22 +148,36 @@ impl Words {
             .map(|g| (g.2, g.3))
     }
 
-    /// Refuses letters swarf cannot simulate and warns about unused ones; `is_arc`:
-    /// the block runs in G2/G3 mode (so I, J, K, R and P have a use); `rotary`: the
-    /// machine's rotary axis letters when the reader has its kinematics.
+    /// Refuses letters swarf cannot simulate or that nothing in the block uses, and
+    /// warns about harmless unused ones; `mode`: the motion mode the block runs in;
+    /// `rotary`: the machine's rotary axis letters when the reader has its kinematics.
     ///
     /// # Errors
     /// At the word: A/B/C without kinematics, a rotary letter the machine does not
-    /// have, rotary words on an arc, U/V/W, E, and I/J/K/R outside arc mode.
+    /// have, rotary words on an arc, U/V/W, E, I/J/K/R outside an arc, a cycle or G10,
+    /// D without G41/G42.
     pub fn check_letters(
         &self,
-        is_arc: bool,
+        mode: Option<Action>,
         rotary: Option<[char; 2]>,
         line: usize,
         warnings: &mut Warnings,
     ) -> Result<(), Diagnostic> {
-        let dwell_or_blend =
-            self.has_g(Action::Dwell).is_some() || self.g.iter().any(|g| g.0 == 640);
+        let is_arc = matches!(mode, Some(Action::ArcCw | Action::ArcCcw));
+        let cycle = match mode {
+            Some(Action::Cycle(n)) => Some(n),
+            _ => None,
+        };
+        let g10 = self.has_g(Action::SetData).is_some();
+        let uses_p = is_arc
+            || g10
+            || self.has_g(Action::Dwell).is_some()
+            || self.g.iter().any(|g| g.0 == 640)
+            || matches!(cycle, Some(74 | 82 | 84 | 86 | 88 | 89));
+        let uses_q = matches!(cycle, Some(73 | 83))
+            || self.g.iter().any(|g| g.0 == 640)
+            || self.m.iter().any(|m| m.1 == Action::SetTool);
+        let comp = self.g.iter().any(|g| matches!(g.2, Action::Comp { .. }));
         for w in self.letters.iter().flatten() {
             let err = |message: String| Err(Diagnostic::new(line, w.column, message));
             let mut warn =
@@ -152,13 +189,20 @@ impl Words {
                     return err(format!("{l} axis word: only X, Y and Z axes are supported"));
                 }
                 'E' => return err("E word is not supported".to_string()),
-                'I' | 'J' | 'K' | 'R' if !is_arc => {
-                    return err(format!("{l} word with no G2 or G3 to use it"));
+                'I' | 'J' | 'K' if !(is_arc || cycle == Some(87) || g10) => {
+                    return err(format!("{l} word with no G2, G3 or G87 to use it"));
                 }
-                'P' if !(is_arc || dwell_or_blend) => {
-                    warn("P word ignored: no G2/G3, G4 or G64 uses it".into())
+                'R' if !(is_arc || cycle.is_some() || g10) => {
+                    return err(format!("{l} word with no G2, G3, canned cycle or G10 to use it"));
                 }
-                'Q' | 'L' | 'D' => warn(format!("{l} word ignored")),
+                'D' if !comp => return err("D word with no G41 or G42 to use it".into()),
+                'P' if !uses_p => {
+                    warn("P word ignored: no G2/G3, G4, G10, G64 or dwelling cycle uses it".into())
+                }
+                'Q' if !uses_q => warn("Q word ignored: no G73, G83, G64 or M61 uses it".into()),
+                'L' if !(cycle.is_some() || g10) => {
+                    warn("L word ignored: no canned cycle or G10 uses it".into())
+                }
                 'H' if self.has_g(Action::LengthOffset).is_none() => {
                     warn("H word without G43 ignored".into())
                 }
@@ -186,8 +230,15 @@ fn rotary_word(l: char, is_arc: bool, rotary: Option<[char; 2]>) -> Result<(), S
     }
 }
 
+/// Word letters: A to Z, then `@` and `^` (LinuxCNC's polar words).
+const LETTERS: usize = 28;
+
 fn letter_index(letter: char) -> usize {
-    (letter as usize).saturating_sub('A' as usize).min(25)
+    match letter {
+        '@' => 26,
+        '^' => 27,
+        l => (l as usize).saturating_sub('A' as usize).min(25),
+    }
 }
 
 /// `G90.1` for 901.
@@ -202,12 +253,26 @@ pub fn g_name(code10: u32) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::read::lexer::lex_line;
+
+    /// Space-separated plain words.
+    fn plain(text: &str) -> Vec<Word> {
+        let mut column = 1;
+        let mut out = Vec::new();
+        for token in text.split(' ') {
+            out.push(Word {
+                letter: token.chars().next().unwrap(),
+                value: token[1..].parse().unwrap(),
+                has_point: token.contains('.'),
+                column,
+            });
+            column += token.len() + 1;
+        }
+        out
+    }
 
     fn sort(text: &str) -> (Result<Words, Diagnostic>, Vec<Diagnostic>) {
         let mut warnings = Warnings::default();
-        let block = lex_line(text, 7).unwrap();
-        let words = Words::sort(&block, 7, &mut warnings);
+        let words = Words::sort(&plain(text), 7, &mut warnings);
         (words, warnings.finish())
     }
 
@@ -242,18 +307,23 @@ mod tests {
 
     #[test]
     fn letters_checked_for_the_mode() {
-        let check = |text: &str, is_arc: bool| {
+        let check = |text: &str, mode: Option<Action>| {
             let (words, _) = sort(text);
             let mut warnings = Warnings::default();
-            let result = words.unwrap().check_letters(is_arc, None, 7, &mut warnings);
+            let result = words.unwrap().check_letters(mode, None, 7, &mut warnings);
             (result.err().map(|d| d.column), warnings.finish().len())
         };
-        assert_eq!(check("X1 I2", false), (Some(4), 0));
-        assert_eq!(check("X1 I2 P2", true), (None, 0));
-        assert_eq!(check("X1 P2", false), (None, 1));
-        assert_eq!(check("G4 P2", false), (None, 0));
-        assert_eq!(check("X1 W2", false), (Some(4), 0));
-        assert_eq!(check("G43 H1 D2", false), (None, 1));
+        let arc = Some(Action::ArcCw);
+        assert_eq!(check("X1 I2", None), (Some(4), 0));
+        assert_eq!(check("X1 I2 P2", arc), (None, 0));
+        assert_eq!(check("X1 P2", None), (None, 1));
+        assert_eq!(check("G4 P2", None), (None, 0));
+        assert_eq!(check("X1 W2", None), (Some(4), 0));
+        assert_eq!(check("G43 H1 D2", None), (Some(8), 0));
+        assert_eq!(check("G41 D2", None), (None, 0));
+        assert_eq!(check("X1 Y2 R3 Q1", Some(Action::Cycle(83))), (None, 0));
+        assert_eq!(check("X1 Y2 R3 Q1", Some(Action::Cycle(81))), (None, 1));
+        assert_eq!(check("X1 Y2 I3", Some(Action::Cycle(87))), (None, 0));
     }
 
     #[test]
@@ -261,9 +331,10 @@ mod tests {
         let check = |text: &str, is_arc: bool, rotary: Option<[char; 2]>| {
             let (words, _) = sort(text);
             let mut warnings = Warnings::default();
+            let mode = if is_arc { Some(Action::ArcCw) } else { None };
             words
                 .unwrap()
-                .check_letters(is_arc, rotary, 7, &mut warnings)
+                .check_letters(mode, rotary, 7, &mut warnings)
                 .map_err(|d| (d.column, d.message))
         };
         let e = check("X1 A2", false, None).unwrap_err();

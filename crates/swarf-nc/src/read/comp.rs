@@ -1,0 +1,843 @@
+//! Cutter radius compensation (G40, G41, G42, G41.1, G42.1) as LinuxCNC 2.9 computes
+//! it (`interp_convert.cc`: `convert_cutter_compensation_on/off`,
+//! `convert_straight_comp1/2`, `convert_arc_comp1/2`; `interp_queue.cc`), in the XY plane.
+//!
+//! The radius `r` is half the tool table diameter of tool D (or of the loaded tool
+//! without D), or half the D word of G41.1/G42.1; a negative radius swaps the side.
+//! The tool runs `r` to the left (G41) or right (G42) of the programmed path:
+//!
+//! - **Entry** (the first move after G41/G42): a line from where the tool is to the
+//!   point `r` to the side of the programmed end, perpendicular to the entry line (or
+//!   an arc ending `r` off the programmed end along its radius, its centre moved so
+//!   that it still passes through the start). The entry must be longer than `r`.
+//! - **Corners.** At each programmed point the previous segment's direction (from the
+//!   tool's radius there) and the next one's are compared with a slack of 0.05 rad. A
+//!   convex corner gets an arc of radius `r` about the programmed point (a straight
+//!   rapid for G0). At a concave corner the previous move, still held back in a queue,
+//!   is shortened to where the tool touches both segments: back along a line by
+//!   `r / tan((beta + pi) / 2)`, or to the intersection with the offset arc. A move that
+//!   would have to run backwards, or an arc that would sweep further than programmed,
+//!   cannot be cut without gouging and is an error, as in LinuxCNC.
+//! - Moves without XY motion (Z only) stay in the queue with the move before them, so
+//!   that a corner after them still trims that move. G40 (and M0, M1, M2, M30) ends the
+//!   queue where the tool is; the next move must be straight.
+
+use crate::read::arc::{ArcRequest, CenterWords, Plane, SPIRAL_TOLERANCE_INCH, SPIRAL_TOLERANCE_MM, arc_center};
+use crate::read::expr::TOLERANCE_EQUAL;
+use crate::read::feed::BlockFeed;
+use crate::read::modal::{Interpreter, Pos};
+use crate::read::motion::ArcMove;
+use crate::read::program::{Diagnostic, MotionKind};
+use crate::read::words::{Word, Words};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+/// LinuxCNC `TOLERANCE_CONCAVE_CORNER`, radians.
+const CORNER_SLACK: f64 = 0.05;
+
+/// A move held back until the next corner is known.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Queued {
+    Straight {
+        rapid: bool,
+        /// The programmed direction (for the backwards check).
+        dir: [f64; 2],
+        end: Pos,
+        feed: Option<BlockFeed>,
+        line: usize,
+    },
+    Arc {
+        /// The angle the arc sweeps as programmed, signed (0: an added corner arc).
+        sweep: f64,
+        end: Pos,
+        center: [f64; 2],
+        /// Turns, positive counter-clockwise.
+        turn: i32,
+        feed: Option<BlockFeed>,
+        line: usize,
+    },
+}
+
+/// The compensation state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Comp {
+    /// On, and to the left (G41) or right (G42).
+    left: Option<bool>,
+    /// Radius, program units (>= 0).
+    radius: f64,
+    /// No move since compensation was turned on.
+    pub firstmove: bool,
+    /// The programmed point (where the path would be without compensation).
+    pub program: [f64; 3],
+    /// The move after G40 must be straight.
+    pub arc_not_allowed: bool,
+    queue: Vec<Queued>,
+    /// Where the queued moves start, when known.
+    endpoint: Option<[f64; 2]>,
+}
+
+impl Default for Comp {
+    fn default() -> Self {
+        Comp {
+            left: None,
+            radius: 0.0,
+            firstmove: true,
+            program: [0.0; 3],
+            arc_not_allowed: false,
+            queue: Vec::new(),
+            endpoint: None,
+        }
+    }
+}
+
+impl Comp {
+    /// Whether G41/G42 is in force.
+    pub fn is_on(&self) -> bool {
+        self.left.is_some()
+    }
+
+    /// Left (true) or right (false) of the path, when on.
+    pub fn side(&self) -> Option<bool> {
+        self.left
+    }
+
+    /// Whether moves are compensated (on, with a radius).
+    fn active(&self) -> bool {
+        self.is_on() && self.radius > 0.0
+    }
+
+    /// Carries lengths into other units (`k` new units per old unit).
+    pub fn scale(&mut self, k: f64) {
+        self.radius *= k;
+        for v in &mut self.program {
+            *v *= k;
+        }
+        if let Some(e) = &mut self.endpoint {
+            e[0] *= k;
+            e[1] *= k;
+        }
+        for q in &mut self.queue {
+            let end = match q {
+                Queued::Straight { end, .. } => end,
+                Queued::Arc { end, center, .. } => {
+                    center[0] *= k;
+                    center[1] *= k;
+                    end
+                }
+            };
+            for v in end[..3].iter_mut() {
+                *v *= k;
+            }
+        }
+    }
+}
+
+/// Whether the tool is inside the arc: left of a counter-clockwise one, right of a
+/// clockwise one.
+fn inside(left: bool, turn: i32) -> bool {
+    (left && turn > 0) || (!left && turn < 0)
+}
+
+/// The signed angle an arc sweeps from `p1` to `p2` about `c` (LinuxCNC's `find_turn`).
+fn find_turn(p1: [f64; 2], c: [f64; 2], turn: i32, p2: [f64; 2]) -> f64 {
+    if turn == 0 {
+        return 0.0;
+    }
+    let mut alpha = (p1[1] - c[1]).atan2(p1[0] - c[0]);
+    let mut beta = (p2[1] - c[1]).atan2(p2[0] - c[0]);
+    if turn > 0 {
+        if beta <= alpha {
+            beta += TAU;
+        }
+        beta - alpha + f64::from(turn - 1) * TAU
+    } else {
+        if alpha <= beta {
+            alpha += TAU;
+        }
+        beta - alpha + f64::from(turn + 1) * TAU
+    }
+}
+
+fn with_xy(mut p: Pos, x: f64, y: f64) -> Pos {
+    p[0] = x;
+    p[1] = y;
+    p
+}
+
+impl Interpreter<'_> {
+    /// G41/G42 (`left`), G41.1/G42.1 (`diameter`) with the block's D word.
+    pub(crate) fn comp_on(
+        &mut self,
+        left: bool,
+        diameter: bool,
+        parsed: &Words,
+        w: Word,
+        line: usize,
+    ) -> Result<(), Diagnostic> {
+        let err = |column: usize, m: String| Err(Diagnostic::new(line, column, m));
+        let name = if left { "G41" } else { "G42" };
+        if self.plane != Plane::Xy {
+            return err(
+                w.column,
+                "cutter radius compensation is supported in the XY plane (G17) only; in G18 it \
+                 is lathe compensation, which swarf does not simulate"
+                    .into(),
+            );
+        }
+        if self.comp.is_on() {
+            return err(w.column, "cannot turn cutter radius compensation on when it is on".into());
+        }
+        let d = parsed.get('D');
+        let mut radius = if diameter {
+            let Some(d) = d else {
+                return err(w.column, format!("{name}.1 with no D word"));
+            };
+            if let Some(l) = parsed.get('L') {
+                return err(l.column, format!("{name}.1 with an L word: lathe tool orientation is not supported"));
+            }
+            d.value / 2.0
+        } else {
+            let number = match d {
+                Some(d) => {
+                    let near = d.value.round();
+                    if (near - d.value).abs() >= 1e-4 {
+                        return err(d.column, format!("{name} requires the D word to be a whole number"));
+                    }
+                    if near < 0.0 {
+                        return err(d.column, "negative D word tool radius index used".into());
+                    }
+                    Some(near as u32)
+                }
+                None => self.loaded_tool,
+            };
+            let tool = match number {
+                Some(n) if n != 0 => match self.tools.get(n) {
+                    Some(t) => *t,
+                    None => {
+                        return err(
+                            d.map_or(w.column, |d| d.column),
+                            format!("tool number {n} not found in the tool table: give the table with --tool-table"),
+                        );
+                    }
+                },
+                _ => Default::default(),
+            };
+            if tool.orientation != 0 && tool.orientation != 9 {
+                return err(w.column, format!("{name} with a lathe tool (orientation {})", tool.orientation));
+            }
+            self.user_to_program(tool.diameter) / 2.0
+        };
+        let mut side = left;
+        if radius < 0.0 {
+            radius = -radius;
+            side = !side;
+        }
+        self.comp.radius = radius;
+        self.comp.left = Some(side);
+        Ok(())
+    }
+
+    /// G40: the queue ends where the tool is.
+    pub(crate) fn comp_off(&mut self, line: usize) -> Result<(), Diagnostic> {
+        if self.comp.active() && !self.comp.firstmove {
+            let (x, y) = (self.cur[0], self.cur[1]);
+            self.move_endpoint_and_flush(x, y, line)?;
+            self.dequeue(line)?;
+            self.cur[..3].copy_from_slice(&self.comp.program);
+            self.comp.arc_not_allowed = true;
+        }
+        self.comp.left = None;
+        self.comp.firstmove = true;
+        Ok(())
+    }
+
+    /// Ends the queue where the tool is (M0, M1, M2, M30, the end of the program).
+    pub(crate) fn comp_flush_here(&mut self, line: usize) -> Result<(), Diagnostic> {
+        let (x, y) = (self.cur[0], self.cur[1]);
+        self.move_endpoint_and_flush(x, y, line)?;
+        self.dequeue(line)
+    }
+
+    fn dequeue(&mut self, _line: usize) -> Result<(), Diagnostic> {
+        self.comp.endpoint = None;
+        for q in std::mem::take(&mut self.comp.queue) {
+            match q {
+                Queued::Straight {
+                    rapid, end, feed, line, ..
+                } => {
+                    let kind = if rapid {
+                        MotionKind::Rapid
+                    } else {
+                        MotionKind::Linear
+                    };
+                    self.emit_straight(kind, end, feed, line)?;
+                }
+                Queued::Arc {
+                    end,
+                    center,
+                    turn,
+                    feed,
+                    line,
+                    ..
+                } => {
+                    let arc = ArcMove {
+                        center: [center[0], center[1], end[2]],
+                        plane: Plane::Xy,
+                        clockwise: turn < 0,
+                        turns: turn.unsigned_abs(),
+                    };
+                    self.emit_arc(&arc, end, feed, line)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Moves the XY end of every queued move to `(x, y)`, then emits them.
+    fn move_endpoint_and_flush(&mut self, x: f64, y: f64, line: usize) -> Result<(), Diagnostic> {
+        if self.comp.queue.is_empty() {
+            return Ok(());
+        }
+        let endpoint = self.comp.endpoint;
+        let slack = if self.inch { 0.001 } else { 0.0254 };
+        for q in &mut self.comp.queue {
+            match q {
+                Queued::Arc {
+                    sweep,
+                    end,
+                    center,
+                    turn,
+                    line: qline,
+                    ..
+                } => {
+                    let r1 = (end[0] - center[0]).hypot(end[1] - center[1]);
+                    let r2 = (x - center[0]).hypot(y - center[1]);
+                    if (r1 - r2).abs() > 0.01 {
+                        return Err(Diagnostic::new(
+                            *qline,
+                            1,
+                            format!("cutter compensation made an arc with mismatched radii r1 {r1:.6} r2 {r2:.6}"),
+                        ));
+                    }
+                    if let Some(e) = endpoint {
+                        let l2 = find_turn(e, *center, *turn, [x, y]);
+                        if *sweep != 0.0 && l2.abs() > sweep.abs() + slack {
+                            return Err(Diagnostic::new(
+                                line,
+                                1,
+                                "arc move in concave corner cannot be reached by the tool without gouging",
+                            ));
+                        }
+                    }
+                    *end = with_xy(*end, x, y);
+                }
+                Queued::Straight { rapid, dir, end, .. } => {
+                    if let Some(e) = endpoint {
+                        let dot = dir[0] * (x - e[0]) + dir[1] * (y - e[1]);
+                        if dot < 0.0 {
+                            let what = if *rapid { "straight traverse" } else { "straight feed" };
+                            return Err(Diagnostic::new(
+                                line,
+                                1,
+                                format!("{what} in concave corner cannot be reached by the tool without gouging"),
+                            ));
+                        }
+                    }
+                    *end = with_xy(*end, x, y);
+                }
+            }
+        }
+        self.dequeue(line)?;
+        self.comp.endpoint = Some([x, y]);
+        Ok(())
+    }
+
+    /// A G0/G1 block with compensation on, to the programmed `end`.
+    pub(crate) fn comp_straight(
+        &mut self,
+        rapid: bool,
+        end: Pos,
+        feed: Option<BlockFeed>,
+        line: usize,
+    ) -> Result<(), Diagnostic> {
+        if !self.comp.active() {
+            self.emit_straight(if rapid { MotionKind::Rapid } else { MotionKind::Linear }, end, feed, line)?;
+            self.cur = end;
+            return Ok(());
+        }
+        let left = self.comp.left == Some(true);
+        let r = self.comp.radius;
+        let (px, py) = (end[0], end[1]);
+        let (cx, cy) = (self.cur[0], self.cur[1]);
+        if self.comp.firstmove {
+            if (px - cx).hypot(py - cy) <= r {
+                return Err(Diagnostic::new(
+                    line,
+                    1,
+                    "length of cutter compensation entry move is not greater than the tool radius",
+                ));
+            }
+            let alpha = (py - cy).atan2(px - cx) + if left { FRAC_PI_2 } else { -FRAC_PI_2 };
+            let tool_end = with_xy(end, px + r * alpha.cos(), py + r * alpha.sin());
+            self.comp.endpoint = Some([cx, cy]);
+            self.comp.queue.push(Queued::Straight {
+                rapid,
+                dir: [alpha.cos(), alpha.sin()],
+                end: tool_end,
+                feed,
+                line,
+            });
+            self.comp.firstmove = false;
+            self.cur = tool_end;
+            self.comp.program = [px, py, end[2]];
+            return Ok(());
+        }
+        let [opx, opy, _] = self.comp.program;
+        let cz = self.cur[2];
+        if px == opx && py == opy {
+            self.comp.queue.push(Queued::Straight {
+                rapid,
+                dir: [0.0, 0.0],
+                end: with_xy(end, cx, cy),
+                feed,
+                line,
+            });
+            self.cur = with_xy(end, cx, cy);
+            self.comp.program = [px, py, end[2]];
+            return Ok(());
+        }
+        let mut theta = (cy - opy).atan2(cx - opx);
+        let mut alpha = (py - opy).atan2(px - opx);
+        let (beta, gamma) = if left {
+            if theta < alpha {
+                theta += TAU;
+            }
+            (theta - alpha - FRAC_PI_2, FRAC_PI_2)
+        } else {
+            if alpha < theta {
+                alpha += TAU;
+            }
+            (alpha - theta - FRAC_PI_2, -FRAC_PI_2)
+        };
+        let tool_end = with_xy(end, px + r * (alpha + gamma).cos(), py + r * (alpha + gamma).sin());
+        let mid = [opx + r * (alpha + gamma).cos(), opy + r * (alpha + gamma).sin()];
+        let front_arc_turn = match self.comp.queue.first() {
+            Some(Queued::Arc { turn, .. }) => Some(*turn),
+            _ => None,
+        };
+        let concave = beta < -CORNER_SLACK
+            || beta > PI + CORNER_SLACK
+            || (beta > PI - CORNER_SLACK
+                && front_arc_turn.is_some_and(|t| (!left && t > 0) || (left && t < 0)));
+        if !concave && beta > CORNER_SLACK {
+            self.move_endpoint_and_flush(cx, cy, line)?;
+            let mid_pos = with_xy(with_z(self.cur, cz), mid[0], mid[1]);
+            if rapid {
+                self.comp.queue.push(Queued::Straight {
+                    rapid: true,
+                    dir: [0.0, 0.0],
+                    end: mid_pos,
+                    feed,
+                    line,
+                });
+            } else {
+                self.comp.queue.push(Queued::Arc {
+                    sweep: 0.0,
+                    end: mid_pos,
+                    center: [opx, opy],
+                    turn: if left { -1 } else { 1 },
+                    feed,
+                    line,
+                });
+            }
+            self.dequeue(line)?;
+            self.comp.endpoint = Some(mid);
+        } else if concave {
+            let (mx, my) = match self.comp.queue.first().copied() {
+                Some(Queued::Arc {
+                    end: qend,
+                    center,
+                    turn,
+                    ..
+                }) => arc_to_line_corner(left, r, [opx, opy], [px, py], qend, center, turn)
+                    .map_err(|m| Diagnostic::new(line, 1, m))?,
+                _ => {
+                    let halfcorner = (beta + PI) / 2.0;
+                    if halfcorner == 0.0 {
+                        return Err(Diagnostic::new(
+                            line,
+                            1,
+                            "zero degree inside corner is invalid for cutter compensation",
+                        ));
+                    }
+                    let retreat = r / halfcorner.tan();
+                    (cx + retreat * (theta + gamma).cos(), cy + retreat * (theta + gamma).sin())
+                }
+            };
+            self.move_endpoint_and_flush(mx, my, line)?;
+        } else {
+            self.dequeue(line)?;
+            self.comp.endpoint = Some([cx, cy]);
+        }
+        self.comp.queue.push(Queued::Straight {
+            rapid,
+            dir: [px - opx, py - opy],
+            end: tool_end,
+            feed,
+            line,
+        });
+        self.cur = tool_end;
+        self.comp.program = [px, py, end[2]];
+        Ok(())
+    }
+
+    /// A G2/G3 block with compensation on.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn comp_arc(
+        &mut self,
+        clockwise: bool,
+        center: CenterWords,
+        turns: u32,
+        end: Pos,
+        feed: Option<BlockFeed>,
+        line: usize,
+        column: usize,
+    ) -> Result<(), Diagnostic> {
+        let err = |m: &str| Err(Diagnostic::new(line, column, m));
+        if !self.comp.active() {
+            let request = ArcRequest {
+                plane: Plane::Xy,
+                clockwise,
+                start: crate::read::motion::xyz(&self.cur),
+                end: crate::read::motion::xyz(&end),
+                center,
+                ijk_absolute: self.ijk_absolute,
+                inch: self.inch,
+            };
+            let c = arc_center(&request).map_err(|m| Diagnostic::new(line, column, m))?;
+            let arc = ArcMove {
+                center: [c.x, c.y, c.z],
+                plane: Plane::Xy,
+                clockwise,
+                turns,
+            };
+            self.emit_arc(&arc, end, feed, line)?;
+            self.cur = end;
+            return Ok(());
+        }
+        let left = self.comp.left == Some(true);
+        let r = self.comp.radius;
+        let turn = if clockwise { -(turns as i32) } else { turns as i32 };
+        let first = self.comp.firstmove;
+        let start = if first {
+            [self.cur[0], self.cur[1], self.cur[2]]
+        } else {
+            self.comp.program
+        };
+        if first && (end[0] - start[0]).hypot(end[1] - start[1]) <= r {
+            return err("radius of cutter compensation entry arc is not greater than the tool radius");
+        }
+        let request = ArcRequest {
+            plane: Plane::Xy,
+            clockwise,
+            start: swarf_geom::Point3::new(start[0], start[1], start[2]),
+            end: crate::read::motion::xyz(&end),
+            center,
+            ijk_absolute: self.ijk_absolute,
+            inch: self.inch,
+        };
+        let c = arc_center(&request).map_err(|m| Diagnostic::new(line, column, m))?;
+        let c = [c.x, c.y];
+        let arc_radius = (c[0] - end[0]).hypot(c[1] - end[1]);
+        let tool_inside = inside(left, turn);
+        if tool_inside && arc_radius <= r {
+            return err("tool radius not less than arc radius with cutter radius compensation");
+        }
+        if first {
+            return self.comp_arc_entry(left, r, c, turn, end, feed, line, column);
+        }
+        self.comp_arc_corner(left, r, c, turn, end, feed, line)
+    }
+
+    /// The first move after G41/G42 is an arc (`convert_arc_comp1`).
+    #[allow(clippy::too_many_arguments)]
+    fn comp_arc_entry(
+        &mut self,
+        left: bool,
+        r: f64,
+        c: [f64; 2],
+        turn: i32,
+        end: Pos,
+        feed: Option<BlockFeed>,
+        line: usize,
+        column: usize,
+    ) -> Result<(), Diagnostic> {
+        let (cx, cy) = (self.cur[0], self.cur[1]);
+        let (ex, ey) = (end[0], end[1]);
+        let gamma = if inside(left, turn) {
+            (c[1] - ey).atan2(c[0] - ex)
+        } else {
+            (ey - c[1]).atan2(ex - c[0])
+        };
+        self.comp.firstmove = false;
+        self.comp.program = [ex, ey, end[2]];
+        let (tx, ty) = (ex + r * gamma.cos(), ey + r * gamma.sin());
+        let b_len = (cy - ty).hypot(cx - tx) / 2.0;
+        let ab_ang = (c[1] - ty).atan2(c[0] - tx);
+        let a_ang = (cy - ty).atan2(cx - tx) - ab_ang;
+        if a_ang.cos().abs() < TOLERANCE_EQUAL {
+            return Err(Diagnostic::new(
+                line,
+                column,
+                "tool radius not less than arc radius with cutter radius compensation",
+            ));
+        }
+        let c_len = b_len / a_ang.cos();
+        let center = [tx + c_len * ab_ang.cos(), ty + c_len * ab_ang.sin()];
+        let tol = if self.inch {
+            SPIRAL_TOLERANCE_INCH
+        } else {
+            SPIRAL_TOLERANCE_MM
+        };
+        let r_end = (center[0] - tx).hypot(center[1] - ty);
+        let r_start = (center[0] - cx).hypot(center[1] - cy);
+        if (r_end - r_start).abs() > tol {
+            return Err(Diagnostic::new(line, column, "cutter compensation could not fit the entry arc"));
+        }
+        let tool_end = with_xy(end, tx, ty);
+        self.comp.queue.push(Queued::Arc {
+            sweep: find_turn([cx, cy], center, turn, [tx, ty]),
+            end: tool_end,
+            center,
+            turn,
+            feed,
+            line,
+        });
+        self.cur = tool_end;
+        Ok(())
+    }
+
+    /// An arc after the first move (`convert_arc_comp2`).
+    #[allow(clippy::too_many_arguments)]
+    fn comp_arc_corner(
+        &mut self,
+        left: bool,
+        r: f64,
+        c: [f64; 2],
+        turn: i32,
+        end: Pos,
+        feed: Option<BlockFeed>,
+        line: usize,
+    ) -> Result<(), Diagnostic> {
+        let [opx, opy, _] = self.comp.program;
+        let (cx, cy, cz) = (self.cur[0], self.cur[1], self.cur[2]);
+        let (ex, ey) = (end[0], end[1]);
+        let arc_radius = (c[0] - ex).hypot(c[1] - ey);
+        let mut theta = (cy - opy).atan2(cx - opx);
+        theta = if left { theta - FRAC_PI_2 } else { theta + FRAC_PI_2 };
+        let mut delta = (c[1] - opy).atan2(c[0] - opx);
+        let ccw = turn > 0;
+        let alpha = if ccw { delta - FRAC_PI_2 } else { delta + FRAC_PI_2 };
+        let mut beta = if left { theta - alpha } else { alpha - theta };
+        if beta > 1.5 * PI {
+            beta -= TAU;
+        } else if beta < -FRAC_PI_2 {
+            beta += TAU;
+        }
+        let tool_inside = inside(left, turn);
+        let gamma = if tool_inside {
+            (c[1] - ey).atan2(c[0] - ex)
+        } else {
+            delta += PI;
+            (ey - c[1]).atan2(ex - c[0])
+        };
+        let new_end = with_xy(end, ex + r * gamma.cos(), ey + r * gamma.sin());
+        let this = Queued::Arc {
+            sweep: find_turn([opx, opy], c, turn, [ex, ey]),
+            end: new_end,
+            center: c,
+            turn,
+            feed,
+            line,
+        };
+        let concave = beta < -CORNER_SLACK
+            || beta > PI + CORNER_SLACK
+            || ((beta - PI).abs() < CORNER_SLACK && !tool_inside);
+        if concave {
+            let (mx, my) = match self.comp.queue.first().copied() {
+                Some(Queued::Arc {
+                    end: qend,
+                    center: pc,
+                    turn: pturn,
+                    ..
+                }) => arc_to_arc_corner(left, r, c, turn, arc_radius, qend, pc, pturn),
+                _ => line_to_arc_corner(tool_inside, r, c, arc_radius, turn, theta, beta),
+            }
+            .map_err(|m| Diagnostic::new(line, 1, m))?;
+            self.move_endpoint_and_flush(mx, my, line)?;
+            self.comp.queue.push(this);
+        } else if beta > CORNER_SLACK {
+            let mid = [opx + r * delta.cos(), opy + r * delta.sin()];
+            self.dequeue(line)?;
+            self.comp.queue.push(Queued::Arc {
+                sweep: 0.0,
+                end: with_xy(with_z(self.cur, cz), mid[0], mid[1]),
+                center: [opx, opy],
+                turn: if left { -1 } else { 1 },
+                feed,
+                line,
+            });
+            self.dequeue(line)?;
+            self.comp.endpoint = Some(mid);
+            self.comp.queue.push(this);
+        } else {
+            self.dequeue(line)?;
+            self.comp.endpoint = Some([cx, cy]);
+            self.comp.queue.push(this);
+        }
+        self.comp.program = [ex, ey, end[2]];
+        self.cur = new_end;
+        Ok(())
+    }
+}
+
+fn with_z(mut p: Pos, z: f64) -> Pos {
+    p[2] = z;
+    p
+}
+
+/// A concave corner from a queued arc (centre `pc`, end `qend`, turn `pturn`) into a
+/// line from the programmed point `o` to `p`: where the tool on the arc's offset
+/// touches the line's offset.
+fn arc_to_line_corner(
+    left: bool,
+    r: f64,
+    o: [f64; 2],
+    p: [f64; 2],
+    qend: Pos,
+    pc: [f64; 2],
+    pturn: i32,
+) -> Result<(f64, f64), String> {
+    let oldrad = (pc[1] - qend[1]).hypot(pc[0] - qend[0]);
+    let base_dir = (p[1] - o[1]).atan2(p[0] - o[0]);
+    let theta = if pturn > 0 {
+        base_dir + FRAC_PI_2
+    } else {
+        base_dir - FRAC_PI_2
+    };
+    let phi = (pc[1] - o[1]).atan2(pc[0] - o[0]);
+    let tool_inside = inside(left, pturn);
+    let uncomp = if tool_inside { oldrad + r } else { oldrad - r };
+    let d = uncomp * (theta - phi).cos();
+    let fail = "arc to straight motion makes a corner the compensated tool can't fit in without gouging";
+    let angle = if tool_inside {
+        let l = (d - r) / oldrad;
+        if !(-1.0..=1.0).contains(&l) {
+            return Err(fail.into());
+        }
+        if pturn > 0 {
+            -l.acos() + theta + PI
+        } else {
+            l.acos() + theta + PI
+        }
+    } else {
+        let l = (d + r) / oldrad;
+        if !(-1.0..=1.0).contains(&l) {
+            return Err(fail.into());
+        }
+        if pturn > 0 {
+            l.acos() + theta + PI
+        } else {
+            -l.acos() + theta + PI
+        }
+    };
+    Ok((pc[0] + oldrad * angle.cos(), pc[1] + oldrad * angle.sin()))
+}
+
+/// A concave corner from a queued line into an arc (centre `c`, programmed radius
+/// `arc_radius`): where the line's offset meets the arc's.
+fn line_to_arc_corner(
+    tool_inside: bool,
+    r: f64,
+    c: [f64; 2],
+    arc_radius: f64,
+    turn: i32,
+    theta: f64,
+    beta: f64,
+) -> Result<(f64, f64), String> {
+    let cy = arc_radius * (beta - FRAC_PI_2).sin();
+    let fail = "arc move in concave corner cannot be reached by the tool without gouging";
+    let (dist, angle) = if tool_inside {
+        let dist = arc_radius - r;
+        let l = (cy + r) / dist;
+        if !(-1.0..=1.0).contains(&l) {
+            return Err(fail.into());
+        }
+        (dist, if turn > 0 { theta + l.asin() } else { theta - l.asin() })
+    } else {
+        let dist = arc_radius + r;
+        let l = (cy - r) / dist;
+        if !(-1.0..=1.0).contains(&l) {
+            return Err(fail.into());
+        }
+        (
+            dist,
+            if turn > 0 {
+                theta + PI - l.asin()
+            } else {
+                theta + PI + l.asin()
+            },
+        )
+    };
+    Ok((c[0] + dist * angle.cos(), c[1] + dist * angle.sin()))
+}
+
+/// A concave corner between a queued arc (centre `pc`) and a new arc (centre `c`):
+/// the intersection of their offsets.
+#[allow(clippy::too_many_arguments)]
+fn arc_to_arc_corner(
+    left: bool,
+    r: f64,
+    c: [f64; 2],
+    turn: i32,
+    arc_radius: f64,
+    qend: Pos,
+    pc: [f64; 2],
+    pturn: i32,
+) -> Result<(f64, f64), String> {
+    let oldrad = (pc[1] - qend[1]).hypot(pc[0] - qend[0]);
+    let newrad = if inside(left, turn) {
+        arc_radius - r
+    } else {
+        arc_radius + r
+    };
+    let arc_cc = (pc[1] - c[1]).hypot(pc[0] - c[0]);
+    if oldrad == 0.0 || arc_cc == 0.0 {
+        return Err("arc to arc motion is invalid because the arcs have the same center".into());
+    }
+    let a = (oldrad * oldrad + arc_cc * arc_cc - newrad * newrad) / (2.0 * oldrad * arc_cc);
+    if !(-1.0..=1.0).contains(&a) {
+        return Err("arc to arc motion makes a corner the compensated tool can't fit in without gouging".into());
+    }
+    let pullback = a.acos();
+    let cc_dir = (c[1] - pc[1]).atan2(c[0] - pc[0]);
+    let dir = if inside(left, pturn) == (turn > 0) {
+        cc_dir + pullback
+    } else {
+        cc_dir - pullback
+    };
+    Ok((pc[0] + oldrad * dir.cos(), pc[1] + oldrad * dir.sin()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn turns_as_linuxcnc_counts_them() {
+        let c = [0.0, 0.0];
+        assert!((find_turn([1.0, 0.0], c, 1, [0.0, 1.0]) - FRAC_PI_2).abs() < 1e-12);
+        assert!((find_turn([1.0, 0.0], c, -1, [0.0, 1.0]) + 3.0 * FRAC_PI_2).abs() < 1e-12);
+        assert!((find_turn([1.0, 0.0], c, 1, [1.0, 0.0]) - TAU).abs() < 1e-12);
+        assert_eq!(find_turn([1.0, 0.0], c, 0, [0.0, 1.0]), 0.0);
+    }
+}

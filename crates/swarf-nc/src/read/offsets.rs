@@ -1,0 +1,525 @@
+//! Coordinate systems and offsets as LinuxCNC keeps them (`interp_convert.cc`:
+//! `convert_coordinate_system`, `convert_setup`, `convert_axis_offsets`,
+//! `convert_tool_length_offset`, `convert_home`; `emccanon.cc`: the canonical
+//! transform).
+//!
+//! A program point `p` (the current coordinate system, program units) sits on the
+//! machine at `rot(p + g92) + g5x + tool`, where `g5x` is the active system's origin
+//! (`G54`-`G59.3`, stored in `#5221 + 20 (n - 1)`), `rot` its XY rotation about the
+//! origin (`G10 L2 R`), `g92` the axis offsets of `G92`/`G52` (`#5211-#5219`) and `tool`
+//! the tool length offset of `G43`. Every change of offsets re-expresses the current
+//! point in the new system, with LinuxCNC's own formulas (which, for instance, leave
+//! the G92 offsets out of the rotation when a system's origin changes).
+//!
+//! `G10 L2 P` sets a system's origin (and `R` its rotation); `G10 L20 P` sets it so that
+//! the current point has the given coordinates; `G10 L1 P` sets a tool's offsets and
+//! radius in the tool table. `G28`/`G30` move (rapid) through the axes given to the
+//! stored position `#5161`/`#5181`; `G28.1`/`G30.1` store the current position there.
+//! `G53` moves to machine coordinates for one block.
+
+use crate::read::codes::Action;
+use crate::read::kinematics::AxisPosition;
+use crate::read::modal::{Interpreter, Pos};
+use crate::read::program::{Diagnostic, MotionKind};
+use crate::read::words::Words;
+
+/// The offsets in force, program units (lengths) and degrees.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Offsets {
+    /// The coordinate system: 1 (G54) to 9 (G59.3).
+    pub index: u8,
+    /// Its origin.
+    pub origin: Pos,
+    /// The G92/G52 axis offsets.
+    pub axis: Pos,
+    /// The XY rotation of the system, degrees.
+    pub rotation: f64,
+    /// The tool length offset (G43).
+    pub tool: Pos,
+}
+
+impl Offsets {
+    /// Carries the lengths into other units (`k` program units per old unit).
+    pub fn scale(&mut self, k: f64) {
+        for v in [&mut self.origin, &mut self.axis, &mut self.tool] {
+            for x in v[..3].iter_mut() {
+                *x *= k;
+            }
+        }
+    }
+}
+
+/// `(x, y)` turned by `degrees` about the origin (LinuxCNC's `rotate`).
+pub fn rotate(x: f64, y: f64, degrees: f64) -> (f64, f64) {
+    if degrees == 0.0 {
+        return (x, y);
+    }
+    let (s, c) = degrees.to_radians().sin_cos();
+    (x * c - y * s, x * s + y * c)
+}
+
+/// The first parameter of system `n`'s block (`#5201 + 20 n`: X of G54 is #5221).
+fn system_base(n: u8) -> usize {
+    5201 + 20 * usize::from(n)
+}
+
+impl Interpreter<'_> {
+    /// The start-up system: `#5220` (1 when unset), its origin and rotation, and the
+    /// G92 offsets when `#5210` says they are applied.
+    pub(crate) fn start_in_g54(&mut self) {
+        let n = self.params.at(5220);
+        let index = if (1.0..=9.0).contains(&n) { n as u8 } else { 1 };
+        self.load_system(index);
+        if self.params.at(5210) != 0.0 {
+            self.offsets.axis = self.stored(5211);
+        }
+    }
+
+    /// Six stored values from `first` (lengths then angles) in program units.
+    fn stored(&self, first: usize) -> Pos {
+        let mut p = [0.0; 6];
+        for (k, v) in p.iter_mut().enumerate() {
+            let raw = self.params.at(first + k);
+            *v = if k < 3 { self.user_to_program(raw) } else { raw };
+        }
+        p
+    }
+
+    fn load_system(&mut self, index: u8) {
+        let base = system_base(index);
+        self.offsets.index = index;
+        self.offsets.origin = self.stored(base);
+        self.offsets.rotation = self.params.at(base + 9);
+        self.params.set(5220, f64::from(index));
+    }
+
+    /// The machine position (mm and degrees) of the program point `p`: the canonical
+    /// transform, less the loaded tool's offset (module docs).
+    pub(crate) fn to_machine(&self, p: &Pos) -> Pos {
+        let o = &self.offsets;
+        let (x, y) = rotate(p[0] + o.axis[0], p[1] + o.axis[1], o.rotation);
+        let loaded = self.loaded_offset();
+        let mut m = [x, y, p[2] + o.axis[2], 0.0, 0.0, 0.0];
+        for k in 3..6 {
+            m[k] = p[k] + o.axis[k];
+        }
+        for (k, v) in m.iter_mut().enumerate() {
+            *v += o.origin[k] + o.tool[k] - loaded[k];
+        }
+        let s = self.scale();
+        for v in m[..3].iter_mut() {
+            *v *= s;
+        }
+        m
+    }
+
+    /// The axis position (mm, radians) of the program point `p`.
+    pub(crate) fn axis_position(&self, p: &Pos) -> AxisPosition {
+        let m = self.to_machine(p);
+        let mut a = [m[0], m[1], m[2], 0.0, 0.0];
+        if let Some(letters) = self.axes.rotary_letters() {
+            for (slot, l) in letters.iter().enumerate() {
+                let k = 3 + (*l as usize).saturating_sub('A' as usize).min(2);
+                a[3 + slot] = m[k].to_radians();
+            }
+        }
+        a
+    }
+
+    /// The program point where the axes stand (their part-frame tip at the start).
+    pub(crate) fn program_of_axes(&self) -> Pos {
+        let a = self.axes.position();
+        let mut m = [a[0], a[1], a[2], 0.0, 0.0, 0.0];
+        if let Some(letters) = self.axes.rotary_letters() {
+            for (slot, l) in letters.iter().enumerate() {
+                let k = 3 + (*l as usize).saturating_sub('A' as usize).min(2);
+                m[k] = a[3 + slot].to_degrees();
+            }
+        }
+        for v in m[..3].iter_mut() {
+            *v /= self.scale();
+        }
+        self.program_of_machine(&m)
+    }
+
+    /// The program point of machine coordinates `m` (program units, without the tool
+    /// offset and the loaded tool's: LinuxCNC's `find_relative`).
+    fn program_of_machine(&self, m: &Pos) -> Pos {
+        let o = &self.offsets;
+        let mut p = [0.0; 6];
+        for k in 0..6 {
+            p[k] = m[k] - o.origin[k] - o.tool[k];
+        }
+        let (x, y) = rotate(p[0], p[1], -o.rotation);
+        p[0] = x - o.axis[0];
+        p[1] = y - o.axis[1];
+        for k in 2..6 {
+            p[k] -= o.axis[k];
+        }
+        p
+    }
+
+    /// G54 ... G59.3 (`n` = 1 ... 9).
+    pub(crate) fn select_coordinate_system(
+        &mut self,
+        n: u8,
+        w: crate::read::words::Word,
+        line: usize,
+    ) -> Result<(), Diagnostic> {
+        if self.comp.is_on() {
+            return Err(Diagnostic::new(
+                line,
+                w.column,
+                "cannot change coordinate systems with cutter radius compensation on",
+            ));
+        }
+        if n == self.offsets.index {
+            return Ok(());
+        }
+        self.cur = self.current_in_system(n);
+        self.load_system(n);
+        Ok(())
+    }
+
+    /// The current point in system `n` (LinuxCNC's `find_current_in_system`).
+    fn current_in_system(&self, n: u8) -> Pos {
+        let o = &self.offsets;
+        let mut p = self.cur;
+        for k in 0..6 {
+            p[k] += o.axis[k];
+        }
+        (p[0], p[1]) = rotate(p[0], p[1], o.rotation);
+        let target = self.stored(system_base(n));
+        for k in 0..6 {
+            p[k] += o.origin[k] - target[k];
+        }
+        (p[0], p[1]) = rotate(p[0], p[1], -self.params.at(system_base(n) + 9));
+        if self.params.at(5210) != 0.0 {
+            let g92 = self.stored(5211);
+            for k in 0..6 {
+                p[k] -= g92[k];
+            }
+        }
+        p
+    }
+
+    /// G43 (`on`) with H (or the loaded tool), or G49. Without a tool table every
+    /// tool's offset is 0: the program's points are the tip.
+    pub(crate) fn tool_length_offset(
+        &mut self,
+        on: bool,
+        parsed: &Words,
+        w: crate::read::words::Word,
+        line: usize,
+    ) -> Result<(), Diagnostic> {
+        if self.comp.is_on() {
+            return Err(Diagnostic::new(
+                line,
+                w.column,
+                "cannot change the tool offset with cutter radius compensation on",
+            ));
+        }
+        let mut new = [0.0; 6];
+        if on {
+            let number = match parsed.get('H') {
+                Some(h) => Some(crate::read::modal::whole(h, line, "H (tool number)")?),
+                None => self.loaded_tool,
+            };
+            let table = self.setup.tool_table.is_some() || !self.tools.tools.is_empty();
+            if let Some(n) = number.filter(|&n| n != 0 && table) {
+                let Some(tool) = self.tools.get(n).copied() else {
+                    return Err(Diagnostic::new(
+                        line,
+                        parsed.get('H').map_or(w.column, |h| h.column),
+                        format!("tool number {n} not found in the tool table"),
+                    ));
+                };
+                for (k, v) in new.iter_mut().enumerate() {
+                    *v = if k < 3 {
+                        self.user_to_program(tool.offset[k])
+                    } else {
+                        tool.offset[k]
+                    };
+                }
+            }
+        }
+        let old = self.offsets.tool;
+        let (dx, dy) = rotate(old[0] - new[0], old[1] - new[1], -self.offsets.rotation);
+        self.cur[0] += dx;
+        self.cur[1] += dy;
+        for k in 2..6 {
+            self.cur[k] += old[k] - new[k];
+        }
+        self.offsets.tool = new;
+        Ok(())
+    }
+
+    /// The non-modal codes of group 0 that change offsets or move: G10, G28, G30,
+    /// G28.1, G30.1, G52, G92, G92.1, G92.2, G92.3.
+    pub(crate) fn modal_zero(&mut self, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
+        for &(_, _, action, w) in &parsed.g {
+            let comp_err = |what: &str| {
+                Err(Diagnostic::new(
+                    line,
+                    w.column,
+                    format!("cannot {what} with cutter radius compensation on"),
+                ))
+            };
+            match action {
+                Action::SetData => self.set_data(parsed, w, line)?,
+                Action::Home { .. } | Action::SaveHome { .. } if self.comp.is_on() => {
+                    return comp_err("use G28 or G30, nor store their positions,");
+                }
+                Action::Home { second } => self.go_home(second, parsed, line)?,
+                Action::SaveHome { second } => self.save_home(second),
+                Action::AxisOffset { .. }
+                | Action::AxisOffsetOff { .. }
+                | Action::AxisOffsetRestore
+                    if self.comp.is_on() =>
+                {
+                    return comp_err("change axis offsets");
+                }
+                Action::AxisOffset { local } => {
+                    if parsed.axis_word(self.axes.rotary_letters()).is_none() {
+                        return Err(Diagnostic::new(
+                            line,
+                            w.column,
+                            "all axes missing with G52 or G92",
+                        ));
+                    }
+                    self.axis_offsets(local, parsed);
+                }
+                Action::AxisOffsetOff { zero_params } => {
+                    self.params.set(5210, 0.0);
+                    for k in 0..6 {
+                        self.cur[k] += self.offsets.axis[k];
+                    }
+                    self.offsets.axis = [0.0; 6];
+                    if zero_params {
+                        for i in 5211..=5219 {
+                            self.params.set(i, 0.0);
+                        }
+                    }
+                }
+                Action::AxisOffsetRestore => {
+                    self.params.set(5210, 1.0);
+                    let g92 = self.stored(5211);
+                    for k in 0..6 {
+                        self.cur[k] += self.offsets.axis[k] - g92[k];
+                    }
+                    self.offsets.axis = g92;
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// G52 (`local`) or G92 with the block's axis words.
+    fn axis_offsets(&mut self, local: bool, parsed: &Words) {
+        self.params.set(5210, 1.0);
+        for (k, l) in ['X', 'Y', 'Z', 'A', 'B', 'C'].into_iter().enumerate() {
+            let Some(w) = parsed.get(l) else {
+                continue;
+            };
+            if local {
+                self.cur[k] += self.offsets.axis[k] - w.value;
+                self.offsets.axis[k] = w.value;
+            } else {
+                self.offsets.axis[k] = self.cur[k] + self.offsets.axis[k] - w.value;
+                self.cur[k] = w.value;
+            }
+        }
+        for k in 0..6 {
+            let v = if k < 3 {
+                self.program_to_user(self.offsets.axis[k])
+            } else {
+                self.offsets.axis[k]
+            };
+            self.params.set(5211 + k, v);
+        }
+    }
+
+    /// G28.1 / G30.1: the current point in machine coordinates, stored.
+    fn save_home(&mut self, second: bool) {
+        let o = self.offsets;
+        let (x, y) = rotate(self.cur[0] + o.axis[0], self.cur[1] + o.axis[1], o.rotation);
+        let mut m = [x, y, self.cur[2] + o.axis[2], 0.0, 0.0, 0.0];
+        for k in 3..6 {
+            m[k] = self.cur[k] + o.axis[k];
+        }
+        let base = if second { 5181 } else { 5161 };
+        for k in 0..6 {
+            let v = m[k] + o.tool[k] + o.origin[k];
+            let v = if k < 3 { self.program_to_user(v) } else { v };
+            self.params.set(base + k, v);
+        }
+    }
+
+    /// G28 / G30: a rapid through the block's axes, then to the stored position (only
+    /// the axes given, or all of them when none is).
+    fn go_home(&mut self, second: bool, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
+        let through = self.find_ends(parsed, line, false)?;
+        self.suspicious_numbers(parsed, line);
+        self.emit_straight(MotionKind::Rapid, through, None, line)?;
+        let base = if second { 5181 } else { 5161 };
+        let stored = self.stored(base);
+        let home = self.program_of_machine(&stored);
+        let letters = ['X', 'Y', 'Z', 'A', 'B', 'C'];
+        let any = letters.iter().any(|&l| parsed.get(l).is_some());
+        let mut end = through;
+        for (k, l) in letters.into_iter().enumerate() {
+            if !any || parsed.get(l).is_some() {
+                end[k] = home[k];
+            }
+        }
+        self.emit_straight(MotionKind::Rapid, end, None, line)
+    }
+
+    /// G10: L1 (tool table), L2 and L20 (coordinate systems).
+    fn set_data(
+        &mut self,
+        parsed: &Words,
+        w: crate::read::words::Word,
+        line: usize,
+    ) -> Result<(), Diagnostic> {
+        let err = |column: usize, m: String| Err(Diagnostic::new(line, column, m));
+        let Some(l) = parsed.get('L') else {
+            return err(w.column, "G10 without an L word (L1, L2 or L20)".into());
+        };
+        let p = parsed.get('P');
+        let p_int = p.map_or(0.0, |p| p.value);
+        if (p_int - p_int.round()).abs() > 0.0002 {
+            return err(p.map_or(w.column, |p| p.column), "P value not an integer with G10".into());
+        }
+        let p_int = p_int.round() as i64;
+        match l.value.round() as i64 {
+            2 | 20 if !(0..=9).contains(&p_int) => err(
+                p.map_or(w.column, |p| p.column),
+                format!("P value out of range (0-9) with G10 L{}", l.value),
+            ),
+            2 | 20 => {
+                if let Some(ij) = parsed.get('I').or(parsed.get('J')) {
+                    return err(ij.column, "I J words not allowed with G10 L2".into());
+                }
+                let n = if p_int == 0 { self.offsets.index } else { p_int as u8 };
+                if self.comp.is_on() && n == self.offsets.index {
+                    return err(
+                        w.column,
+                        "cannot change the active coordinate system with cutter radius \
+                         compensation on"
+                            .into(),
+                    );
+                }
+                self.set_system(n, l.value.round() as i64 == 20, parsed, line)
+            }
+            1 => self.set_tool(p_int, parsed, line, w.column),
+            10 | 11 => err(
+                l.column,
+                "tool touch-off (G10 L10, L11) is not supported by swarf: give the tool's \
+                 offset with G10 L1 or the tool table"
+                    .into(),
+            ),
+            _ => err(
+                l.column,
+                format!("line with G10 does not have L1, L2 or L20 (found L{})", l.value),
+            ),
+        }
+    }
+
+    /// G10 L2 / L20 for system `n`.
+    fn set_system(&mut self, n: u8, l20: bool, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
+        let base = system_base(n);
+        let here = self.current_in_system(n);
+        let rotation = match parsed.get('R') {
+            Some(r) if l20 => {
+                return Err(Diagnostic::new(line, r.column, "R not allowed in G10 L20"));
+            }
+            Some(r) => {
+                self.params.set(base + 9, r.value);
+                r.value
+            }
+            None => self.params.at(base + 9),
+        };
+        let mut origin = self.stored(base);
+        let letters = ['X', 'Y', 'Z', 'A', 'B', 'C'];
+        if l20 {
+            let (ox, oy) = rotate(here[0], here[1], rotation);
+            let x = parsed.get('X').map_or(here[0], |w| w.value);
+            let y = parsed.get('Y').map_or(here[1], |w| w.value);
+            let (tx, ty) = rotate(x, y, rotation);
+            origin[0] += ox - tx;
+            origin[1] += oy - ty;
+            for (k, l) in letters.into_iter().enumerate().skip(2) {
+                if let Some(w) = parsed.get(l) {
+                    origin[k] += here[k] - w.value;
+                }
+            }
+            if n == self.offsets.index {
+                (self.cur[0], self.cur[1]) = rotate(self.cur[0], self.cur[1], self.offsets.rotation);
+                self.offsets.rotation = 0.0;
+            }
+        } else {
+            for (k, l) in letters.into_iter().enumerate() {
+                if let Some(w) = parsed.get(l) {
+                    origin[k] = w.value;
+                }
+            }
+        }
+        for (k, &v) in origin.iter().enumerate() {
+            let user = if k < 3 { self.program_to_user(v) } else { v };
+            self.params.set(base + k, user);
+        }
+        if n == self.offsets.index {
+            let o = self.offsets;
+            (self.cur[0], self.cur[1]) = rotate(self.cur[0], self.cur[1], o.rotation);
+            for k in 0..6 {
+                self.cur[k] += o.origin[k] - origin[k];
+            }
+            (self.cur[0], self.cur[1]) = rotate(self.cur[0], self.cur[1], -rotation);
+            self.offsets.origin = origin;
+            self.offsets.rotation = rotation;
+        }
+        Ok(())
+    }
+
+    /// G10 L1 P: a tool's offsets (X Y Z A B C) and radius (R) in the tool table.
+    fn set_tool(&mut self, p: i64, parsed: &Words, line: usize, column: usize) -> Result<(), Diagnostic> {
+        if p < 1 || p > i64::from(u32::MAX) {
+            return Err(Diagnostic::new(line, column, "P value out of range with G10 L1"));
+        }
+        let number = p as u32;
+        let mut tool = self.tools.get(number).copied().unwrap_or_default();
+        tool.number = number;
+        for (k, l) in ['X', 'Y', 'Z', 'A', 'B', 'C'].into_iter().enumerate() {
+            if let Some(w) = parsed.get(l) {
+                tool.offset[k] = if k < 3 { self.program_to_user(w.value) } else { w.value };
+            }
+        }
+        if let Some(r) = parsed.get('R') {
+            tool.diameter = 2.0 * self.program_to_user(r.value);
+        }
+        self.tools.set(tool);
+        Ok(())
+    }
+
+    /// The end of a G53 move (machine coordinates for the axes given).
+    pub(crate) fn machine_coordinates_end(&self, parsed: &Words) -> Pos {
+        let o = self.offsets;
+        let (cx, cy) = rotate(self.cur[0] + o.axis[0], self.cur[1] + o.axis[1], o.rotation);
+        let x = parsed.get('X').map_or(cx, |w| w.value - o.origin[0] - o.tool[0]);
+        let y = parsed.get('Y').map_or(cy, |w| w.value - o.origin[1] - o.tool[1]);
+        let (x, y) = rotate(x, y, -o.rotation);
+        let mut end = self.cur;
+        end[0] = x - o.axis[0];
+        end[1] = y - o.axis[1];
+        for (k, l) in ['Z', 'A', 'B', 'C'].into_iter().enumerate() {
+            let k = k + 2;
+            if let Some(w) = parsed.get(l) {
+                let tool = if k == 2 { o.tool[k] } else { 0.0 };
+                end[k] = w.value - o.origin[k] - o.axis[k] - tool;
+            }
+        }
+        end
+    }
+}

@@ -1,0 +1,307 @@
+//! The G-code reader against LinuxCNC's `rs274` on the reference corpus
+//! (`tests/corpus/`, its README): for every program rs274 accepts, swarf's motions
+//! equal rs274's canonical moves point for point (ends, arc centres, directions and
+//! turns) to 1e-6 mm, and its `(DEBUG, ...)` messages equal rs274's; every program
+//! rs274 refuses, swarf refuses.
+//!
+//! The oracle carries rs274's moves into the part frame with the canonical calls it
+//! prints, independently of swarf's reader: `machine = rot(p + g92) + g5x + tool`
+//! (`SET_G92_OFFSET`, `SET_XY_ROTATION`, `SET_G5X_OFFSET`, `USE_TOOL_LENGTH_OFFSET`, in
+//! the units of `USE_LENGTH_UNITS` when printed), less the offset of the tool that
+//! `CHANGE_TOOL` loaded, read from the corpus tool table (inches: rs274 is an inch
+//! machine). With `rs274` installed, `record --check` proves the recordings current.
+
+use std::path::{Path, PathBuf};
+use swarf_geom::Point3;
+use swarf_nc::read::{GcodeReadOptions, Motion, MotionKind, ToolTable, parse_gcode, parse_var_file};
+use swarf_testkit::references::skip_reference;
+
+/// Programs whose comparison is left out, and why.
+const LEFT_OUT: [(&str, &str); 2] = [
+    (
+        "17-",
+        "records an rs274 bug: a break passed while leaving a while loop stops a later do loop",
+    ),
+    (
+        "40-",
+        "cutter compensation in G18 is lathe compensation: swarf refuses it by name",
+    ),
+];
+
+fn corpus() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus")
+}
+
+/// One canonical move, in the part frame (mm).
+#[derive(Debug, Clone, Copy)]
+struct Canon {
+    rapid: bool,
+    end: Point3,
+    /// Arc: centre and plane normal index and signed turns.
+    arc: Option<(Point3, usize, i32)>,
+}
+
+/// What rs274 printed: the moves, the messages, and whether it accepted the program.
+struct Recording {
+    moves: Vec<Canon>,
+    messages: Vec<String>,
+    accepted: bool,
+    error: String,
+}
+
+fn args(call: &str) -> Vec<f64> {
+    let inner = &call[call.find('(').unwrap() + 1..call.rfind(')').unwrap()];
+    inner
+        .split([',', ' '])
+        .filter(|a| !a.trim().is_empty())
+        .map(|a| a.trim().parse().unwrap_or(f64::NAN))
+        .collect()
+}
+
+fn rotate(x: f64, y: f64, deg: f64) -> (f64, f64) {
+    let (s, c) = deg.to_radians().sin_cos();
+    (x * c - y * s, x * s + y * c)
+}
+
+/// The frame the oracle carries program points through (all mm).
+struct Frame {
+    scale: f64,
+    g5x: [f64; 3],
+    g92: [f64; 3],
+    rotation: f64,
+    tool: [f64; 3],
+    loaded: [f64; 3],
+}
+
+impl Frame {
+    fn part(&self, p: [f64; 3]) -> Point3 {
+        let q = [0, 1, 2].map(|k| p[k] * self.scale + self.g92[k]);
+        let (x, y) = rotate(q[0], q[1], self.rotation);
+        let r = [x, y, q[2]];
+        Point3::from([0, 1, 2].map(|k| r[k] + self.g5x[k] + self.tool[k] - self.loaded[k]))
+    }
+}
+
+fn parse_recording(text: &str, tools: &ToolTable) -> Recording {
+    let (out, rest) = text.split_once("--- stderr").unwrap_or((text, ""));
+    let accepted = rest.contains("--- exit 0");
+    let error = rest
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with("---") && *l != "executing")
+        .collect::<Vec<_>>()
+        .join(" / ");
+    let mut f = Frame {
+        scale: 1.0,
+        g5x: [0.0; 3],
+        g92: [0.0; 3],
+        rotation: 0.0,
+        tool: [0.0; 3],
+        loaded: [0.0; 3],
+    };
+    let mut plane = [0usize, 1, 2];
+    let mut moves = Vec::new();
+    let mut messages = Vec::new();
+    for line in out.lines() {
+        let Some(call) = line.split("N..... ").nth(1) else {
+            continue;
+        };
+        let a = || args(call);
+        let name = call.split('(').next().unwrap_or("");
+        match name {
+            "USE_LENGTH_UNITS" => f.scale = if call.contains("INCHES") { 25.4 } else { 1.0 },
+            "SET_G5X_OFFSET" => f.g5x = [1, 2, 3].map(|k| a()[k] * f.scale),
+            "SET_G92_OFFSET" => f.g92 = [0, 1, 2].map(|k| a()[k] * f.scale),
+            "SET_XY_ROTATION" => f.rotation = a()[0],
+            "USE_TOOL_LENGTH_OFFSET" => f.tool = [0, 1, 2].map(|k| a()[k] * f.scale),
+            "CHANGE_TOOL" => {
+                let t = tools.get(a()[0] as u32).copied().unwrap_or_default();
+                f.loaded = [0, 1, 2].map(|k| t.offset[k] * 25.4);
+            }
+            "SELECT_PLANE" => {
+                plane = match call {
+                    c if c.contains("PLANE_XZ") => [2, 0, 1],
+                    c if c.contains("PLANE_YZ") => [1, 2, 0],
+                    _ => [0, 1, 2],
+                };
+            }
+            "MESSAGE" => {
+                let inner = &call[call.find('"').unwrap() + 1..call.rfind('"').unwrap()];
+                messages.push(inner.to_string());
+            }
+            "STRAIGHT_TRAVERSE" | "STRAIGHT_FEED" => {
+                let v = a();
+                moves.push(Canon {
+                    rapid: name == "STRAIGHT_TRAVERSE",
+                    end: f.part([v[0], v[1], v[2]]),
+                    arc: None,
+                });
+            }
+            "ARC_FEED" => {
+                let v = a();
+                let mut end = [0.0; 3];
+                end[plane[0]] = v[0];
+                end[plane[1]] = v[1];
+                end[plane[2]] = v[5];
+                let mut center = end;
+                center[plane[0]] = v[2];
+                center[plane[1]] = v[3];
+                moves.push(Canon {
+                    rapid: false,
+                    end: f.part(end),
+                    arc: Some((f.part(center), plane[2], v[4] as i32)),
+                });
+            }
+            _ => {}
+        }
+    }
+    Recording {
+        moves,
+        messages,
+        accepted,
+        error,
+    }
+}
+
+/// Drops moves of (nearly) zero length after the first, as swarf's reader does.
+fn drop_still<T>(items: Vec<T>, end: impl Fn(&T) -> Point3, is_arc: impl Fn(&T) -> bool) -> Vec<T> {
+    let mut out: Vec<T> = Vec::new();
+    for m in items {
+        let still = out
+            .last()
+            .is_some_and(|p| (end(p) - end(&m)).norm() < 1e-9 && !is_arc(&m));
+        if !still {
+            out.push(m);
+        }
+    }
+    out
+}
+
+fn read_swarf(name: &str, tools: &ToolTable, vars: &[(usize, f64)], subs: &[PathBuf]) -> swarf_nc::read::Program {
+    let path = corpus().join(name);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let opts = GcodeReadOptions {
+        tool_table: Some(tools),
+        machine_inch: true,
+        parameters: vars,
+        sub_path: subs,
+        ..GcodeReadOptions::default()
+    };
+    parse_gcode(&text, name, &opts).unwrap()
+}
+
+/// Motions of G88's simulated manual retract (not a canonical move of rs274).
+fn manual_retracts(p: &swarf_nc::read::Program) -> Vec<usize> {
+    p.warnings
+        .iter()
+        .filter(|w| w.message.starts_with("G88"))
+        .map(|w| w.line)
+        .collect()
+}
+
+fn compare(name: &str, motions: &[Motion], rec: &Recording) -> Result<(), String> {
+    let ours = drop_still(motions.to_vec(), |m| m.end.cl, |m| !matches!(m.kind, MotionKind::Rapid | MotionKind::Linear));
+    let theirs = drop_still(rec.moves.clone(), |c| c.end, |c| c.arc.is_some());
+    if ours.len() != theirs.len() {
+        return Err(format!("{name}: {} motions against rs274's {}", ours.len(), theirs.len()));
+    }
+    for (k, (m, c)) in ours.iter().zip(&theirs).enumerate() {
+        let off = (m.end.cl - c.end).norm();
+        if off > 1e-6 {
+            return Err(format!("{name}: motion {k} (line {}) ends at {:?}, rs274 at {:?} ({off:e} mm)", m.line, m.end.cl, c.end));
+        }
+        match (m.kind, c.arc) {
+            (MotionKind::Rapid, None) if c.rapid => {}
+            (MotionKind::Linear, None) if !c.rapid => {}
+            (MotionKind::Arc { center, normal, clockwise, turns }, Some((rc, n, rotation))) => {
+                let axis = normal.iamax();
+                let d = center - rc;
+                let in_plane = (d - normal * d.dot(&normal)).norm();
+                if axis != n || in_plane > 1e-6 || clockwise != (rotation < 0) || turns != rotation.unsigned_abs() {
+                    return Err(format!(
+                        "{name}: arc {k} (line {}): centre {center:?} normal {normal:?} cw {clockwise} turns {turns}; rs274 {rc:?} axis {n} rotation {rotation}",
+                        m.line
+                    ));
+                }
+            }
+            (kind, arc) => {
+                return Err(format!("{name}: motion {k} (line {}): {kind:?} against rapid {} arc {arc:?}", m.line, c.rapid));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn corpus_matches_rs274_point_for_point() {
+    let dir = corpus();
+    let tools = ToolTable::parse(&std::fs::read_to_string(dir.join("tool.tbl")).unwrap(), "tool.tbl").unwrap();
+    let vars = parse_var_file(&std::fs::read_to_string(dir.join("rs274ngc.var")).unwrap(), "rs274ngc.var").unwrap();
+    let subs = vec![dir.join("subs")];
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .filter(|n| n.ends_with(".ngc"))
+        .collect();
+    names.sort();
+    assert!(names.len() >= 90, "{}", names.len());
+    let mut failures = Vec::new();
+    let (mut compared, mut refused, mut motions) = (0, 0, 0);
+    for name in &names {
+        if LEFT_OUT.iter().any(|(p, _)| name.starts_with(p)) {
+            continue;
+        }
+        let rec_text = std::fs::read_to_string(dir.join(name.replace(".ngc", ".rs274"))).unwrap();
+        let rec = parse_recording(&rec_text, &tools);
+        let p = read_swarf(name, &tools, &vars, &subs);
+        if !rec.accepted {
+            refused += 1;
+            if p.stopped.is_none() {
+                failures.push(format!("{name}: rs274 refuses ({}) but swarf reads it", rec.error));
+            }
+            continue;
+        }
+        if let Some(stop) = &p.stopped {
+            failures.push(format!("{name}: swarf stopped: {}", p.located(stop)));
+            continue;
+        }
+        let retracts = manual_retracts(&p);
+        let kept: Vec<Motion> = p
+            .motions
+            .iter()
+            .filter(|m| !(m.kind == MotionKind::Rapid && retracts.contains(&m.line) && m.start.cl.x == m.end.cl.x && m.start.cl.y == m.end.cl.y && m.end.cl.z > m.start.cl.z))
+            .copied()
+            .collect();
+        match compare(name, &kept, &rec) {
+            Ok(()) => {
+                compared += 1;
+                motions += kept.len();
+            }
+            Err(e) => failures.push(e),
+        }
+        let ours: Vec<&str> = p.messages.iter().map(|m| m.message.as_str()).collect();
+        let theirs: Vec<&str> = rec.messages.iter().map(String::as_str).collect();
+        if ours != theirs {
+            failures.push(format!("{name}: messages {ours:?} against rs274's {theirs:?}"));
+        }
+    }
+    println!("corpus: {compared} programs ({motions} motions) match rs274, {refused} refused by both");
+    assert!(failures.is_empty(), "{} of {} programs differ:\n{}", failures.len(), names.len(), failures.join("\n"));
+}
+
+#[test]
+fn recordings_are_current() {
+    let dir = corpus();
+    let out = std::process::Command::new("bash").arg(dir.join("record")).arg("--check").current_dir(&dir).output();
+    match out {
+        Ok(o) if o.status.success() => {}
+        Ok(o) => {
+            let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+            if o.status.code() == Some(2) {
+                skip_reference("rs274", &text);
+            } else {
+                panic!("record --check failed:\n{text}");
+            }
+        }
+        Err(e) => skip_reference("rs274", &e.to_string()),
+    }
+}
