@@ -105,6 +105,10 @@ pub enum Action {
     LengthOffset,
     /// Tool length offset cancelled (G49).
     LengthOffsetOff,
+    /// Tool length offset from the block's axis words (G43.1).
+    LengthOffsetGiven,
+    /// Tool length offset plus tool H's (G43.2).
+    LengthOffsetAdd,
     /// Coordinate system 1 (G54) to 9 (G59.3).
     CoordSystem(u8),
     /// Canned cycles retract to the initial level (G98).
@@ -177,7 +181,6 @@ pub enum Effect {
     Refuse(&'static str),
 }
 
-
 /// The G code `code10` (ten times the number: G90.1 is 901).
 pub fn g_code(code10: u32) -> Option<(Group, Effect)> {
     use Action as A;
@@ -195,7 +198,7 @@ pub fn g_code(code10: u32) -> Option<(Group, Effect)> {
         ),
         330 | 331 | 760 => (Gr::Motion, Refuse("threading moves are not supported")),
         382..=385 => (Gr::Motion, Refuse("probing moves (G38) are not supported")),
-        730 | 740 | 810..=890 if code10 % 10 == 0 => {
+        730 | 740 | 810..=890 if code10.is_multiple_of(10) => {
             (Gr::Motion, Run(A::Cycle((code10 / 10) as u8)))
         }
         170 => (Gr::Plane, Run(A::PlaneXy)),
@@ -227,10 +230,8 @@ pub fn g_code(code10: u32) -> Option<(Group, Effect)> {
         ),
         430 => (Gr::ToolLength, Run(A::LengthOffset)),
         490 => (Gr::ToolLength, Run(A::LengthOffsetOff)),
-        431 | 432 => (
-            Gr::ToolLength,
-            Refuse("dynamic tool length offsets (G43.1, G43.2) are not supported"),
-        ),
+        431 => (Gr::ToolLength, Run(A::LengthOffsetGiven)),
+        432 => (Gr::ToolLength, Run(A::LengthOffsetAdd)),
         _ => return other_g_code(code10),
     };
     Some(entry)
@@ -245,10 +246,14 @@ fn other_g_code(code10: u32) -> Option<(Group, Effect)> {
     let entry = match code10 {
         980 => (Gr::ReturnMode, Run(A::RetractOldZ)),
         990 => (Gr::ReturnMode, Run(A::RetractR)),
-        540 | 550 | 560 | 570 | 580 | 590 => {
-            (Gr::CoordSystem, Run(A::CoordSystem((code10 / 10 - 53) as u8)))
-        }
-        591..=593 => (Gr::CoordSystem, Run(A::CoordSystem((code10 - 591 + 7) as u8))),
+        540 | 550 | 560 | 570 | 580 | 590 => (
+            Gr::CoordSystem,
+            Run(A::CoordSystem((code10 / 10 - 53) as u8)),
+        ),
+        591..=593 => (
+            Gr::CoordSystem,
+            Run(A::CoordSystem((code10 - 591 + 7) as u8)),
+        ),
         610 | 611 => (Gr::PathControl, Run(A::Nothing)),
         640 => (
             Gr::PathControl,
@@ -263,8 +268,18 @@ fn other_g_code(code10: u32) -> Option<(Group, Effect)> {
         970 => (Gr::SpindleMode, Run(A::Nothing)),
         40 => (Gr::NonModal, Run(A::Dwell)),
         100 => (Gr::NonModal, Run(A::SetData)),
-        280 | 300 => (Gr::NonModal, Run(A::Home { second: code10 == 300 })),
-        281 | 301 => (Gr::NonModal, Run(A::SaveHome { second: code10 == 301 })),
+        280 | 300 => (
+            Gr::NonModal,
+            Run(A::Home {
+                second: code10 == 300,
+            }),
+        ),
+        281 | 301 => (
+            Gr::NonModal,
+            Run(A::SaveHome {
+                second: code10 == 301,
+            }),
+        ),
         520 => (Gr::NonModal, Run(A::AxisOffset { local: true })),
         530 => (Gr::NonModal, Run(A::MachineCoords)),
         920 => (Gr::NonModal, Run(A::AxisOffset { local: false })),
@@ -312,7 +327,9 @@ pub fn m_code(m: u32) -> Option<(Group, Effect)> {
         ),
         98 | 99 => (
             Gr::OtherM,
-            Refuse("subprogram calls and returns (M98/M99) belong to the Fanuc dialect: read the program with --dialect fanuc"),
+            Refuse(
+                "subprogram calls and returns (M98/M99) belong to the Fanuc dialect: read the program with --dialect fanuc",
+            ),
         ),
         100..=199 => (
             Gr::OtherM,
@@ -341,7 +358,10 @@ mod tests {
             g_code(930),
             Some((Group::FeedMode, Effect::Run(Action::InverseTime)))
         );
-        assert_eq!(g_code(830), Some((Group::Motion, Effect::Run(Action::Cycle(83)))));
+        assert_eq!(
+            g_code(830),
+            Some((Group::Motion, Effect::Run(Action::Cycle(83))))
+        );
         assert_eq!(
             g_code(592),
             Some((Group::CoordSystem, Effect::Run(Action::CoordSystem(8))))

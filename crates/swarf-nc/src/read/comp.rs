@@ -22,7 +22,9 @@
 //!   that a corner after them still trims that move. G40 (and M0, M1, M2, M30) ends the
 //!   queue where the tool is; the next move must be straight.
 
-use crate::read::arc::{ArcRequest, CenterWords, Plane, SPIRAL_TOLERANCE_INCH, SPIRAL_TOLERANCE_MM, arc_center};
+use crate::read::arc::{
+    ArcRequest, CenterWords, Plane, SPIRAL_TOLERANCE_INCH, SPIRAL_TOLERANCE_MM, arc_center,
+};
 use crate::read::expr::TOLERANCE_EQUAL;
 use crate::read::feed::BlockFeed;
 use crate::read::modal::{Interpreter, Pos};
@@ -184,7 +186,10 @@ impl Interpreter<'_> {
             );
         }
         if self.comp.is_on() {
-            return err(w.column, "cannot turn cutter radius compensation on when it is on".into());
+            return err(
+                w.column,
+                "cannot turn cutter radius compensation on when it is on".into(),
+            );
         }
         let d = parsed.get('D');
         let mut radius = if diameter {
@@ -192,7 +197,10 @@ impl Interpreter<'_> {
                 return err(w.column, format!("{name}.1 with no D word"));
             };
             if let Some(l) = parsed.get('L') {
-                return err(l.column, format!("{name}.1 with an L word: lathe tool orientation is not supported"));
+                return err(
+                    l.column,
+                    format!("{name}.1 with an L word: lathe tool orientation is not supported"),
+                );
             }
             d.value / 2.0
         } else {
@@ -200,7 +208,10 @@ impl Interpreter<'_> {
                 Some(d) => {
                     let near = d.value.round();
                     if (near - d.value).abs() >= 1e-4 {
-                        return err(d.column, format!("{name} requires the D word to be a whole number"));
+                        return err(
+                            d.column,
+                            format!("{name} requires the D word to be a whole number"),
+                        );
                     }
                     if near < 0.0 {
                         return err(d.column, "negative D word tool radius index used".into());
@@ -215,14 +226,22 @@ impl Interpreter<'_> {
                     None => {
                         return err(
                             d.map_or(w.column, |d| d.column),
-                            format!("tool number {n} not found in the tool table: give the table with --tool-table"),
+                            format!(
+                                "tool number {n} not found in the tool table: give the table with --tool-table"
+                            ),
                         );
                     }
                 },
                 _ => Default::default(),
             };
             if tool.orientation != 0 && tool.orientation != 9 {
-                return err(w.column, format!("{name} with a lathe tool (orientation {})", tool.orientation));
+                return err(
+                    w.column,
+                    format!(
+                        "{name} with a lathe tool (orientation {})",
+                        tool.orientation
+                    ),
+                );
             }
             self.user_to_program(tool.diameter) / 2.0
         };
@@ -262,7 +281,11 @@ impl Interpreter<'_> {
         for q in std::mem::take(&mut self.comp.queue) {
             match q {
                 Queued::Straight {
-                    rapid, end, feed, line, ..
+                    rapid,
+                    end,
+                    feed,
+                    line,
+                    ..
                 } => {
                     let kind = if rapid {
                         MotionKind::Rapid
@@ -315,7 +338,9 @@ impl Interpreter<'_> {
                         return Err(Diagnostic::new(
                             *qline,
                             1,
-                            format!("cutter compensation made an arc with mismatched radii r1 {r1:.6} r2 {r2:.6}"),
+                            format!(
+                                "cutter compensation made an arc with mismatched radii r1 {r1:.6} r2 {r2:.6}"
+                            ),
                         ));
                     }
                     if let Some(e) = endpoint {
@@ -330,15 +355,23 @@ impl Interpreter<'_> {
                     }
                     *end = with_xy(*end, x, y);
                 }
-                Queued::Straight { rapid, dir, end, .. } => {
+                Queued::Straight {
+                    rapid, dir, end, ..
+                } => {
                     if let Some(e) = endpoint {
                         let dot = dir[0] * (x - e[0]) + dir[1] * (y - e[1]);
                         if dot < 0.0 {
-                            let what = if *rapid { "straight traverse" } else { "straight feed" };
+                            let what = if *rapid {
+                                "straight traverse"
+                            } else {
+                                "straight feed"
+                            };
                             return Err(Diagnostic::new(
                                 line,
                                 1,
-                                format!("{what} in concave corner cannot be reached by the tool without gouging"),
+                                format!(
+                                    "{what} in concave corner cannot be reached by the tool without gouging"
+                                ),
                             ));
                         }
                     }
@@ -360,49 +393,85 @@ impl Interpreter<'_> {
         line: usize,
     ) -> Result<(), Diagnostic> {
         if !self.comp.active() {
-            self.emit_straight(if rapid { MotionKind::Rapid } else { MotionKind::Linear }, end, feed, line)?;
+            self.emit_straight(
+                if rapid {
+                    MotionKind::Rapid
+                } else {
+                    MotionKind::Linear
+                },
+                end,
+                feed,
+                line,
+            )?;
             self.cur = end;
             return Ok(());
         }
+        if self.comp.firstmove {
+            return self.comp_entry_line(rapid, end, feed, line);
+        }
+        self.comp_corner_line(rapid, end, feed, line)
+    }
+
+    /// The first move after G41/G42 is a line (`convert_straight_comp1`).
+    fn comp_entry_line(
+        &mut self,
+        rapid: bool,
+        end: Pos,
+        feed: Option<BlockFeed>,
+        line: usize,
+    ) -> Result<(), Diagnostic> {
         let left = self.comp.left == Some(true);
         let r = self.comp.radius;
         let (px, py) = (end[0], end[1]);
         let (cx, cy) = (self.cur[0], self.cur[1]);
-        if self.comp.firstmove {
-            if (px - cx).hypot(py - cy) <= r {
-                return Err(Diagnostic::new(
-                    line,
-                    1,
-                    "length of cutter compensation entry move is not greater than the tool radius",
-                ));
-            }
-            let alpha = (py - cy).atan2(px - cx) + if left { FRAC_PI_2 } else { -FRAC_PI_2 };
-            let tool_end = with_xy(end, px + r * alpha.cos(), py + r * alpha.sin());
-            self.comp.endpoint = Some([cx, cy]);
-            self.comp.queue.push(Queued::Straight {
-                rapid,
-                dir: [alpha.cos(), alpha.sin()],
-                end: tool_end,
-                feed,
+        if (px - cx).hypot(py - cy) <= r {
+            return Err(Diagnostic::new(
                 line,
-            });
-            self.comp.firstmove = false;
-            self.cur = tool_end;
-            self.comp.program = [px, py, end[2]];
-            return Ok(());
+                1,
+                "length of cutter compensation entry move is not greater than the tool radius",
+            ));
         }
+        let alpha = (py - cy).atan2(px - cx) + if left { FRAC_PI_2 } else { -FRAC_PI_2 };
+        let tool_end = with_xy(end, px + r * alpha.cos(), py + r * alpha.sin());
+        self.comp.endpoint = Some([cx, cy]);
+        self.comp.queue.push(Queued::Straight {
+            rapid,
+            dir: [alpha.cos(), alpha.sin()],
+            end: tool_end,
+            feed,
+            line,
+        });
+        self.comp.firstmove = false;
+        self.cur = tool_end;
+        self.comp.program = [px, py, end[2]];
+        Ok(())
+    }
+
+    /// A line after the first move (`convert_straight_comp2`): the corner with the
+    /// move before it, then the line, queued.
+    fn comp_corner_line(
+        &mut self,
+        rapid: bool,
+        end: Pos,
+        feed: Option<BlockFeed>,
+        line: usize,
+    ) -> Result<(), Diagnostic> {
+        let left = self.comp.left == Some(true);
+        let r = self.comp.radius;
+        let (px, py) = (end[0], end[1]);
+        let (cx, cy) = (self.cur[0], self.cur[1]);
         let [opx, opy, _] = self.comp.program;
         let cz = self.cur[2];
         if px == opx && py == opy {
+            let still = with_xy(end, cx, cy);
             self.comp.queue.push(Queued::Straight {
                 rapid,
                 dir: [0.0, 0.0],
-                end: with_xy(end, cx, cy),
+                end: still,
                 feed,
                 line,
             });
-            self.cur = with_xy(end, cx, cy);
-            self.comp.program = [px, py, end[2]];
+            (self.cur, self.comp.program) = (still, [px, py, end[2]]);
             return Ok(());
         }
         let mut theta = (cy - opy).atan2(cx - opx);
@@ -418,37 +487,27 @@ impl Interpreter<'_> {
             }
             (alpha - theta - FRAC_PI_2, -FRAC_PI_2)
         };
-        let tool_end = with_xy(end, px + r * (alpha + gamma).cos(), py + r * (alpha + gamma).sin());
-        let mid = [opx + r * (alpha + gamma).cos(), opy + r * (alpha + gamma).sin()];
-        let front_arc_turn = match self.comp.queue.first() {
-            Some(Queued::Arc { turn, .. }) => Some(*turn),
-            _ => None,
-        };
-        let concave = beta < -CORNER_SLACK
-            || beta > PI + CORNER_SLACK
-            || (beta > PI - CORNER_SLACK
-                && front_arc_turn.is_some_and(|t| (!left && t > 0) || (left && t < 0)));
+        let tool_end = with_xy(
+            end,
+            px + r * (alpha + gamma).cos(),
+            py + r * (alpha + gamma).sin(),
+        );
+        let mid = [
+            opx + r * (alpha + gamma).cos(),
+            opy + r * (alpha + gamma).sin(),
+        ];
+        let front_arc_turn = self.comp.queue.first().and_then(|q| match q {
+            Queued::Arc { turn, .. } => Some(*turn),
+            Queued::Straight { .. } => None,
+        });
+        let concave = !(-CORNER_SLACK..=PI + CORNER_SLACK).contains(&beta)
+            || (beta > PI - CORNER_SLACK && front_arc_turn.is_some_and(|t| inside(!left, t)));
         if !concave && beta > CORNER_SLACK {
             self.move_endpoint_and_flush(cx, cy, line)?;
             let mid_pos = with_xy(with_z(self.cur, cz), mid[0], mid[1]);
-            if rapid {
-                self.comp.queue.push(Queued::Straight {
-                    rapid: true,
-                    dir: [0.0, 0.0],
-                    end: mid_pos,
-                    feed,
-                    line,
-                });
-            } else {
-                self.comp.queue.push(Queued::Arc {
-                    sweep: 0.0,
-                    end: mid_pos,
-                    center: [opx, opy],
-                    turn: if left { -1 } else { 1 },
-                    feed,
-                    line,
-                });
-            }
+            self.comp
+                .queue
+                .push(turn_round(rapid, mid_pos, [opx, opy], left, feed, line));
             self.dequeue(line)?;
             self.comp.endpoint = Some(mid);
         } else if concave {
@@ -460,18 +519,8 @@ impl Interpreter<'_> {
                     ..
                 }) => arc_to_line_corner(left, r, [opx, opy], [px, py], qend, center, turn)
                     .map_err(|m| Diagnostic::new(line, 1, m))?,
-                _ => {
-                    let halfcorner = (beta + PI) / 2.0;
-                    if halfcorner == 0.0 {
-                        return Err(Diagnostic::new(
-                            line,
-                            1,
-                            "zero degree inside corner is invalid for cutter compensation",
-                        ));
-                    }
-                    let retreat = r / halfcorner.tan();
-                    (cx + retreat * (theta + gamma).cos(), cy + retreat * (theta + gamma).sin())
-                }
+                _ => line_to_line_corner(r, [cx, cy], theta + gamma, beta)
+                    .map_err(|m| Diagnostic::new(line, 1, m))?,
             };
             self.move_endpoint_and_flush(mx, my, line)?;
         } else {
@@ -485,8 +534,7 @@ impl Interpreter<'_> {
             feed,
             line,
         });
-        self.cur = tool_end;
-        self.comp.program = [px, py, end[2]];
+        (self.cur, self.comp.program) = (tool_end, [px, py, end[2]]);
         Ok(())
     }
 
@@ -526,7 +574,11 @@ impl Interpreter<'_> {
         }
         let left = self.comp.left == Some(true);
         let r = self.comp.radius;
-        let turn = if clockwise { -(turns as i32) } else { turns as i32 };
+        let turn = if clockwise {
+            -(turns as i32)
+        } else {
+            turns as i32
+        };
         let first = self.comp.firstmove;
         let start = if first {
             [self.cur[0], self.cur[1], self.cur[2]]
@@ -534,7 +586,9 @@ impl Interpreter<'_> {
             self.comp.program
         };
         if first && (end[0] - start[0]).hypot(end[1] - start[1]) <= r {
-            return err("radius of cutter compensation entry arc is not greater than the tool radius");
+            return err(
+                "radius of cutter compensation entry arc is not greater than the tool radius",
+            );
         }
         let request = ArcRequest {
             plane: Plane::Xy,
@@ -601,7 +655,11 @@ impl Interpreter<'_> {
         let r_end = (center[0] - tx).hypot(center[1] - ty);
         let r_start = (center[0] - cx).hypot(center[1] - cy);
         if (r_end - r_start).abs() > tol {
-            return Err(Diagnostic::new(line, column, "cutter compensation could not fit the entry arc"));
+            return Err(Diagnostic::new(
+                line,
+                column,
+                "cutter compensation could not fit the entry arc",
+            ));
         }
         let tool_end = with_xy(end, tx, ty);
         self.comp.queue.push(Queued::Arc {
@@ -633,10 +691,18 @@ impl Interpreter<'_> {
         let (ex, ey) = (end[0], end[1]);
         let arc_radius = (c[0] - ex).hypot(c[1] - ey);
         let mut theta = (cy - opy).atan2(cx - opx);
-        theta = if left { theta - FRAC_PI_2 } else { theta + FRAC_PI_2 };
+        theta = if left {
+            theta - FRAC_PI_2
+        } else {
+            theta + FRAC_PI_2
+        };
         let mut delta = (c[1] - opy).atan2(c[0] - opx);
         let ccw = turn > 0;
-        let alpha = if ccw { delta - FRAC_PI_2 } else { delta + FRAC_PI_2 };
+        let alpha = if ccw {
+            delta - FRAC_PI_2
+        } else {
+            delta + FRAC_PI_2
+        };
         let mut beta = if left { theta - alpha } else { alpha - theta };
         if beta > 1.5 * PI {
             beta -= TAU;
@@ -659,8 +725,7 @@ impl Interpreter<'_> {
             feed,
             line,
         };
-        let concave = beta < -CORNER_SLACK
-            || beta > PI + CORNER_SLACK
+        let concave = !(-CORNER_SLACK..=PI + CORNER_SLACK).contains(&beta)
             || ((beta - PI).abs() < CORNER_SLACK && !tool_inside);
         if concave {
             let (mx, my) = match self.comp.queue.first().copied() {
@@ -705,6 +770,47 @@ fn with_z(mut p: Pos, z: f64) -> Pos {
     p
 }
 
+/// The move round a convex corner to `end` about the programmed point `center`: an
+/// arc, or a straight rapid for G0.
+fn turn_round(
+    rapid: bool,
+    end: Pos,
+    center: [f64; 2],
+    left: bool,
+    feed: Option<BlockFeed>,
+    line: usize,
+) -> Queued {
+    if rapid {
+        return Queued::Straight {
+            rapid: true,
+            dir: [0.0, 0.0],
+            end,
+            feed,
+            line,
+        };
+    }
+    Queued::Arc {
+        sweep: 0.0,
+        end,
+        center,
+        turn: if left { -1 } else { 1 },
+        feed,
+        line,
+    }
+}
+
+/// A concave corner between two lines: the tool at `c` on the previous line's offset
+/// (direction `dir` back along it) moves back until it touches the next line's offset;
+/// `beta` is the turn between the lines.
+fn line_to_line_corner(r: f64, c: [f64; 2], dir: f64, beta: f64) -> Result<(f64, f64), String> {
+    let halfcorner = (beta + PI) / 2.0;
+    if halfcorner == 0.0 {
+        return Err("zero degree inside corner is invalid for cutter compensation".into());
+    }
+    let retreat = r / halfcorner.tan();
+    Ok((c[0] + retreat * dir.cos(), c[1] + retreat * dir.sin()))
+}
+
 /// A concave corner from a queued arc (centre `pc`, end `qend`, turn `pturn`) into a
 /// line from the programmed point `o` to `p`: where the tool on the arc's offset
 /// touches the line's offset.
@@ -728,7 +834,8 @@ fn arc_to_line_corner(
     let tool_inside = inside(left, pturn);
     let uncomp = if tool_inside { oldrad + r } else { oldrad - r };
     let d = uncomp * (theta - phi).cos();
-    let fail = "arc to straight motion makes a corner the compensated tool can't fit in without gouging";
+    let fail =
+        "arc to straight motion makes a corner the compensated tool can't fit in without gouging";
     let angle = if tool_inside {
         let l = (d - r) / oldrad;
         if !(-1.0..=1.0).contains(&l) {
@@ -772,7 +879,14 @@ fn line_to_arc_corner(
         if !(-1.0..=1.0).contains(&l) {
             return Err(fail.into());
         }
-        (dist, if turn > 0 { theta + l.asin() } else { theta - l.asin() })
+        (
+            dist,
+            if turn > 0 {
+                theta + l.asin()
+            } else {
+                theta - l.asin()
+            },
+        )
     } else {
         let dist = arc_radius + r;
         let l = (cy - r) / dist;
@@ -816,7 +930,10 @@ fn arc_to_arc_corner(
     }
     let a = (oldrad * oldrad + arc_cc * arc_cc - newrad * newrad) / (2.0 * oldrad * arc_cc);
     if !(-1.0..=1.0).contains(&a) {
-        return Err("arc to arc motion makes a corner the compensated tool can't fit in without gouging".into());
+        return Err(
+            "arc to arc motion makes a corner the compensated tool can't fit in without gouging"
+                .into(),
+        );
     }
     let pullback = a.acos();
     let cc_dir = (c[1] - pc[1]).atan2(c[0] - pc[0]);

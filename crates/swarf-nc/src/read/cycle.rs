@@ -74,37 +74,19 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         let column = self.motion_column(parsed);
         let err = |column: usize, m: String| Err(Diagnostic::new(line, column, m));
-        if self.feed <= 0.0 && !self.inverse_time {
-            return err(column, "cannot feed with zero feed rate: program F before a canned cycle".into());
-        }
-        if self.inverse_time {
-            return err(column, "cannot use inverse time feed (G93) with canned cycles".into());
-        }
-        if self.comp.is_on() {
-            return err(column, "cannot use canned cycles with cutter radius compensation on".into());
-        }
-        if n == 87 && self.plane != crate::read::arc::Plane::Xy {
-            return err(column, "G87 back boring is supported in the G17 plane only".into());
-        }
+        self.cycle_allowed(n, line, column)?;
         let same = previous == Some(Action::Cycle(n));
         let r_word = match parsed.get('R') {
             Some(r) => r.value,
             None if same => self.cycle.r,
-            None => return err(column, "R clearance plane unspecified in canned cycle".into()),
+            None => {
+                return err(
+                    column,
+                    "R clearance plane unspecified in canned cycle".into(),
+                );
+            }
         };
-        let repeats = match parsed.get('L') {
-            None => 1,
-            Some(l) => match integer(l.value) {
-                Ok(0) => return err(l.column, "cannot do zero repeats of a canned cycle (L0)".into()),
-                Ok(k) if (1..=MAX_CYCLE_STEPS).contains(&k) => k,
-                _ => {
-                    return err(
-                        l.column,
-                        format!("L (repeats) must be a whole number from 1 to {MAX_CYCLE_STEPS}"),
-                    );
-                }
-            },
-        };
+        let repeats = cycle_repeats(parsed, line)?;
         self.cycle_words(n, same, parsed, line, column)?;
         self.spindle_for(n, line, column)?;
         let abc = self.plane.indices();
@@ -115,7 +97,10 @@ impl Interpreter<'_> {
             None => {
                 return err(
                     column,
-                    format!("{c_letter} value unspecified in a {} plane canned cycle", self.plane.name()),
+                    format!(
+                        "{c_letter} value unspecified in a {} plane canned cycle",
+                        self.plane.name()
+                    ),
                 );
             }
         };
@@ -129,7 +114,10 @@ impl Interpreter<'_> {
         if r < bottom {
             return err(
                 column,
-                format!("R less than {c_letter} in a canned cycle in the {} plane", self.plane.name()),
+                format!(
+                    "R less than {c_letter} in a canned cycle in the {} plane",
+                    self.plane.name()
+                ),
             );
         }
         let mut current_c = current_c;
@@ -141,18 +129,23 @@ impl Interpreter<'_> {
             current_c = r;
         }
         let clear = if self.cycle.retract_to_r { r } else { old_c };
-        let levels = Levels { r, bottom, clear, abc };
+        let levels = Levels {
+            r,
+            bottom,
+            clear,
+            abc,
+        };
         let (mut a, mut b, steps) = self.hole_steps(parsed, line)?;
         for k in 0..repeats {
             (a, b) = step_hole(a, b, &steps).map_err(|m| Diagnostic::new(line, column, m))?;
-            if k == 0 && current_c > r {
-                self.cycle_move(true, &levels, a, b, current_c, line)?;
-                self.cycle_move(true, &levels, a, b, r, line)?;
+            let over = if k == 0 && current_c > r {
+                current_c
             } else {
-                self.cycle_move(true, &levels, a, b, clear, line)?;
-                if clear > r {
-                    self.cycle_move(true, &levels, a, b, r, line)?;
-                }
+                clear
+            };
+            self.cycle_move(true, &levels, a, b, over, line)?;
+            if over > r {
+                self.cycle_move(true, &levels, a, b, r, line)?;
             }
             self.cycle_body(n, &levels, a, b, line, column)?;
         }
@@ -162,6 +155,23 @@ impl Interpreter<'_> {
         self.cycle.bottom = bottom_word;
         self.cycle.r = r_word;
         Ok(())
+    }
+
+    /// Refuses a cycle without feed, in inverse time, with compensation on, or G87
+    /// out of G17.
+    fn cycle_allowed(&self, n: u8, line: usize, column: usize) -> Result<(), Diagnostic> {
+        let why = if self.inverse_time {
+            "cannot use inverse time feed (G93) with canned cycles"
+        } else if self.feed <= 0.0 {
+            "cannot feed with zero feed rate: program F before a canned cycle"
+        } else if self.comp.is_on() {
+            "cannot use canned cycles with cutter radius compensation on"
+        } else if n == 87 && self.plane != crate::read::arc::Plane::Xy {
+            "G87 back boring is supported in the G17 plane only"
+        } else {
+            return Ok(());
+        };
+        Err(Diagnostic::new(line, column, why))
     }
 
     /// P, Q and I J K of the cycle: given, or kept from the same cycle before.
@@ -208,9 +218,13 @@ impl Interpreter<'_> {
     fn spindle_for(&self, n: u8, line: usize, column: usize) -> Result<(), Diagnostic> {
         let turn = self.spindle;
         let message = match (n, turn) {
-            (74 | 84 | 86 | 87 | 88, SpindleTurn::Stopped) => format!("spindle not turning in G{n}"),
+            (74 | 84 | 86 | 87 | 88, SpindleTurn::Stopped) => {
+                format!("spindle not turning in G{n}")
+            }
             (74, SpindleTurn::Clockwise) => "spindle turning clockwise in G74".to_string(),
-            (84, SpindleTurn::CounterClockwise) => "spindle turning counterclockwise in G84".to_string(),
+            (84, SpindleTurn::CounterClockwise) => {
+                "spindle turning counterclockwise in G84".to_string()
+            }
             _ => return Ok(()),
         };
         Err(Diagnostic::new(line, column, message))
@@ -323,7 +337,15 @@ impl Interpreter<'_> {
     }
 
     /// G83 (`full`: out to R after each peck) and G73 (a short back-off).
-    fn pecks(&mut self, full: bool, l: &Levels, a: f64, b: f64, line: usize, column: usize) -> Result<(), Diagnostic> {
+    fn pecks(
+        &mut self,
+        full: bool,
+        l: &Levels,
+        a: f64,
+        b: f64,
+        line: usize,
+        column: usize,
+    ) -> Result<(), Diagnostic> {
         let delta = self.cycle.q;
         let back = if self.inch {
             PECK_CLEARANCE_INCH
@@ -354,6 +376,26 @@ impl Interpreter<'_> {
     }
 }
 
+/// The repeats of a cycle block (`L`, 1 without).
+fn cycle_repeats(parsed: &Words, line: usize) -> Result<i64, Diagnostic> {
+    let Some(l) = parsed.get('L') else {
+        return Ok(1);
+    };
+    match integer(l.value) {
+        Ok(0) => Err(Diagnostic::new(
+            line,
+            l.column,
+            "cannot do zero repeats of a canned cycle (L0)",
+        )),
+        Ok(k) if (1..=MAX_CYCLE_STEPS).contains(&k) => Ok(k),
+        _ => Err(Diagnostic::new(
+            line,
+            l.column,
+            format!("L (repeats) must be a whole number from 1 to {MAX_CYCLE_STEPS}"),
+        )),
+    }
+}
+
 /// The steps between holes of an incremental cycle: in the plane, and polar.
 #[derive(Debug, Clone, Copy, Default)]
 struct Steps {
@@ -371,7 +413,9 @@ fn step_hole(a: f64, b: f64, s: &Steps) -> Result<(f64, f64), String> {
             continue;
         }
         if a == 0.0 && b == 0.0 {
-            return Err("incremental motion with polar coordinates is indeterminate at the origin".into());
+            return Err(
+                "incremental motion with polar coordinates is indeterminate at the origin".into(),
+            );
         }
         let r = b.hypot(a) + radius;
         let t = b.atan2(a) + angle;

@@ -225,9 +225,7 @@ impl Expr {
             Expr::Param { index, column } => {
                 let raw = index.eval(params)?;
                 let i = integer(raw).map_err(|m| EvalError::new(*column, m))?;
-                params
-                    .numbered(i)
-                    .map_err(|m| EvalError::new(*column, m))
+                params.numbered(i).map_err(|m| EvalError::new(*column, m))
             }
             Expr::Named { name, column } => {
                 params.named(name).map_err(|m| EvalError::new(*column, m))
@@ -239,7 +237,10 @@ impl Expr {
             }
             Expr::Unary { func, arg, column } => {
                 let v = vacant_zero(arg.eval(params)?);
-                finite(unary(*func, v).map_err(|m| EvalError::new(*column, m))?, *column)
+                finite(
+                    unary(*func, v).map_err(|m| EvalError::new(*column, m))?,
+                    *column,
+                )
             }
             Expr::Atan(y, x) => {
                 let y = vacant_zero(y.eval(params)?);
@@ -254,7 +255,8 @@ impl Expr {
             } => {
                 let a = left.eval(params)?;
                 let b = right.eval(params)?;
-                let v = binary(*op, a, b, params.fanuc()).map_err(|m| EvalError::new(*column, m))?;
+                let v =
+                    binary(*op, a, b, params.fanuc()).map_err(|m| EvalError::new(*column, m))?;
                 finite(v, *column)
             }
         }
@@ -267,7 +269,10 @@ fn vacant_zero(v: f64) -> f64 {
 
 fn finite(v: f64, column: usize) -> Result<f64, EvalError> {
     if v.is_nan() {
-        Err(EvalError::new(column, "calculation resulted in 'not a number'"))
+        Err(EvalError::new(
+            column,
+            "calculation resulted in 'not a number'",
+        ))
     } else if v.is_infinite() {
         Err(EvalError::new(column, "calculation resulted in 'infinity'"))
     } else {
@@ -280,7 +285,9 @@ fn unary(func: Func, v: f64) -> Result<f64, String> {
         Func::Abs => v.abs(),
         Func::Acos | Func::Asin if !(-1.0..=1.0).contains(&v) => {
             let name = if func == Func::Acos { "acos" } else { "asin" };
-            return Err(format!("argument to {name} out of range: {v} (expected -1 to 1)"));
+            return Err(format!(
+                "argument to {name} out of range: {v} (expected -1 to 1)"
+            ));
         }
         Func::Acos => v.acos().to_degrees(),
         Func::Asin => v.asin().to_degrees(),
@@ -313,7 +320,9 @@ fn binary(op: Op, a: f64, b: f64, fanuc: bool) -> Result<f64, String> {
     let (a, b) = (vacant_zero(a), vacant_zero(b));
     Ok(match op {
         Op::Pow if a < 0.0 && b.floor() != b => {
-            return Err(format!("attempt to raise negative {a} to non-integer power {b}"));
+            return Err(format!(
+                "attempt to raise negative {a} to non-integer power {b}"
+            ));
         }
         Op::Pow => a.powf(b),
         Op::Mul => a * b,

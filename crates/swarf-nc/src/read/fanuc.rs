@@ -19,7 +19,7 @@
 //!   #21 #22 #23 #24 #25 #26`.
 
 use crate::read::expr::integer;
-use crate::read::flow::{Frame, LoopKind, MAX_CALL_DEPTH, Runner};
+use crate::read::flow::{Frame, MAX_CALL_DEPTH, Runner};
 use crate::read::lexer::{Statement, lex_line};
 use crate::read::modal::Flow;
 use crate::read::program::Diagnostic;
@@ -66,11 +66,35 @@ impl Runner<'_> {
             1..=33 | 100..=199 | 500..=999 => m.params.at(i),
             4001 => m.motion_code(),
             4002 => m.plane_code() / 10.0,
-            4003 => if m.absolute { 90.0 } else { 91.0 },
-            4005 => if m.inverse_time { 93.0 } else { 94.0 },
-            4006 => if m.inch { 20.0 } else { 21.0 },
+            4003 => {
+                if m.absolute {
+                    90.0
+                } else {
+                    91.0
+                }
+            }
+            4005 => {
+                if m.inverse_time {
+                    93.0
+                } else {
+                    94.0
+                }
+            }
+            4006 => {
+                if m.inch {
+                    20.0
+                } else {
+                    21.0
+                }
+            }
             4007 => m.comp_code() / 10.0,
-            4010 => if m.cycle.retract_to_r { 99.0 } else { 98.0 },
+            4010 => {
+                if m.cycle.retract_to_r {
+                    99.0
+                } else {
+                    98.0
+                }
+            }
             4014 => m.coord_system_code() / 10.0,
             4109 => m.feed / m.scale(),
             4120 => f64::from(m.tool_number().unwrap_or(0)),
@@ -82,32 +106,54 @@ impl Runner<'_> {
                 machine[i - 5021] / if i < 5024 { m.scale() } else { 1.0 }
             }
             5201..=5326 => m.params.at(i),
-            _ => return Err(format!("Fanuc system variable #{i} is not supported by swarf")),
+            _ => {
+                return Err(format!(
+                    "Fanuc system variable #{i} is not supported by swarf"
+                ));
+            }
         })
     }
 
     /// Sets variable `#index` in the Fanuc dialect.
-    pub(crate) fn set_fanuc(&mut self, i: i64, value: f64, line: usize, column: usize) -> Result<(), Diagnostic> {
+    pub(crate) fn set_fanuc(
+        &mut self,
+        i: i64,
+        value: f64,
+        line: usize,
+        column: usize,
+    ) -> Result<(), Diagnostic> {
         match i {
             1..=33 | 100..=199 | 500..=999 | 5201..=5326 => {
                 self.machine.params.set(i as usize, value);
                 Ok(())
             }
-            3000 => Err(self.error(line, column, format!("the program raised alarm #3000 = {value}"))),
+            3000 => Err(self.error(
+                line,
+                column,
+                format!("the program raised alarm #3000 = {value}"),
+            )),
             0 => Err(self.error(line, column, "#0 is always vacant and cannot be set")),
-            _ => Err(self.error(line, column, format!("Fanuc variable #{i} cannot be set by swarf"))),
+            _ => Err(self.error(
+                line,
+                column,
+                format!("Fanuc variable #{i} cannot be set by swarf"),
+            )),
         }
     }
 
     /// A Fanuc macro statement on `line`.
-    pub(crate) fn fanuc_statement(&mut self, s: FanucStatement, line: usize) -> Result<(), Diagnostic> {
+    pub(crate) fn fanuc_statement(
+        &mut self,
+        s: FanucStatement,
+        line: usize,
+    ) -> Result<(), Diagnostic> {
         let at = line - 1;
         match s {
             FanucStatement::Goto { condition, target } => {
-                if let Some(c) = condition {
-                    if self.eval(&c)? == 0.0 {
-                        return Ok(());
-                    }
+                if let Some(c) = condition
+                    && self.eval(&c)? == 0.0
+                {
+                    return Ok(());
                 }
                 let n = self.eval(&target)?;
                 let n = integer(n).ok().filter(|n| *n >= 0).ok_or_else(|| {
@@ -119,15 +165,17 @@ impl Runner<'_> {
                         self.pc.1 = i;
                         Ok(())
                     }
-                    None => Err(self.error(line, 1, format!("GOTO {n}: no block N{n} in this program"))),
+                    None => {
+                        Err(self.error(line, 1, format!("GOTO {n}: no block N{n} in this program")))
+                    }
                 }
             }
             FanucStatement::IfThen { condition, then } => {
                 if self.eval(&condition)? != 0.0 {
                     let index = match &then.target {
-                        crate::read::lexer::Target::Numbered(e) => {
-                            Some(integer(self.eval(e)?).map_err(|m| self.error(line, then.column, m))?)
-                        }
+                        crate::read::lexer::Target::Numbered(e) => Some(
+                            integer(self.eval(e)?).map_err(|m| self.error(line, then.column, m))?,
+                        ),
                         crate::read::lexer::Target::Named(_) => None,
                     };
                     let value = self.eval(&then.value)?;
@@ -176,7 +224,12 @@ impl Runner<'_> {
     fn fanuc_loop(&mut self, label: &Label, at: usize, line: usize) -> Result<(), Diagnostic> {
         let limit = self.opts.limits.loop_iterations;
         let frame = self.frame();
-        match frame.loops.iter_mut().rev().find(|l| l.label == *label && l.start == at) {
+        match frame
+            .loops
+            .iter_mut()
+            .rev()
+            .find(|l| l.label == *label && l.start == at)
+        {
             Some(ctx) => {
                 ctx.turns += 1;
                 if ctx.turns > limit {
@@ -189,9 +242,7 @@ impl Runner<'_> {
             }
             None => frame.loops.push(crate::read::flow::LoopCtx {
                 label: label.clone(),
-                kind: LoopKind::While,
                 start: at,
-                remaining: 0,
                 turns: 0,
             }),
         }
@@ -213,8 +264,13 @@ impl Runner<'_> {
 
     /// A block in the Fanuc dialect: M98, M99 and G65 are taken out and run after the
     /// rest of the block.
-    pub(crate) fn fanuc_block(&mut self, block: Vec<Word>, line: usize) -> Result<Flow, Diagnostic> {
-        let code = |w: &Word, letter: char, n: f64| w.letter == letter && (w.value - n).abs() < 1e-9;
+    pub(crate) fn fanuc_block(
+        &mut self,
+        block: Vec<Word>,
+        line: usize,
+    ) -> Result<Flow, Diagnostic> {
+        let code =
+            |w: &Word, letter: char, n: f64| w.letter == letter && (w.value - n).abs() < 1e-9;
         if let Some(g65) = block.iter().find(|w| code(w, 'G', 65.0)).copied() {
             return self.macro_call(&block, g65, line);
         }
@@ -229,7 +285,9 @@ impl Runner<'_> {
         }
         let rest: Vec<Word> = block
             .into_iter()
-            .filter(|w| !(code(w, 'M', 98.0) || code(w, 'M', 99.0) || w.letter == 'P' || w.letter == 'L'))
+            .filter(|w| {
+                !(code(w, 'M', 98.0) || code(w, 'M', 99.0) || w.letter == 'P' || w.letter == 'L')
+            })
             .collect();
         if !rest.is_empty() && self.execute(&rest, line)? == Flow::End {
             return Ok(Flow::End);
@@ -258,7 +316,11 @@ impl Runner<'_> {
             match G65_ARGUMENTS.iter().find(|(l, _)| *l == w.letter) {
                 Some(&(_, k)) => locals[k - 1] = w.value,
                 None => {
-                    return Err(self.error(line, w.column, format!("{} is not a G65 argument", w.letter)));
+                    return Err(self.error(
+                        line,
+                        w.column,
+                        format!("{} is not a G65 argument", w.letter),
+                    ));
                 }
             }
         }
@@ -267,24 +329,34 @@ impl Runner<'_> {
     }
 
     /// Enters program `O<p>`, `l` times; `locals`: a G65 call's fresh locals.
-    fn subprogram_call(&mut self, p: Word, l: Option<Word>, locals: Option<Vec<f64>>, line: usize) -> Result<(), Diagnostic> {
+    fn subprogram_call(
+        &mut self,
+        p: Word,
+        l: Option<Word>,
+        locals: Option<Vec<f64>>,
+        line: usize,
+    ) -> Result<(), Diagnostic> {
         let n = integer(p.value)
             .ok()
             .filter(|n| (0..=i64::from(u32::MAX)).contains(n))
-            .ok_or_else(|| self.error(line, p.column, "P: expected a program number"))? as u32;
+            .ok_or_else(|| self.error(line, p.column, "P: expected a program number"))?
+            as u32;
         let turns = match l {
             None => 1,
             Some(l) => integer(l.value)
                 .ok()
                 .filter(|k| *k >= 1 && (*k as u64) <= self.opts.limits.loop_iterations)
-                .ok_or_else(|| self.error(line, l.column, "L: expected a repeat count of 1 or more"))?
-                as u64,
+                .ok_or_else(|| {
+                    self.error(line, l.column, "L: expected a repeat count of 1 or more")
+                })? as u64,
         };
         if self.frames.len() > MAX_CALL_DEPTH {
             return Err(self.error(
                 line,
                 p.column,
-                format!("too many nested levels of subprograms: at most {MAX_CALL_DEPTH} calls deep"),
+                format!(
+                    "too many nested levels of subprograms: at most {MAX_CALL_DEPTH} calls deep"
+                ),
             ));
         }
         let (file, start) = self.find_program(n, line, p.column)?;
@@ -311,14 +383,24 @@ impl Runner<'_> {
 
     /// The first line of program `O<n>` (after its `O` line): in this file, the
     /// program's, or a file `O<n>.nc` on the search path.
-    fn find_program(&mut self, n: u32, line: usize, column: usize) -> Result<(usize, usize), Diagnostic> {
+    fn find_program(
+        &mut self,
+        n: u32,
+        line: usize,
+        column: usize,
+    ) -> Result<(usize, usize), Diagnostic> {
         let here = self.pc.0;
         for file in [here, 0] {
             if let Some(i) = self.sources[file].program(n) {
                 return Ok((file, i + 1));
             }
         }
-        for name in [format!("O{n:04}.nc"), format!("O{n}.nc"), format!("o{n}.ngc"), format!("{n}.nc")] {
+        for name in [
+            format!("O{n:04}.nc"),
+            format!("O{n}.nc"),
+            format!("o{n}.ngc"),
+            format!("{n}.nc"),
+        ] {
             if let Some(file) = self.load_file(&name, line)? {
                 let first = self.sources[file].program(n).map_or(0, |i| i + 1);
                 return Ok((file, first));
@@ -343,14 +425,14 @@ impl Runner<'_> {
             return Ok(Flow::End);
         }
         let frame = self.frame();
-        if let Some((turns, start)) = frame.repeat.as_mut() {
-            if *turns > 1 {
-                *turns -= 1;
-                let start = *start;
-                frame.loops.clear();
-                self.pc.1 = start;
-                return Ok(Flow::Continue);
-            }
+        if let Some((turns, start)) = frame.repeat.as_mut()
+            && *turns > 1
+        {
+            *turns -= 1;
+            let start = *start;
+            frame.loops.clear();
+            self.pc.1 = start;
+            return Ok(Flow::Continue);
         }
         let frame = self.frames.pop().expect("checked above");
         for (k, v) in frame.saved.iter().enumerate() {
@@ -360,9 +442,18 @@ impl Runner<'_> {
         if let Some(p) = p {
             let n = integer(p.value).unwrap_or(-1);
             let file = self.pc.0;
-            match u64::try_from(n).ok().and_then(|n| self.sources[file].numbered(n)) {
+            match u64::try_from(n)
+                .ok()
+                .and_then(|n| self.sources[file].numbered(n))
+            {
                 Some(i) => self.pc.1 = i,
-                None => return Err(self.error(line, p.column, format!("M99 P{n}: no block N{n} in the caller"))),
+                None => {
+                    return Err(self.error(
+                        line,
+                        p.column,
+                        format!("M99 P{n}: no block N{n} in the caller"),
+                    ));
+                }
             }
         }
         Ok(Flow::Continue)

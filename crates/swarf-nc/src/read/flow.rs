@@ -17,6 +17,7 @@
 use crate::read::expr::{Expr, ParamSource, integer};
 use crate::read::lexer::{Assignment, Line, Statement, Syntax, Target, lex_line};
 use crate::read::modal::{Flow, Interpreter};
+use crate::read::oword::OState;
 use crate::read::params::{PARAMETER_COUNT, is_read_only};
 use crate::read::program::Diagnostic;
 use crate::read::source::Source;
@@ -65,30 +66,15 @@ pub struct FlowOptions {
     pub limits: FlowLimits,
 }
 
-/// A loop in progress.
+/// A Fanuc `WHILE`/`DO` loop in progress.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct LoopCtx {
-    /// The O label, or the Fanuc DO number as `Label::Number`.
+    /// The DO number as `Label::Number`.
     pub label: Label,
-    /// What kind.
-    pub kind: LoopKind,
-    /// The line index of its head (`do`, `while`, `repeat`, `WHILE`, `DO`).
+    /// The line index of its head (`WHILE`, `DO`).
     pub start: usize,
-    /// Turns left (repeat).
-    pub remaining: i64,
     /// Turns so far.
     pub turns: u64,
-}
-
-/// Loop kinds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum LoopKind {
-    /// `do ... while`.
-    Do,
-    /// `while ... endwhile`, Fanuc `WHILE ... END`.
-    While,
-    /// `repeat ... endrepeat`.
-    Repeat,
 }
 
 /// One call level.
@@ -100,7 +86,7 @@ pub(crate) struct Frame {
     pub saved: Vec<f64>,
     /// Local named parameters.
     pub named: HashMap<Box<str>, f64>,
-    /// Loops in progress in this frame.
+    /// Fanuc loops in progress in this frame.
     pub loops: Vec<LoopCtx>,
     /// Fanuc M98/G65 with L: (turns left, line index of the subprogram's first line).
     pub repeat: Option<(u64, usize)>,
@@ -117,8 +103,8 @@ pub(crate) struct Runner<'k> {
     /// (source, line index) of the next line.
     pub pc: (usize, usize),
     pub messages: Vec<Diagnostic>,
-    /// Subroutines defined or found so far: (source, line index of `sub`).
-    pub subs: HashMap<Label, (usize, usize)>,
+    /// The O-word flow's skipping state.
+    pub(crate) o: OState,
     blocks: u64,
     /// The value of the last `return`/`endsub` (`#<_value>`), and whether one was given.
     pub value: (f64, bool),
@@ -154,7 +140,7 @@ impl<'k> Runner<'k> {
             opts,
             pc: (0, 0),
             messages: Vec::new(),
-            subs: HashMap::new(),
+            o: OState::default(),
             blocks: 0,
             value: (0.0, false),
         }
@@ -210,6 +196,9 @@ impl<'k> Runner<'k> {
         loop {
             let (file, index) = self.pc;
             let Some(text) = self.sources[file].line(index) else {
+                if self.o.skipping() {
+                    return Err(self.eof_while_skipping());
+                }
                 if self.frames.len() > 1 {
                     let label = self.frames.last().and_then(|f| f.label.clone());
                     let name = label.map_or_else(String::new, |l| format!(" {l}"));
@@ -234,6 +223,12 @@ impl<'k> Runner<'k> {
                         self.opts.limits.blocks
                     ),
                 ));
+            }
+            if self.o.skipping() {
+                if let Some(c) = o_word_line(text, line, self.syntax()) {
+                    self.control(c, line)?;
+                }
+                continue;
             }
             let lexed = lex_line(text, line, self.syntax()).map_err(|d| self.place(d))?;
             if lexed.percent {
@@ -321,7 +316,10 @@ impl<'k> Runner<'k> {
     pub fn execute(&mut self, block: &[Word], line: usize) -> Result<Flow, Diagnostic> {
         let attributed = self.program_line(line);
         let before = self.machine.motions.len();
-        let flow = self.machine.execute(block, line).map_err(|d| self.place(d))?;
+        let flow = self
+            .machine
+            .execute(block, line)
+            .map_err(|d| self.place(d))?;
         if attributed != line {
             for m in &mut self.machine.motions[before..] {
                 m.line = attributed;
@@ -353,7 +351,12 @@ impl<'k> Runner<'k> {
     }
 
     /// Makes a setting.
-    pub fn assign(&mut self, a: &Assignment, (index, value): (Option<i64>, f64), line: usize) -> Result<(), Diagnostic> {
+    pub fn assign(
+        &mut self,
+        a: &Assignment,
+        (index, value): (Option<i64>, f64),
+        line: usize,
+    ) -> Result<(), Diagnostic> {
         match (&a.target, index) {
             (Target::Named(name), _) => {
                 if let Some(global) = name.strip_prefix('_') {
@@ -371,7 +374,13 @@ impl<'k> Runner<'k> {
         }
     }
 
-    fn set_numbered(&mut self, i: i64, value: f64, line: usize, column: usize) -> Result<(), Diagnostic> {
+    fn set_numbered(
+        &mut self,
+        i: i64,
+        value: f64,
+        line: usize,
+        column: usize,
+    ) -> Result<(), Diagnostic> {
         if self.opts.fanuc {
             return self.set_fanuc(i, value, line, column);
         }
@@ -379,7 +388,10 @@ impl<'k> Runner<'k> {
             return Err(self.error(
                 line,
                 column,
-                format!("parameter number #{i} out of range (expected #1 to #{})", PARAMETER_COUNT - 1),
+                format!(
+                    "parameter number #{i} out of range (expected #1 to #{})",
+                    PARAMETER_COUNT - 1
+                ),
             ));
         }
         if is_read_only(i as usize) {
@@ -440,18 +452,27 @@ impl<'k> Runner<'k> {
                         i += close.map_or(chars.len(), |k| k + 1);
                         scope.named(&name).ok()
                     } else {
-                        let digits: String =
-                            chars[i..].iter().take_while(|c| c.is_ascii_digit()).collect();
+                        let digits: String = chars[i..]
+                            .iter()
+                            .take_while(|c| c.is_ascii_digit())
+                            .collect();
                         if digits.is_empty() {
                             out.push('#');
                             continue;
                         }
                         i += digits.len();
-                        digits.parse::<usize>().ok().and_then(|n| self.machine.params.get(n))
+                        digits
+                            .parse::<i64>()
+                            .ok()
+                            .and_then(|n| scope.numbered(n).ok())
                     };
                     match value {
                         Some(v) => {
-                            let v = if v.abs() < crate::read::expr::TOLERANCE_EQUAL { 0.0 } else { v };
+                            let v = if v.abs() < crate::read::expr::TOLERANCE_EQUAL {
+                                0.0
+                            } else {
+                                v
+                            };
                             out.push_str(&format!("{v:.decimals$}"));
                         }
                         None => out.push_str("######"),
@@ -465,8 +486,26 @@ impl<'k> Runner<'k> {
 
     /// An `O1234` line: the Fanuc program number (it starts a subprogram that M98
     /// calls; in the program's flow it is only a label).
-    fn program_number(&mut self, _n: u32, _line: usize, _column: usize) -> Result<Flow, Diagnostic> {
+    fn program_number(
+        &mut self,
+        _n: u32,
+        _line: usize,
+        _column: usize,
+    ) -> Result<Flow, Diagnostic> {
         Ok(Flow::Continue)
+    }
+}
+
+/// The O-word statement of a line, when it holds one and lexes (lines skipped past
+/// are read for their O words only).
+fn o_word_line(text: &str, line: usize, syntax: Syntax) -> Option<crate::read::statement::Control> {
+    let head = text.chars().find(|c| !matches!(c, ' ' | '\t' | '/'))?;
+    if !matches!(head, 'o' | 'O' | 'n' | 'N') {
+        return None;
+    }
+    match lex_line(text, line, syntax).ok()?.statement {
+        Statement::Control(c) => Some(c),
+        _ => None,
     }
 }
 
@@ -498,14 +537,14 @@ impl ParamSource for Scope<'_, '_> {
         let m = &r.machine;
         let i = index as usize;
         match i {
-            5420..=5428 if m.comp.is_on() => {
-                Err("cannot read the current position (#5420-#5428) with cutter radius compensation on".into())
-            }
+            5420..=5428 if m.comp.is_on() => Err(
+                "cannot read the current position (#5420-#5428) with cutter radius compensation on"
+                    .into(),
+            ),
             5420..=5425 => Ok(m.current()[i - 5420]),
             5426..=5428 => Ok(0.0),
             5400 => Ok(f64::from(m.tool_number().unwrap_or(0))),
-            5401..=5406 => Ok(m.offsets.tool[i - 5401]),
-            5410 => Ok(m.loaded_diameter()),
+            5401..=5410 => Ok(m.loaded_tool_parameter(i - 5401)),
             _ => Ok(m.params.at(i)),
         }
     }
@@ -559,6 +598,15 @@ fn predefined(name: &str) -> Option<Predefined> {
         "inverse_time" => |r| flag(r.machine.inverse_time),
         "units_per_minute" => |r| flag(!r.machine.inverse_time),
         "units_per_rev" => |_| flag(false),
+        "abs_x" => |r| Some(r.machine.canonical_machine(&r.machine.current())[0]),
+        "abs_y" => |r| Some(r.machine.canonical_machine(&r.machine.current())[1]),
+        "abs_z" => |r| Some(r.machine.canonical_machine(&r.machine.current())[2]),
+        "abs_a" => |r| Some(r.machine.canonical_machine(&r.machine.current())[3]),
+        "abs_b" => |r| Some(r.machine.canonical_machine(&r.machine.current())[4]),
+        "abs_c" => |r| Some(r.machine.canonical_machine(&r.machine.current())[5]),
+        "motion_mode" => |r| Some(10.0 * r.machine.motion_code()),
+        "selected_tool" => |r| Some(r.machine.selected_tool()),
+        "tool_offset" => |r| flag(r.machine.offsets.tool.iter().any(|v| *v != 0.0)),
         "coord_system" => |r| Some(r.machine.coord_system_code()),
         "plane" => |r| Some(r.machine.plane_code()),
         "ccomp" => |r| Some(r.machine.comp_code()),

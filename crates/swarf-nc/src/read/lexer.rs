@@ -142,16 +142,14 @@ fn statement(cursor: &mut Cursor, syntax: Syntax) -> Result<Statement, Diagnosti
     if cursor.at_end() {
         return Ok(Statement::Empty);
     }
-    if syntax.fanuc {
-        if let Some(s) = fanuc_statement(cursor)? {
-            return Ok(Statement::Fanuc(s));
-        }
+    if syntax.fanuc
+        && let Some(s) = fanuc_statement(cursor)?
+    {
+        return Ok(Statement::Fanuc(s));
     }
     if cursor.peek() == Some('o') {
         let column = cursor.column();
-        if cursor.peek_at(1).is_some_and(|c| c.is_ascii_digit())
-            && cursor.all_digits_after(1)
-        {
+        if cursor.peek_at(1).is_some_and(|c| c.is_ascii_digit()) && cursor.all_digits_after(1) {
             cursor.bump();
             let (value, _) = cursor.plain_number(column, 'O')?;
             if value > f64::from(u32::MAX) {
@@ -257,7 +255,10 @@ impl Cursor {
                         }
                         Some((k, _)) => return Err(error(k + 1, "nested comment")),
                         None => {
-                            return Err(error(i + 1, "unclosed comment: '(' without ')' on this line"));
+                            return Err(error(
+                                i + 1,
+                                "unclosed comment: '(' without ')' on this line",
+                            ));
                         }
                     }
                 }
@@ -311,7 +312,9 @@ impl Cursor {
     }
 
     fn all_digits_after(&self, k: usize) -> bool {
-        self.chars[self.at + k..].iter().all(|c| c.0.is_ascii_digit())
+        self.chars[self.at + k..]
+            .iter()
+            .all(|c| c.0.is_ascii_digit())
     }
 
     /// Consumes `word` (lower case) if the characters at the cursor spell it.
@@ -333,7 +336,10 @@ impl Cursor {
             self.bump();
             Ok(())
         } else {
-            Err(self.error(self.column(), format!("expected '{c}' {what}, found {}", self.found())))
+            Err(self.error(
+                self.column(),
+                format!("expected '{c}' {what}, found {}", self.found()),
+            ))
         }
     }
 
@@ -480,7 +486,9 @@ impl Cursor {
                 Some(']' | ',') => break,
                 None if open.is_none() => break,
                 None => {
-                    return Err(self.error(open.unwrap_or(1), "unclosed expression: '[' without ']'"));
+                    return Err(
+                        self.error(open.unwrap_or(1), "unclosed expression: '[' without ']'")
+                    );
                 }
                 Some(_) if open.is_none() && !self.at_operator() => break,
                 _ => {}
@@ -534,7 +542,13 @@ impl Cursor {
                 return Ok(op);
             }
         }
-        Err(self.error(column, format!("unknown operation: expected an operator or ']', found {}", self.found())))
+        Err(self.error(
+            column,
+            format!(
+                "unknown operation: expected an operator or ']', found {}",
+                self.found()
+            ),
+        ))
     }
 
     /// A function name and its bracketed argument(s).
@@ -573,7 +587,9 @@ impl Cursor {
             ("exists", _) => {
                 self.bump();
                 if !(self.peek() == Some('#') && self.peek_at(1) == Some('<')) {
-                    return Err(self.error(self.column(), "exists[] takes a named parameter #<name>"));
+                    return Err(
+                        self.error(self.column(), "exists[] takes a named parameter #<name>")
+                    );
                 }
                 self.bump();
                 let n = self.name()?;
@@ -647,7 +663,11 @@ mod tests {
             Ok(index as f64 * 10.0)
         }
         fn named(&self, name: &str) -> Result<f64, String> {
-            if name == "depth" { Ok(2.5) } else { Err(format!("#<{name}> undefined")) }
+            if name == "depth" {
+                Ok(2.5)
+            } else {
+                Err(format!("#<{name}> undefined"))
+            }
         }
         fn exists(&self, name: &str) -> bool {
             name == "depth"
@@ -685,7 +705,12 @@ mod tests {
     fn words_with_columns_and_spaces_inside_numbers() {
         assert_eq!(
             words("g1 x 1 0.5 Y-.5 z+2."),
-            vec![('G', 1.0, 1), ('X', 10.5, 4), ('Y', -0.5, 12), ('Z', 2.0, 17)]
+            vec![
+                ('G', 1.0, 1),
+                ('X', 10.5, 4),
+                ('Y', -0.5, 12),
+                ('Z', 2.0, 17)
+            ]
         );
         assert_eq!(words("G90.1"), vec![('G', 90.1, 1)]);
         assert_eq!(lex("N0010 G0X1Y2").number, Some(10.0));
@@ -696,7 +721,10 @@ mod tests {
     fn expressions_precedence_and_functions() {
         assert_eq!(value("[1 + 2 * 3]"), 7.0);
         assert_eq!(value("[2 ** 3 ** 2]"), 64.0);
-        assert_eq!(value("[9+8*7/6+5-4*3**2+1]"), 9.0 + 56.0 / 6.0 + 5.0 - 36.0 + 1.0);
+        assert_eq!(
+            value("[9+8*7/6+5-4*3**2+1]"),
+            9.0 + 56.0 / 6.0 + 5.0 - 36.0 + 1.0
+        );
         assert_eq!(value("[1 + 2 gt 2 and 1]"), 1.0);
         assert_eq!(value("[7 mod 3]"), 1.0);
         assert!((value("sin[30]") - 0.5).abs() < 1e-15);
@@ -720,7 +748,10 @@ mod tests {
         assert_eq!(assignments.len(), 2);
         assert_eq!(assignments[1].target, Target::Named("depth".into()));
         assert_eq!(l.comments, vec!["c".to_string()]);
-        assert!(matches!(lex("O1000 (PART)").statement, Statement::ProgramNumber(1000, 1)));
+        assert!(matches!(
+            lex("O1000 (PART)").statement,
+            Statement::ProgramNumber(1000, 1)
+        ));
         assert!(matches!(lex("o100 sub").statement, Statement::Control(_)));
         assert!(lex("  % ").percent);
         assert!(lex("(only a comment)").is_empty());
@@ -741,6 +772,10 @@ mod tests {
         assert_eq!(err("G0 X--1").0, 4);
         assert_eq!(err("#1 5").0, 5);
         assert!(err("G1 X1 o100 call").1.contains("O-word"));
-        assert!(err(&format!("G1 X1{}", "9".repeat(400))).1.contains("too large"));
+        assert!(
+            err(&format!("G1 X1{}", "9".repeat(400)))
+                .1
+                .contains("too large")
+        );
     }
 }

@@ -47,11 +47,11 @@ pub mod words;
 pub use cl::parse_cl;
 pub use flow::FlowLimits;
 pub use gcode::{GcodeReadOptions, parse_gcode};
-pub use params::parse_var_file;
-pub use tooltable::{Tool, ToolTable};
 pub use kinematics::{AxisPosition, Kinematics};
+pub use params::parse_var_file;
 pub use pose_csv::parse_pose_csv;
 pub use program::{Diagnostic, Motion, MotionKind, Program};
+pub use tooltable::{Tool, ToolTable};
 
 use crate::error::NcError;
 use std::path::Path;

@@ -198,6 +198,7 @@ impl<'k> Interpreter<'k> {
             self.motion_words(action, &parsed, line)?;
         } else if parsed.has_g(Action::CancelMotion).is_some() {
             self.motion = None;
+            self.cycle.initial_level = None;
         }
         self.stop(&parsed, line)
     }
@@ -210,18 +211,22 @@ impl<'k> Interpreter<'k> {
         let covets = parsed.g.iter().find(|g| {
             matches!(
                 g.2,
-                Action::SetData
-                    | Action::Home { .. }
-                    | Action::AxisOffset { .. }
+                Action::SetData | Action::Home { .. } | Action::AxisOffset { .. }
             )
         });
         let err = |column: usize, m: &str| Err(Diagnostic::new(line, column, m));
         if let Some(p) = polar {
             if self.plane != Plane::Xy {
-                return err(p.column, "polar coordinates (@, ^) can only be used in the G17 plane");
+                return err(
+                    p.column,
+                    "polar coordinates (@, ^) can only be used in the G17 plane",
+                );
             }
             if let Some(w) = parsed.get('X').or(parsed.get('Y')) {
-                return err(w.column, "cannot give both polar coordinates (@, ^) and X or Y words");
+                return err(
+                    w.column,
+                    "cannot give both polar coordinates (@, ^) and X or Y words",
+                );
             }
         }
         let moved = axis.or(polar);
@@ -244,7 +249,11 @@ impl<'k> Interpreter<'k> {
             }
             return Ok(Some(action));
         }
-        if covets.is_some() {
+        let dynamic = parsed
+            .g
+            .iter()
+            .any(|g| matches!(g.2, Action::LengthOffsetGiven | Action::LengthOffsetAdd));
+        if covets.is_some() || dynamic {
             return Ok(None);
         }
         if let Some(w) = moved {
@@ -294,7 +303,15 @@ impl<'k> Interpreter<'k> {
             return Err(Diagnostic::new(line, s.column, "negative spindle speed S"));
         }
         if let Some(t) = parsed.get('T') {
-            self.selected_tool = Some(whole(t, line, "tool number T")?);
+            let n = whole(t, line, "tool number T")?;
+            if n != 0 && self.setup.tool_table.is_some() && self.tools.get(n).is_none() {
+                return Err(Diagnostic::new(
+                    line,
+                    t.column,
+                    format!("requested tool {n} not found in the tool table"),
+                ));
+            }
+            self.selected_tool = Some(n);
         }
         Ok(())
     }
@@ -317,9 +334,17 @@ impl<'k> Interpreter<'k> {
         }
         if let Some(g4) = parsed.has_g(Action::Dwell) {
             if parsed.get('P').is_none() {
-                return Err(Diagnostic::new(line, g4.column, "dwell time P word missing with G4"));
+                return Err(Diagnostic::new(
+                    line,
+                    g4.column,
+                    "dwell time P word missing with G4",
+                ));
             }
-            self.warn(line, g4.column, "G4 dwell ignored: machining times exclude it");
+            self.warn(
+                line,
+                g4.column,
+                "G4 dwell ignored: machining times exclude it",
+            );
         }
         Ok(())
     }
@@ -376,9 +401,10 @@ impl<'k> Interpreter<'k> {
         }
         for &(_, _, action, w) in &parsed.g {
             match action {
-                Action::LengthOffset | Action::LengthOffsetOff => {
-                    self.tool_length_offset(action == Action::LengthOffset, parsed, w, line)?;
-                }
+                Action::LengthOffset
+                | Action::LengthOffsetOff
+                | Action::LengthOffsetGiven
+                | Action::LengthOffsetAdd => self.tool_length_offset(action, parsed, w, line)?,
                 Action::CoordSystem(n) => self.select_coordinate_system(n, w, line)?,
                 _ => {}
             }
@@ -493,9 +519,7 @@ impl<'k> Interpreter<'k> {
 
     /// The loaded tool's offsets from the tool table, program units.
     pub(crate) fn loaded_offset(&self) -> Pos {
-        let tool = self
-            .loaded_tool
-            .and_then(|t| self.tools.get(t));
+        let tool = self.loaded_tool.and_then(|t| self.tools.get(t));
         let mut out = [0.0; 6];
         if let Some(t) = tool {
             for (k, o) in out.iter_mut().enumerate() {
@@ -509,19 +533,32 @@ impl<'k> Interpreter<'k> {
         out
     }
 
-    /// The loaded tool's diameter from the tool table, program units (0 without one).
-    pub(crate) fn loaded_diameter(&self) -> f64 {
-        let d = self
-            .loaded_tool
-            .and_then(|t| self.tools.get(t))
-            .map_or(0.0, |t| t.diameter);
-        self.user_to_program(d)
+    /// `#5401 + k` of the loaded tool's table entry, machine units: its offsets
+    /// X Y Z A B C U V W (k = 0 ... 8) and its diameter (k = 9).
+    pub(crate) fn loaded_tool_parameter(&self, k: usize) -> f64 {
+        let Some(tool) = self.loaded_tool.and_then(|t| self.tools.get(t)) else {
+            return 0.0;
+        };
+        match k {
+            0..=5 => tool.offset[k],
+            9 => tool.diameter,
+            _ => 0.0,
+        }
+    }
+
+    /// The selected tool (T), 0 when none.
+    pub(crate) fn selected_tool(&self) -> f64 {
+        f64::from(self.selected_tool.unwrap_or(0))
     }
 
     /// The coordinate system as a G code times ten: 540 (G54) ... 593 (G59.3).
     pub(crate) fn coord_system_code(&self) -> f64 {
         let n = f64::from(self.offsets.index);
-        if n <= 6.0 { 530.0 + 10.0 * n } else { 590.0 + (n - 6.0) }
+        if n <= 6.0 {
+            530.0 + 10.0 * n
+        } else {
+            590.0 + (n - 6.0)
+        }
     }
 
     /// The plane as a G code times ten: 170, 180, 190.

@@ -56,7 +56,11 @@ impl Interpreter<'_> {
         parsed
             .motion_code()
             .map(|(_, w)| w.column)
-            .or_else(|| parsed.axis_word(self.axes.rotary_letters()).map(|w| w.column))
+            .or_else(|| {
+                parsed
+                    .axis_word(self.axes.rotary_letters())
+                    .map(|w| w.column)
+            })
             .or_else(|| parsed.get('@').or(parsed.get('^')).map(|w| w.column))
             .unwrap_or(1)
     }
@@ -103,40 +107,12 @@ impl Interpreter<'_> {
             return err(w.column, "G53 must be used with G0 or G1".into());
         }
         let plane = self.plane;
-        let foreign = plane.foreign_offset();
-        if let Some(w) = parsed.get(foreign) {
-            return err(
-                w.column,
-                format!("{foreign} word given for an arc in the {} plane", plane.name()),
-            );
-        }
-        let [la, lb] = plane.offset_letters();
-        let [oa, ob] = [la, lb].map(|l| parsed.get(l));
-        let center = match (parsed.get('R'), oa.or(ob)) {
-            (Some(r), Some(_)) => {
-                return err(r.column, "mixed radius (R) and centre (I/J/K) format for an arc".into());
-            }
-            (Some(r), None) => CenterWords::Radius(r.value),
-            (None, Some(w)) => {
-                if self.ijk_absolute {
-                    if let Some(missing) = [(la, oa), (lb, ob)].iter().find(|(_, o)| o.is_none()) {
-                        return err(w.column, format!("{} word missing in absolute center arc", missing.0));
-                    }
-                }
-                CenterWords::Offsets([oa, ob].map(|w| w.map_or(0.0, |w| w.value)))
-            }
-            (None, None) => return err(column, format!("arc without R, {la} or {lb} words")),
-        };
-        if let CenterWords::Radius(_) = center {
-            let [xa, xb] = plane.axis_letters();
-            let polar = parsed.get('@').or(parsed.get('^'));
-            if parsed.get(xa).is_none() && parsed.get(xb).is_none() && polar.is_none() {
-                return err(column, format!("{xa} and {xb} words missing for an R arc in the {} plane", plane.name()));
-            }
-        }
+        let center = self.center_words(parsed, line, column)?;
         let turns = match parsed.get('P') {
             None => 1,
-            Some(p) if p.value >= 1.0 && p.value.fract() == 0.0 && p.value <= f64::from(MAX_TURNS) => {
+            Some(p)
+                if p.value >= 1.0 && p.value.fract() == 0.0 && p.value <= f64::from(MAX_TURNS) =>
+            {
                 p.value as u32
             }
             Some(p) => {
@@ -176,6 +152,61 @@ impl Interpreter<'_> {
         self.emit_arc(&arc, end, feed, line)?;
         self.cur = end;
         Ok(())
+    }
+
+    /// How an arc block gives its centre: `R`, or the plane's offset words (both in
+    /// G90.1), with LinuxCNC's checks.
+    fn center_words(
+        &self,
+        parsed: &Words,
+        line: usize,
+        column: usize,
+    ) -> Result<CenterWords, Diagnostic> {
+        let err = |column: usize, message: String| Err(Diagnostic::new(line, column, message));
+        let plane = self.plane;
+        let foreign = plane.foreign_offset();
+        if let Some(w) = parsed.get(foreign) {
+            return err(
+                w.column,
+                format!(
+                    "{foreign} word given for an arc in the {} plane",
+                    plane.name()
+                ),
+            );
+        }
+        let [la, lb] = plane.offset_letters();
+        let [oa, ob] = [la, lb].map(|l| parsed.get(l));
+        let center = match (parsed.get('R'), oa.or(ob)) {
+            (Some(r), Some(_)) => {
+                return err(
+                    r.column,
+                    "mixed radius (R) and centre (I/J/K) format for an arc".into(),
+                );
+            }
+            (Some(r), None) => CenterWords::Radius(r.value),
+            (None, Some(w)) => {
+                let missing = [(la, oa), (lb, ob)].into_iter().find(|(_, o)| o.is_none());
+                if let (true, Some((l, _))) = (self.ijk_absolute, missing) {
+                    return err(w.column, format!("{l} word missing in absolute center arc"));
+                }
+                CenterWords::Offsets([oa, ob].map(|w| w.map_or(0.0, |w| w.value)))
+            }
+            (None, None) => return err(column, format!("arc without R, {la} or {lb} words")),
+        };
+        if let CenterWords::Radius(_) = center {
+            let [xa, xb] = plane.axis_letters();
+            let polar = parsed.get('@').or(parsed.get('^'));
+            if parsed.get(xa).is_none() && parsed.get(xb).is_none() && polar.is_none() {
+                return err(
+                    column,
+                    format!(
+                        "{xa} and {xb} words missing for an R arc in the {} plane",
+                        plane.name()
+                    ),
+                );
+            }
+        }
+        Ok(center)
     }
 
     /// How the feed of a motion block is given (see [`crate::read::feed`]).
@@ -228,7 +259,12 @@ impl Interpreter<'_> {
 
     /// The end point of the block's motion, program coordinates (`find_ends`); with
     /// `polar`, `@` and `^` words place it.
-    pub(crate) fn find_ends(&self, parsed: &Words, line: usize, polar: bool) -> Result<Pos, Diagnostic> {
+    pub(crate) fn find_ends(
+        &self,
+        parsed: &Words,
+        line: usize,
+        polar: bool,
+    ) -> Result<Pos, Diagnostic> {
         let err = |column: usize, m: &str| Err(Diagnostic::new(line, column, m));
         let r_word = parsed.get('@').filter(|_| polar);
         let t_word = parsed.get('^').filter(|_| polar);
@@ -237,7 +273,10 @@ impl Interpreter<'_> {
                 return err(w.column, "cannot use polar coordinates with G53");
             }
             if !self.absolute {
-                return err(g53.column, "cannot use G53 in incremental distance mode (G91)");
+                return err(
+                    g53.column,
+                    "cannot use G53 in incremental distance mode (G91)",
+                );
             }
             return Ok(self.machine_coordinates_end(parsed));
         }
@@ -251,7 +290,11 @@ impl Interpreter<'_> {
         let letters = ['X', 'Y', 'Z', 'A', 'B', 'C'];
         for (k, l) in letters.into_iter().enumerate() {
             if let Some(w) = parsed.get(l) {
-                end[k] = if self.absolute { w.value } else { base[k] + w.value };
+                end[k] = if self.absolute {
+                    w.value
+                } else {
+                    base[k] + w.value
+                };
             }
         }
         if r_word.is_none() && t_word.is_none() {
@@ -263,7 +306,10 @@ impl Interpreter<'_> {
             let (radius, theta) = match (r_word, t_word) {
                 (Some(r), Some(t)) => (r.value, t.value.to_radians()),
                 (Some(r), None) if x == 0.0 && y == 0.0 => {
-                    return err(r.column, "must specify the angle (^) in polar coordinates at the origin");
+                    return err(
+                        r.column,
+                        "must specify the angle (^) in polar coordinates at the origin",
+                    );
                 }
                 (Some(r), None) => (r.value, y.atan2(x)),
                 (None, Some(t)) => (y.hypot(x), t.value.to_radians()),
@@ -273,7 +319,10 @@ impl Interpreter<'_> {
             end[1] = radius * theta.sin();
         } else {
             if x == 0.0 && y == 0.0 {
-                return err(column, "incremental motion with polar coordinates is indeterminate at the origin");
+                return err(
+                    column,
+                    "incremental motion with polar coordinates is indeterminate at the origin",
+                );
             }
             let mut radius = y.hypot(x);
             let mut theta = y.atan2(x);

@@ -58,6 +58,16 @@ pub fn rotate(x: f64, y: f64, degrees: f64) -> (f64, f64) {
     (x * c - y * s, x * s + y * c)
 }
 
+/// `a + b`.
+fn plus(a: &Pos, b: &Pos) -> Pos {
+    std::array::from_fn(|k| a[k] + b[k])
+}
+
+/// `a - b`.
+fn minus(a: &Pos, b: &Pos) -> Pos {
+    std::array::from_fn(|k| a[k] - b[k])
+}
+
 /// The first parameter of system `n`'s block (`#5201 + 20 n`: X of G54 is #5221).
 fn system_base(n: u8) -> usize {
     5201 + 20 * usize::from(n)
@@ -80,7 +90,11 @@ impl Interpreter<'_> {
         let mut p = [0.0; 6];
         for (k, v) in p.iter_mut().enumerate() {
             let raw = self.params.at(first + k);
-            *v = if k < 3 { self.user_to_program(raw) } else { raw };
+            *v = if k < 3 {
+                self.user_to_program(raw)
+            } else {
+                raw
+            };
         }
         p
     }
@@ -93,18 +107,28 @@ impl Interpreter<'_> {
         self.params.set(5220, f64::from(index));
     }
 
-    /// The machine position (mm and degrees) of the program point `p`: the canonical
-    /// transform, less the loaded tool's offset (module docs).
-    pub(crate) fn to_machine(&self, p: &Pos) -> Pos {
+    /// The canonical machine position of the program point `p`, program units:
+    /// `rot(p + g92) + g5x + tool` (LinuxCNC's `#<_abs_x>` ...).
+    pub(crate) fn canonical_machine(&self, p: &Pos) -> Pos {
         let o = &self.offsets;
         let (x, y) = rotate(p[0] + o.axis[0], p[1] + o.axis[1], o.rotation);
-        let loaded = self.loaded_offset();
         let mut m = [x, y, p[2] + o.axis[2], 0.0, 0.0, 0.0];
         for k in 3..6 {
             m[k] = p[k] + o.axis[k];
         }
         for (k, v) in m.iter_mut().enumerate() {
-            *v += o.origin[k] + o.tool[k] - loaded[k];
+            *v += o.origin[k] + o.tool[k];
+        }
+        m
+    }
+
+    /// The machine position (mm and degrees) of the program point `p`: the canonical
+    /// transform, less the loaded tool's offset (module docs).
+    pub(crate) fn to_machine(&self, p: &Pos) -> Pos {
+        let loaded = self.loaded_offset();
+        let mut m = self.canonical_machine(p);
+        for (k, v) in m.iter_mut().enumerate() {
+            *v -= loaded[k];
         }
         let s = self.scale();
         for v in m[..3].iter_mut() {
@@ -146,17 +170,9 @@ impl Interpreter<'_> {
     /// offset and the loaded tool's: LinuxCNC's `find_relative`).
     fn program_of_machine(&self, m: &Pos) -> Pos {
         let o = &self.offsets;
-        let mut p = [0.0; 6];
-        for k in 0..6 {
-            p[k] = m[k] - o.origin[k] - o.tool[k];
-        }
-        let (x, y) = rotate(p[0], p[1], -o.rotation);
-        p[0] = x - o.axis[0];
-        p[1] = y - o.axis[1];
-        for k in 2..6 {
-            p[k] -= o.axis[k];
-        }
-        p
+        let mut p = minus(&minus(m, &o.origin), &o.tool);
+        (p[0], p[1]) = rotate(p[0], p[1], -o.rotation);
+        minus(&p, &o.axis)
     }
 
     /// G54 ... G59.3 (`n` = 1 ... 9).
@@ -184,15 +200,10 @@ impl Interpreter<'_> {
     /// The current point in system `n` (LinuxCNC's `find_current_in_system`).
     fn current_in_system(&self, n: u8) -> Pos {
         let o = &self.offsets;
-        let mut p = self.cur;
-        for k in 0..6 {
-            p[k] += o.axis[k];
-        }
+        let mut p = plus(&self.cur, &o.axis);
         (p[0], p[1]) = rotate(p[0], p[1], o.rotation);
         let target = self.stored(system_base(n));
-        for k in 0..6 {
-            p[k] += o.origin[k] - target[k];
-        }
+        let mut p = minus(&plus(&p, &o.origin), &target);
         (p[0], p[1]) = rotate(p[0], p[1], -self.params.at(system_base(n) + 9));
         if self.params.at(5210) != 0.0 {
             let g92 = self.stored(5211);
@@ -203,11 +214,12 @@ impl Interpreter<'_> {
         p
     }
 
-    /// G43 (`on`) with H (or the loaded tool), or G49. Without a tool table every
-    /// tool's offset is 0: the program's points are the tip.
+    /// G43 with H (or the loaded tool), G49, G43.1 (the offset in the block's axis
+    /// words) or G43.2 (plus tool H's offset). Without a tool table every tool's offset
+    /// is 0: the program's points are the tip.
     pub(crate) fn tool_length_offset(
         &mut self,
-        on: bool,
+        action: Action,
         parsed: &Words,
         w: crate::read::words::Word,
         line: usize,
@@ -219,30 +231,57 @@ impl Interpreter<'_> {
                 "cannot change the tool offset with cutter radius compensation on",
             ));
         }
-        let mut new = [0.0; 6];
-        if on {
-            let number = match parsed.get('H') {
-                Some(h) => Some(crate::read::modal::whole(h, line, "H (tool number)")?),
-                None => self.loaded_tool,
-            };
-            let table = self.setup.tool_table.is_some() || !self.tools.tools.is_empty();
-            if let Some(n) = number.filter(|&n| n != 0 && table) {
-                let Some(tool) = self.tools.get(n).copied() else {
+        let letters = ['X', 'Y', 'Z', 'A', 'B', 'C'];
+        let new = match action {
+            Action::LengthOffset => {
+                let number = match parsed.get('H') {
+                    Some(h) => Some(crate::read::modal::whole(h, line, "H (tool number)")?),
+                    None => self.loaded_tool,
+                };
+                let number = match number {
+                    Some(0) | None => self.loaded_tool,
+                    n => n,
+                };
+                self.table_offset(number, parsed.get('H').map_or(w.column, |h| h.column), line)?
+            }
+            Action::LengthOffsetGiven => {
+                let mut new = self.offsets.tool;
+                for (k, l) in letters.into_iter().enumerate() {
+                    if let Some(v) = parsed.get(l) {
+                        new[k] = v.value;
+                    }
+                }
+                new
+            }
+            Action::LengthOffsetAdd => {
+                let Some(h) = parsed.get('H') else {
                     return Err(Diagnostic::new(
                         line,
-                        parsed.get('H').map_or(w.column, |h| h.column),
-                        format!("tool number {n} not found in the tool table"),
+                        w.column,
+                        "G43.2 without an H word: LinuxCNC 2.9 looks up tool -1 and refuses it",
                     ));
                 };
-                for (k, v) in new.iter_mut().enumerate() {
-                    *v = if k < 3 {
-                        self.user_to_program(tool.offset[k])
-                    } else {
-                        tool.offset[k]
-                    };
+                if let Some(a) = letters.iter().find_map(|&l| parsed.get(l)) {
+                    return Err(Diagnostic::new(
+                        line,
+                        a.column,
+                        "G43.2: cannot have both H and axis words",
+                    ));
                 }
+                let n = crate::read::modal::whole(h, line, "H (tool number)")?;
+                let add = self.table_offset(
+                    Some(n).filter(|&n| n != 0).or(self.loaded_tool),
+                    h.column,
+                    line,
+                )?;
+                let mut new = self.offsets.tool;
+                for k in 0..6 {
+                    new[k] += add[k];
+                }
+                new
             }
-        }
+            _ => [0.0; 6],
+        };
         let old = self.offsets.tool;
         let (dx, dy) = rotate(old[0] - new[0], old[1] - new[1], -self.offsets.rotation);
         self.cur[0] += dx;
@@ -252,6 +291,35 @@ impl Interpreter<'_> {
         }
         self.offsets.tool = new;
         Ok(())
+    }
+
+    /// Tool `number`'s offsets from the table, program units (zero without a table).
+    fn table_offset(
+        &self,
+        number: Option<u32>,
+        column: usize,
+        line: usize,
+    ) -> Result<Pos, Diagnostic> {
+        let mut out = [0.0; 6];
+        let table = self.setup.tool_table.is_some() || !self.tools.tools.is_empty();
+        let Some(n) = number.filter(|&n| n != 0 && table) else {
+            return Ok(out);
+        };
+        let Some(tool) = self.tools.get(n).copied() else {
+            return Err(Diagnostic::new(
+                line,
+                column,
+                format!("tool number {n} not found in the tool table"),
+            ));
+        };
+        for (k, v) in out.iter_mut().enumerate() {
+            *v = if k < 3 {
+                self.user_to_program(tool.offset[k])
+            } else {
+                tool.offset[k]
+            };
+        }
+        Ok(out)
     }
 
     /// The non-modal codes of group 0 that change offsets or move: G10, G28, G30,
@@ -304,9 +372,7 @@ impl Interpreter<'_> {
                 Action::AxisOffsetRestore => {
                     self.params.set(5210, 1.0);
                     let g92 = self.stored(5211);
-                    for k in 0..6 {
-                        self.cur[k] += self.offsets.axis[k] - g92[k];
-                    }
+                    self.cur = minus(&plus(&self.cur, &self.offsets.axis), &g92);
                     self.offsets.axis = g92;
                 }
                 _ => {}
@@ -343,14 +409,10 @@ impl Interpreter<'_> {
     /// G28.1 / G30.1: the current point in machine coordinates, stored.
     fn save_home(&mut self, second: bool) {
         let o = self.offsets;
-        let (x, y) = rotate(self.cur[0] + o.axis[0], self.cur[1] + o.axis[1], o.rotation);
-        let mut m = [x, y, self.cur[2] + o.axis[2], 0.0, 0.0, 0.0];
-        for k in 3..6 {
-            m[k] = self.cur[k] + o.axis[k];
-        }
+        let mut m = plus(&self.cur, &o.axis);
+        (m[0], m[1]) = rotate(m[0], m[1], o.rotation);
         let base = if second { 5181 } else { 5161 };
-        for k in 0..6 {
-            let v = m[k] + o.tool[k] + o.origin[k];
+        for (k, v) in plus(&plus(&m, &o.tool), &o.origin).into_iter().enumerate() {
             let v = if k < 3 { self.program_to_user(v) } else { v };
             self.params.set(base + k, v);
         }
@@ -362,6 +424,7 @@ impl Interpreter<'_> {
         let through = self.find_ends(parsed, line, false)?;
         self.suspicious_numbers(parsed, line);
         self.emit_straight(MotionKind::Rapid, through, None, line)?;
+        self.cur = through;
         let base = if second { 5181 } else { 5161 };
         let stored = self.stored(base);
         let home = self.program_of_machine(&stored);
@@ -373,7 +436,9 @@ impl Interpreter<'_> {
                 end[k] = home[k];
             }
         }
-        self.emit_straight(MotionKind::Rapid, end, None, line)
+        self.emit_straight(MotionKind::Rapid, end, None, line)?;
+        self.cur = end;
+        Ok(())
     }
 
     /// G10: L1 (tool table), L2 and L20 (coordinate systems).
@@ -390,7 +455,10 @@ impl Interpreter<'_> {
         let p = parsed.get('P');
         let p_int = p.map_or(0.0, |p| p.value);
         if (p_int - p_int.round()).abs() > 0.0002 {
-            return err(p.map_or(w.column, |p| p.column), "P value not an integer with G10".into());
+            return err(
+                p.map_or(w.column, |p| p.column),
+                "P value not an integer with G10".into(),
+            );
         }
         let p_int = p_int.round() as i64;
         match l.value.round() as i64 {
@@ -402,7 +470,11 @@ impl Interpreter<'_> {
                 if let Some(ij) = parsed.get('I').or(parsed.get('J')) {
                     return err(ij.column, "I J words not allowed with G10 L2".into());
                 }
-                let n = if p_int == 0 { self.offsets.index } else { p_int as u8 };
+                let n = if p_int == 0 {
+                    self.offsets.index
+                } else {
+                    p_int as u8
+                };
                 if self.comp.is_on() && n == self.offsets.index {
                     return err(
                         w.column,
@@ -422,13 +494,22 @@ impl Interpreter<'_> {
             ),
             _ => err(
                 l.column,
-                format!("line with G10 does not have L1, L2 or L20 (found L{})", l.value),
+                format!(
+                    "line with G10 does not have L1, L2 or L20 (found L{})",
+                    l.value
+                ),
             ),
         }
     }
 
     /// G10 L2 / L20 for system `n`.
-    fn set_system(&mut self, n: u8, l20: bool, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
+    fn set_system(
+        &mut self,
+        n: u8,
+        l20: bool,
+        parsed: &Words,
+        line: usize,
+    ) -> Result<(), Diagnostic> {
         let base = system_base(n);
         let here = self.current_in_system(n);
         let rotation = match parsed.get('R') {
@@ -456,7 +537,8 @@ impl Interpreter<'_> {
                 }
             }
             if n == self.offsets.index {
-                (self.cur[0], self.cur[1]) = rotate(self.cur[0], self.cur[1], self.offsets.rotation);
+                (self.cur[0], self.cur[1]) =
+                    rotate(self.cur[0], self.cur[1], self.offsets.rotation);
                 self.offsets.rotation = 0.0;
             }
         } else {
@@ -473,9 +555,7 @@ impl Interpreter<'_> {
         if n == self.offsets.index {
             let o = self.offsets;
             (self.cur[0], self.cur[1]) = rotate(self.cur[0], self.cur[1], o.rotation);
-            for k in 0..6 {
-                self.cur[k] += o.origin[k] - origin[k];
-            }
+            self.cur = minus(&plus(&self.cur, &o.origin), &origin);
             (self.cur[0], self.cur[1]) = rotate(self.cur[0], self.cur[1], -rotation);
             self.offsets.origin = origin;
             self.offsets.rotation = rotation;
@@ -484,16 +564,30 @@ impl Interpreter<'_> {
     }
 
     /// G10 L1 P: a tool's offsets (X Y Z A B C) and radius (R) in the tool table.
-    fn set_tool(&mut self, p: i64, parsed: &Words, line: usize, column: usize) -> Result<(), Diagnostic> {
+    fn set_tool(
+        &mut self,
+        p: i64,
+        parsed: &Words,
+        line: usize,
+        column: usize,
+    ) -> Result<(), Diagnostic> {
         if p < 1 || p > i64::from(u32::MAX) {
-            return Err(Diagnostic::new(line, column, "P value out of range with G10 L1"));
+            return Err(Diagnostic::new(
+                line,
+                column,
+                "P value out of range with G10 L1",
+            ));
         }
         let number = p as u32;
         let mut tool = self.tools.get(number).copied().unwrap_or_default();
         tool.number = number;
         for (k, l) in ['X', 'Y', 'Z', 'A', 'B', 'C'].into_iter().enumerate() {
             if let Some(w) = parsed.get(l) {
-                tool.offset[k] = if k < 3 { self.program_to_user(w.value) } else { w.value };
+                tool.offset[k] = if k < 3 {
+                    self.program_to_user(w.value)
+                } else {
+                    w.value
+                };
             }
         }
         if let Some(r) = parsed.get('R') {
@@ -507,8 +601,12 @@ impl Interpreter<'_> {
     pub(crate) fn machine_coordinates_end(&self, parsed: &Words) -> Pos {
         let o = self.offsets;
         let (cx, cy) = rotate(self.cur[0] + o.axis[0], self.cur[1] + o.axis[1], o.rotation);
-        let x = parsed.get('X').map_or(cx, |w| w.value - o.origin[0] - o.tool[0]);
-        let y = parsed.get('Y').map_or(cy, |w| w.value - o.origin[1] - o.tool[1]);
+        let x = parsed
+            .get('X')
+            .map_or(cx, |w| w.value - o.origin[0] - o.tool[0]);
+        let y = parsed
+            .get('Y')
+            .map_or(cy, |w| w.value - o.origin[1] - o.tool[1]);
         let (x, y) = rotate(x, y, -o.rotation);
         let mut end = self.cur;
         end[0] = x - o.axis[0];

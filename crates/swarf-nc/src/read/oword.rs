@@ -1,21 +1,26 @@
-//! LinuxCNC's O-word control flow (`interp_o_word.cc`): subroutines, loops and
-//! conditions, run by jumping within the indexed program texts
-//! ([`crate::read::source`]).
+//! LinuxCNC's O-word control flow (`interp_o_word.cc`, `read_o` in `interp_read.cc`),
+//! run the way LinuxCNC runs it: by *skipping* lines until one with a given label,
+//! and by jumping back to a label's line, with its flags (`executed_if`,
+//! `doing_break`, `doing_continue`) and its table of labels, so that programs behave
+//! exactly as under LinuxCNC, corner cases included (a `break` met while skipping for a
+//! `continue` ends the loop, as it does there).
 //!
-//! - `sub ... endsub` is skipped where the flow meets it (and so defined); `call [a]
-//!   [b] ...` runs it with `#1-#30` set to the arguments (missing ones 0) and the
-//!   caller's restored on return; named parameters without `_` are local to a call.
-//!   A subroutine is looked for, in order: defined earlier in the flow; in a file
-//!   `name.ngc` on the search path; ahead in the current file. `return [v]` and
-//!   `endsub [v]` set `#<_value>` and `#<_value_returned>`.
-//! - `while [c] ... endwhile`, `do ... while [c]`, `repeat [n] ... endrepeat` (n rounded),
-//!   with `break` and `continue` (not in `repeat`: LinuxCNC refuses them there).
-//! - `if [c] ... elseif [c] ... else ... endif`.
-//!
-//! As in LinuxCNC, a subroutine found by looking ahead must not be reached later by
-//! the flow ("found in illegal location"), and one label is defined once.
+//! - `sub ... endsub` met by the flow at the program's level is defined and skipped;
+//!   `call [a] [b] ...` sets `#1-#30` to the arguments (missing ones 0), keeps the
+//!   caller's to restore on return, and goes to the subroutine: defined before; else
+//!   in a file `name.ngc` on the search path; else ahead in the current file. A
+//!   subroutine found ahead must not be met by the flow later ("found in illegal
+//!   location"); a label is defined once. `return [v]` and `endsub [v]` set
+//!   `#<_value>` and `#<_value_returned>`. Named parameters without `_` are local to a
+//!   call. Calls nest [`MAX_CALL_DEPTH`] deep.
+//! - `while [c] ... endwhile`, `do ... while [c]`, `repeat [n] ... endrepeat` (n
+//!   rounded), `break` and `continue` (in while and do loops), `if [c] ... elseif [c]
+//!   ... else ... endif`. A condition is read only when its line is not being skipped
+//!   past.
+//! - One label, one line: a loop or `if` label used again on another line is refused,
+//!   as LinuxCNC refuses it.
 
-use crate::read::flow::{Frame, LoopCtx, LoopKind, MAX_CALL_DEPTH, Runner};
+use crate::read::flow::{Frame, MAX_CALL_DEPTH, Runner};
 use crate::read::program::Diagnostic;
 use crate::read::source::Source;
 use crate::read::statement::{Control, Keyword, Label};
@@ -27,253 +32,357 @@ pub const SUB_PARAMETERS: usize = 30;
 /// Largest subroutine file read, bytes.
 pub const MAX_SUB_FILE: u64 = 256 << 20;
 
+/// Where a label was met (LinuxCNC's `offset_map`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct LabelSite {
+    /// The statement that defined it (sub, do, while, repeat, if).
+    pub kind: Keyword,
+    /// Source and line index.
+    pub file: usize,
+    /// Line index.
+    pub line: usize,
+    /// Turns left of a repeat loop (-1: not counting).
+    pub repeat: i64,
+    /// Jumps back to it so far.
+    pub turns: u64,
+}
+
+/// The skipping state of the O-word flow.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct OState {
+    /// Skipping lines until one with this label.
+    pub skipping: Option<Label>,
+    /// Skipping until this subroutine's `sub` line.
+    pub skipping_to_sub: Option<Label>,
+    /// The line the skipping started at (1-based), for messages.
+    pub skipping_from: usize,
+    /// A branch of the current `if` ran.
+    pub executed_if: bool,
+    /// A `break` is being carried out.
+    pub doing_break: bool,
+    /// A `continue` is being carried out.
+    pub doing_continue: bool,
+    /// The last condition read.
+    pub test: f64,
+    /// A subroutine is being defined (skipped) at the program's level.
+    pub defining_sub: bool,
+    /// The subroutine being defined or run.
+    pub sub_name: Option<Label>,
+    /// Labels met so far.
+    pub sites: HashMap<Label, LabelSite>,
+}
+
+impl OState {
+    /// Whether lines are being skipped.
+    pub fn skipping(&self) -> bool {
+        self.skipping.is_some() || self.skipping_to_sub.is_some()
+    }
+}
+
 impl Runner<'_> {
-    /// Runs an O-word statement on `line` (1-based) of the current source.
+    /// Reads and runs an O-word statement on `line` (1-based) of the current source.
     pub(crate) fn control(&mut self, c: Control, line: usize) -> Result<(), Diagnostic> {
+        if !self.read_o(&c, line)? {
+            return Ok(());
+        }
+        let o = &self.o;
+        if o.skipping.as_ref().is_some_and(|s| *s != c.label) {
+            return Ok(());
+        }
+        if o.skipping_to_sub.is_some() && c.keyword != Keyword::Sub {
+            return Ok(());
+        }
         let at = line - 1;
         match c.keyword {
-            Keyword::Sub => self.define_sub(&c, at, line),
+            Keyword::Sub => self.sub_line(&c, at, line),
             Keyword::EndSub | Keyword::Return => self.sub_return(&c, line),
             Keyword::Call => self.call(&c, line),
             Keyword::Do => {
-                self.push_loop(&c.label, LoopKind::Do, at, 0, line)?;
-                Ok(())
-            }
-            Keyword::While => self.while_statement(&c, at, line),
-            Keyword::EndWhile => {
-                let start = self.find_loop(&c, line, &[LoopKind::While])?.start;
-                self.pc.1 = start;
-                Ok(())
-            }
-            Keyword::Repeat => {
-                let count = self.eval(&c.args[0])?;
-                let n = count.round();
-                if n <= 0.0 {
-                    return self.skip_past(&c.label, at, Keyword::EndRepeat, line);
-                }
-                self.push_loop(&c.label, LoopKind::Repeat, at, n as i64, line)
-            }
-            Keyword::EndRepeat => {
-                let limit = self.opts.limits.loop_iterations;
-                let ctx = self.find_loop(&c, line, &[LoopKind::Repeat])?;
-                ctx.remaining -= 1;
-                ctx.turns += 1;
-                if ctx.turns > limit {
-                    return Err(self.loop_limit(&c.label, line));
-                }
-                if ctx.remaining > 0 {
-                    let start = ctx.start;
-                    self.pc.1 = start + 1;
-                } else {
-                    self.frame().loops.pop();
+                self.o.skipping = None;
+                if !self.o.sites.contains_key(&c.label) {
+                    self.save_site(&c, at, line)?;
                 }
                 Ok(())
             }
-            Keyword::Break | Keyword::Continue => self.break_continue(&c, line),
-            Keyword::If => {
-                if self.eval(&c.args[0])? != 0.0 {
-                    return Ok(());
-                }
-                self.next_branch(&c.label, at, line)
+            Keyword::While => self.while_line(&c, at, line),
+            Keyword::Repeat => self.repeat_line(&c, at, line),
+            Keyword::If | Keyword::ElseIf | Keyword::Else | Keyword::EndIf => {
+                self.if_line(&c, at, line)
             }
-            Keyword::ElseIf | Keyword::Else => self.skip_past(&c.label, at, Keyword::EndIf, line),
-            Keyword::EndIf => Ok(()),
+            Keyword::Break => {
+                self.expect_site(&c, &[Keyword::While, Keyword::Do], line)?;
+                self.skip_to(&c.label, line);
+                self.o.doing_break = true;
+                Ok(())
+            }
+            Keyword::Continue => {
+                self.expect_site(&c, &[Keyword::While, Keyword::Do], line)?;
+                if self.o.skipping.as_ref() != Some(&c.label) {
+                    self.skip_to(&c.label, line);
+                    self.o.doing_continue = true;
+                }
+                Ok(())
+            }
+            Keyword::EndWhile | Keyword::EndRepeat => self.loop_end(&c, line),
         }
     }
 
-    fn loop_limit(&self, label: &Label, line: usize) -> Diagnostic {
-        self.error(
-            line,
-            1,
-            format!(
-                "loop {label} turned more than {} times: stopped here (a loop that never ends?)",
-                self.opts.limits.loop_iterations
-            ),
-        )
-    }
-
-    fn push_loop(&mut self, label: &Label, kind: LoopKind, start: usize, remaining: i64, line: usize) -> Result<(), Diagnostic> {
-        let limit = self.opts.limits.loop_iterations;
-        let frame = self.frame();
-        if let Some(top) = frame.loops.last_mut().filter(|l| l.label == *label && l.start == start) {
-            top.turns += 1;
-            if top.turns > limit {
-                return Err(self.loop_limit(label, line));
+    /// `if`, `elseif`, `else`, `endif`.
+    fn if_line(&mut self, c: &Control, at: usize, line: usize) -> Result<(), Diagnostic> {
+        if c.keyword == Keyword::If {
+            self.check_or_save(c, at, line)?;
+            if self.o.test != 0.0 {
+                self.o.skipping = None;
+                self.o.executed_if = true;
+            } else {
+                self.skip_to(&c.label, line);
+                self.o.executed_if = false;
             }
             return Ok(());
         }
-        frame.loops.push(LoopCtx {
-            label: label.clone(),
-            kind,
-            start,
-            remaining,
-            turns: 0,
-        });
+        self.expect_site(c, &[Keyword::If], line)?;
+        match c.keyword {
+            Keyword::EndIf => {
+                self.o.skipping = None;
+                self.o.executed_if = true;
+            }
+            _ if self.o.executed_if => self.skip_to(&c.label, line),
+            Keyword::ElseIf if self.o.test != 0.0 => {
+                self.o.skipping = None;
+                self.o.executed_if = true;
+            }
+            Keyword::Else if self.o.skipping.as_ref() == Some(&c.label) => {
+                self.o.executed_if = true;
+                self.o.skipping = None;
+            }
+            _ => {}
+        }
         Ok(())
     }
 
-    /// The innermost loop of this frame with the statement's label, of one of `kinds`.
-    fn find_loop(&mut self, c: &Control, line: usize, kinds: &[LoopKind]) -> Result<&mut LoopCtx, Diagnostic> {
-        let label = c.label.clone();
-        let keyword = c.keyword.name();
-        let found = self
-            .frame()
-            .loops
-            .iter()
-            .rposition(|l| l.label == label && kinds.contains(&l.kind));
-        match found {
-            Some(k) => {
-                let frame = self.frame();
-                frame.loops.truncate(k + 1);
-                Ok(&mut frame.loops[k])
+    /// `endwhile`, `endrepeat`: back to the head, unless a break ends the loop.
+    fn loop_end(&mut self, c: &Control, line: usize) -> Result<(), Diagnostic> {
+        let head = if c.keyword == Keyword::EndWhile {
+            Keyword::While
+        } else {
+            Keyword::Repeat
+        };
+        self.expect_site(c, &[head], line)?;
+        if self.o.skipping.as_ref() == Some(&c.label) {
+            self.o.skipping = None;
+            if !self.o.doing_continue {
+                return Ok(());
             }
+            self.o.doing_continue = false;
+        }
+        self.back_to(&c.label, line)
+    }
+
+    /// LinuxCNC's `read_o`: reads the statement's values where LinuxCNC reads them
+    /// (not while skipping past another label, nor inside a definition); `false` when
+    /// the statement does nothing.
+    fn read_o(&mut self, c: &Control, line: usize) -> Result<bool, Diagnostic> {
+        let other = self.o.skipping.as_ref().is_some_and(|s| *s != c.label);
+        match c.keyword {
+            Keyword::Sub => {
+                if self.o.defining_sub {
+                    return Err(self.error(line, c.column, "nested subroutine definition"));
+                }
+                Ok(true)
+            }
+            Keyword::EndSub | Keyword::Return => {
+                if other {
+                    return Ok(false);
+                }
+                self.value = match c.args.first() {
+                    Some(e) => (self.eval(e)?, true),
+                    None => (0.0, false),
+                };
+                Ok(true)
+            }
+            _ if self.o.defining_sub => Ok(false),
+            Keyword::Call => Ok(!self.o.skipping()),
+            Keyword::While | Keyword::Repeat | Keyword::If | Keyword::ElseIf => {
+                if other {
+                    return Ok(false);
+                }
+                self.o.test = self.eval(&c.args[0])?;
+                Ok(true)
+            }
+            _ => Ok(true),
+        }
+    }
+
+    fn skip_to(&mut self, label: &Label, line: usize) {
+        self.o.skipping = Some(label.clone());
+        self.o.skipping_from = line;
+    }
+
+    /// Records where `c.label` is (`control_save_offset`): a label already met on its
+    /// own line again was reached out of order; on another line it is a second use.
+    fn save_site(&mut self, c: &Control, at: usize, line: usize) -> Result<(), Diagnostic> {
+        let file = self.pc.0;
+        if let Some(site) = self.o.sites.get(&c.label) {
+            let message = if site.line == at {
+                format!(
+                    "sub {} found in illegal location: it was called before the flow reached it",
+                    c.label
+                )
+            } else {
+                format!(
+                    "redefining {}: already defined in {} line {}",
+                    c.label,
+                    self.sources[site.file].name,
+                    site.line + 1
+                )
+            };
+            return Err(self.error(line, c.column, message));
+        }
+        self.o.sites.insert(
+            c.label.clone(),
+            LabelSite {
+                kind: c.keyword,
+                file,
+                line: at,
+                repeat: -1,
+                turns: 0,
+            },
+        );
+        Ok(())
+    }
+
+    /// A loop or `if` head: its label must not have been used on another line.
+    fn check_or_save(&mut self, c: &Control, at: usize, line: usize) -> Result<(), Diagnostic> {
+        match self.o.sites.get(&c.label) {
+            Some(site)
+                if site.line != at
+                    && !(c.keyword == Keyword::While && site.kind == Keyword::Do) =>
+            {
+                Err(self.error(
+                    line,
+                    c.column,
+                    format!(
+                        "duplicate O-word label {}: already used on line {}",
+                        c.label,
+                        site.line + 1
+                    ),
+                ))
+            }
+            Some(_) => Ok(()),
+            None => self.save_site(c, at, line),
+        }
+    }
+
+    /// The label's site, which must be one of `kinds`.
+    fn expect_site(
+        &self,
+        c: &Control,
+        kinds: &[Keyword],
+        line: usize,
+    ) -> Result<LabelSite, Diagnostic> {
+        match self.o.sites.get(&c.label) {
             None => Err(self.error(
                 line,
                 c.column,
-                format!("'{label} {keyword}' without a matching loop"),
+                format!("undefined O-word label {}", c.label),
             )),
+            Some(site) if !kinds.contains(&site.kind) => Err(self.error(
+                line,
+                c.column,
+                format!(
+                    "no matching label for '{} {}' (found '{}' on line {})",
+                    c.label,
+                    c.keyword.name(),
+                    site.kind.name(),
+                    site.line + 1
+                ),
+            )),
+            Some(site) => Ok(*site),
         }
     }
 
-    /// `while [c]`: the head of a while loop, or the tail of a do loop.
-    fn while_statement(&mut self, c: &Control, at: usize, line: usize) -> Result<(), Diagnostic> {
+    /// Goes back to the line of `label` (a loop's head), counting the turn.
+    fn back_to(&mut self, label: &Label, line: usize) -> Result<(), Diagnostic> {
         let limit = self.opts.limits.loop_iterations;
-        let holds = self.eval(&c.args[0])? != 0.0;
-        let tail = self
-            .frame()
-            .loops
-            .last()
-            .is_some_and(|l| l.label == c.label && l.kind == LoopKind::Do);
-        if tail {
-            let frame = self.frame();
-            let ctx = frame.loops.last_mut().expect("checked above");
-            if !holds {
-                frame.loops.pop();
-                return Ok(());
-            }
-            ctx.turns += 1;
-            let start = ctx.start;
-            if ctx.turns > limit {
-                return Err(self.loop_limit(&c.label, line));
-            }
-            self.pc.1 = start + 1;
-            return Ok(());
-        }
-        if holds {
-            return self.push_loop(&c.label, LoopKind::While, at, 0, line);
-        }
-        if self
-            .frame()
-            .loops
-            .last()
-            .is_some_and(|l| l.label == c.label && l.start == at)
-        {
-            self.frame().loops.pop();
-        }
-        self.skip_past(&c.label, at, Keyword::EndWhile, line)
-    }
-
-    fn break_continue(&mut self, c: &Control, line: usize) -> Result<(), Diagnostic> {
-        let in_repeat = self
-            .frame()
-            .loops
-            .iter()
-            .rev()
-            .find(|l| l.label == c.label)
-            .is_some_and(|l| l.kind == LoopKind::Repeat);
-        if in_repeat {
+        let Some(site) = self.o.sites.get_mut(label) else {
+            return Err(self.error(line, 1, format!("undefined O-word label {label}")));
+        };
+        site.turns += 1;
+        if site.turns > limit {
             return Err(self.error(
                 line,
-                c.column,
-                format!("'{} {}' inside a repeat loop: LinuxCNC allows it in while and do loops only", c.label, c.keyword.name()),
+                1,
+                format!("loop {label} turned more than {limit} times: stopped here (a loop that never ends?)"),
             ));
         }
-        let ctx = self.find_loop(c, line, &[LoopKind::While, LoopKind::Do])?.clone();
-        let file = self.pc.0;
-        let end = match ctx.kind {
-            LoopKind::Do => self.sources[file].next(&c.label, ctx.start, &[Keyword::While]),
-            _ => self.sources[file].next(&c.label, ctx.start, &[Keyword::EndWhile]),
+        self.pc = (site.file, site.line);
+        Ok(())
+    }
+
+    /// `while [c]`: the head of a while loop, or the end of a do loop.
+    fn while_line(&mut self, c: &Control, at: usize, line: usize) -> Result<(), Diagnostic> {
+        self.check_or_save(c, at, line)?;
+        self.o.skipping = None;
+        let kind = self
+            .o
+            .sites
+            .get(&c.label)
+            .map_or(Keyword::While, |s| s.kind);
+        if kind == Keyword::While {
+            if self.o.test == 0.0 {
+                self.skip_to(&c.label, line);
+            }
+            return Ok(());
+        }
+        if self.o.test != 0.0 && !self.o.doing_break {
+            return self.back_to(&c.label, line);
+        }
+        self.o.doing_break = false;
+        Ok(())
+    }
+
+    /// `repeat [n]`: counts its turns from the count read when the loop starts.
+    fn repeat_line(&mut self, c: &Control, at: usize, line: usize) -> Result<(), Diagnostic> {
+        self.check_or_save(c, at, line)?;
+        self.o.skipping = None;
+        let test = self.o.test;
+        let Some(site) = self.o.sites.get_mut(&c.label) else {
+            return Ok(());
         };
-        let Some((end, _)) = end else {
-            return Err(self.error(line, c.column, format!("loop {} has no end", c.label)));
-        };
-        if c.keyword == Keyword::Break {
-            self.frame().loops.pop();
-            self.pc.1 = end + 1;
-        } else if ctx.kind == LoopKind::Do {
-            self.pc.1 = end;
+        if site.kind != Keyword::Repeat {
+            return Ok(());
+        }
+        if site.repeat == -1 {
+            site.repeat = round_to_int(test);
+        }
+        if site.repeat > 0 {
+            site.repeat -= 1;
         } else {
-            self.pc.1 = ctx.start;
+            site.repeat = -1;
+            self.skip_to(&c.label, line);
         }
         Ok(())
     }
 
-    /// Jumps past the next `keyword` with `label` after line index `at`.
-    fn skip_past(&mut self, label: &Label, at: usize, keyword: Keyword, line: usize) -> Result<(), Diagnostic> {
-        let file = self.pc.0;
-        match self.sources[file].next(label, at, &[keyword]) {
-            Some((i, _)) => {
-                self.pc.1 = i + 1;
-                Ok(())
-            }
-            None => Err(self.error(
-                line,
-                1,
-                format!("{label}: no matching '{label} {}' in {}", keyword.name(), self.sources[file].name),
-            )),
+    /// A `sub` line: the end of the search for a called subroutine, the start of a
+    /// call, or (at the program's level) a definition to skip.
+    fn sub_line(&mut self, c: &Control, at: usize, line: usize) -> Result<(), Diagnostic> {
+        if self.o.skipping.is_some() {
+            self.save_site(c, at, line)?;
+            self.o.skipping = None;
         }
+        self.o.skipping_to_sub = None;
+        if self.frames.len() > 1 {
+            return Ok(());
+        }
+        self.save_site(c, at, line)?;
+        self.skip_to(&c.label, line);
+        self.o.defining_sub = true;
+        self.o.sub_name = Some(c.label.clone());
+        Ok(())
     }
 
-    /// After a false `if` or `elseif`: the next branch whose condition holds.
-    fn next_branch(&mut self, label: &Label, at: usize, line: usize) -> Result<(), Diagnostic> {
-        let file = self.pc.0;
-        let mut from = at;
-        loop {
-            let next = self.sources[file].next(label, from, &[Keyword::ElseIf, Keyword::Else, Keyword::EndIf]);
-            let Some((i, keyword)) = next else {
-                return Err(self.error(line, 1, format!("{label}: if without endif")));
-            };
-            if keyword != Keyword::ElseIf {
-                self.pc.1 = i + 1;
-                return Ok(());
-            }
-            let text = self.sources[file].line(i).unwrap_or("").to_string();
-            let lexed = crate::read::lexer::lex_line(&text, i + 1, self.syntax()).map_err(|d| self.place(d))?;
-            if let crate::read::lexer::Statement::Control(c) = lexed.statement {
-                self.pc.1 = i + 1;
-                if self.eval(&c.args[0])? != 0.0 {
-                    return Ok(());
-                }
-            }
-            from = i;
-        }
-    }
-
-    /// `sub` met by the flow: defined, and skipped to after its `endsub`.
-    fn define_sub(&mut self, c: &Control, at: usize, line: usize) -> Result<(), Diagnostic> {
-        let file = self.pc.0;
-        match self.subs.get(&c.label) {
-            Some(&(f, i)) if (f, i) == (file, at) => {
-                return Err(self.error(
-                    line,
-                    c.column,
-                    format!("sub {} found in illegal location: it was called before the flow reached it", c.label),
-                ));
-            }
-            Some(&(f, _)) => {
-                return Err(self.error(
-                    line,
-                    c.column,
-                    format!("redefining sub {}: already defined in {}", c.label, self.sources[f].name),
-                ));
-            }
-            None => {}
-        }
-        self.subs.insert(c.label.clone(), (file, at));
-        self.skip_past(&c.label, at, Keyword::EndSub, line)
-    }
-
-    /// `call`: finds the subroutine and enters it.
+    /// `call`: enters a new frame and goes to the subroutine.
     fn call(&mut self, c: &Control, line: usize) -> Result<(), Diagnostic> {
         let args = c
             .args
@@ -284,14 +393,18 @@ impl Runner<'_> {
             return Err(self.error(
                 line,
                 c.column,
-                format!("too many nested levels of subroutines: at most {MAX_CALL_DEPTH} calls deep"),
+                format!(
+                    "too many nested levels of subroutines: at most {MAX_CALL_DEPTH} calls deep"
+                ),
             ));
         }
-        let (file, start) = self.find_sub(c, line)?;
+        self.o.skipping = None;
         let mut saved = Vec::with_capacity(SUB_PARAMETERS);
         for i in 1..=SUB_PARAMETERS {
             saved.push(self.machine.params.at(i));
-            self.machine.params.set(i, args.get(i - 1).copied().unwrap_or(0.0));
+            self.machine
+                .params
+                .set(i, args.get(i - 1).copied().unwrap_or(0.0));
         }
         self.frames.push(Frame {
             return_to: self.pc,
@@ -301,56 +414,99 @@ impl Runner<'_> {
             repeat: None,
             label: Some(c.label.clone()),
         });
-        self.pc = (file, start + 1);
-        Ok(())
-    }
-
-    /// Where subroutine `c.label` starts: (source, line index of its `sub`).
-    fn find_sub(&mut self, c: &Control, line: usize) -> Result<(usize, usize), Diagnostic> {
-        if let Some(&found) = self.subs.get(&c.label) {
-            return Ok(found);
+        if let Some(site) = self.o.sites.get(&c.label) {
+            self.pc = (site.file, site.line);
+            return Ok(());
         }
         let stem = match &c.label {
             Label::Number(n) => n.to_string(),
             Label::Name(n) => n.to_string(),
         };
         if let Some(file) = self.load_file(&format!("{stem}.ngc"), line)? {
-            let Some((i, _)) = self.sources[file].next(&c.label, 0, &[Keyword::Sub]).or_else(|| {
-                self.sources[file]
-                    .owords(&c.label)
-                    .iter()
-                    .find(|(_, k)| *k == Keyword::Sub)
-                    .copied()
-            }) else {
-                return Err(self.error(
+            self.pc = (file, 0);
+        }
+        self.skip_to(&c.label, line);
+        self.o.skipping_to_sub = Some(c.label.clone());
+        Ok(())
+    }
+
+    /// The end of the text reached while looking for a subroutine or skipping.
+    pub(crate) fn eof_while_skipping(&self) -> Diagnostic {
+        let file = self.pc.0;
+        let name = &self.sources[file].name;
+        let line = self.o.skipping_from;
+        match (&self.o.skipping_to_sub, &self.o.skipping) {
+            (Some(label), _) => {
+                let dirs = self.search_dirs();
+                let list = if dirs.is_empty() {
+                    "no search path".to_string()
+                } else {
+                    dirs.iter()
+                        .map(|d| d.display().to_string())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                };
+                let stem = match label {
+                    Label::Number(n) => n.to_string(),
+                    Label::Name(n) => n.to_string(),
+                };
+                self.error(
                     line,
-                    c.column,
-                    format!("{} does not define sub {}", self.sources[file].name, c.label),
-                ));
-            };
-            self.subs.insert(c.label.clone(), (file, i));
-            return Ok((file, i));
-        }
-        let here = self.pc.0;
-        if let Some((i, _)) = self.sources[here].next(&c.label, self.pc.1.saturating_sub(1), &[Keyword::Sub]) {
-            self.subs.insert(c.label.clone(), (here, i));
-            return Ok((here, i));
-        }
-        let dirs = self.search_dirs();
-        let list = if dirs.is_empty() {
-            "no search path".to_string()
-        } else {
-            dirs.iter().map(|d| d.display().to_string()).collect::<Vec<_>>().join(", ")
-        };
-        Err(self.error(
-            line,
-            c.column,
-            format!(
-                "subroutine {} not found: not defined in {} and no file {stem}.ngc in {list} \
-                 (give the folder with --sub-path)",
-                c.label, self.sources[here].name
+                    1,
+                    format!(
+                        "subroutine {label} not found: the end of {name} was reached looking \
+                         for '{label} sub', and no file {stem}.ngc is in {list} (give the folder \
+                         with --sub-path)"
+                    ),
+                )
+            }
+            (None, Some(label)) => self.error(
+                line,
+                1,
+                format!("the end of {name} was reached looking for the end of {label}"),
             ),
-        ))
+            _ => self.error(line, 1, "the end of the program was reached while skipping"),
+        }
+    }
+
+    /// `endsub` / `return`: back to the caller, or the end of a definition.
+    fn sub_return(&mut self, c: &Control, line: usize) -> Result<(), Diagnostic> {
+        if self.frames.len() < 2 && self.o.sub_name.is_none() {
+            return Err(self.error(
+                line,
+                c.column,
+                format!(
+                    "'{} {}' outside a subroutine definition",
+                    c.label,
+                    c.keyword.name()
+                ),
+            ));
+        }
+        if self.o.skipping.is_some() && c.keyword == Keyword::EndSub {
+            self.o.skipping = None;
+        }
+        if self.frames.len() < 2 {
+            if c.keyword == Keyword::EndSub {
+                if !self.o.defining_sub {
+                    return Err(self.error(
+                        line,
+                        c.column,
+                        "endsub outside a subroutine definition",
+                    ));
+                }
+                self.o.skipping = None;
+                self.o.defining_sub = false;
+                self.o.sub_name = None;
+            }
+            return Ok(());
+        }
+        let frame = self.frames.pop().expect("checked above");
+        for (k, v) in frame.saved.iter().enumerate() {
+            self.machine.params.set(k + 1, *v);
+        }
+        self.pc = frame.return_to;
+        self.o.sub_name = self.frames.last().and_then(|f| f.label.clone());
+        Ok(())
     }
 
     /// The directories searched for subroutine files.
@@ -363,7 +519,11 @@ impl Runner<'_> {
     }
 
     /// Loads `file_name` from the search path (once), returning its source index.
-    pub(crate) fn load_file(&mut self, file_name: &str, line: usize) -> Result<Option<usize>, Diagnostic> {
+    pub(crate) fn load_file(
+        &mut self,
+        file_name: &str,
+        line: usize,
+    ) -> Result<Option<usize>, Diagnostic> {
         for dir in self.search_dirs() {
             let path = dir.join(file_name);
             let shown = path.display().to_string();
@@ -373,34 +533,25 @@ impl Runner<'_> {
             if !path.is_file() {
                 continue;
             }
-            let text = read_limited(&path).map_err(|m| self.error(line, 1, format!("{shown}: {m}")))?;
-            crate::read::gcode::check_text(&text, &shown).map_err(|e| self.error(line, 1, e.to_string()))?;
+            let text =
+                read_limited(&path).map_err(|m| self.error(line, 1, format!("{shown}: {m}")))?;
+            crate::read::gcode::check_text(&text, &shown)
+                .map_err(|e| self.error(line, 1, e.to_string()))?;
             self.sources.push(Source::new(shown, &text, self.syntax()));
             return Ok(Some(self.sources.len() - 1));
         }
         Ok(None)
     }
+}
 
-    /// `endsub` / `return`: back to the caller.
-    fn sub_return(&mut self, c: &Control, line: usize) -> Result<(), Diagnostic> {
-        if self.frames.len() < 2 {
-            return Err(self.error(
-                line,
-                c.column,
-                format!("'{} {}' outside a subroutine", c.label, c.keyword.name()),
-            ));
-        }
-        self.value = match c.args.first() {
-            Some(e) => (self.eval(e)?, true),
-            None => (0.0, false),
-        };
-        let frame = self.frames.pop().expect("checked above");
-        for (k, v) in frame.saved.iter().enumerate() {
-            self.machine.params.set(k + 1, *v);
-        }
-        self.pc = frame.return_to;
-        Ok(())
+/// LinuxCNC's `round_to_int`.
+fn round_to_int(v: f64) -> i64 {
+    if !v.is_finite() {
+        return 0;
     }
+    (v + if v < 0.0 { -0.5 } else { 0.5 })
+        .trunc()
+        .clamp(-1e15, 1e15) as i64
 }
 
 /// A subroutine file's text, refusing files larger than [`MAX_SUB_FILE`].

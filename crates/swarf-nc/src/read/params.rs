@@ -40,7 +40,12 @@ pub fn parse_var_file(text: &str, source: &str) -> Result<Vec<(usize, f64)>, NcE
             .parse()
             .ok()
             .filter(|n| (1..PARAMETER_COUNT).contains(n))
-            .ok_or_else(|| err(format!("expected a parameter number from 1 to {}, found '{first}'", PARAMETER_COUNT - 1)))?;
+            .ok_or_else(|| {
+                err(format!(
+                    "expected a parameter number from 1 to {}, found '{first}'",
+                    PARAMETER_COUNT - 1
+                ))
+            })?;
         let value: f64 = fields
             .next()
             .and_then(|v| v.parse().ok())

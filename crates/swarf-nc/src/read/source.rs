@@ -33,7 +33,7 @@ impl Source {
                 .filter(|&(_, b)| b == b'\n')
                 .map(|(i, _)| i + 1),
         );
-        if starts.last() == Some(&text.len()) && text.len() > 0 {
+        if starts.last() == Some(&text.len()) && !text.is_empty() {
             starts.pop();
         }
         let mut source = Source {
@@ -62,7 +62,11 @@ impl Source {
 
     /// The number of lines.
     pub fn line_count(&self) -> usize {
-        if self.text.is_empty() { 0 } else { self.starts.len() }
+        if self.text.is_empty() {
+            0
+        } else {
+            self.starts.len()
+        }
     }
 
     fn index(&mut self, syntax: Syntax) {
@@ -86,7 +90,9 @@ impl Source {
                 self.numbers.entry(n as u64).or_insert(i);
             }
             match lexed.statement {
-                Statement::Control(c) => self.owords.entry(c.label).or_default().push((i, c.keyword)),
+                Statement::Control(c) => {
+                    self.owords.entry(c.label).or_default().push((i, c.keyword))
+                }
                 Statement::ProgramNumber(n, _) => {
                     self.programs.entry(n).or_insert(i);
                 }
@@ -102,7 +108,12 @@ impl Source {
 
     /// The first statement with `label` after line index `after` whose keyword is one
     /// of `keywords`.
-    pub fn next(&self, label: &Label, after: usize, keywords: &[Keyword]) -> Option<(usize, Keyword)> {
+    pub fn next(
+        &self,
+        label: &Label,
+        after: usize,
+        keywords: &[Keyword],
+    ) -> Option<(usize, Keyword)> {
         self.owords(label)
             .iter()
             .find(|(i, k)| *i > after && keywords.contains(k))
@@ -122,8 +133,7 @@ impl Source {
 
 /// The first character of a line after spaces, `/` and nothing else.
 fn head_char(text: &str) -> Option<char> {
-    text.chars()
-        .find(|c| !matches!(c, ' ' | '\t' | '/'))
+    text.chars().find(|c| !matches!(c, ' ' | '\t' | '/'))
 }
 
 #[cfg(test)]
@@ -142,7 +152,10 @@ mod tests {
         assert_eq!(s.line(5), None);
         let label = Label::Number(100);
         assert_eq!(s.owords(&label).len(), 2);
-        assert_eq!(s.next(&label, 1, &[Keyword::EndSub]), Some((3, Keyword::EndSub)));
+        assert_eq!(
+            s.next(&label, 1, &[Keyword::EndSub]),
+            Some((3, Keyword::EndSub))
+        );
         let s = Source::new("b.nc", "N10 G0 X1\nN20 G1 X2\n", Syntax { fanuc: true });
         assert_eq!(s.numbered(20), Some(1));
         assert_eq!(Source::new("c", "", Syntax::default()).line_count(), 0);

@@ -229,7 +229,9 @@ pub(crate) fn fanuc_statement(cursor: &mut Cursor) -> Result<Option<FanucStateme
             }
         } else if cursor.eat("then") {
             if cursor.peek() != Some('#') {
-                return Err(cursor.error(cursor.column(), "THEN must be followed by #i = expression"));
+                return Err(
+                    cursor.error(cursor.column(), "THEN must be followed by #i = expression")
+                );
             }
             FanucStatement::IfThen {
                 condition,
@@ -238,7 +240,10 @@ pub(crate) fn fanuc_statement(cursor: &mut Cursor) -> Result<Option<FanucStateme
         } else {
             return Err(cursor.error(
                 cursor.column(),
-                format!("IF [..] must be followed by GOTO or THEN, found {}", cursor.found()),
+                format!(
+                    "IF [..] must be followed by GOTO or THEN, found {}",
+                    cursor.found()
+                ),
             ));
         }
     } else if cursor.eat("goto") {

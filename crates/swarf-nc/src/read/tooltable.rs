@@ -66,10 +66,16 @@ impl ToolTable {
             for (column, word) in words(content) {
                 let letter = word.chars().next().unwrap_or(' ').to_ascii_uppercase();
                 let value: f64 = word[1..].parse().map_err(|_| {
-                    err(column, format!("{letter} word: expected a number, found '{}'", &word[1..]))
+                    err(
+                        column,
+                        format!("{letter} word: expected a number, found '{}'", &word[1..]),
+                    )
                 })?;
                 if !value.is_finite() {
-                    return Err(err(column, format!("{letter} word: the value is not finite")));
+                    return Err(err(
+                        column,
+                        format!("{letter} word: the value is not finite"),
+                    ));
                 }
                 match letter {
                     'T' if value >= 0.0 && value.fract() == 0.0 && value <= f64::from(u32::MAX) => {
@@ -87,7 +93,9 @@ impl ToolTable {
                     other => {
                         return Err(err(
                             column,
-                            format!("unknown tool table word {other}: expected T P X Y Z A B C U V W D I J Q"),
+                            format!(
+                                "unknown tool table word {other}: expected T P X Y Z A B C U V W D I J Q"
+                            ),
                         ));
                     }
                 }
@@ -146,13 +154,21 @@ mod tests {
 
     #[test]
     fn errors_name_the_place() {
-        let e = ToolTable::parse("T1 P1\nT2 Dx\n", "t.tbl").unwrap_err().to_string();
+        let e = ToolTable::parse("T1 P1\nT2 Dx\n", "t.tbl")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("t.tbl:2:4"), "{e}");
-        let e = ToolTable::parse("T1\nT1\n", "t.tbl").unwrap_err().to_string();
+        let e = ToolTable::parse("T1\nT1\n", "t.tbl")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("listed twice"), "{e}");
-        let e = ToolTable::parse("P1 D3\n", "t.tbl").unwrap_err().to_string();
+        let e = ToolTable::parse("P1 D3\n", "t.tbl")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("without a T"), "{e}");
-        let e = ToolTable::parse("T1 K3\n", "t.tbl").unwrap_err().to_string();
+        let e = ToolTable::parse("T1 K3\n", "t.tbl")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("unknown tool table word K"), "{e}");
     }
 }

@@ -193,7 +193,9 @@ impl Words {
                     return err(format!("{l} word with no G2, G3 or G87 to use it"));
                 }
                 'R' if !(is_arc || cycle.is_some() || g10) => {
-                    return err(format!("{l} word with no G2, G3, canned cycle or G10 to use it"));
+                    return err(format!(
+                        "{l} word with no G2, G3, canned cycle or G10 to use it"
+                    ));
                 }
                 'D' if !comp => return err("D word with no G41 or G42 to use it".into()),
                 'P' if !uses_p => {
