@@ -77,3 +77,59 @@ pub fn run_rs274(program: &str, name: &str) -> Option<Rs274> {
         }
     }
 }
+
+/// The precise shim (`rs274/precise.c`, 10 decimals instead of 4), built once per
+/// test process with `gcc`; `None` when it cannot be built.
+fn precise_shim() -> Option<std::path::PathBuf> {
+    static SHIM: std::sync::OnceLock<Option<std::path::PathBuf>> = std::sync::OnceLock::new();
+    SHIM.get_or_init(|| {
+        let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("rs274/precise.c");
+        let out = std::env::temp_dir().join(format!("swarf-precise-{}.so", std::process::id()));
+        let ok = Command::new("gcc")
+            .args(["-shared", "-fPIC", "-O2", "-o"])
+            .arg(&out)
+            .arg(&src)
+            .status()
+            .is_ok_and(|s| s.success());
+        ok.then_some(out)
+    })
+    .clone()
+}
+
+/// Runs `rs274 -g -t TOOL_TABLE PROGRAM` with full precision (the shim) in `dir`,
+/// which is also its `HOME` (rs274 keeps its tool table there) and where it finds
+/// subroutine files; returns its output as a corpus recording (stdout, `--- stderr`
+/// and stderr, `--- exit N`). `None`, after [`skip_reference`], when rs274 or the
+/// shim cannot be used.
+pub fn run_rs274_precise(dir: &std::path::Path, program: &str, tool_table: &str) -> Option<String> {
+    let Some(shim) = precise_shim() else {
+        skip_reference("rs274", "the precise shim could not be built with gcc");
+        return None;
+    };
+    let _guard = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let out = Command::new("timeout")
+        .args(["30", "rs274", "-g", "-t", tool_table, program])
+        .current_dir(dir)
+        .env("HOME", dir)
+        .env("LC_ALL", "C")
+        .env("LD_PRELOAD", &shim)
+        .env_remove("INI_FILE_NAME")
+        .stdin(std::process::Stdio::null())
+        .output();
+    match out {
+        Ok(out) if out.status.code() == Some(127) => {
+            skip_reference("rs274", "not on PATH");
+            None
+        }
+        Ok(out) => Some(format!(
+            "{}\n--- stderr\n{}\n--- exit {}\n",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr),
+            out.status.code().unwrap_or(-1)
+        )),
+        Err(e) => {
+            skip_reference("rs274", &e.to_string());
+            None
+        }
+    }
+}

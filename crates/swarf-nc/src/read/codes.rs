@@ -197,6 +197,10 @@ pub fn g_code(code10: u32) -> Option<(Group, Effect)> {
             Refuse("spline moves (G5, G5.1, G5.2) are not supported"),
         ),
         330 | 331 | 760 => (Gr::Motion, Refuse("threading moves are not supported")),
+        700 | 710 | 711 | 712 | 720 | 721 | 722 => (
+            Gr::Motion,
+            Refuse("lathe roughing and finishing cycles (G70-G72) are not supported"),
+        ),
         382..=385 => (Gr::Motion, Refuse("probing moves (G38) are not supported")),
         730 | 740 | 810..=890 if code10.is_multiple_of(10) => {
             (Gr::Motion, Run(A::Cycle((code10 / 10) as u8)))
@@ -331,10 +335,6 @@ pub fn m_code(m: u32) -> Option<(Group, Effect)> {
                 "subprogram calls and returns (M98/M99) belong to the Fanuc dialect: read the program with --dialect fanuc",
             ),
         ),
-        100..=199 => (
-            Gr::OtherM,
-            Warn("user-defined M code ignored: it does not move the axes"),
-        ),
         _ => return None,
     };
     Some(entry)
@@ -385,7 +385,7 @@ mod tests {
     fn m_codes() {
         assert_eq!(m_code(30), Some((Group::Stop, Effect::Run(Action::End))));
         assert!(matches!(m_code(98), Some((_, Effect::Refuse(_)))));
-        assert!(matches!(m_code(150), Some((_, Effect::Warn(_)))));
+        assert_eq!(m_code(150), None);
         assert_eq!(m_code(555), None);
     }
 }

@@ -180,8 +180,8 @@ impl Interpreter<'_> {
         if self.plane != Plane::Xy {
             return err(
                 w.column,
-                "cutter radius compensation is supported in the XY plane (G17) only; in G18 it \
-                 is lathe compensation, which swarf does not simulate"
+                "cutter radius compensation out of the XY plane (G17) is not supported: in G18 \
+                 it is lathe compensation"
                     .into(),
             );
         }

@@ -76,34 +76,12 @@ impl Interpreter<'_> {
         let err = |column: usize, m: String| Err(Diagnostic::new(line, column, m));
         self.cycle_allowed(n, line, column)?;
         let same = previous == Some(Action::Cycle(n));
-        let r_word = match parsed.get('R') {
-            Some(r) => r.value,
-            None if same => self.cycle.r,
-            None => {
-                return err(
-                    column,
-                    "R clearance plane unspecified in canned cycle".into(),
-                );
-            }
-        };
+        let (r_word, bottom_word) = self.cycle_levels(same, parsed, line, column)?;
         let repeats = cycle_repeats(parsed, line)?;
         self.cycle_words(n, same, parsed, line, column)?;
         self.spindle_for(n, line, column)?;
         let abc = self.plane.indices();
         let c_letter = ['X', 'Y', 'Z'][abc[2]];
-        let bottom_word = match parsed.get(c_letter) {
-            Some(w) => w.value,
-            None if same => self.cycle.bottom,
-            None => {
-                return err(
-                    column,
-                    format!(
-                        "{c_letter} value unspecified in a {} plane canned cycle",
-                        self.plane.name()
-                    ),
-                );
-            }
-        };
         let current_c = self.cur[abc[2]];
         let mut old_c = *self.cycle.initial_level.get_or_insert(current_c);
         let (r, bottom) = if self.absolute {
@@ -172,6 +150,36 @@ impl Interpreter<'_> {
             return Ok(());
         };
         Err(Diagnostic::new(line, column, why))
+    }
+
+    /// The R word and the bottom word (the drilling axis's), given or kept from the
+    /// same cycle before (`same`).
+    fn cycle_levels(
+        &self,
+        same: bool,
+        parsed: &Words,
+        line: usize,
+        column: usize,
+    ) -> Result<(f64, f64), Diagnostic> {
+        let c_letter = ['X', 'Y', 'Z'][self.plane.indices()[2]];
+        let r = match parsed.get('R') {
+            Some(r) => r.value,
+            None if same => self.cycle.r,
+            None => {
+                let m = "R clearance plane unspecified in canned cycle";
+                return Err(Diagnostic::new(line, column, m));
+            }
+        };
+        let bottom = match parsed.get(c_letter) {
+            Some(w) => w.value,
+            None if same => self.cycle.bottom,
+            None => {
+                let plane = self.plane.name();
+                let m = format!("{c_letter} value unspecified in a {plane} plane canned cycle");
+                return Err(Diagnostic::new(line, column, m));
+            }
+        };
+        Ok((r, bottom))
     }
 
     /// P, Q and I J K of the cycle: given, or kept from the same cycle before.

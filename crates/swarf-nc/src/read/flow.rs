@@ -561,10 +561,11 @@ impl ParamSource for Scope<'_, '_> {
                 .global(name)
                 .ok_or_else(|| format!("named parameter #<{name}> not defined"));
         }
-        r.frames
-            .last()
-            .and_then(|f| f.named.get(name).copied())
-            .ok_or_else(|| format!("named parameter #<{name}> not defined"))
+        match r.frames.last().and_then(|f| f.named.get(name).copied()) {
+            Some(v) => Ok(v),
+            None if r.o.defining_sub => Ok(0.0),
+            None => Err(format!("named parameter #<{name}> not defined")),
+        }
     }
 
     fn exists(&self, name: &str) -> bool {

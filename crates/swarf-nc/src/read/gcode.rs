@@ -145,6 +145,7 @@ pub fn parse_gcode(text: &str, source: &str, opts: &GcodeReadOptions) -> Result<
     let setup = Setup {
         tool_table: opts.tool_table,
         machine_inch: opts.machine_inch,
+        fanuc,
     };
     let mut machine = Interpreter::with_axes(axes, setup, Params::with_values(opts.parameters));
     machine.fanuc = fanuc;

@@ -63,6 +63,8 @@ pub struct Setup<'k> {
     /// The machine's units are inches: tool table values and the offsets stored in
     /// parameters (#5161-#5390) are inches (LinuxCNC's standalone `rs274`); otherwise mm.
     pub machine_inch: bool,
+    /// The Fanuc dialect (unknown M codes are warnings, not errors).
+    pub fanuc: bool,
 }
 
 /// The modal state and what has been read so far.
@@ -95,6 +97,8 @@ pub struct Interpreter<'k> {
     selected_tool: Option<u32>,
     /// The tool in the spindle (M6, M61).
     pub(crate) loaded_tool: Option<u32>,
+    /// The tool the program cuts with (loaded at its first motion).
+    cutting_tool: Option<u32>,
     pub(crate) spindle: SpindleTurn,
     pub(crate) offsets: Offsets,
     pub(crate) cycle: CycleState,
@@ -139,6 +143,7 @@ impl<'k> Interpreter<'k> {
             inverse_time: false,
             selected_tool: None,
             loaded_tool: None,
+            cutting_tool: None,
             spindle: SpindleTurn::Stopped,
             offsets: Offsets::default(),
             cycle: CycleState::default(),
@@ -185,7 +190,7 @@ impl<'k> Interpreter<'k> {
     /// A [`Diagnostic`] at the offending word; the state is then unspecified and the
     /// caller stops reading.
     pub fn execute(&mut self, block: &[Word], line: usize) -> Result<Flow, Diagnostic> {
-        let parsed = Words::sort(block, line, &mut self.warnings)?;
+        let parsed = Words::sort(block, line, self.setup.fanuc, &mut self.warnings)?;
         let to_be = self.motion_to_be(&parsed, line)?;
         let rotary = self.axes.rotary_letters();
         let mode = to_be.or(self.motion);
@@ -350,20 +355,38 @@ impl<'k> Interpreter<'k> {
     }
 
     /// Loads `tool` (M6 or M61): one tool per program.
+    /// Loads `tool` (M6 or M61): one cutting tool per program; T0 unloads it.
     fn tool_change(&mut self, tool: u32, w: Word, line: usize) -> Result<(), Diagnostic> {
-        match self.loaded_tool {
-            Some(active) if active != tool && !self.motions.is_empty() => Err(Diagnostic::new(
+        match self.cutting_tool {
+            Some(cutting) if tool != 0 && tool != cutting => Err(Diagnostic::new(
                 line,
                 w.column,
                 format!(
-                    "tool change from T{active} to T{tool} after motions: swarf verifies one \
-                     tool per program; split the program at the tool change"
+                    "a second cutting tool (T{cutting} then T{tool}) is not supported: swarf \
+                     verifies one tool per program; split the program at the tool change"
                 ),
             )),
             _ => {
                 self.loaded_tool = Some(tool);
                 Ok(())
             }
+        }
+    }
+
+    /// Notes the tool a motion is made with; feed motions need one loaded once a
+    /// tool has been (T0 M6 unloads it).
+    pub(crate) fn check_tool(&mut self, feed: bool, line: usize) -> Result<(), Diagnostic> {
+        match self.loaded_tool {
+            Some(0) if feed && self.cutting_tool.is_some() => Err(Diagnostic::new(
+                line,
+                1,
+                "feed motion with no tool in the spindle: T0 M6 unloaded it",
+            )),
+            Some(t) if t != 0 && self.cutting_tool.is_none() => {
+                self.cutting_tool = Some(t);
+                Ok(())
+            }
+            _ => Ok(()),
         }
     }
 

@@ -349,6 +349,7 @@ impl Interpreter<'_> {
         feed: Option<BlockFeed>,
         line: usize,
     ) -> Result<(), Diagnostic> {
+        self.check_tool(kind != MotionKind::Rapid, line)?;
         self.check_tool_offset(line);
         let to = self.axis_position(&end);
         let feed = feed.unwrap_or(BlockFeed::Rapid);
@@ -368,6 +369,7 @@ impl Interpreter<'_> {
         feed: Option<BlockFeed>,
         line: usize,
     ) -> Result<(), Diagnostic> {
+        self.check_tool(true, line)?;
         self.check_tool_offset(line);
         let mut c = [0.0; 6];
         c[..3].copy_from_slice(&arc.center);

@@ -81,7 +81,21 @@ impl OState {
 
 impl Runner<'_> {
     /// Reads and runs an O-word statement on `line` (1-based) of the current source.
-    pub(crate) fn control(&mut self, c: Control, line: usize) -> Result<(), Diagnostic> {
+    pub(crate) fn control(&mut self, mut c: Control, line: usize) -> Result<(), Diagnostic> {
+        let scoped = !matches!(
+            c.keyword,
+            Keyword::Sub | Keyword::EndSub | Keyword::Call | Keyword::Return
+        );
+        let scope = if self.frames.len() > 1 {
+            self.frames.last().and_then(|f| f.label.clone())
+        } else if self.o.defining_sub {
+            self.o.sub_name.clone()
+        } else {
+            None
+        };
+        if let (true, Some(sub)) = (scoped, scope) {
+            c.label = Label::Scoped(Box::new(sub), Box::new(c.label));
+        }
         if !self.read_o(&c, line)? {
             return Ok(());
         }
@@ -418,10 +432,7 @@ impl Runner<'_> {
             self.pc = (site.file, site.line);
             return Ok(());
         }
-        let stem = match &c.label {
-            Label::Number(n) => n.to_string(),
-            Label::Name(n) => n.to_string(),
-        };
+        let stem = label_stem(&c.label);
         if let Some(file) = self.load_file(&format!("{stem}.ngc"), line)? {
             self.pc = (file, 0);
         }
@@ -446,10 +457,7 @@ impl Runner<'_> {
                         .collect::<Vec<_>>()
                         .join(", ")
                 };
-                let stem = match label {
-                    Label::Number(n) => n.to_string(),
-                    Label::Name(n) => n.to_string(),
-                };
+                let stem = label_stem(label);
                 self.error(
                     line,
                     1,
@@ -541,6 +549,15 @@ impl Runner<'_> {
             return Ok(Some(self.sources.len() - 1));
         }
         Ok(None)
+    }
+}
+
+/// The file name stem of a subroutine's label (`o<name>`: name, `o100`: 100).
+fn label_stem(label: &Label) -> String {
+    match label {
+        Label::Number(n) => n.to_string(),
+        Label::Name(n) => n.to_string(),
+        Label::Scoped(_, l) => label_stem(l),
     }
 }
 

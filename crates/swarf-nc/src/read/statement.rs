@@ -24,6 +24,9 @@ pub enum Label {
     Number(u32),
     /// `o<name>` (lower case).
     Name(Box<str>),
+    /// A loop or condition label inside subroutine `.0` (LinuxCNC scopes them by the
+    /// subroutine they are in; shown as the label itself).
+    Scoped(Box<Label>, Box<Label>),
 }
 
 impl fmt::Display for Label {
@@ -31,6 +34,7 @@ impl fmt::Display for Label {
         match self {
             Label::Number(n) => write!(f, "o{n}"),
             Label::Name(n) => write!(f, "o<{n}>"),
+            Label::Scoped(_, l) => write!(f, "{l}"),
         }
     }
 }

@@ -43,12 +43,19 @@ impl Words {
     /// # Errors
     /// At the offending word: an unknown or refused G code, a refused M code, two codes
     /// of one modal group, a letter given twice.
-    pub fn sort(block: &[Word], line: usize, warnings: &mut Warnings) -> Result<Words, Diagnostic> {
+    /// `lenient_m`: an unknown M code is a warning (the Fanuc dialect: machines add
+    /// their own) rather than an error (LinuxCNC refuses it).
+    pub fn sort(
+        block: &[Word],
+        line: usize,
+        lenient_m: bool,
+        warnings: &mut Warnings,
+    ) -> Result<Words, Diagnostic> {
         let mut words = Words::default();
         for &w in block {
             match w.letter {
                 'G' => words.g_word(w, line, warnings)?,
-                'M' => words.m_word(w, line, warnings)?,
+                'M' => words.m_word(w, line, lenient_m, warnings)?,
                 letter => {
                     let slot = &mut words.letters[letter_index(letter)];
                     if slot.is_some() {
@@ -92,17 +99,29 @@ impl Words {
         Ok(())
     }
 
-    fn m_word(&mut self, w: Word, line: usize, warnings: &mut Warnings) -> Result<(), Diagnostic> {
+    fn m_word(
+        &mut self,
+        w: Word,
+        line: usize,
+        lenient: bool,
+        warnings: &mut Warnings,
+    ) -> Result<(), Diagnostic> {
         let err = |message: String| Err(Diagnostic::new(line, w.column, message));
         if w.value < 0.0 || w.value.fract() != 0.0 || w.value > f64::from(u32::MAX) {
             return err(format!("M{}: not an M code", w.value));
         }
         let m = w.value as u32;
         let (group, action) = match m_code(m) {
-            None => {
+            None if lenient => {
                 let message = format!("unknown M code M{m} ignored: M codes do not move the axes");
                 warnings.push(Diagnostic::new(line, w.column, message));
                 return Ok(());
+            }
+            None => {
+                return err(format!(
+                    "unknown M code M{m}: LinuxCNC refuses M codes it does not know (a user M \
+                     code M100-M199 needs its program in the machine's configuration)"
+                ));
             }
             Some((_, Effect::Refuse(why))) => return err(format!("M{m}: {why}")),
             Some((_, Effect::Warn(why))) => {
@@ -274,7 +293,7 @@ mod tests {
 
     fn sort(text: &str) -> (Result<Words, Diagnostic>, Vec<Diagnostic>) {
         let mut warnings = Warnings::default();
-        let words = Words::sort(&plain(text), 7, &mut warnings);
+        let words = Words::sort(&plain(text), 7, true, &mut warnings);
         (words, warnings.finish())
     }
 
