@@ -159,13 +159,22 @@ pub fn compare_all(
     std::fs::create_dir_all(out)
         .with_context(|| format!("{}: cannot create the output directory", out.display()))?;
     let (mut rows, mut five) = (Vec::new(), Vec::new());
-    for path in jobs {
-        let c = check_one(path, sim, out, reporter)?;
+    for (k, path) in jobs.iter().enumerate() {
+        let name = path
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        reporter.job(k, jobs.len(), &name);
+        let c = check_one(path, sim, out, reporter);
+        if c.is_err() {
+            reporter.jobs_done();
+        }
+        let c = c?;
         rows.push(row(&c));
         if let Some(f) = five_axis_row(&c) {
             five.push(f);
         }
     }
+    reporter.jobs_done();
     let json = serde_json::to_string_pretty(&rows)? + "\n";
     swarf_io::write_atomic(&out.join("compare.json"), json.as_bytes())?;
     swarf_io::write_atomic(&out.join("compare.md"), markdown(&rows).as_bytes())?;

@@ -80,6 +80,9 @@ const DIE_JOBS: [(&str, &str); 3] = [
 /// Paper 003's job on the concave edge part (`jobs/edge-concave-drop-spin.toml`).
 const DROP_SPIN_JOB: &str = include_str!("../../../jobs/edge-concave-drop-spin.toml");
 
+/// The demo's sections (for the progress of [`demo`]).
+const DEMO_SECTIONS: usize = 6;
+
 /// Runs the demo into the directory `out`, writing what it does to `text`.
 ///
 /// # Errors
@@ -89,8 +92,10 @@ pub fn demo(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
     let start = std::time::Instant::now();
     std::fs::create_dir_all(out)
         .with_context(|| format!("{}: cannot create the output directory", out.display()))?;
+    reporter.job(0, DEMO_SECTIONS, "demo: parts");
     writeln!(text, "== parts")?;
     tessellate_parts(out, text)?;
+    reporter.job(1, DEMO_SECTIONS, "demo: tool paths");
     writeln!(text, "\n== tool paths (paper 004 on wave.toml)")?;
     let jobs_dir = out.join("jobs");
     let mut paths = Vec::new();
@@ -111,6 +116,7 @@ pub fn demo(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         swarf_io::write_atomic(&path, job_text.as_bytes())?;
         paths.push(path);
     }
+    reporter.job(2, DEMO_SECTIONS, "demo: verification");
     writeln!(
         text,
         "\n== verification (dexel simulation against the design; paper 004, Table 1)"
@@ -118,21 +124,25 @@ pub fn demo(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
     let compare_dir = out.join("compare");
     let rows = compare_jobs(&paths, &SimSettings::default(), &compare_dir, reporter)?;
     write!(text, "{}", markdown(&rows))?;
+    reporter.job(3, DEMO_SECTIONS, "demo: five-axis");
     writeln!(
         text,
         "\n== five-axis (thesis 000 ch. 8 on die.toml), verified by dexel through the APT CL"
     )?;
     die(out, &jobs_dir, text, reporter)?;
+    reporter.job(4, DEMO_SECTIONS, "demo: rest and cleanup");
     writeln!(
         text,
         "\n== rest material and cleanup (thesis 002 on the built-in fillet pocket)"
     )?;
     crate::demo_rest::cleanup_section(out, text, reporter)?;
+    reporter.job(5, DEMO_SECTIONS, "demo: drop and spin");
     writeln!(
         text,
         "\n== drop and spin at the common edge (paper 003 on the edge parts)"
     )?;
     edges(out, text, reporter)?;
+    reporter.jobs_done();
     writeln!(
         text,
         "\nall results in {} ({:.1} s)",

@@ -11,8 +11,92 @@ use crate::error::{AppError, Context, Result, bail};
 use std::path::{Path, PathBuf};
 use swarf_fiveaxis::machine::reader::MachineKinematics;
 use swarf_fiveaxis::machine::{Machine, MachineKind, load_machine};
-use swarf_nc::read::{GcodeReadOptions, Program, ProgramFormat, read_program, read_program_with};
+use swarf_nc::Dialect;
+use swarf_nc::read::{
+    GcodeReadOptions, Program, ProgramFormat, ToolTable, parse_var_file, read_program_with,
+};
 use swarf_tool::Cutter;
+
+/// How G-code is read: the language, the machine's units, tool table and parameter
+/// file, and where subroutine files are (`--dialect`, `--machine-units`,
+/// `--tool-table`, `--params`, `--sub-path`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct GcodeSetup {
+    /// LinuxCNC's RS274/NGC or Fanuc macro B.
+    pub dialect: Dialect,
+    /// Tool table and parameter values are in inches.
+    pub machine_inch: bool,
+    /// The tool table (LinuxCNC's format), if given.
+    pub tool_table: Option<ToolTable>,
+    /// Parameter values at the start (a LinuxCNC var file).
+    pub parameters: Vec<(usize, f64)>,
+    /// Folders searched for subroutine files, in order.
+    pub sub_path: Vec<PathBuf>,
+}
+
+impl GcodeSetup {
+    /// Reads the tool table and parameter file named, if any; `dialect` is `linuxcnc`
+    /// or `fanuc`, `machine_units` `mm` or `inch`.
+    ///
+    /// # Errors
+    /// A file that cannot be read or parsed (naming it, with line and column); a
+    /// folder of the search path that does not exist; an unknown dialect or unit.
+    pub fn load(
+        dialect: &str,
+        machine_units: &str,
+        tool_table: Option<&Path>,
+        params: Option<&Path>,
+        sub_path: &[PathBuf],
+    ) -> Result<Self> {
+        let dialect = match dialect {
+            "linuxcnc" => Dialect::Linuxcnc,
+            "fanuc" => Dialect::Fanuc,
+            other => bail!("--dialect {other}: expected linuxcnc or fanuc"),
+        };
+        let machine_inch = match machine_units {
+            "mm" => false,
+            "inch" => true,
+            other => bail!("--machine-units {other}: expected mm or inch"),
+        };
+        let read = |flag: &str, p: &Path| {
+            std::fs::read_to_string(p)
+                .with_context(|| format!("{flag} {}: cannot read the file", p.display()))
+        };
+        let tool_table = match tool_table {
+            Some(p) => Some(ToolTable::parse(
+                &read("--tool-table", p)?,
+                &p.display().to_string(),
+            )?),
+            None => None,
+        };
+        let parameters = match params {
+            Some(p) => parse_var_file(&read("--params", p)?, &p.display().to_string())?,
+            None => Vec::new(),
+        };
+        if let Some(d) = sub_path.iter().find(|d| !d.is_dir()) {
+            bail!("--sub-path {}: not a folder", d.display());
+        }
+        Ok(GcodeSetup {
+            dialect,
+            machine_inch,
+            tool_table,
+            parameters,
+            sub_path: sub_path.to_vec(),
+        })
+    }
+
+    /// The G-code reader's options for this setup.
+    pub fn options(&self) -> GcodeReadOptions<'_> {
+        GcodeReadOptions {
+            dialect: self.dialect,
+            tool_table: self.tool_table.as_ref(),
+            machine_inch: self.machine_inch,
+            parameters: &self.parameters,
+            sub_path: &self.sub_path,
+            ..GcodeReadOptions::default()
+        }
+    }
+}
 
 /// Reads the programs at `paths`, G-code ones through the machine `machine` names
 /// (`--machine`) when given, with a tool `tool_length` long (`--tool-length`, mm;
@@ -24,6 +108,7 @@ use swarf_tool::Cutter;
 /// without a tool length.
 pub fn read_programs(
     paths: &[PathBuf],
+    gcode: &GcodeSetup,
     machine: Option<&str>,
     tool_length: Option<f64>,
     sample_tol: f64,
@@ -56,9 +141,12 @@ pub fn read_programs(
         .iter()
         .map(|p| {
             let machine = machine.as_ref().filter(|_| is_gcode(p));
-            read_with_machine(p, machine, tool_length, sample_tol)
+            read_with_machine(p, gcode, machine, tool_length, sample_tol)
         })
         .collect::<Result<Vec<_>>>()?;
+    for p in &programs {
+        notes.extend(p.messages.iter().map(|m| format!("{}: {}", p.source, m)));
+    }
     Ok((programs, notes))
 }
 
@@ -118,7 +206,8 @@ pub fn stage_cutters(tools: &[Cutter], programs: &[Program]) -> Result<Vec<Cutte
 /// Reads the program at `path`; a G-code program through `machine`'s forward
 /// kinematics when given (five-axis moves split into motions within `tol` of the tool
 /// tip's path), with a tool `tool_length` long from the gauge line to the tip
-/// (machines with head axes). APT CL and pose CSV programs are read as they are.
+/// (machines with head axes), read as `gcode` says. APT CL and pose CSV programs are
+/// read as they are.
 ///
 /// # Units
 /// mm.
@@ -127,18 +216,19 @@ pub fn stage_cutters(tools: &[Cutter], programs: &[Program]) -> Result<Vec<Cutte
 /// A program file that cannot be read; a tool length that is not a length.
 pub fn read_with_machine(
     path: &Path,
+    gcode: &GcodeSetup,
     machine: Option<&Machine>,
     tool_length: f64,
     tol: f64,
 ) -> Result<Program> {
     let Some(machine) = machine else {
-        return Ok(read_program(path)?);
+        return Ok(read_program_with(path, &gcode.options())?);
     };
     let kinematics = MachineKinematics::new(machine.clone(), tool_length)?;
     let opts = GcodeReadOptions {
         kinematics: Some(&kinematics),
         kinematics_tol: tol,
-        ..GcodeReadOptions::default()
+        ..gcode.options()
     };
     Ok(read_program_with(path, &opts)?)
 }
@@ -232,7 +322,7 @@ mod tests {
         let paths = [dir.join("there.cl"), dir.join("missing.ngc")];
         std::fs::create_dir_all(&dir).unwrap();
         std::fs::write(&paths[0], "CUTTER/6\nGOTO/0,0,5\nGOTO/1,0,5\n").unwrap();
-        let e = read_programs(&paths, None, None, 0.01)
+        let e = read_programs(&paths, &GcodeSetup::default(), None, None, 0.01)
             .unwrap_err()
             .to_string();
         assert!(e.contains("missing.ngc"), "{e}");

@@ -10,6 +10,11 @@ pub trait Reporter: Progress {
     fn passes(&self, _done: usize, _total: usize) {}
     /// Positioning has ended (also when it failed).
     fn passes_done(&self) {}
+    /// Job `done + 1` of `total` (of a comparison, or a section of the demo) begins:
+    /// `name`.
+    fn job(&self, _done: usize, _total: usize, _name: &str) {}
+    /// The jobs are over.
+    fn jobs_done(&self) {}
 }
 
 impl Reporter for Quiet {}

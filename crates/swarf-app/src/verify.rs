@@ -15,7 +15,7 @@
 
 use crate::error::{Context, Result, bail};
 use crate::model::{Model, load_model};
-pub use crate::programs::{machine_arg, parse_tools, read_with_machine, stage_cutters};
+pub use crate::programs::{GcodeSetup, machine_arg, parse_tools, read_with_machine, stage_cutters};
 use crate::programs::{planned_scallop, read_programs};
 use std::path::{Path, PathBuf};
 use swarf_nc::read::Motion;
@@ -162,6 +162,8 @@ pub struct VerifyRequest<'a> {
     /// program, or fewer (the programs after them use their own APT CUTTER record,
     /// else the last tool given).
     pub tools: &'a [String],
+    /// How G-code is read (dialect, tool table, parameters, subroutine folders).
+    pub gcode: &'a GcodeSetup,
     /// Machine file or `builtin:NAME` for five-axis G-code (every G-code program).
     pub machine: Option<&'a str>,
     /// Spindle gauge line to tool tip, mm (machines with head axes).
@@ -208,8 +210,13 @@ pub fn verify_request(req: &VerifyRequest<'_>, progress: &dyn Progress) -> Resul
         .sim
         .options(0.01, planned.unwrap_or(0.0), 5000.0, true)?;
     let sample_tol = opts.sample_tol.unwrap_or(0.25 * opts.tol);
-    let (mut programs, mut notes) =
-        read_programs(req.programs, req.machine, req.tool_length, sample_tol)?;
+    let (mut programs, mut notes) = read_programs(
+        req.programs,
+        req.gcode,
+        req.machine,
+        req.tool_length,
+        sample_tol,
+    )?;
     match (req.sim.scallop, planned) {
         (Some(_), _) => {}
         (None, Some(h)) => notes.push(format!(

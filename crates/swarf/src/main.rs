@@ -30,7 +30,7 @@ enum Command {
     /// Simulate an NC program (or several in sequence, each with its tool) on a dexel
     /// stock and measure gouge, excess and scallops against the design; writes a JSON
     /// report, a CSV of flagged cells and pictures.
-    Verify(cmd::verify::Args),
+    Verify(Box<cmd::verify::Args>),
     /// Find the rest material a finishing tool or job leaves: regions as JSON, their
     /// boundaries as CSV, and a picture over the part.
     Rest(cmd::rest::Args),

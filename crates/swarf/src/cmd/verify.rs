@@ -10,7 +10,7 @@ use anyhow::{Result, bail};
 #[cfg(test)]
 use std::path::Path;
 use std::path::PathBuf;
-use swarf_app::verify::{SimSettings, VerifyRequest, verify_request};
+use swarf_app::verify::{GcodeSetup, SimSettings, VerifyRequest, verify_request};
 use swarf_sim::report::text_summary;
 
 /// Arguments of `swarf verify`.
@@ -39,10 +39,67 @@ pub struct Args {
     #[arg(long, requires = "machine")]
     tool_length: Option<f64>,
     #[command(flatten)]
+    gcode: GcodeArgs,
+    #[command(flatten)]
     sim: SimArgs,
     /// Output directory.
     #[arg(short = 'o', long = "out")]
     out: PathBuf,
+}
+
+/// How G-code programs are read.
+#[derive(clap::Args, Clone)]
+pub struct GcodeArgs {
+    /// The language of G-code programs: linuxcnc (RS274/NGC as LinuxCNC 2.9 reads it:
+    /// parameters, expressions, O-word subroutines and loops, canned cycles, cutter
+    /// compensation, offsets) or fanuc (Fanuc macro B: IF/GOTO, WHILE/DO, M98/M99, G65).
+    #[arg(long, default_value = "linuxcnc", value_parser = ["linuxcnc", "fanuc"])]
+    dialect: String,
+    /// Tool table in LinuxCNC's format (`T1 P1 D6.35 Z50 ;comment`): cutter
+    /// compensation radii (G41/G42 D) and tool length offsets (G43 H).
+    #[arg(long)]
+    tool_table: Option<PathBuf>,
+    /// LinuxCNC parameter file (.var: `number value` lines): parameters at the start
+    /// (work offsets #5221.., G28/G30 positions #5161.., #500..).
+    #[arg(long)]
+    params: Option<PathBuf>,
+    /// Folder searched for subroutine files (`o<name> call` reads name.ngc; Fanuc
+    /// M98 P1234 reads O1234.nc); give it several times; the program's own folder is
+    /// searched last.
+    #[arg(long)]
+    sub_path: Vec<PathBuf>,
+    /// Units of the tool table and the parameter file (LinuxCNC's standalone rs274
+    /// is an inch machine).
+    #[arg(long, default_value = "mm", value_parser = ["mm", "inch"])]
+    machine_units: String,
+}
+
+impl Default for GcodeArgs {
+    fn default() -> Self {
+        GcodeArgs {
+            dialect: "linuxcnc".into(),
+            tool_table: None,
+            params: None,
+            sub_path: Vec::new(),
+            machine_units: "mm".into(),
+        }
+    }
+}
+
+impl GcodeArgs {
+    /// The reading setup these flags give, with the files they name read.
+    ///
+    /// # Errors
+    /// A file that cannot be read or parsed, naming it.
+    pub fn setup(&self) -> Result<GcodeSetup> {
+        Ok(GcodeSetup::load(
+            &self.dialect,
+            &self.machine_units,
+            self.tool_table.as_deref(),
+            self.params.as_deref(),
+            &self.sub_path,
+        )?)
+    }
 }
 
 /// Options shared by `verify` and `compare`.
@@ -96,10 +153,12 @@ impl SimArgs {
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
     let sim = args.sim.settings();
+    let gcode = args.gcode.setup()?;
     let req = VerifyRequest {
         part: &args.part,
         programs: &args.program,
         tools: &args.tool,
+        gcode: &gcode,
         machine: args.machine.as_deref(),
         tool_length: args.tool_length,
         sim: &sim,
@@ -182,6 +241,7 @@ mod tests {
             tool: vec!["ball:d=6".into()],
             machine: None,
             tool_length: None,
+            gcode: GcodeArgs::default(),
             sim: sim_args(),
             out: dir.join(out),
         };
@@ -235,6 +295,7 @@ mod tests {
             tool: tools.iter().map(|t| (*t).to_string()).collect(),
             machine: None,
             tool_length: None,
+            gcode: GcodeArgs::default(),
             sim: sim_args(),
             out: dir.join(out),
         };
