@@ -13,7 +13,7 @@
 //! `acos`/`asin` outside [-1, 1], a negative base to a non-integer power, and any
 //! result that is not finite.
 //!
-//! In the Fanuc dialect ([`Syntax::fanuc`]) a parameter may be *vacant* (never set, or
+//! In the Fanuc dialect ([`crate::read::lexer::Syntax::fanuc`]) a parameter may be *vacant* (never set, or
 //! `#0`), carried here as NaN: a vacant value alone stays vacant (so an address word
 //! given a vacant parameter is left out), counts as 0 in arithmetic, and equals only
 //! another vacant value in `eq`/`ne`. `and or xor` are then bitwise on integers, and
