@@ -103,7 +103,7 @@ impl Comp {
     }
 
     /// Whether moves are compensated (on, with a radius).
-    fn active(&self) -> bool {
+    pub fn active(&self) -> bool {
         self.is_on() && self.radius > 0.0
     }
 
@@ -266,6 +266,23 @@ impl Interpreter<'_> {
         }
         self.comp.left = None;
         self.comp.firstmove = true;
+        Ok(())
+    }
+
+    /// Refuses `what` while compensation is on (at `column` of `line`).
+    pub(crate) fn refuse_with_comp(
+        &self,
+        what: &str,
+        line: usize,
+        column: usize,
+    ) -> Result<(), Diagnostic> {
+        if self.comp.is_on() {
+            return Err(Diagnostic::new(
+                line,
+                column,
+                format!("cannot {what} with cutter radius compensation on"),
+            ));
+        }
         Ok(())
     }
 
@@ -538,7 +555,7 @@ impl Interpreter<'_> {
         Ok(())
     }
 
-    /// A G2/G3 block with compensation on.
+    /// A G2/G3 block with compensation on and a radius.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn comp_arc(
         &mut self,
@@ -551,27 +568,6 @@ impl Interpreter<'_> {
         column: usize,
     ) -> Result<(), Diagnostic> {
         let err = |m: &str| Err(Diagnostic::new(line, column, m));
-        if !self.comp.active() {
-            let request = ArcRequest {
-                plane: Plane::Xy,
-                clockwise,
-                start: crate::read::motion::xyz(&self.cur),
-                end: crate::read::motion::xyz(&end),
-                center,
-                ijk_absolute: self.ijk_absolute,
-                inch: self.inch,
-            };
-            let c = arc_center(&request).map_err(|m| Diagnostic::new(line, column, m))?;
-            let arc = ArcMove {
-                center: [c.x, c.y, c.z],
-                plane: Plane::Xy,
-                clockwise,
-                turns,
-            };
-            self.emit_arc(&arc, end, feed, line)?;
-            self.cur = end;
-            return Ok(());
-        }
         let left = self.comp.left == Some(true);
         let r = self.comp.radius;
         let turn = if clockwise {

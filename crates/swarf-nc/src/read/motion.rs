@@ -130,7 +130,7 @@ impl Interpreter<'_> {
         };
         let feed = self.block_feed(kind, parsed, line, column)?;
         let end = self.find_ends(parsed, line, true)?;
-        if self.comp.is_on() {
+        if self.comp.active() {
             return self.comp_arc(clockwise, center, turns, end, feed, line, column);
         }
         let request = ArcRequest {

@@ -182,13 +182,7 @@ impl Interpreter<'_> {
         w: crate::read::words::Word,
         line: usize,
     ) -> Result<(), Diagnostic> {
-        if self.comp.is_on() {
-            return Err(Diagnostic::new(
-                line,
-                w.column,
-                "cannot change coordinate systems with cutter radius compensation on",
-            ));
-        }
+        self.refuse_with_comp("change coordinate systems", line, w.column)?;
         if n == self.offsets.index {
             return Ok(());
         }
@@ -224,13 +218,7 @@ impl Interpreter<'_> {
         w: crate::read::words::Word,
         line: usize,
     ) -> Result<(), Diagnostic> {
-        if self.comp.is_on() {
-            return Err(Diagnostic::new(
-                line,
-                w.column,
-                "cannot change the tool offset with cutter radius compensation on",
-            ));
-        }
+        self.refuse_with_comp("change the tool offset", line, w.column)?;
         let letters = ['X', 'Y', 'Z', 'A', 'B', 'C'];
         let new = match action {
             Action::LengthOffset => {
@@ -326,13 +314,7 @@ impl Interpreter<'_> {
     /// G28.1, G30.1, G52, G92, G92.1, G92.2, G92.3.
     pub(crate) fn modal_zero(&mut self, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
         for &(_, _, action, w) in &parsed.g {
-            let comp_err = |what: &str| {
-                Err(Diagnostic::new(
-                    line,
-                    w.column,
-                    format!("cannot {what} with cutter radius compensation on"),
-                ))
-            };
+            let comp_err = |what: &str| self.refuse_with_comp(what, line, w.column);
             match action {
                 Action::SetData => self.set_data(parsed, w, line)?,
                 Action::Home { .. } | Action::SaveHome { .. } if self.comp.is_on() => {
