@@ -195,7 +195,7 @@ fn check_one(
     out: &Path,
     reporter: &dyn Reporter,
 ) -> Result<Checked> {
-    let text = std::fs::read_to_string(path)
+    let text = swarf_io::read_input_text(path)
         .with_context(|| format!("{}: cannot read the job file", path.display()))?;
     let mut job = Job::parse(&text, &path.display().to_string())?;
     let stem = path

@@ -59,8 +59,7 @@ impl GcodeSetup {
             other => bail!("--machine-units {other}: expected mm or inch"),
         };
         let read = |flag: &str, p: &Path| {
-            std::fs::read_to_string(p)
-                .with_context(|| format!("{flag} {}: cannot read the file", p.display()))
+            swarf_io::read_input_text(p).with_context(|| format!("{flag} {}", p.display()))
         };
         let tool_table = match tool_table {
             Some(p) => Some(ToolTable::parse(
@@ -241,7 +240,7 @@ pub fn machine_arg(spec: &str) -> Result<Machine> {
     if spec.starts_with("builtin:") {
         return Ok(load_machine(spec, Path::new(""))?);
     }
-    let text = std::fs::read_to_string(spec)
+    let text = swarf_io::read_input_text(Path::new(spec))
         .with_context(|| format!("--machine {spec}: cannot read the machine file"))?;
     Ok(Machine::parse(&text, spec)?)
 }
@@ -258,7 +257,7 @@ pub fn planned_scallop(paths: &[PathBuf]) -> Option<f64> {
     paths
         .iter()
         .filter(|p| ProgramFormat::of(p) == Some(ProgramFormat::Gcode))
-        .filter_map(|p| std::fs::File::open(p).ok())
+        .filter_map(|p| swarf_io::checked_open(p, swarf_io::max_input_bytes()).ok())
         .filter_map(|file| {
             std::io::BufRead::lines(std::io::BufReader::new(file))
                 .take(MAX_HEADER_LINES)

@@ -13,7 +13,7 @@
 //! report. The tools are matched to the programs in order ([`stage_cutters`]); the
 //! machine applies to every G-code program.
 
-use crate::error::{Context, Result, bail};
+use crate::error::{AppError, Context, Result, bail};
 use crate::model::{Model, load_model};
 pub use crate::programs::{GcodeSetup, machine_arg, parse_tools, read_with_machine, stage_cutters};
 use crate::programs::{planned_scallop, read_programs};
@@ -84,16 +84,31 @@ impl SimSettings {
         rapid: f64,
         along_normals: bool,
     ) -> Result<VerifyOptions> {
-        for (flag, v) in [
-            ("--cell", self.cell),
-            ("--tol", self.tol),
-            ("--sample-tol", self.sample_tol),
+        use swarf_geom::domain::{CELL, RATE, SAMPLE, SCALLOP, TOLERANCE};
+        for (flag, v, domain) in [
+            ("--cell", self.cell, CELL),
+            ("--tol", self.tol, TOLERANCE),
+            ("--sample-tol", self.sample_tol, SAMPLE),
+            ("--rapid", self.rapid, RATE),
         ] {
-            if let Some(x) = v
-                && !(x.is_finite() && x > 0.0)
-            {
-                bail!("{flag}: expected a finite number > 0 mm, found {x}");
+            if let Some(x) = v {
+                domain
+                    .check(x)
+                    .map_err(|m| AppError::Message(format!("{flag}: {m}")))?;
             }
+        }
+        if let Some(h) = self.scallop
+            && h != 0.0
+        {
+            SCALLOP
+                .check(h)
+                .map_err(|m| AppError::Message(format!("--scallop: {m} (or 0)")))?;
+        }
+        if !(1..=1 << 20).contains(&self.max_memory) {
+            bail!(
+                "--max-memory: expected a memory limit from 1 to 1048576 MiB, found {}",
+                self.max_memory
+            );
         }
         Ok(VerifyOptions {
             cell: self.cell,
@@ -117,26 +132,25 @@ impl SimSettings {
 /// # Errors
 /// Anything else, naming `--stock`.
 pub fn parse_stock(text: &str) -> Result<StockSpec> {
-    let number = |s: &str, what: &str| -> Result<f64> {
-        s.trim()
-            .parse::<f64>()
-            .ok()
-            .filter(|v| v.is_finite())
-            .with_context(|| format!("--stock {text}: {what} {s:?} is not a finite number"))
+    let number = |s: &str, what: &str, domain: swarf_geom::domain::Domain| -> Result<f64> {
+        let v: f64 = s.trim().parse().map_err(|_| {
+            let s = swarf_geom::domain::excerpt(s, 40);
+            AppError::Message(format!("--stock {text}: {what} {s:?} is not a number"))
+        })?;
+        domain
+            .check(v)
+            .map_err(|m| AppError::Message(format!("--stock: {what}: {m}")))
     };
     if text == "box" {
         return Ok(StockSpec::Box { top: None });
     }
     if let Some(top) = text.strip_prefix("box:") {
         return Ok(StockSpec::Box {
-            top: Some(number(top, "top")?),
+            top: Some(number(top, "top", swarf_geom::domain::COORDINATE)?),
         });
     }
     if let Some(a) = text.strip_prefix("offset:") {
-        let allowance = number(a, "allowance")?;
-        if allowance < 0.0 {
-            bail!("--stock {text}: the allowance must be >= 0 mm");
-        }
+        let allowance = number(a, "allowance", swarf_geom::domain::ALLOWANCE)?;
         return Ok(StockSpec::Offset { allowance });
     }
     let path = Path::new(text);

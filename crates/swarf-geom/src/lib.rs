@@ -11,6 +11,7 @@
 //!
 //! Units: millimetres and radians throughout.
 
+pub mod domain;
 pub mod error;
 pub mod height;
 pub mod math;

@@ -20,7 +20,7 @@ const EXCERPT: usize = 60;
 /// [`IoError::Io`] when the file cannot be read, [`IoError::Format`] with the line for
 /// text that is not UTF-8 or a line that is not two finite numbers.
 pub fn read_xy_points(path: &Path) -> Result<Vec<[f64; 2]>, IoError> {
-    let bytes = std::fs::read(path).map_err(|e| IoError::io(path, "read", e))?;
+    let bytes = crate::input::read_input(path)?;
     let file = path.display().to_string();
     let text = std::str::from_utf8(&bytes).map_err(|e| {
         let line = bytes[..e.valid_up_to()]

@@ -124,20 +124,7 @@ pub(crate) fn line_of(text: &str, offset: usize) -> usize {
         + 1
 }
 
-/// `text` shortened to at most `max` characters on one line, for "found ..." messages.
-pub(crate) fn excerpt(text: &str, max: usize) -> String {
-    let one_line: String = text
-        .chars()
-        .map(|c| if c.is_control() { ' ' } else { c })
-        .collect();
-    let one_line = one_line.split_whitespace().collect::<Vec<_>>().join(" ");
-    if one_line.chars().count() <= max {
-        one_line
-    } else {
-        let cut: String = one_line.chars().take(max.saturating_sub(3)).collect();
-        format!("{cut}...")
-    }
-}
+pub(crate) use swarf_geom::domain::excerpt;
 
 /// A TOML parse error of `text` as "line N: message", for readers of TOML files
 /// (jobs, machines) that prefix the file name themselves.
@@ -192,7 +179,5 @@ mod tests {
         assert_eq!(line_of("a\nb\nc", 0), 1);
         assert_eq!(line_of("a\nb\nc", 2), 2);
         assert_eq!(line_of("a\nb\nc", 99), 3);
-        assert_eq!(excerpt("[1,\n  2]", 40), "[1, 2]");
-        assert_eq!(excerpt("abcdefghij", 6), "abc...");
     }
 }

@@ -27,7 +27,7 @@ use tobj::LoadError;
 /// [`IoError::Io`] when the file cannot be opened; [`IoError::Format`] naming the
 /// line (when it can be found) for malformed content.
 pub fn read_obj(path: &Path) -> Result<TriMesh, IoError> {
-    let open = || std::fs::File::open(path).map_err(|e| IoError::io(path, "read", e));
+    let open = || crate::input::checked_open(path, crate::input::max_input_bytes());
     let file = open()?;
     let name = path.display().to_string();
     load(BufReader::new(file), &name, || Ok(BufReader::new(open()?)))

@@ -34,7 +34,7 @@ const EXCERPT: usize = 40;
 /// # Errors
 /// [`IoError::Io`] when the file cannot be read; otherwise as [`parse_part`].
 pub fn read_part(path: &Path) -> Result<Part, IoError> {
-    let bytes = std::fs::read(path).map_err(|e| IoError::io(path, "read", e))?;
+    let bytes = crate::input::read_input(path)?;
     let file = path.display().to_string();
     let text = std::str::from_utf8(&bytes).map_err(|e| {
         let line = bytes[..e.valid_up_to()]

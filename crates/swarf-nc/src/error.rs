@@ -40,6 +40,10 @@ pub enum NcError {
         /// What the operating system said.
         message: String,
     },
+    /// A program file that cannot be read within bounds (not a regular file, too
+    /// large, an I/O error): the message names the file.
+    #[error("{0}")]
+    Input(String),
     /// A file name whose extension names no program format swarf reads.
     #[error(
         "{path}: unknown program format: expected .ngc, .nc, .tap or .gcode (G-code), \

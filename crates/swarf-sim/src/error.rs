@@ -18,8 +18,9 @@ pub enum SimError {
     /// The grid would need more memory than allowed.
     #[error(
         "a grid of {nx} x {ny} cells ({cells} cells at {cell} mm) needs {} of memory, more than \
-         the {} allowed: use a larger cell size (about {suggested:.3} mm fits) or raise the limit",
-        gib(*needed), gib(*limit)
+         the {} allowed: use a larger cell size (--cell; about {} mm fits) or raise the limit \
+         (--max-memory)",
+        gib(*needed), gib(*limit), swarf_geom::domain::show((*suggested * 1000.0).ceil() / 1000.0)
     )]
     GridTooLarge {
         /// Cells along x.
@@ -35,6 +36,38 @@ pub enum SimError {
         /// Bytes allowed.
         limit: u64,
         /// A cell size that fits in the limit, mm.
+        suggested: f64,
+    },
+    /// The system cannot give the memory a grid needs.
+    #[error(
+        "a grid of {cell} mm cells needs {}, which this machine cannot give now: use a \
+         larger cell size (--cell)",
+        gib(*needed)
+    )]
+    NoMemory {
+        /// Bytes needed.
+        needed: u64,
+        /// The cell size asked for, mm.
+        cell: f64,
+    },
+    /// Sampling the motions within the tolerance asked would take too many samples.
+    #[error(
+        "{}sweeping within the sample tolerance would take {} samples, more than the {} \
+         swarf takes{}: use a sample tolerance of at least {} mm (--sample-tol)",
+        line.map_or(String::new(), |l| format!("line {l}: ")),
+        swarf_geom::domain::show(samples.round()),
+        swarf_geom::domain::show(*limit),
+        if line.is_some() { " for one motion" } else { " for a program" },
+        swarf_geom::domain::show(*suggested)
+    )]
+    TooManySamples {
+        /// The motion's source line (None: the program as a whole).
+        line: Option<usize>,
+        /// Samples the tolerance asks for.
+        samples: f64,
+        /// The most allowed.
+        limit: f64,
+        /// A sample tolerance that fits, mm.
         suggested: f64,
     },
     /// There is nothing to build a grid over (an empty part, a degenerate box).

@@ -72,7 +72,7 @@ impl Grid {
         let needed_f = cells_f * BYTES_PER_CELL as f64;
         if needed_f > max_bytes as f64 || counts.iter().any(|&n| n > u32::MAX as f64) {
             let area = (max[0] - min[0]) * (max[1] - min[1]);
-            let fits = (area * BYTES_PER_CELL as f64 / max_bytes as f64).sqrt();
+            let fits = (area * BYTES_PER_CELL as f64 / max_bytes.max(1) as f64).sqrt();
             return Err(SimError::GridTooLarge {
                 nx: counts[0].min(usize::MAX as f64) as usize,
                 ny: counts[1].min(usize::MAX as f64) as usize,
@@ -83,6 +83,16 @@ impl Grid {
                 suggested: fits * 1.01,
             });
         }
+        // Ask the system for the memory before anything is built, so that a limit
+        // above what the machine can give is a refusal, not an abort.
+        let mut probe: Vec<u8> = Vec::new();
+        if probe.try_reserve_exact(needed_f as usize).is_err() {
+            return Err(SimError::NoMemory {
+                needed: needed_f as u64,
+                cell,
+            });
+        }
+        drop(probe);
         Ok(Grid {
             origin: min,
             cell,

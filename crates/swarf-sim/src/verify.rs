@@ -203,6 +203,43 @@ pub fn verify(
     verify_stages(design, &[Stage { program, cutter }], opts, progress)
 }
 
+/// The validated settings of one verification.
+struct Checked {
+    tol: f64,
+    cell: f64,
+    sample_tol: f64,
+    tools: Vec<SimTool>,
+}
+
+/// Checks the options and cutters and that sampling the stages' motions stays within
+/// budget, before anything is allocated.
+fn check_settings(stages: &[Stage<'_>], opts: &VerifyOptions) -> Result<Checked, SimError> {
+    if stages.is_empty() {
+        return Err(SimError::Empty(
+            "nothing to verify: no program was given".into(),
+        ));
+    }
+    let tol = SimError::check_positive("tolerance", opts.tol)?;
+    SimError::check_non_negative("allowed excess", opts.allowed_excess)?;
+    SimError::check_positive("rapid rate", opts.rapid_rate)?;
+    let cell = SimError::check_positive("cell size", opts.cell.unwrap_or(CELL_PER_TOL * tol))?;
+    let sample_tol =
+        SimError::check_positive("sample tolerance", opts.sample_tol.unwrap_or(0.25 * tol))?;
+    let tools = stages
+        .iter()
+        .map(|s| SimTool::new(s.cutter))
+        .collect::<Result<Vec<_>, _>>()?;
+    for (stage, tool) in stages.iter().zip(&tools) {
+        crate::sweep::check_sampling(tool, &stage.program.motions, sample_tol)?;
+    }
+    Ok(Checked {
+        tol,
+        cell,
+        sample_tol,
+        tools,
+    })
+}
+
 /// Verifies `stages` (programs run one after the other on one stock, each with its
 /// own cutter; [`crate::stage`]) against `design`. Motion indices of the result
 /// index the concatenated list of the stages' motions ([`Verification::stages`]).
@@ -220,21 +257,12 @@ pub fn verify_stages(
     opts: &VerifyOptions,
     progress: &dyn Progress,
 ) -> Result<Verification, SimError> {
-    if stages.is_empty() {
-        return Err(SimError::Empty(
-            "nothing to verify: no program was given".into(),
-        ));
-    }
-    let tol = SimError::check_positive("tolerance", opts.tol)?;
-    SimError::check_non_negative("allowed excess", opts.allowed_excess)?;
-    SimError::check_positive("rapid rate", opts.rapid_rate)?;
-    let cell = SimError::check_positive("cell size", opts.cell.unwrap_or(CELL_PER_TOL * tol))?;
-    let sample_tol =
-        SimError::check_positive("sample tolerance", opts.sample_tol.unwrap_or(0.25 * tol))?;
-    let tools = stages
-        .iter()
-        .map(|s| SimTool::new(s.cutter))
-        .collect::<Result<Vec<_>, _>>()?;
+    let Checked {
+        tol,
+        cell,
+        sample_tol,
+        tools,
+    } = check_settings(stages, opts)?;
     let t0 = Instant::now();
     let surface = DesignSurface::new(design)?;
     let b = surface.bounds();

@@ -126,6 +126,7 @@ impl Apt {
         h: Option<f64>,
     ) -> Result<Apt, ToolError> {
         let (e0, f0) = corner_centre(d, r, alpha, beta)?;
+        crate::validate::in_domain("d", d, swarf_geom::domain::TOOL_DIAMETER)?;
         for (field, given, expected) in [("e", e, e0), ("f", f, f0)] {
             if let Some(given) = given {
                 finite(field, given)?;
@@ -192,10 +193,11 @@ impl Apt {
         }
     }
 
-    /// Default `h`: `max(4 d, needed height)`, but no higher than a narrowing side
+    /// Default `h`: `max(min(4 d, 2000 mm), needed height)`, but no higher than a narrowing side
     /// line reaching the axis, mm.
     pub fn default_height(&self) -> f64 {
         (4.0 * self.d)
+            .min(swarf_geom::domain::TOOL_LENGTH.max)
             .max(self.needed_height())
             .min(self.axis_height())
     }
@@ -223,7 +225,9 @@ impl Apt {
                 why: "the narrowing side line reaches the axis there",
             });
         }
-        Ok(h.max(needed))
+        let h = h.max(needed);
+        crate::validate::in_domain(field, h, swarf_geom::domain::TOOL_LENGTH)?;
+        Ok(h)
     }
 
     /// The profile: bottom line, corner arc, side line (empty pieces dropped).

@@ -72,6 +72,14 @@ pub enum ToolError {
         /// The value.
         value: f64,
     },
+    /// A size outside the stated domain of tools ([`swarf_geom::domain`]).
+    #[error("`{field}`: {message}")]
+    OutOfDomain {
+        /// The field.
+        field: &'static str,
+        /// What was expected and found.
+        message: String,
+    },
     /// A value that must be positive.
     #[error("`{field}` must be > 0, got {value}")]
     NotPositive {

@@ -10,7 +10,9 @@
 //! | `taperball` | `d` (shank = largest cutting diameter), `angle` (taper half-angle per side, in [0, 90)), `tip` (ball tip **radius**) |
 //! | `apt` | `d`, `r`, `e`, `f`, `alpha` (bottom, in [0, 90)), `beta` (side, in (-90, 90)), `h`; `e`, `f`, `h` optional |
 //!
-//! Every shape also takes `length` (flute length; for `apt` the same as `h`). Shapes
+//! Every shape also takes `length` (flute length; for `apt` the same as `h`). Diameters
+//! are from 0.01 to 1000 mm and lengths up to 2000 mm
+//! ([`swarf_geom::domain::TOOL_DIAMETER`], [`swarf_geom::domain::TOOL_LENGTH`]). Shapes
 //! and keys are case-insensitive; spaces around items are ignored. Degrees live only
 //! here, at the I/O edge; the kernel holds radians. `Display` writes `length` only when
 //! it differs from the default, and angles rounded to 1e-9 degrees when that rounding
@@ -22,6 +24,7 @@ use crate::cutter::Cutter;
 use crate::error::ToolError;
 use std::fmt;
 use std::str::FromStr;
+use swarf_geom::domain::excerpt;
 use swarf_geom::math::display_degrees;
 
 /// A named shape of the spec.
@@ -46,7 +49,7 @@ impl Shape {
             "apt" => Shape::Apt,
             _ => {
                 return Err(ToolError::UnknownShape {
-                    shape: s.trim().to_string(),
+                    shape: excerpt(s.trim(), 40),
                 });
             }
         })
@@ -97,7 +100,7 @@ impl Fields {
         let Some(i) = keys.iter().position(|k| *k == key) else {
             return Err(ToolError::UnknownKey {
                 shape: self.shape.name(),
-                key,
+                key: excerpt(&key, 40),
                 known,
             });
         };
@@ -122,7 +125,7 @@ impl Fields {
             .parse::<f64>()
             .map_err(|_| ToolError::NotANumber {
                 field,
-                value: text.trim().to_string(),
+                value: excerpt(text.trim(), 40),
             })?;
         self.put(i, field, value)
     }
@@ -226,7 +229,7 @@ impl FromStr for Cutter {
         if !rest.trim().is_empty() {
             for item in rest.split(',') {
                 let (key, value) = item.split_once('=').ok_or_else(|| ToolError::Malformed {
-                    item: item.trim().to_string(),
+                    item: excerpt(item.trim(), 40),
                 })?;
                 fields.set_text(key, value)?;
             }

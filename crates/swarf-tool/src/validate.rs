@@ -12,6 +12,7 @@ use crate::apt::{Apt, LENGTH_SNAP};
 use crate::cutter::Cutter;
 use crate::error::ToolError;
 use std::f64::consts::FRAC_PI_2;
+use swarf_geom::domain::{Domain, TOOL_DIAMETER, TOOL_LENGTH};
 
 fn finite(field: &'static str, value: f64) -> Result<(), ToolError> {
     if value.is_finite() {
@@ -23,14 +24,21 @@ fn finite(field: &'static str, value: f64) -> Result<(), ToolError> {
 
 fn check_radius(radius: f64) -> Result<(), ToolError> {
     finite("d", 2.0 * radius)?;
-    if radius > 0.0 {
-        Ok(())
-    } else {
-        Err(ToolError::NotPositive {
+    if radius <= 0.0 {
+        return Err(ToolError::NotPositive {
             field: "d",
             value: 2.0 * radius,
-        })
+        });
     }
+    in_domain("d", 2.0 * radius, TOOL_DIAMETER)
+}
+
+/// `value` of `field` within `domain`.
+pub(crate) fn in_domain(field: &'static str, value: f64, domain: Domain) -> Result<(), ToolError> {
+    domain
+        .check(value)
+        .map(|_| ())
+        .map_err(|message| ToolError::OutOfDomain { field, message })
 }
 
 fn check_at_most(field: &'static str, value: f64, limit: f64) -> Result<(), ToolError> {
@@ -182,7 +190,7 @@ impl Cutter {
             Cutter::Apt(a) => a.default_height(),
             _ => {
                 let (needed, _) = self.length_bounds();
-                (8.0 * self.radius()).max(needed)
+                (8.0 * self.radius()).min(TOOL_LENGTH.max).max(needed)
             }
         }
     }
@@ -214,7 +222,9 @@ impl Cutter {
                 why: "a taper ball's flutes end where the taper reaches d/2",
             });
         }
-        Ok(length.max(needed))
+        let length = length.max(needed);
+        in_domain("length", length, TOOL_LENGTH)?;
+        Ok(length)
     }
 }
 

@@ -91,7 +91,7 @@ pub fn part_mesh(model: &Model, tol: f64) -> Result<Cow<'_, TriMesh>> {
 /// A file that cannot be read or parsed; a parent that is itself a cleanup.
 pub fn read_parent(rel: &str, job_dir: &Path) -> Result<(Job, PathBuf)> {
     let path = job_dir.join(rel);
-    let text = std::fs::read_to_string(&path)
+    let text = swarf_io::read_input_text(&path)
         .with_context(|| format!("parent.job: {}: cannot read the parent job", path.display()))?;
     let parent = Job::parse(&text, &path.display().to_string())?;
     if parent.strategy.kind == StrategyKind::Cleanup {

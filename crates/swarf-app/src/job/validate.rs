@@ -3,6 +3,10 @@
 //! five-axis job can write.
 
 use super::{Direction, Job, RestMaterial, RestSource, ZoneChoice};
+use swarf_geom::domain::{COORDINATE, Domain, RATE, SAMPLE, SCALLOP, STEP, TOLERANCE, TOOL_LENGTH};
+
+/// Spindle speeds, rev/min.
+const SPINDLE: Domain = Domain::new(1e-3, 1e6, "rev/min", "a spindle speed");
 
 /// Most drop-spin passes across a zone.
 pub const MAX_DROP_SPIN_PASSES: usize = 1000;
@@ -31,7 +35,7 @@ impl Job {
             return Err("strategy.angle: expected a finite angle in degrees".into());
         }
         if let Some(b) = s.boundary
-            && !(b.iter().all(|x| x.is_finite()) && b[0] < b[2] && b[1] < b[3])
+            && !(b.iter().all(|&x| COORDINATE.contains(x)) && b[0] < b[2] && b[1] < b[3])
         {
             return Err(format!(
                 "strategy.boundary: expected [xmin, ymin, xmax, ymax] with xmin < xmax and ymin < ymax, found {b:?}"
@@ -44,25 +48,23 @@ impl Job {
             ("feeds.feed", f.feed),
             ("feeds.plunge", f.plunge),
             ("feeds.rapid", f.rapid),
-            ("feeds.spindle", f.spindle),
         ] {
-            positive(name, Some(v))?;
+            in_domain(name, Some(v), RATE)?;
         }
-        if self.linking.clearance.is_some_and(|c| !c.is_finite()) {
-            return Err("linking.clearance: expected a finite height in mm".into());
-        }
-        positive("linking.approach", Some(self.linking.approach))?;
+        in_domain("feeds.spindle", Some(f.spindle), SPINDLE)?;
+        in_domain("linking.clearance", self.linking.clearance, COORDINATE)?;
+        in_domain("linking.approach", Some(self.linking.approach), STEP)?;
         self.validate_five_axis()
     }
 
     /// Tolerance, scallop, stepover and level step, and which strategy takes which.
     fn validate_spacing(&self) -> Result<(), String> {
         let s = &self.strategy;
-        positive("strategy.tolerance", Some(s.tolerance))?;
-        positive("strategy.scallop", s.scallop)?;
-        positive("strategy.stepover", s.stepover)?;
-        positive("strategy.level_step", s.level_step)?;
-        positive("strategy.sampling", s.sampling)?;
+        in_domain("strategy.tolerance", Some(s.tolerance), TOLERANCE)?;
+        in_domain("strategy.scallop", s.scallop, SCALLOP)?;
+        in_domain("strategy.stepover", s.stepover, STEP)?;
+        in_domain("strategy.level_step", s.level_step, STEP)?;
+        in_domain("strategy.sampling", s.sampling, SAMPLE)?;
         let waterline = s.kind == StrategyKind::Waterline && s.level_step.is_some();
         let drop_spin = s.kind == StrategyKind::DropSpin;
         if s.scallop.is_none() && s.stepover.is_none() && !waterline && !drop_spin {
@@ -227,7 +229,7 @@ impl Job {
     /// A drop-spin job's stations, passes and faces.
     fn validate_drop_spin(&self) -> Result<(), String> {
         let s = &self.strategy;
-        positive("strategy.step", s.step)?;
+        in_domain("strategy.step", s.step, STEP)?;
         if self.positioning.is_some() {
             return Err(
                 "positioning: drop-spin places the tool itself; leave out the positioning table"
@@ -273,16 +275,18 @@ impl Job {
         if o.machine.as_deref().is_some_and(str::is_empty) {
             return Err("output.machine: expected a machine file or builtin:NAME".into());
         }
-        positive("output.tool_length", o.tool_length)
+        in_domain("output.tool_length", o.tool_length, TOOL_LENGTH)
     }
 }
 
-fn positive(name: &str, v: Option<f64>) -> Result<(), String> {
+/// `v`, when given, in `domain`.
+fn in_domain(name: &str, v: Option<f64>, domain: Domain) -> Result<(), String> {
     match v {
-        Some(x) if !(x.is_finite() && x > 0.0) => {
-            Err(format!("{name}: expected a finite number > 0, found {x}"))
-        }
-        _ => Ok(()),
+        Some(x) => domain
+            .check(x)
+            .map(|_| ())
+            .map_err(|m| format!("{name}: {m}")),
+        None => Ok(()),
     }
 }
 

@@ -43,7 +43,7 @@ pub fn load_machine(spec: &str, job_dir: &Path) -> Result<Machine, FiveAxisError
         return Machine::parse(text, &format!("{name}.toml (built in)"));
     }
     let path = job_dir.join(spec);
-    let text = std::fs::read_to_string(&path).map_err(|e| FiveAxisError::Machine {
+    let text = swarf_io::read_input_text(&path).map_err(|e| FiveAxisError::Machine {
         file: path.display().to_string(),
         message: format!("cannot read the machine file (output.machine): {e}"),
     })?;

@@ -73,14 +73,10 @@ impl Positioning {
             }
         };
         let spacing = |v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err((
-                    "positioning.sections",
-                    format!("expected a section spacing > 0 mm, found {v}"),
-                ))
-            }
+            swarf_geom::domain::SAMPLE
+                .check(v)
+                .map(|_| ())
+                .map_err(|m| ("positioning.sections", m))
         };
         match *self {
             Positioning::Inclined {
@@ -109,10 +105,10 @@ impl Positioning {
                     ));
                 }
                 match tolerance {
-                    Some(t) if !(t.is_finite() && t >= 0.0) => Err((
-                        "positioning.tolerance",
-                        format!("expected a tolerance >= 0 mm, found {t}"),
-                    )),
+                    Some(t) if t != 0.0 => swarf_geom::domain::TOLERANCE
+                        .check(t)
+                        .map(|_| ())
+                        .map_err(|m| ("positioning.tolerance", format!("{m} (or 0)"))),
                     _ => Ok(()),
                 }
             }

@@ -34,7 +34,6 @@ mod binary;
 
 use crate::atomic::write_atomic_with;
 use crate::error::{At, IoError};
-use std::fs::File;
 use std::io::{BufReader, Read};
 use std::path::Path;
 use swarf_geom::{MeshBuilder, TriMesh};
@@ -55,7 +54,7 @@ const SNIFF: usize = 4096;
 /// [`IoError::Io`] when the file cannot be opened; [`IoError::Format`] with a byte
 /// offset (binary) or line (ASCII) for truncated, oversized or malformed content.
 pub fn read_stl(path: &Path) -> Result<TriMesh, IoError> {
-    let file = File::open(path).map_err(|e| IoError::io(path, "read", e))?;
+    let file = crate::input::checked_open(path, crate::input::max_input_bytes())?;
     let len = file
         .metadata()
         .map_err(|e| IoError::io(path, "read", e))?

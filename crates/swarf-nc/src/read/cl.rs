@@ -79,6 +79,7 @@ pub fn parse_cl(text: &str, source: &str) -> Result<Program, NcError> {
     program.motions = reader.motions;
     program.tool = reader.tool;
     program.warnings = reader.warnings.finish();
+    program.check_domain();
     Ok(program)
 }
 

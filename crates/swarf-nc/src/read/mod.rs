@@ -116,10 +116,7 @@ pub fn read_program_with(path: &Path, gcode: &GcodeReadOptions) -> Result<Progra
     let format = ProgramFormat::of(path).ok_or_else(|| NcError::UnknownFormat {
         path: source.clone(),
     })?;
-    let bytes = std::fs::read(path).map_err(|e| NcError::Io {
-        path: source.clone(),
-        message: e.to_string(),
-    })?;
+    let bytes = swarf_io::read_input(path).map_err(|e| NcError::Input(e.to_string()))?;
     let text = String::from_utf8_lossy(&bytes);
     match format {
         ProgramFormat::Gcode => parse_gcode(&text, &source, gcode),

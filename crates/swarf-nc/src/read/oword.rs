@@ -29,9 +29,6 @@ use std::collections::HashMap;
 /// Subroutine arguments: `#1` to `#30`.
 pub const SUB_PARAMETERS: usize = 30;
 
-/// Largest subroutine file read, bytes.
-pub const MAX_SUB_FILE: u64 = 256 << 20;
-
 /// Where a label was met (LinuxCNC's `offset_map`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct LabelSite {
@@ -542,7 +539,7 @@ impl Runner<'_> {
                 continue;
             }
             let text =
-                read_limited(&path).map_err(|m| self.error(line, 1, format!("{shown}: {m}")))?;
+                swarf_io::read_input_text(&path).map_err(|e| self.error(line, 1, e.to_string()))?;
             crate::read::gcode::check_text(&text, &shown)
                 .map_err(|e| self.error(line, 1, e.to_string()))?;
             self.sources.push(Source::new(shown, &text, self.syntax()));
@@ -569,18 +566,4 @@ fn round_to_int(v: f64) -> i64 {
     (v + if v < 0.0 { -0.5 } else { 0.5 })
         .trunc()
         .clamp(-1e15, 1e15) as i64
-}
-
-/// A subroutine file's text, refusing files larger than [`MAX_SUB_FILE`].
-pub(crate) fn read_limited(path: &std::path::Path) -> Result<String, String> {
-    use std::io::Read;
-    let file = std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?;
-    let mut bytes = Vec::new();
-    file.take(MAX_SUB_FILE + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| format!("cannot read: {e}"))?;
-    if bytes.len() as u64 > MAX_SUB_FILE {
-        return Err(format!("larger than {MAX_SUB_FILE} bytes"));
-    }
-    Ok(String::from_utf8_lossy(&bytes).into_owned())
 }

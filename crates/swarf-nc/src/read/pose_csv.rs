@@ -81,6 +81,7 @@ pub fn parse_pose_csv(text: &str, source: &str) -> Result<Program, NcError> {
     }
     program.motions = state.motions;
     program.warnings = state.warnings.finish();
+    program.check_domain();
     Ok(program)
 }
 

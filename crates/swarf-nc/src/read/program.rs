@@ -29,6 +29,7 @@
 
 use std::f64::consts::TAU;
 use std::fmt;
+use swarf_geom::domain::COORDINATE;
 use swarf_geom::math::slerp;
 use swarf_geom::{Point3, Vec3};
 use swarf_tool::{Cutter, Pose};
@@ -298,6 +299,40 @@ impl Program {
             source: source.into(),
             stopped: None,
             messages: Vec::new(),
+        }
+    }
+
+    /// Stops the program at its first motion with a point outside the coordinate
+    /// domain ([`swarf_geom::domain::COORDINATE`]) or a feed that is not a finite,
+    /// non-negative number: the motions from it on are dropped and [`Program::stopped`] names its line
+    /// (unless the program stopped earlier). So no length or time computed from a
+    /// program is infinite.
+    pub fn check_domain(&mut self) {
+        let bad = self.motions.iter().enumerate().find_map(|(k, m)| {
+            let mut points = vec![("start", m.start.cl), ("end", m.end.cl)];
+            if let MotionKind::Arc { center, .. } = m.kind {
+                points.push(("arc centre", center));
+            }
+            let outside = points.into_iter().find_map(|(what, p)| {
+                let c = p.coords;
+                let worst = c
+                    .iter()
+                    .copied()
+                    .fold(0.0f64, |a, v| if v.is_nan() || v.abs() > a { v } else { a });
+                COORDINATE
+                    .check(worst)
+                    .err()
+                    .map(|e| format!("the motion's {what}: {e}"))
+            });
+            let feed = (!(m.feed.is_finite() && m.feed >= 0.0))
+                .then(|| format!("the motion's feed {} is not a finite rate >= 0", m.feed));
+            outside.or(feed).map(|why| (k, m.line, why))
+        });
+        if let Some((k, line, why)) = bad {
+            self.motions.truncate(k);
+            if self.stopped.is_none() {
+                self.stopped = Some(Diagnostic::new(line, 1, why));
+            }
         }
     }
 

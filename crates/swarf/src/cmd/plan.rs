@@ -17,7 +17,7 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
-    let text = std::fs::read_to_string(&args.job)
+    let text = swarf_io::read_input_text(&args.job)
         .with_context(|| format!("{}: cannot read the job file", args.job.display()))?;
     let job = Job::parse(&text, &args.job.display().to_string())?;
     let job_dir = args.job.parent().unwrap_or(Path::new("."));
