@@ -107,6 +107,7 @@ fn main() {
         tool_length: None,
         sim: &sim,
         out: &out,
+        partial: false,
     };
     let t = Instant::now();
     let done = verify_request(&req, &Quiet).expect("verifies");

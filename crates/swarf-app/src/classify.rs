@@ -3,8 +3,9 @@
 //! per class) and `classify.png` (the classes over the part), written as one set.
 
 use crate::cleanup::part_mesh;
-use crate::error::{AppError, Result};
+use crate::error::Result;
 use crate::model::load_model;
+use crate::outputs::Outputs;
 use crate::rest::{polygon_rings, relief_heights};
 use serde_json::json;
 use std::path::Path;
@@ -37,16 +38,11 @@ pub fn classify_request(req: &ClassifyRequest<'_>) -> Result<Classification> {
     let model = load_model(req.part)?;
     let mesh = part_mesh(&model, req.tol)?;
     let c = classify(&mesh, &req.params)?;
-    let text = serde_json::to_string_pretty(&classify_json(&c, req))? + "\n";
     let png = picture(&c, req, &mesh)?;
-    std::fs::create_dir_all(req.out).map_err(|e| {
-        AppError::Message(format!(
-            "{}: cannot create the output directory: {e}",
-            req.out.display()
-        ))
-    })?;
-    swarf_io::write_atomic(&req.out.join("classify.json"), text.as_bytes())?;
-    swarf_io::write_atomic(&req.out.join("classify.png"), &png)?;
+    let mut set = Outputs::new(req.out);
+    set.write_json("classify.json", &classify_json(&c, req))?;
+    set.write("classify.png", &png)?;
+    set.commit()?;
     Ok(c)
 }
 

@@ -24,14 +24,14 @@
 use crate::error::{Context, Result};
 use crate::job::Job;
 use crate::model::load_model;
+use crate::outputs::Outputs;
 use crate::plan_job::{part_arg, plan_model};
 use crate::report::Reporter;
-use crate::verify::{Destination, SimSettings, context, verify_and_write};
+use crate::verify::{SimSettings, context, verify_and_write};
 use serde::Serialize;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use swarf_nc::read::read_program;
 use swarf_sim::report::{clock, count};
 use swarf_sim::{Stage, Verification};
 
@@ -131,7 +131,8 @@ struct Checked {
     verify_s: f64,
 }
 
-/// Plans, verifies and tabulates `jobs`, writing everything under `out`.
+/// Plans, verifies and tabulates `jobs`, staging everything in `out` (committed by
+/// the caller: the whole comparison is one set).
 ///
 /// # Errors
 /// A job that does not parse or plan, a program that cannot be read, a verification
@@ -139,7 +140,7 @@ struct Checked {
 pub fn compare_jobs(
     jobs: &[PathBuf],
     sim: &SimSettings,
-    out: &Path,
+    out: &mut Outputs,
     reporter: &dyn Reporter,
 ) -> Result<Vec<Row>> {
     Ok(compare_all(jobs, sim, out, reporter)?.0)
@@ -153,11 +154,9 @@ pub fn compare_jobs(
 pub fn compare_all(
     jobs: &[PathBuf],
     sim: &SimSettings,
-    out: &Path,
+    out: &mut Outputs,
     reporter: &dyn Reporter,
 ) -> Result<(Vec<Row>, Vec<FiveAxisRow>)> {
-    std::fs::create_dir_all(out)
-        .with_context(|| format!("{}: cannot create the output directory", out.display()))?;
     let (mut rows, mut five) = (Vec::new(), Vec::new());
     for (k, path) in jobs.iter().enumerate() {
         let name = path
@@ -175,14 +174,11 @@ pub fn compare_all(
         }
     }
     reporter.jobs_done();
-    let json = serde_json::to_string_pretty(&rows)? + "\n";
-    swarf_io::write_atomic(&out.join("compare.json"), json.as_bytes())?;
-    swarf_io::write_atomic(&out.join("compare.md"), markdown(&rows).as_bytes())?;
+    out.write_json("compare.json", &rows)?;
+    out.write("compare.md", markdown(&rows).as_bytes())?;
     if !five.is_empty() {
-        let json = serde_json::to_string_pretty(&five)? + "\n";
-        swarf_io::write_atomic(&out.join("compare-5x.json"), json.as_bytes())?;
-        let md = five_axis_markdown(&five);
-        swarf_io::write_atomic(&out.join("compare-5x.md"), md.as_bytes())?;
+        out.write_json("compare-5x.json", &five)?;
+        out.write("compare-5x.md", five_axis_markdown(&five).as_bytes())?;
     }
     Ok((rows, five))
 }
@@ -192,10 +188,11 @@ pub fn compare_all(
 fn check_one(
     path: &Path,
     sim: &SimSettings,
-    out: &Path,
+    out: &mut Outputs,
     reporter: &dyn Reporter,
 ) -> Result<Checked> {
-    let text = swarf_io::read_input_text(path)
+    let text = out
+        .read_text(path)
         .with_context(|| format!("{}: cannot read the job file", path.display()))?;
     let mut job = Job::parse(&text, &path.display().to_string())?;
     let stem = path
@@ -215,7 +212,7 @@ fn check_one(
     let model = load_model(&part)?;
     let summary = plan_model(&job, &model, job_dir, out, reporter)?;
     let planning_s = start.elapsed().as_secs_f64();
-    let program = read_program(&out.join(&program_file))?;
+    let program = out.read_program(&program_file)?;
     let scallop = job.strategy.scallop.unwrap_or(0.0);
     let mut opts = sim.options(job.strategy.tolerance, scallop, job.feeds.rapid, true)?;
     if five {
@@ -228,17 +225,8 @@ fn check_one(
     }];
     let ctx = context(&part, &stages, &opts);
     let start = Instant::now();
-    let v = verify_and_write(
-        &model,
-        &stages,
-        &opts,
-        Destination {
-            dir: out,
-            prefix: &format!("{stem}."),
-        },
-        &ctx,
-        reporter,
-    )?;
+    let prefix = format!("{stem}.");
+    let v = verify_and_write(&model, &stages, &opts, (out, &prefix), &ctx, reporter)?;
     Ok(Checked {
         name: job.name.clone().unwrap_or(stem),
         summary,
@@ -530,7 +518,9 @@ mod tests {
         }
         let out = std::env::temp_dir().join(format!("swarf-compare-test-{}", std::process::id()));
         let sim = SimSettings::normal_with_cell(0.1);
-        let rows = compare_jobs(&jobs, &sim, &out, &swarf_sim::Quiet).unwrap();
+        let mut set = Outputs::new(&out);
+        let rows = compare_jobs(&jobs, &sim, &mut set, &swarf_sim::Quiet).unwrap();
+        set.commit().unwrap();
         let h = 0.15;
         for r in &rows {
             let max = r.scallop_mm[2].unwrap_or(0.0);

@@ -28,6 +28,7 @@ use crate::compare::{compare_all, compare_jobs, five_axis_markdown, markdown};
 use crate::error::{Context, Result};
 use crate::inspect::{patch_text, summarise_patch};
 use crate::job::Job;
+use crate::outputs::Outputs;
 use crate::plan_job::plan_job;
 use crate::report::Reporter;
 use crate::verify::SimSettings;
@@ -83,21 +84,22 @@ const DROP_SPIN_JOB: &str = include_str!("../../../jobs/edge-concave-drop-spin.t
 /// The demo's sections (for the progress of [`demo`]).
 const DEMO_SECTIONS: usize = 6;
 
-/// Runs the demo into the directory `out`, writing what it does to `text`.
+/// Runs the demo into the directory `dir`, writing what it does to `text`. Every
+/// file is staged and the whole set is renamed into place at the end.
 ///
 /// # Errors
 /// An output that cannot be written; any failure of a job (none is expected: the
 /// jobs and parts are built in).
-pub fn demo(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<()> {
+pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<()> {
     let start = std::time::Instant::now();
-    std::fs::create_dir_all(out)
-        .with_context(|| format!("{}: cannot create the output directory", out.display()))?;
+    let mut outputs = Outputs::new(dir);
+    let out = &mut outputs;
     reporter.job(0, DEMO_SECTIONS, "demo: parts");
     writeln!(text, "== parts")?;
     tessellate_parts(out, text)?;
     reporter.job(1, DEMO_SECTIONS, "demo: tool paths");
     writeln!(text, "\n== tool paths (paper 004 on wave.toml)")?;
-    let jobs_dir = out.join("jobs");
+    let jobs_dir = dir.join("jobs");
     let mut paths = Vec::new();
     for (name, job_text) in JOBS {
         let job = Job::parse(job_text, name)?;
@@ -113,7 +115,7 @@ pub fn demo(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
                 .unwrap_or(f64::NAN),
         )?;
         let path = jobs_dir.join(name);
-        swarf_io::write_atomic(&path, job_text.as_bytes())?;
+        out.write(&path, job_text.as_bytes())?;
         paths.push(path);
     }
     reporter.job(2, DEMO_SECTIONS, "demo: verification");
@@ -121,8 +123,9 @@ pub fn demo(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         text,
         "\n== verification (dexel simulation against the design; paper 004, Table 1)"
     )?;
-    let compare_dir = out.join("compare");
-    let rows = compare_jobs(&paths, &SimSettings::default(), &compare_dir, reporter)?;
+    let rows = out.in_dir("compare", |out| {
+        compare_jobs(&paths, &SimSettings::default(), out, reporter)
+    })?;
     write!(text, "{}", markdown(&rows))?;
     reporter.job(3, DEMO_SECTIONS, "demo: five-axis");
     writeln!(
@@ -135,7 +138,9 @@ pub fn demo(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         text,
         "\n== rest material and cleanup (thesis 002 on the built-in fillet pocket)"
     )?;
-    crate::demo_rest::cleanup_section(out, text, reporter)?;
+    out.in_dir("rest", |out| {
+        crate::demo_rest::cleanup_section(out, text, reporter)
+    })?;
     reporter.job(5, DEMO_SECTIONS, "demo: drop and spin");
     writeln!(
         text,
@@ -143,27 +148,35 @@ pub fn demo(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
     )?;
     edges(out, text, reporter)?;
     reporter.jobs_done();
+    outputs.commit()?;
     writeln!(
         text,
         "\nall results in {} ({:.1} s)",
-        out.display(),
+        dir.display(),
         start.elapsed().as_secs_f64()
     )?;
     Ok(())
 }
 
 /// Plans and verifies the die jobs into `out/die` and prints their table.
-fn die(out: &Path, jobs_dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<()> {
+fn die(
+    out: &mut Outputs,
+    jobs_dir: &Path,
+    text: &mut dyn Write,
+    reporter: &dyn Reporter,
+) -> Result<()> {
     let mut paths = Vec::new();
     for (name, job_text) in DIE_JOBS {
         let path = jobs_dir.join(name);
-        swarf_io::write_atomic(&path, job_text.as_bytes())?;
+        out.write(&path, job_text.as_bytes())?;
         paths.push(path);
     }
-    let dir = out.join("die");
-    let (_, rows) = compare_all(&paths, &SimSettings::default(), &dir, reporter)?;
+    let dir = out.path("die");
+    let (_, rows) = out.in_dir("die", |out| {
+        compare_all(&paths, &SimSettings::default(), out, reporter)
+    })?;
     let table = five_axis_markdown(&rows);
-    swarf_io::write_atomic(&dir.join("die.md"), table.as_bytes())?;
+    out.write(dir.join("die.md"), table.as_bytes())?;
     write!(text, "{table}")?;
     for r in &rows {
         writeln!(
@@ -182,11 +195,11 @@ fn die(out: &Path, jobs_dir: &Path, text: &mut dyn Write, reporter: &dyn Reporte
 
 /// Plans the shipped drop-spin job into `out/edges` and prints the comparison of
 /// the methods on both edge parts.
-fn edges(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<()> {
-    let dir = out.join("edges");
+fn edges(out: &mut Outputs, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<()> {
+    let dir = out.path("edges");
     let job = Job::parse(DROP_SPIN_JOB, "edge-concave-drop-spin.toml")?;
     let start = std::time::Instant::now();
-    let summary = plan_job(&job, Path::new("."), &dir, reporter)?;
+    let summary = out.in_dir("edges", |out| plan_job(&job, Path::new("."), out, reporter))?;
     let range = |axis: &str| {
         let r = |k: usize| {
             summary["rotary_ranges_deg"][axis][k]
@@ -216,14 +229,13 @@ fn edges(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<()
         job.tool,
         crate::edge_compare::edge_markdown(&all)
     );
-    swarf_io::write_atomic(&dir.join("edges.md"), table.as_bytes())?;
-    let json = serde_json::to_string_pretty(&all)? + "\n";
-    swarf_io::write_atomic(&dir.join("edges.json"), json.as_bytes())?;
+    out.write(dir.join("edges.md"), table.as_bytes())?;
+    out.write_json(dir.join("edges.json"), &all)?;
     write!(text, "{table}")?;
     Ok(())
 }
 
-fn tessellate_parts(out: &Path, text: &mut dyn Write) -> Result<()> {
+fn tessellate_parts(out: &mut Outputs, text: &mut dyn Write) -> Result<()> {
     for (name, _) in swarf_io::builtin_parts() {
         let part = swarf_io::builtin_part(name)
             .with_context(|| "built-in part does not load".to_string())?;
@@ -235,8 +247,8 @@ fn tessellate_parts(out: &Path, text: &mut dyn Write) -> Result<()> {
             .collect::<Result<Vec<_>>>()?;
         write!(text, "{}", patch_text(&part.name, &summaries))?;
         let mesh = part.tessellate(DEMO_TOL)?;
-        let path = out.join(format!("{name}.stl"));
-        swarf_io::write_stl(&path, &mesh, name)?;
+        let path = out.path(format!("{name}.stl"));
+        out.write_stl(&path, &mesh, name)?;
         writeln!(
             text,
             "  tessellated within {DEMO_TOL} mm: {} triangles -> {}",

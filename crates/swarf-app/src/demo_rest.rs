@@ -8,12 +8,11 @@
 use crate::error::Result;
 use crate::job::Job;
 use crate::model::load_model;
+use crate::outputs::Outputs;
 use crate::plan_job::plan_job;
 use crate::report::Reporter;
-use crate::verify::{Destination, context, verify_and_write};
+use crate::verify::{context, verify_and_write};
 use std::io::Write;
-use std::path::Path;
-use swarf_nc::read::read_program;
 use swarf_rest::{RegionParams, Source, detect};
 use swarf_sim::Stage;
 use swarf_sim::{StockSpec, Verification, VerifyOptions};
@@ -33,20 +32,24 @@ const JOBS: [(&str, &str); 2] = [
 /// Dexel cell of the section's verifications, mm.
 const CELL: f64 = 0.1;
 
-/// Runs the section into `out/rest`, printing its table to `text`.
+/// Runs the section into `out` (the demo's `rest` directory), printing its table
+/// to `text`.
 ///
 /// # Errors
 /// A job that fails; an output that cannot be written.
-pub fn cleanup_section(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<()> {
-    let dir = out.join("rest");
+pub fn cleanup_section(
+    out: &mut Outputs,
+    text: &mut dyn Write,
+    reporter: &dyn Reporter,
+) -> Result<()> {
+    let dir = out.dir().to_path_buf();
     for (name, job_text) in JOBS {
-        swarf_io::write_atomic(&dir.join(name), job_text.as_bytes())?;
+        out.write(name, job_text.as_bytes())?;
     }
     let mut cutters = Vec::new();
-    for (name, _) in JOBS {
-        let path = dir.join(name);
-        let job = Job::parse(&std::fs::read_to_string(&path)?, name)?;
-        let summary = plan_job(&job, &dir, &dir, reporter)?;
+    for (name, job_text) in JOBS {
+        let job = Job::parse(job_text, name)?;
+        let summary = plan_job(&job, &dir, out, reporter)?;
         let rest = &summary["rest"]["regions"];
         writeln!(
             text,
@@ -63,8 +66,8 @@ pub fn cleanup_section(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter
     let model = load_model("builtin:fillet-pocket")?;
     let programs = cutters
         .iter()
-        .map(|(file, _)| read_program(&dir.join(file)))
-        .collect::<std::result::Result<Vec<_>, _>>()?;
+        .map(|(file, _)| out.read_program(file))
+        .collect::<Result<Vec<_>>>()?;
     let opts = VerifyOptions {
         cell: Some(CELL),
         stock: StockSpec::Box { top: None },
@@ -83,8 +86,7 @@ pub fn cleanup_section(out: &Path, text: &mut dyn Write, reporter: &dyn Reporter
             .collect();
         let ctx = context("builtin:fillet-pocket", &stages, &opts);
         let start = std::time::Instant::now();
-        let to = Destination { dir: &dir, prefix };
-        let v = verify_and_write(&model, &stages, &opts, to, &ctx, reporter)?;
+        let v = verify_and_write(&model, &stages, &opts, (&mut *out, prefix), &ctx, reporter)?;
         let regions = stock_regions(&model, &v, &cutters[0].1)?;
         let d = &v.deviation.summary;
         let names: Vec<&str> = cutters[..n].iter().map(|(f, _)| f.as_str()).collect();

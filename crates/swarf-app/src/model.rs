@@ -29,16 +29,26 @@ pub fn builtin_names() -> Vec<&'static str> {
         .collect()
 }
 
-/// Loads `arg`: `builtin:NAME` or a bare built-in name (when no such file exists),
-/// a `.toml` part file, or an `.stl` / `.obj` mesh.
+/// Loads `arg`: `builtin:NAME`, a `.toml` part file, an `.stl` / `.obj` mesh, or a
+/// bare built-in name. A bare name is a file first: when a regular file of that name
+/// exists it is read (and a note on standard error says how to name the built-in
+/// part instead); anything else of that name (a directory, nothing) leaves the
+/// built-in part.
 ///
 /// # Errors
 /// An unknown built-in name; a file that cannot be read or parsed.
 pub fn load_model(arg: &str) -> Result<Model> {
     let path = Path::new(arg);
+    let is_file = path.is_file();
+    let known = |name: &str| {
+        swarf_io::builtin_part(name).is_some() || swarf_io::builtin_mesh(name).is_some()
+    };
+    if is_file && !arg.starts_with("builtin:") && known(arg) {
+        eprintln!("note: {arg}: reading the file {arg}; write builtin:{arg} for the built-in part");
+    }
     let builtin = arg
         .strip_prefix("builtin:")
-        .or_else(|| (!path.exists()).then_some(arg));
+        .or_else(|| (!is_file && (known(arg) || !path.exists())).then_some(arg));
     if let Some(name) = builtin {
         if let Some(part) = swarf_io::builtin_part(name) {
             return Ok(Model::Patches(part));
@@ -49,7 +59,8 @@ pub fn load_model(arg: &str) -> Result<Model> {
         }
         if arg.starts_with("builtin:") || path.extension().is_none() {
             bail!(
-                "{arg}: no such file and no built-in part of that name (built-in parts: {})",
+                "{}: no such file and no built-in part of that name (built-in parts: {})",
+                swarf_geom::domain::excerpt(arg, 200),
                 builtin_names().join(", ")
             );
         }
@@ -62,6 +73,17 @@ pub fn load_model(arg: &str) -> Result<Model> {
     match ext.as_str() {
         "stl" | "obj" => {
             let mesh = swarf_io::read_mesh(path)?;
+            let usable = |t: &[u32; 3]| {
+                t.iter()
+                    .all(|&k| swarf_geom::domain::usable_point(&mesh.vertices[k as usize]))
+            };
+            if !mesh.triangles.iter().any(usable) {
+                bail!(
+                    "{arg}: the mesh has no triangle with all corners finite and within \
+                     1 km of the origin ({} triangles in all)",
+                    mesh.len()
+                );
+            }
             let name = path
                 .file_stem()
                 .map_or_else(|| arg.to_string(), |s| s.to_string_lossy().into_owned());

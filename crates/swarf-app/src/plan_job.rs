@@ -5,10 +5,11 @@
 
 use crate::cleanup::{plan_cleanup_job, rest_json, stage_file, steep_json};
 use crate::drop_spin::{contacts_csv, drop_spin_json, plan_drop_spin};
-use crate::error::{Result, bail};
+use crate::error::{AppError, Result, bail};
 use crate::five_axis::{position_plan, write_job_gcode};
 use crate::job::Job;
 use crate::model::{Model, load_model};
+use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
 use crate::programs::SCALLOP_COMMENT;
 use crate::report::Reporter;
@@ -19,8 +20,9 @@ use swarf_nc::GcodeOptions;
 use swarf_path::{Plan, StrategyKind};
 use swarf_toolpath::motion_stats;
 
-/// Loads the job's part, plans it (and positions it, for a five-axis job) and writes
-/// every requested output under `out_dir`. Returns the JSON summary.
+/// Loads the job's part, plans it (and positions it, for a five-axis job) and stages
+/// every requested output in `out` (relative to its directory). Returns the JSON
+/// summary.
 ///
 /// # Errors
 /// A part or machine that cannot be read; the planning, positioning and post
@@ -28,11 +30,11 @@ use swarf_toolpath::motion_stats;
 pub fn plan_job(
     job: &Job,
     job_dir: &Path,
-    out_dir: &Path,
+    out: &mut Outputs,
     reporter: &dyn Reporter,
 ) -> Result<serde_json::Value> {
     let model = load_model(&part_arg(job, job_dir))?;
-    plan_model(job, &model, job_dir, out_dir, reporter)
+    plan_model(job, &model, job_dir, out, reporter)
 }
 
 /// [`plan_job`] on the job's part already loaded as `model` (a caller that verifies
@@ -44,7 +46,7 @@ pub fn plan_model(
     job: &Job,
     model: &Model,
     job_dir: &Path,
-    out_dir: &Path,
+    out: &mut Outputs,
     reporter: &dyn Reporter,
 ) -> Result<serde_json::Value> {
     let machine = job
@@ -54,10 +56,10 @@ pub fn plan_model(
         .map(|spec| load_machine(spec, job_dir))
         .transpose()?;
     if job.strategy.kind == StrategyKind::Cleanup {
-        return cleanup_outputs(job, model, job_dir, machine.as_ref(), out_dir);
+        return cleanup_outputs(job, model, job_dir, machine.as_ref(), out);
     }
     if job.strategy.kind == StrategyKind::DropSpin {
-        return drop_spin_outputs(job, model, machine.as_ref(), out_dir);
+        return drop_spin_outputs(job, model, machine.as_ref(), out);
     }
     let (name, mut plan) = match model {
         Model::Patches(part) => (part.name.clone(), plan(job, PlanInput::Part(part))?),
@@ -85,7 +87,7 @@ pub fn plan_model(
         positioning: positioning.as_ref(),
         notes: &[],
     };
-    write_outputs(job, &plan, &written, out_dir)
+    write_outputs(job, &plan, &written, out)
 }
 
 /// What a job's outputs say besides its plan.
@@ -103,7 +105,7 @@ fn drop_spin_outputs(
     job: &Job,
     model: &Model,
     machine: Option<&Machine>,
-    out_dir: &Path,
+    out: &mut Outputs,
 ) -> Result<serde_json::Value> {
     let Model::Patches(part) = model else {
         bail!(
@@ -112,8 +114,8 @@ fn drop_spin_outputs(
     };
     let ds = plan_drop_spin(job, part, machine)?;
     if let Some(rel) = &job.output.contacts {
-        swarf_io::write_atomic(
-            &out_dir.join(rel),
+        out.write(
+            rel,
             contacts_csv(&ds.passes.poses, job.strategy.faces.unwrap_or([0, 1])).as_bytes(),
         )?;
     }
@@ -125,11 +127,10 @@ fn drop_spin_outputs(
     };
     let mut quiet = job.clone();
     let summary_file = quiet.output.summary.take();
-    let mut s = write_outputs(&quiet, &ds.plan, &written, out_dir)?;
+    let mut s = write_outputs(&quiet, &ds.plan, &written, out)?;
     s["drop_spin"] = drop_spin_json(&ds.passes);
     if let Some(rel) = &summary_file {
-        let text = serde_json::to_string_pretty(&s)? + "\n";
-        swarf_io::write_atomic(&out_dir.join(rel), text.as_bytes())?;
+        out.write_json(rel, &s)?;
     }
     Ok(s)
 }
@@ -143,7 +144,7 @@ fn cleanup_outputs(
     model: &Model,
     job_dir: &Path,
     machine: Option<&Machine>,
-    out_dir: &Path,
+    out: &mut Outputs,
 ) -> Result<serde_json::Value> {
     let stages = plan_cleanup_job(job, model, job_dir)?;
     let name = match model {
@@ -168,7 +169,7 @@ fn cleanup_outputs(
             positioning: None,
             notes: &stage.notes,
         };
-        let mut s = write_outputs(&staged, &stage.plan, &written, out_dir)?;
+        let mut s = write_outputs(&staged, &stage.plan, &written, out)?;
         s["reference_tool"] = serde_json::json!(stage.reference.to_string());
         s["rest_source"] = serde_json::json!(stage.source);
         s["rest"] = rest_json(&stage.detection);
@@ -179,8 +180,7 @@ fn cleanup_outputs(
             s["notes"] = serde_json::json!(stage.notes);
         }
         if let Some(rel) = summary_file {
-            let text = serde_json::to_string_pretty(&s)? + "\n";
-            swarf_io::write_atomic(&out_dir.join(rel), text.as_bytes())?;
+            out.write_json(rel, &s)?;
         }
         summaries.push(s);
     }
@@ -206,7 +206,7 @@ fn write_outputs(
     job: &Job,
     plan: &Plan,
     written: &Written<'_>,
-    out_dir: &Path,
+    out: &mut Outputs,
 ) -> Result<serde_json::Value> {
     let Written {
         part_name,
@@ -218,13 +218,15 @@ fn write_outputs(
     let stats = motion_stats(&moves, job.feeds.rapid);
     let strategy = serde_json::to_value(job.strategy.kind)?;
     let strategy = strategy.as_str().unwrap_or("?").to_string();
-    let out = |rel: &str| out_dir.join(rel);
     let comments = header_comments(job, plan, part_name, &strategy, notes);
     let mut rotary = None;
     match (&job.output.gcode, machine) {
         (Some(rel), Some(m)) => {
-            let post = write_job_gcode(job, m, &plan.toolpath, comments)?;
-            swarf_io::write_atomic(&out(rel), post.gcode.as_bytes())?;
+            let post = write_job_gcode(job, m, &plan.toolpath, comments).map_err(|e| {
+                let spec = job.output.machine.as_deref().unwrap_or_default();
+                AppError::Message(format!("output.machine = {spec:?} ({}): {e}", m.name))
+            })?;
+            out.write(rel, post.gcode.as_bytes())?;
             rotary = post.rotary_ranges;
         }
         (Some(rel), None) => {
@@ -235,21 +237,29 @@ fn write_outputs(
                 ..GcodeOptions::default()
             };
             let text = swarf_nc::write_gcode(&moves, &job.feeds, &opts)?;
-            swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+            out.write(rel, text.as_bytes())?;
         }
         (None, _) => {}
     }
     if let Some(rel) = &job.output.cl {
         let text = swarf_nc::write_cl(&moves, &job.feeds, &job.tool, part_name, job.output.units)?;
-        swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+        out.write(rel, text.as_bytes())?;
     }
     if let Some(rel) = &job.output.csv {
-        let text = swarf_nc::write_pose_csv(&plan.toolpath, job.output.units);
-        swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+        let text = swarf_nc::write_pose_csv(&plan.toolpath, job.output.units)?;
+        out.write(rel, text.as_bytes())?;
     }
     if let (Some(rel), Some(text)) = (&job.output.double_contacts, plan.double_contacts_csv()) {
-        swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+        out.write(rel, text.as_bytes())?;
     }
+    let numbers = [
+        stats.cutting_length,
+        stats.approach_length,
+        stats.rapid_length,
+        stats.time_s,
+    ];
+    swarf_io::json::check_finite(&(numbers, &plan.report))
+        .map_err(|e| AppError::Message(format!("the plan's summary: {e}")))?;
     let mut summary = serde_json::json!({
         "job": job.name,
         "part": part_name,
@@ -274,8 +284,7 @@ fn write_outputs(
         summary["positioning"] = serde_json::to_value(p)?;
     }
     if let Some(rel) = &job.output.summary {
-        let text = serde_json::to_string_pretty(&summary)? + "\n";
-        swarf_io::write_atomic(&out(rel), text.as_bytes())?;
+        out.write_json(rel, &summary)?;
     }
     Ok(summary)
 }

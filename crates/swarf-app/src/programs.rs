@@ -11,6 +11,7 @@ use crate::error::{AppError, Context, Result, bail};
 use std::path::{Path, PathBuf};
 use swarf_fiveaxis::machine::reader::MachineKinematics;
 use swarf_fiveaxis::machine::{Machine, MachineKind, load_machine};
+use swarf_geom::domain::excerpt;
 use swarf_nc::Dialect;
 use swarf_nc::read::{
     GcodeReadOptions, Program, ProgramFormat, ToolTable, parse_var_file, read_program_with,
@@ -174,7 +175,7 @@ pub fn parse_tools(specs: &[String], programs: usize) -> Result<Vec<Cutter>> {
                 } else {
                     String::new()
                 };
-                AppError::Message(format!("--tool {spec}{at}: {e}"))
+                AppError::Message(format!("--tool {}{at}: {e}", excerpt(spec, 60)))
             })
         })
         .collect()

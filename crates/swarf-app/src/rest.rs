@@ -8,8 +8,10 @@ use crate::cleanup::{
 use crate::error::{AppError, Result, bail};
 use crate::job::RestSource;
 use crate::model::load_model;
+use crate::outputs::Outputs;
 use crate::plan_job::part_arg;
 use std::path::Path;
+use swarf_geom::domain::excerpt;
 use swarf_report::rest_picture::{RegionOutline, rest_png};
 use swarf_rest::{Detection, RegionParams, Source, detect};
 use swarf_sim::{Design, DesignSurface, Grid, Quiet};
@@ -87,9 +89,9 @@ pub fn rest_request(req: &RestRequest<'_>) -> Result<RestFound> {
             if req.source != RestSource::Reference {
                 bail!("--source {}: needs a parent --job", source_name(req.source));
             }
-            let tool: Cutter = spec
-                .parse()
-                .map_err(|e| AppError::Message(format!("--reference {spec}: {e}")))?;
+            let tool: Cutter = spec.parse().map_err(|e| {
+                AppError::Message(format!("--reference {}: {e}", excerpt(spec, 60)))
+            })?;
             (
                 detect(&mesh, &tool, Source::Reference, req.tol, &req.params)?,
                 tool,
@@ -111,19 +113,13 @@ fn write_rest(f: &RestFound, part: &str, mesh: &swarf_geom::TriMesh, out: &Path)
     json["part"] = serde_json::json!(part);
     json["reference_tool"] = serde_json::json!(f.reference.to_string());
     json["source"] = serde_json::json!(f.source);
-    let text = serde_json::to_string_pretty(&json)? + "\n";
     let png = picture(f, part, mesh)?;
     let csv = boundaries_csv(&f.detection);
-    std::fs::create_dir_all(out).map_err(|e| {
-        AppError::Message(format!(
-            "{}: cannot create the output directory: {e}",
-            out.display()
-        ))
-    })?;
-    swarf_io::write_atomic(&out.join("rest.json"), text.as_bytes())?;
-    swarf_io::write_atomic(&out.join("rest.csv"), csv.as_bytes())?;
-    swarf_io::write_atomic(&out.join("rest.png"), &png)?;
-    Ok(())
+    let mut set = Outputs::new(out);
+    set.write_json("rest.json", &json)?;
+    set.write("rest.csv", csv.as_bytes())?;
+    set.write("rest.png", &png)?;
+    set.commit()
 }
 
 /// The regions over the part's relief (PNG bytes).

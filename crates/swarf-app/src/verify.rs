@@ -13,11 +13,13 @@
 //! report. The tools are matched to the programs in order ([`stage_cutters`]); the
 //! machine applies to every G-code program.
 
-use crate::error::{AppError, Context, Result, bail};
+use crate::error::{AppError, Result, bail};
 use crate::model::{Model, load_model};
+use crate::outputs::Outputs;
 pub use crate::programs::{GcodeSetup, machine_arg, parse_tools, read_with_machine, stage_cutters};
 use crate::programs::{planned_scallop, read_programs};
 use std::path::{Path, PathBuf};
+use swarf_geom::domain::excerpt;
 use swarf_nc::read::Motion;
 use swarf_sim::report::{ReportContext, flagged_csv, json_report};
 use swarf_sim::{Design, Progress, Stage, StockSpec, Verification, VerifyOptions};
@@ -92,9 +94,7 @@ impl SimSettings {
             ("--rapid", self.rapid, RATE),
         ] {
             if let Some(x) = v {
-                domain
-                    .check(x)
-                    .map_err(|m| AppError::Message(format!("{flag}: {m}")))?;
+                domain.check_named(flag, x).map_err(AppError::Message)?;
             }
         }
         if let Some(h) = self.scallop
@@ -134,8 +134,11 @@ impl SimSettings {
 pub fn parse_stock(text: &str) -> Result<StockSpec> {
     let number = |s: &str, what: &str, domain: swarf_geom::domain::Domain| -> Result<f64> {
         let v: f64 = s.trim().parse().map_err(|_| {
-            let s = swarf_geom::domain::excerpt(s, 40);
-            AppError::Message(format!("--stock {text}: {what} {s:?} is not a number"))
+            AppError::Message(format!(
+                "--stock {}: {what} {:?} is not a number",
+                excerpt(text, 60),
+                excerpt(s, 40)
+            ))
         })?;
         domain
             .check(v)
@@ -160,7 +163,10 @@ pub fn parse_stock(text: &str) -> Result<StockSpec> {
         .map(str::to_ascii_lowercase)
     {
         Some(e) if e == "stl" || e == "obj" => Ok(StockSpec::Mesh(swarf_io::read_mesh(path)?)),
-        _ => bail!("--stock {text}: expected box, box:TOP, offset:ALLOWANCE or a .stl / .obj mesh"),
+        _ => bail!(
+            "--stock {}: expected box, box:TOP, offset:ALLOWANCE or a .stl / .obj mesh",
+            excerpt(text, 60)
+        ),
     }
 }
 
@@ -186,6 +192,10 @@ pub struct VerifyRequest<'a> {
     pub sim: &'a SimSettings,
     /// Output directory.
     pub out: &'a Path,
+    /// Write the reports of a program that stopped before its end (they cover the
+    /// motions before the stop); without it such a run writes nothing and the
+    /// previous reports stay whole.
+    pub partial: bool,
 }
 
 /// What a verification gave, with what its report says about the inputs and the
@@ -198,12 +208,16 @@ pub struct Verified {
     pub context: ReportContext,
     /// Notes for the user.
     pub notes: Vec<String>,
+    /// Whether the reports were written (not when a program stopped early without
+    /// [`VerifyRequest::partial`]).
+    pub written: bool,
 }
 
 /// Reads and verifies the programs of `req`, in order on one stock, writing the
-/// reports and pictures under `req.out` ([`verify_and_write`]). A program that stops
-/// mid-way is simulated up to where it stopped; the programs after it are not (a
-/// note says so), and [`Verified::context`] holds where it stopped.
+/// reports and pictures under `req.out` as one set ([`verify_and_write`]). A program
+/// that stops mid-way is simulated up to where it stopped; the programs after it are
+/// not (a note says so), [`Verified::context`] holds where it stopped, and the
+/// reports are written only with [`VerifyRequest::partial`].
 ///
 /// # Errors
 /// No program; more tools than programs; a tool spec that does not parse (naming
@@ -259,21 +273,18 @@ pub fn verify_request(req: &VerifyRequest<'_>, progress: &dyn Progress) -> Resul
         .map(|(program, cutter)| Stage { program, cutter })
         .collect();
     let context = context(req.part, &stages, &opts);
-    let verification = verify_and_write(
-        &model,
-        &stages,
-        &opts,
-        Destination {
-            dir: req.out,
-            prefix: "",
-        },
-        &context,
-        progress,
-    )?;
+    let mut out = Outputs::new(req.out);
+    let verification =
+        verify_and_write(&model, &stages, &opts, (&mut out, ""), &context, progress)?;
+    let written = context.stopped.is_none() || req.partial;
+    if written {
+        out.commit()?;
+    }
     Ok(Verified {
         verification,
         context,
         notes,
+        written,
     })
 }
 
@@ -298,18 +309,9 @@ pub fn context(part: &str, stages: &[Stage<'_>], opts: &VerifyOptions) -> Report
     }
 }
 
-/// Where a verification's files go: `dir/{prefix}report.json`, ...
-#[derive(Debug, Clone, Copy)]
-pub struct Destination<'a> {
-    /// Output directory (created when missing).
-    pub dir: &'a Path,
-    /// Prefix of every file name.
-    pub prefix: &'a str,
-}
-
 /// Verifies `stages` (programs run in order on one stock, each with its cutter) and
-/// writes `{prefix}report.json`, `{prefix}flagged.csv`, `{prefix}deviation.png` and
-/// `{prefix}toolpath.png` under `to.dir`.
+/// stages `{prefix}report.json`, `{prefix}flagged.csv`, `{prefix}deviation.png` and
+/// `{prefix}toolpath.png` in `to = (outputs, prefix)`.
 ///
 /// # Errors
 /// No stage; a verification that cannot run (grid too large, ...); an output that
@@ -318,22 +320,19 @@ pub fn verify_and_write(
     model: &Model,
     stages: &[Stage<'_>],
     opts: &VerifyOptions,
-    to: Destination<'_>,
+    to: (&mut Outputs, &str),
     ctx: &ReportContext,
     progress: &dyn Progress,
 ) -> Result<Verification> {
-    let (out, prefix) = (to.dir, to.prefix);
+    let (out, prefix) = to;
     let design = match model {
         Model::Patches(p) => Design::Part(p),
         Model::Mesh { mesh, .. } => Design::Mesh(mesh),
     };
     let v = swarf_sim::verify_stages(design, stages, opts, progress)?;
-    std::fs::create_dir_all(out)
-        .with_context(|| format!("{}: cannot create the output directory", out.display()))?;
-    let file = |name: &str| out.join(format!("{prefix}{name}"));
-    let json = serde_json::to_string_pretty(&json_report(&v, ctx))? + "\n";
-    swarf_io::write_atomic(&file("report.json"), json.as_bytes())?;
-    swarf_io::write_atomic(&file("flagged.csv"), flagged_csv(&v).as_bytes())?;
+    let file = |name: &str| format!("{prefix}{name}");
+    out.write_json(file("report.json"), &json_report(&v, ctx))?;
+    out.write(file("flagged.csv"), flagged_csv(&v).as_bytes())?;
     let name = stages
         .iter()
         .map(|s| {
@@ -353,8 +352,8 @@ pub fn verify_and_write(
         "{mode} deviation: {name}, {}, tol {} mm",
         ctx.tool, v.deviation.summary.tol
     );
-    swarf_io::write_atomic(
-        &file("deviation.png"),
+    out.write(
+        file("deviation.png"),
         &swarf_report::picture::deviation_png(&v, &title)?,
     )?;
     let title = format!("tool path: {name}, {}", ctx.tool);
@@ -363,7 +362,7 @@ pub fn verify_and_write(
         .flat_map(|s| s.program.motions.iter().copied())
         .collect();
     let png = swarf_report::picture::toolpath_png(&v, &motions, &title)?;
-    swarf_io::write_atomic(&file("toolpath.png"), &png)?;
+    out.write(file("toolpath.png"), &png)?;
     Ok(v)
 }
 

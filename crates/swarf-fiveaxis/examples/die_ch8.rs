@@ -169,7 +169,15 @@ fn write_outputs(dir: &std::path::Path, cutter: &Cutter, passes: Vec<Pass>) {
         .collect();
     let swept =
         SweptSurface::new(&cutter.profile(), &poses, &CurveOptions::default()).expect("swept");
-    swarf_io::write_stl(&dir.join("die-auto-machined.stl"), swept.mesh(), "die auto").expect("stl");
+    let mut out = swarf_io::OutputSet::new();
+    swarf_io::write_stl(
+        &mut out,
+        &dir.join("die-auto-machined.stl"),
+        swept.mesh(),
+        "die auto",
+    )
+    .expect("stl");
+    out.commit().expect("stl");
     println!("wrote {}", dir.display());
 }
 

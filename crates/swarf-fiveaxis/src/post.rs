@@ -238,7 +238,7 @@ pub fn post_5x(
         (names[1], WordKind::Angle),
     ];
     let mut w = BlockWriter::new(opts.dialect, opts.units, &axes, blocks.len());
-    header(&mut w, m, toolpath, opts);
+    header(&mut w, m, toolpath, opts)?;
     let mut prev: Option<&Joints> = None;
     for (index, b) in blocks.iter().enumerate() {
         let j = &b.joints;
@@ -382,7 +382,12 @@ fn check_options(o: &PostOptions) -> Result<(), FiveAxisError> {
     Ok(())
 }
 
-fn header(w: &mut BlockWriter, m: &Machine, toolpath: &Toolpath, opts: &PostOptions) {
+fn header(
+    w: &mut BlockWriter,
+    m: &Machine,
+    toolpath: &Toolpath,
+    opts: &PostOptions,
+) -> Result<(), FiveAxisError> {
     w.start(opts.program_number);
     for c in &opts.comments {
         w.comment(c);
@@ -398,5 +403,5 @@ fn header(w: &mut BlockWriter, m: &Machine, toolpath: &Toolpath, opts: &PostOpti
             opts.tool_length
         ));
     }
-    w.spindle_on(toolpath.feeds.spindle);
+    Ok(w.spindle_on(toolpath.feeds.spindle)?)
 }

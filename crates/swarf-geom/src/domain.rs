@@ -82,6 +82,15 @@ impl Domain {
         };
         Err(format!("expected {self}, found {}{nearest}", show(value)))
     }
+
+    /// [`Domain::check`] with the message prefixed by the field's name
+    /// (`--tol: expected a tolerance from 1e-5 to 10 mm, found 0`).
+    ///
+    /// # Errors
+    /// As [`Domain::check`].
+    pub fn check_named(&self, name: &str, value: f64) -> Result<f64, String> {
+        self.check(value).map_err(|m| format!("{name}: {m}"))
+    }
 }
 
 impl fmt::Display for Domain {
@@ -100,6 +109,13 @@ impl fmt::Display for Domain {
             show(self.max)
         )
     }
+}
+
+/// Whether every coordinate of `p` is in [`COORDINATE`]: a mesh vertex outside it
+/// (NaN, infinite, or farther than 1 km: an exporter's garbage) makes its triangles
+/// unusable, and they are skipped and reported like those with NaN corners.
+pub fn usable_point(p: &crate::Point3) -> bool {
+    p.coords.iter().all(|&c| COORDINATE.contains(c))
 }
 
 /// `value` as a person reads it: the shortest decimal for ordinary magnitudes,

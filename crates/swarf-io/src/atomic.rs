@@ -1,22 +1,15 @@
-//! Atomic file writes: write a temporary file in the target's directory, flush it to
-//! disk, then rename it over the target.
+//! Atomic writes of one file: a one-file [`OutputSet`], staged as a temporary file
+//! in the target's directory, flushed to disk, then renamed over the target.
 //!
-//! `rename` within one directory (one file system) replaces the target atomically on
-//! POSIX and Windows, so a reader sees the old file or the complete new one, never a
-//! half-written mix, and a failure (full disk, a writer callback's error, a panic)
-//! leaves the old file untouched and the temporary file removed. The temporary file
-//! is created with `create_new`, so two writers never share one, and it takes the
-//! target's permissions when the target exists. After the rename the directory is
-//! synced too (best effort) so the new name survives a crash.
+//! A reader sees the old file or the complete new one, never a half-written mix, and
+//! a failure (full disk, a writer callback's error, a panic) leaves the old file
+//! untouched and the temporary file removed. Commands that write several files stage
+//! them in one [`OutputSet`] instead, so the set is replaced as a whole.
 
 use crate::error::IoError;
-use std::fs::{self, File};
-use std::io::{self, BufWriter, Write};
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
-
-/// Buffer of the streaming writer, bytes.
-const BUFFER: usize = 1 << 16;
+use crate::output_set::OutputSet;
+use std::io::{self, Write};
+use std::path::Path;
 
 /// Writes `bytes` to `path` atomically, creating parent directories.
 ///
@@ -50,82 +43,16 @@ pub fn write_atomic_with<F>(path: &Path, write: F) -> Result<(), IoError>
 where
     F: FnOnce(&mut dyn Write) -> io::Result<()>,
 {
-    let Some(name) = path.file_name() else {
-        let e = io::Error::new(io::ErrorKind::InvalidInput, "the path names no file");
-        return Err(IoError::io(path, "write", e));
-    };
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    fs::create_dir_all(dir).map_err(|e| IoError::io(dir, "create directory", e))?;
-    let (file, temp) =
-        create_temp(dir, name).map_err(|e| IoError::io(path, "create a temporary file for", e))?;
-    let mut writer = BufWriter::with_capacity(BUFFER, file);
-    write(&mut writer).map_err(|e| IoError::io(path, "write", e))?;
-    let file = writer
-        .into_inner()
-        .map_err(|e| IoError::io(path, "write", e.into_error()))?;
-    if let Ok(meta) = fs::metadata(path) {
-        file.set_permissions(meta.permissions())
-            .map_err(|e| IoError::io(path, "set permissions of", e))?;
-    }
-    file.sync_all()
-        .map_err(|e| IoError::io(path, "flush to disk", e))?;
-    drop(file);
-    fs::rename(&temp.0, path).map_err(|e| IoError::io(path, "replace", e))?;
-    temp.disarm();
-    if let Ok(d) = File::open(dir) {
-        let _ = d.sync_all();
-    }
-    Ok(())
-}
-
-/// Removes the temporary file when dropped, unless disarmed after the rename.
-struct TempFile(PathBuf);
-
-impl TempFile {
-    fn disarm(self) {
-        std::mem::forget(self);
-    }
-}
-
-impl Drop for TempFile {
-    fn drop(&mut self) {
-        let _ = fs::remove_file(&self.0);
-    }
-}
-
-/// A new file `.NAME.PID.N.tmp` in `dir`.
-fn create_temp(dir: &Path, name: &std::ffi::OsStr) -> io::Result<(File, TempFile)> {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    loop {
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let mut temp_name = std::ffi::OsString::from(".");
-        temp_name.push(name);
-        temp_name.push(format!(".{}.{n}.tmp", std::process::id()));
-        let temp = dir.join(temp_name);
-        match File::options().write(true).create_new(true).open(&temp) {
-            Ok(f) => return Ok((f, TempFile(temp))),
-            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(e),
-        }
-    }
+    let mut set = OutputSet::new();
+    set.write_with(path, write)?;
+    set.commit()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testutil::scratch_dir;
-
-    fn entries(dir: &Path) -> Vec<String> {
-        let mut v: Vec<String> = fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        v.sort();
-        v
-    }
+    use crate::testutil::{entries, scratch_dir};
+    use std::fs;
 
     #[test]
     fn writes_replaces_and_creates_parents() {

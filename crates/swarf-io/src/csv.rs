@@ -7,6 +7,7 @@
 
 use crate::error::{At, IoError, excerpt};
 use std::path::Path;
+use swarf_geom::domain::COORDINATE;
 
 /// Longest quote of a bad line in an error, characters.
 const EXCERPT: usize = 60;
@@ -69,7 +70,14 @@ pub fn parse_xy_points(text: &str, source: &str) -> Result<Vec<[f64; 2]>, IoErro
             )
         };
         match numbers.as_slice() {
-            [Some(x), Some(y)] if x.is_finite() && y.is_finite() => points.push([*x, *y]),
+            [Some(x), Some(y)] if x.is_finite() && y.is_finite() => {
+                for v in [*x, *y] {
+                    COORDINATE.check(v).map_err(|m| {
+                        IoError::format(source, At::Line(i + 1), format!("x,y: {m}"))
+                    })?;
+                }
+                points.push([*x, *y]);
+            }
             [Some(_), Some(_)] => return Err(bad("two finite numbers `x,y`")),
             _ => return Err(bad("two numbers `x,y`")),
         }

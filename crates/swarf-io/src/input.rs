@@ -3,10 +3,79 @@
 //! grows without end), and at most [`max_input_bytes`] bytes (1 GiB unless the
 //! environment variable `SWARF_MAX_INPUT_MB` says otherwise). Every file swarf reads
 //! (parts, meshes, jobs, programs, machines, tool tables, points) comes through here.
+//!
+//! A command-line run calls [`track_inputs`] first; from then on every file opened
+//! here is remembered, and [`crate::OutputSet`] refuses to replace one of them.
 
 use crate::error::IoError;
 use std::io::Read;
 use std::path::Path;
+#[cfg(not(unix))]
+use std::path::PathBuf;
+use std::sync::Mutex;
+
+/// The files read since [`track_inputs`] (`None`: not tracking).
+static READ: Mutex<Option<Vec<FileId>>> = Mutex::new(None);
+
+/// What identifies a file whatever the path that names it: device and inode on Unix,
+/// the canonical path elsewhere.
+#[derive(Debug, Clone, PartialEq, Eq)]
+enum FileId {
+    #[cfg(unix)]
+    Inode(u64, u64),
+    #[cfg(not(unix))]
+    Path(PathBuf),
+}
+
+/// The identity of the existing file at `path`.
+fn file_id(path: &Path) -> Option<FileId> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        std::fs::metadata(path)
+            .ok()
+            .map(|m| FileId::Inode(m.dev(), m.ino()))
+    }
+    #[cfg(not(unix))]
+    {
+        std::fs::canonicalize(path).ok().map(FileId::Path)
+    }
+}
+
+/// Starts remembering the files read, for the rest of the process (a command-line
+/// run: one command per process).
+pub fn track_inputs() {
+    let mut read = READ
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    read.get_or_insert_with(Vec::new);
+}
+
+/// Whether the existing file at `path` was read since [`track_inputs`].
+pub fn was_read(path: &Path) -> bool {
+    let read = READ
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    match (
+        read.as_ref(),
+        read.is_some().then(|| file_id(path)).flatten(),
+    ) {
+        (Some(ids), Some(id)) => ids.contains(&id),
+        _ => false,
+    }
+}
+
+/// Remembers `path` as read when tracking.
+fn remember(path: &Path) {
+    let mut read = READ
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let (Some(ids), Some(id)) = (read.as_mut(), file_id(path))
+        && !ids.contains(&id)
+    {
+        ids.push(id);
+    }
+}
 
 /// The largest input read when `SWARF_MAX_INPUT_MB` is not set, bytes (1 GiB).
 pub const DEFAULT_MAX_INPUT_BYTES: u64 = 1 << 30;
@@ -74,7 +143,9 @@ pub fn checked_open(path: &Path, limit: u64) -> Result<std::fs::File, IoError> {
     if meta.len() > limit {
         return Err(too_large(path, limit));
     }
-    std::fs::File::open(path).map_err(|e| IoError::io(path, "read", e))
+    let file = std::fs::File::open(path).map_err(|e| IoError::io(path, "read", e))?;
+    remember(path);
+    Ok(file)
 }
 
 fn too_large(path: &Path, limit: u64) -> IoError {

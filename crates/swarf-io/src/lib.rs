@@ -4,8 +4,9 @@
 //!   the shared test parts embedded in the binary;
 //! - [`stl`], [`obj`], [`mesh_file`]: triangle meshes;
 //! - [`rest_parts`]: built-in mesh parts for rest-material detection, built in code;
-//! - [`csv`]: numeric point lists;
-//! - [`atomic`]: writes that never leave a half-written file behind.
+//! - [`csv`]: numeric point lists; [`json`]: JSON whose numbers are all finite;
+//! - [`atomic`], [`output_set`]: writes that never leave a half-written file, or a
+//!   mix of two runs' files, behind.
 //!
 //! Every error is an [`IoError`] whose message names the file, the line or byte
 //! offset where relevant, and what was expected.
@@ -15,8 +16,10 @@ pub mod builtin;
 pub mod csv;
 pub mod error;
 pub mod input;
+pub mod json;
 pub mod mesh_file;
 pub mod obj;
+pub mod output_set;
 pub mod part;
 pub mod rest_parts;
 pub mod stl;
@@ -25,9 +28,10 @@ pub use atomic::{write_atomic, write_atomic_with};
 pub use builtin::{builtin_part, builtin_parts, project_parts};
 pub use csv::{parse_xy_points, read_xy_points};
 pub use error::{At, IoError};
-pub use input::{checked_open, max_input_bytes, read_input, read_input_text};
+pub use input::{checked_open, max_input_bytes, read_input, read_input_text, track_inputs};
 pub use mesh_file::read_mesh;
 pub use obj::{parse_obj, read_obj};
+pub use output_set::OutputSet;
 pub use part::{parse_part, read_part};
 pub use rest_parts::{MESH_PART_CHORD, builtin_mesh, builtin_mesh_names};
 pub use stl::{parse_stl, read_stl, write_stl};
@@ -35,8 +39,18 @@ pub use stl::{parse_stl, read_stl, write_stl};
 /// Scratch directories for tests.
 #[cfg(test)]
 pub(crate) mod testutil {
-    use std::path::PathBuf;
+    use std::path::{Path, PathBuf};
     use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// The sorted names in `dir`.
+    pub fn entries(dir: &Path) -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(dir)
+            .expect("read dir")
+            .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
 
     /// A fresh empty directory under the system temp dir, unique to this process and
     /// call.

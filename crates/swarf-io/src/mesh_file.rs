@@ -49,7 +49,9 @@ mod tests {
             Point3::new(0.0, 1.0, 0.0),
         ];
         let mesh = TriMesh::from_triangles(&[t]);
-        crate::stl::write_stl(&dir.join("a.STL"), &mesh, "a").unwrap();
+        let mut out = crate::OutputSet::new();
+        crate::stl::write_stl(&mut out, &dir.join("a.STL"), &mesh, "a").unwrap();
+        out.commit().unwrap();
         assert_eq!(read_mesh(&dir.join("a.STL")).unwrap(), mesh);
         std::fs::write(dir.join("b.Obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
         assert_eq!(read_mesh(&dir.join("b.Obj")).unwrap(), mesh);

@@ -14,6 +14,7 @@
 use crate::error::{At, IoError, excerpt, line_of};
 use std::ops::Range;
 use std::path::Path;
+use swarf_geom::domain::COORDINATE;
 use swarf_geom::units::MM_PER_INCH;
 use swarf_geom::{GeomError, Part, Patch, Point3};
 use toml::Spanned;
@@ -312,7 +313,18 @@ impl Doc<'_> {
         let points = pa
             .iter()
             .enumerate()
-            .map(|(i, p)| Ok(self.point(p, &format!("{prefix}points[{i}]"))? * scale))
+            .map(|(i, p)| {
+                let field = format!("{prefix}points[{i}]");
+                let q = self.point(p, &field)? * scale;
+                // NaN and infinity are Patch::new's to report; a finite coordinate
+                // beyond the domain is refused here, before any work is sized by it.
+                for &c in q.iter().filter(|c| c.is_finite()) {
+                    COORDINATE
+                        .check(c)
+                        .map_err(|m| self.err(p, field.as_str(), m))?;
+                }
+                Ok(q)
+            })
             .collect::<Result<Vec<_>, IoError>>()?;
         for (dir, d) in ["u", "v"].iter().zip(degree) {
             if d >= points.len() {

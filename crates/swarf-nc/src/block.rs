@@ -8,10 +8,13 @@
 //! written text changes (so two positions that round to the same word count as
 //! unchanged), and no block at all when no axis word changed. Lengths are converted
 //! from mm to the output units and angles from radians to degrees here; every value
-//! carries a decimal point ([`crate::number::format_decimal`]).
+//! carries a decimal point ([`crate::number::format_decimal`]). Every value is checked
+//! before it is written: lengths within the coordinate domain, feeds within the rate
+//! domain, angles finite ([`crate::number::writable_length`]), so no program holds
+//! `inf` or a 300-digit word.
 
 use crate::error::NcError;
-use crate::number::{Units, format_decimal};
+use crate::number::{Units, format_decimal, writable_length, writable_rate, writable_spindle};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 
@@ -172,8 +175,12 @@ impl BlockWriter {
     }
 
     /// Spindle on, clockwise, at `rpm` rounded to a whole number.
-    pub fn spindle_on(&mut self, rpm: f64) {
-        let _ = writeln!(self.out, "S{} M3", rpm.round() as u64);
+    ///
+    /// # Errors
+    /// [`NcError::InvalidOption`] when `rpm` is not a finite speed from 0 to 1e6 rpm.
+    pub fn spindle_on(&mut self, rpm: f64) -> Result<(), NcError> {
+        let _ = writeln!(self.out, "S{} M3", writable_spindle(rpm)?.round() as u64);
+        Ok(())
     }
 
     /// The words of `position` (one value per axis, mm or radians) as written.
@@ -199,15 +206,19 @@ impl BlockWriter {
         position: &[f64],
         feed: impl FnOnce() -> Result<Option<Feed>, NcError>,
     ) -> Result<bool, NcError> {
-        let finite = position.iter().zip(&self.axes).all(|(&v, a)| match a.1 {
-            WordKind::Length => self.units.from_mm(v).is_finite(),
-            WordKind::Angle => v.to_degrees().is_finite(),
-        });
-        if !finite {
-            return Err(NcError::NonFinite {
-                index,
-                what: "machine position",
-            });
+        for (&v, a) in position.iter().zip(&self.axes) {
+            match a.1 {
+                WordKind::Length => {
+                    writable_length(index, "machine position", v)?;
+                }
+                WordKind::Angle if !v.to_degrees().is_finite() => {
+                    return Err(NcError::NonFinite {
+                        index,
+                        what: "machine angle",
+                    });
+                }
+                WordKind::Angle => {}
+            }
         }
         let mut words = String::new();
         for (k, &value) in position.iter().enumerate().take(self.axes.len()) {
@@ -230,6 +241,7 @@ impl BlockWriter {
         self.out.push_str(&words);
         match feed()? {
             Some(Feed::PerMinute(mm_per_min)) => {
+                writable_rate(index, "feed", mm_per_min)?;
                 let decimals = self.units.decimals().min(FEED_DECIMALS);
                 let f = format_decimal(self.units.from_mm(mm_per_min), decimals);
                 if self.feed.as_deref() != Some(f.as_str()) {
@@ -238,6 +250,12 @@ impl BlockWriter {
                 }
             }
             Some(Feed::InverseTime(per_min)) => {
+                if !(per_min.is_finite() && per_min > 0.0) {
+                    return Err(NcError::NonFinite {
+                        index,
+                        what: "inverse-time feed",
+                    });
+                }
                 let f = format_decimal(per_min, INVERSE_TIME_DECIMALS);
                 push_word(&mut self.out, 'F', &f);
                 self.feed = Some(f);
@@ -325,6 +343,12 @@ mod tests {
         let mut w = BlockWriter::new(Dialect::Linuxcnc, Units::Mm, &xyz(), 1);
         let e = w.motion(7, MotionCode::Rapid, &[f64::NAN, 0.0, 0.0], || Ok(None));
         assert!(matches!(e, Err(NcError::NonFinite { index: 7, .. })));
+        let e = w.motion(8, MotionCode::Rapid, &[1e300, 0.0, 0.0], || Ok(None));
+        assert!(matches!(e, Err(NcError::OutOfDomain { index: 8, .. })));
+        let feed = || Ok(Some(Feed::PerMinute(f64::INFINITY)));
+        let e = w.motion(9, MotionCode::Linear, &[1.0, 0.0, 0.0], feed);
+        assert!(matches!(e, Err(NcError::NonFinite { index: 9, .. })));
+        assert!(w.spindle_on(f64::NAN).is_err());
         assert!(BlockWriter::check_program_number(Dialect::Fanuc, 0).is_err());
         assert!(BlockWriter::check_program_number(Dialect::Linuxcnc, 0).is_ok());
     }

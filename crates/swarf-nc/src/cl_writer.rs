@@ -4,7 +4,7 @@
 //! post-processors and verifiers read; angles in degrees, lengths in the output units.
 
 use crate::error::NcError;
-use crate::number::Units;
+use crate::number::{Units, writable_length, writable_rate, writable_spindle};
 use std::fmt::Write as _;
 use swarf_tool::Cutter;
 use swarf_toolpath::{Feeds, Move, MoveKind};
@@ -15,7 +15,8 @@ use swarf_toolpath::{Feeds, Move, MoveKind};
 /// Moves in mm and mm/min; converted to `units` on output.
 ///
 /// # Errors
-/// [`NcError::NonFinite`] for NaN or infinite coordinates or feeds.
+/// [`NcError::NonFinite`] for NaN or infinite coordinates or feeds,
+/// [`NcError::OutOfDomain`] for values outside the coordinate or rate domains.
 pub fn write_cl(
     moves: &[Move],
     feeds: &Feeds,
@@ -41,6 +42,10 @@ pub fn write_cl(
     };
     let _ = writeln!(out, "UNITS/{unit_word}");
     let apt = cutter.to_apt();
+    for v in [apt.d, apt.r, apt.e, apt.f, apt.h] {
+        writable_length(0, "cutter", v)?;
+    }
+    writable_spindle(feeds.spindle)?;
     let len = |mm: f64| units.from_mm(mm);
     let _ = writeln!(
         out,
@@ -58,10 +63,13 @@ pub fn write_cl(
     for (index, m) in moves.iter().enumerate() {
         let p = m.to.cl;
         let a = m.to.axis;
-        if !(p.coords.iter().chain(a.iter()).all(|c| c.is_finite())) {
+        for &c in &p.coords {
+            writable_length(index, "pose", c)?;
+        }
+        if !a.iter().all(|c| c.is_finite()) {
             return Err(NcError::NonFinite {
                 index,
-                what: "pose",
+                what: "tool axis",
             });
         }
         match m.kind {
@@ -69,12 +77,7 @@ pub fn write_cl(
                 out.push_str("RAPID\n");
             }
             MoveKind::Feed => {
-                if !(m.feed.is_finite() && m.feed > 0.0) {
-                    return Err(NcError::NonFinite {
-                        index,
-                        what: "feed",
-                    });
-                }
+                writable_rate(index, "feed", m.feed)?;
                 if feed != Some(m.feed) {
                     let _ = writeln!(out, "FEDRAT/{:.4},{feed_word}", len(m.feed));
                     feed = Some(m.feed);

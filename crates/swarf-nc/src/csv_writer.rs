@@ -4,8 +4,8 @@
 //! `# feed=F` (output units per minute) and `# pass N` before each pass, so that the
 //! reader ([`crate::read::parse_pose_csv`]) does not join passes by cutting moves.
 
-use crate::number::Units;
-use crate::number::format_decimal;
+use crate::error::NcError;
+use crate::number::{Units, format_decimal, writable_length, writable_rate};
 use std::fmt::Write as _;
 use swarf_toolpath::Toolpath;
 
@@ -13,7 +13,12 @@ use swarf_toolpath::Toolpath;
 ///
 /// # Units
 /// Lengths converted from mm to `units`; the axis is a unit vector.
-pub fn write_pose_csv(toolpath: &Toolpath, units: Units) -> String {
+///
+/// # Errors
+/// [`NcError::NonFinite`] or [`NcError::OutOfDomain`] (the pose's index) for a
+/// coordinate, axis or feed that cannot be written.
+pub fn write_pose_csv(toolpath: &Toolpath, units: Units) -> Result<String, NcError> {
+    writable_rate(0, "feed", toolpath.feeds.feed)?;
     let mut out = String::with_capacity(toolpath.pose_count() * 64 + 16);
     out.push_str("x,y,z,i,j,k\n");
     let unit = match units {
@@ -22,17 +27,33 @@ pub fn write_pose_csv(toolpath: &Toolpath, units: Units) -> String {
     };
     let feed = format_decimal(units.from_mm(toolpath.feeds.feed), units.decimals());
     let _ = writeln!(out, "# units={unit}\n# feed={feed}");
+    let mut index = 0;
     for (k, pass) in toolpath.passes.iter().enumerate() {
         let _ = writeln!(out, "# pass {k}");
-        write_pass(&mut out, pass, units);
+        write_pass(&mut out, pass, units, &mut index)?;
     }
-    out
+    Ok(out)
 }
 
-fn write_pass(out: &mut String, pass: &swarf_toolpath::Pass, units: Units) {
+fn write_pass(
+    out: &mut String,
+    pass: &swarf_toolpath::Pass,
+    units: Units,
+    index: &mut usize,
+) -> Result<(), NcError> {
     for p in &pass.points {
         let c = p.pose.cl;
         let a = p.pose.axis;
+        for &v in &c.coords {
+            writable_length(*index, "pose", v)?;
+        }
+        if !a.iter().all(|v| v.is_finite()) {
+            return Err(NcError::NonFinite {
+                index: *index,
+                what: "tool axis",
+            });
+        }
+        *index += 1;
         let _ = writeln!(
             out,
             "{:.6},{:.6},{:.6},{:.9},{:.9},{:.9}",
@@ -44,4 +65,5 @@ fn write_pass(out: &mut String, pass: &swarf_toolpath::Pass, units: Units) {
             a.z
         );
     }
+    Ok(())
 }

@@ -24,20 +24,23 @@ pub enum NcError {
         /// Which value.
         what: &'static str,
     },
+    /// A value too large to be a position or rate on any machine (outside
+    /// [`swarf_geom::domain::COORDINATE`] or [`swarf_geom::domain::RATE`]).
+    #[error("move {index}: {what}: {message}")]
+    OutOfDomain {
+        /// Index of the offending move.
+        index: usize,
+        /// Which value.
+        what: &'static str,
+        /// What was expected and found.
+        message: String,
+    },
     /// An option is out of range.
     #[error("{field}: {message}")]
     InvalidOption {
         /// The option's name.
         field: &'static str,
         /// What was expected.
-        message: String,
-    },
-    /// A program file could not be read (missing, unreadable).
-    #[error("{path}: cannot read: {message}")]
-    Io {
-        /// The file.
-        path: String,
-        /// What the operating system said.
         message: String,
     },
     /// A program file that cannot be read within bounds (not a regular file, too

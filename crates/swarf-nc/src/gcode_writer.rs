@@ -53,7 +53,7 @@ pub fn write_gcode(moves: &[Move], feeds: &Feeds, opts: &GcodeOptions) -> Result
     BlockWriter::check_program_number(opts.dialect, opts.program_number)?;
     let axes = ['X', 'Y', 'Z'].map(|c| (c, WordKind::Length));
     let mut w = BlockWriter::new(opts.dialect, opts.units, &axes, moves.len());
-    write_header(&mut w, feeds, opts);
+    write_header(&mut w, feeds, opts)?;
     for (index, m) in moves.iter().enumerate() {
         check_move(index, m)?;
         let code = match m.kind {
@@ -89,7 +89,7 @@ fn check_move(index: usize, m: &Move) -> Result<(), NcError> {
     Ok(())
 }
 
-fn write_header(w: &mut BlockWriter, feeds: &Feeds, opts: &GcodeOptions) {
+fn write_header(w: &mut BlockWriter, feeds: &Feeds, opts: &GcodeOptions) -> Result<(), NcError> {
     w.start(opts.program_number);
     for c in &opts.comments {
         w.comment(c);
@@ -99,5 +99,5 @@ fn write_header(w: &mut BlockWriter, feeds: &Feeds, opts: &GcodeOptions) {
     if opts.dialect == Dialect::Fanuc {
         w.length_offset(opts.tool_number);
     }
-    w.spindle_on(feeds.spindle);
+    w.spindle_on(feeds.spindle)
 }

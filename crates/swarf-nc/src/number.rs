@@ -4,7 +4,9 @@
 //! least increments (0.010 mm), not 10 mm. Trailing zeros are trimmed and `-0` is
 //! written as `0.`.
 
+use crate::error::NcError;
 use serde::{Deserialize, Serialize};
+use swarf_geom::domain::{COORDINATE, Domain, RATE};
 use swarf_geom::units::MM_PER_INCH;
 
 /// Length units of an output program.
@@ -58,6 +60,50 @@ pub fn format_decimal(value: f64, decimals: usize) -> String {
     s
 }
 
+/// `mm` when it can be written as a coordinate: finite and within
+/// [`COORDINATE`] (move `index`, value `what`, for the error).
+///
+/// # Errors
+/// [`NcError::NonFinite`] for NaN and infinity, [`NcError::OutOfDomain`] beyond the
+/// domain.
+pub fn writable_length(index: usize, what: &'static str, mm: f64) -> Result<f64, NcError> {
+    writable(index, what, mm, COORDINATE)
+}
+
+/// `mm_per_min` when it can be written as a feed rate: finite and within [`RATE`].
+///
+/// # Errors
+/// As [`writable_length`].
+pub fn writable_rate(index: usize, what: &'static str, mm_per_min: f64) -> Result<f64, NcError> {
+    writable(index, what, mm_per_min, RATE)
+}
+
+/// `rpm` when it can be written as a spindle speed: finite, from 0 to 1e6 rpm.
+///
+/// # Errors
+/// [`NcError::InvalidOption`] naming `spindle`.
+pub fn writable_spindle(rpm: f64) -> Result<f64, NcError> {
+    if rpm.is_finite() && (0.0..=1e6).contains(&rpm) {
+        Ok(rpm)
+    } else {
+        Err(NcError::InvalidOption {
+            field: "spindle",
+            message: format!("expected a speed from 0 to 1e6 rpm, found {rpm}"),
+        })
+    }
+}
+
+fn writable(index: usize, what: &'static str, v: f64, domain: Domain) -> Result<f64, NcError> {
+    if !v.is_finite() {
+        return Err(NcError::NonFinite { index, what });
+    }
+    domain.check(v).map_err(|message| NcError::OutOfDomain {
+        index,
+        what,
+        message,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -70,6 +116,24 @@ mod tests {
         assert_eq!(format_decimal(123.45678, 4), "123.4568");
         assert_eq!(format_decimal(-3.0, 3), "-3.");
         assert_eq!(format_decimal(1e-9, 4), "0.");
+    }
+
+    #[test]
+    fn only_finite_values_within_their_domains_are_writable() {
+        assert_eq!(writable_length(0, "x", -2.5), Ok(-2.5));
+        assert!(matches!(
+            writable_length(3, "x", f64::NAN),
+            Err(NcError::NonFinite { index: 3, .. })
+        ));
+        let e = writable_length(4, "CL point", 1e300)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("move 4: CL point: expected a coordinate"),
+            "{e}"
+        );
+        assert!(writable_rate(0, "feed", 0.0).is_err());
+        assert_eq!(writable_rate(0, "feed", 1200.0), Ok(1200.0));
     }
 
     #[test]

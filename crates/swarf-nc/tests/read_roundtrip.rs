@@ -159,7 +159,7 @@ fn cl_round_trip_with_tilted_axes_and_cutter() {
 #[test]
 fn pose_csv_round_trip() {
     let tp = toolpath(0.2);
-    let text = write_pose_csv(&tp, Units::Mm);
+    let text = write_pose_csv(&tp, Units::Mm).unwrap();
     let p = parse_pose_csv(&text, "rt.csv").unwrap();
     // Passes are separated by `# pass` comments: no motion joins them.
     let mut want = Vec::new();
@@ -197,7 +197,7 @@ fn read_program_dispatches_on_extension() {
             "a.cls",
             write_cl(&moves, &tp.feeds, &cutter, "a", Units::Mm).unwrap(),
         ),
-        ("a.csv", write_pose_csv(&tp, Units::Mm)),
+        ("a.csv", write_pose_csv(&tp, Units::Mm).unwrap()),
     ];
     for (name, text) in &files {
         let path = dir.join(name);
@@ -208,7 +208,11 @@ fn read_program_dispatches_on_extension() {
         assert_eq!(p.tool.is_some(), name.ends_with(".cls"), "{name}");
     }
     let missing = read_program(&dir.join("nope.ngc")).unwrap_err();
-    assert!(matches!(missing, NcError::Io { .. }), "{missing}");
+    assert!(matches!(missing, NcError::Input(_)), "{missing}");
+    assert!(
+        missing.to_string().contains("nope.ngc: cannot read"),
+        "{missing}"
+    );
     let unknown = read_program(&dir.join("a.txt")).unwrap_err();
     assert!(
         matches!(unknown, NcError::UnknownFormat { .. }),

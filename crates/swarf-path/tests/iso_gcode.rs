@@ -86,7 +86,7 @@ fn example_jobs_run_in_rs274_and_reproduce_the_csv() {
             ..GcodeOptions::default()
         };
         let gcode = swarf_nc::write_gcode(&plan.toolpath.moves(), &job.feeds, &opts).unwrap();
-        let csv = csv_poses(&swarf_nc::write_pose_csv(&plan.toolpath, Units::Mm));
+        let csv = csv_poses(&swarf_nc::write_pose_csv(&plan.toolpath, Units::Mm).unwrap());
         assert_eq!(csv.len(), plan.toolpath.pose_count());
         let Some((ok, out)) = rs274(&gcode, kind) else {
             return;

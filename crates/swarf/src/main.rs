@@ -51,6 +51,8 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // One command per process: no output may replace a file it read.
+    swarf_io::track_inputs();
     let result = match cli.command {
         Command::Inspect(a) => cmd::inspect::run(&a),
         Command::Eval(a) => cmd::eval::run(&a),

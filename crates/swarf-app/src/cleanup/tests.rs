@@ -116,7 +116,7 @@ fn no_rest_gives_an_empty_program_that_says_so() {
     let text = PENCIL.replace("scallop = 0.01", "scallop = 0.01\n    threshold = 100")
         + "[output]\ngcode = \"empty.ngc\"\n";
     let j = job(&text).unwrap();
-    let summary = crate::plan_job::plan_job(&j, Path::new("."), &dir, &swarf_sim::Quiet).unwrap();
+    let summary = plan_into(&j, Path::new("."), &dir);
     assert_eq!(summary["passes"], 0);
     assert_eq!(summary["rest"]["regions"].as_array().unwrap().len(), 0);
     let g = std::fs::read_to_string(dir.join("empty.ngc")).unwrap();
@@ -125,6 +125,14 @@ fn no_rest_gives_an_empty_program_that_says_so() {
         "{g}"
     );
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Plans `j` and writes its outputs under `dir`.
+fn plan_into(j: &Job, job_dir: &Path, dir: &Path) -> serde_json::Value {
+    let mut out = crate::Outputs::new(dir);
+    let summary = crate::plan_job::plan_job(j, job_dir, &mut out, &swarf_sim::Quiet).unwrap();
+    out.commit().unwrap();
+    summary
 }
 
 /// The shipped jobs directory.
@@ -141,7 +149,7 @@ fn steep_job(edit: impl Fn(String) -> String) -> Result<Job> {
 fn steep_cleanup_levels_the_walls_the_raster_leaves() {
     let dir = std::env::temp_dir().join(format!("swarf-cleanup-steep-{}", std::process::id()));
     let j = steep_job(|t| t).unwrap();
-    let summary = crate::plan_job::plan_job(&j, &jobs_dir(), &dir, &swarf_sim::Quiet).unwrap();
+    let summary = plan_into(&j, &jobs_dir(), &dir);
     // Ball d = 10 at 0.6306 mm (140 / 222) leaves 0.015 mm at
     // acos(0.6306 / (2 sqrt(2 R t - t²))) = 35.40 degrees; the four walls are steep.
     let spacing = 140.0 / (140.0f64 / 0.632).ceil();
@@ -169,7 +177,7 @@ fn passes_down_the_walls_leave_an_empty_program_that_says_why() {
     let parent = parent.replace("angle = 0 ", "angle = 90 ");
     std::fs::write(dir.join("boss-raster.toml"), parent).unwrap();
     let j = steep_job(|t| t).unwrap();
-    let summary = crate::plan_job::plan_job(&j, &dir, &dir, &swarf_sim::Quiet).unwrap();
+    let summary = plan_into(&j, &dir, &dir);
     assert_eq!(summary["passes"], 0);
     assert_eq!(summary["steep_rest"]["cells"], 0);
     let g = std::fs::read_to_string(dir.join("boss-steep-cleanup.ngc")).unwrap();

@@ -282,10 +282,7 @@ impl Job {
 /// `v`, when given, in `domain`.
 fn in_domain(name: &str, v: Option<f64>, domain: Domain) -> Result<(), String> {
     match v {
-        Some(x) => domain
-            .check(x)
-            .map(|_| ())
-            .map_err(|m| format!("{name}: {m}")),
+        Some(x) => domain.check_named(name, x).map(|_| ()),
         None => Ok(()),
     }
 }

@@ -109,14 +109,14 @@ impl TriMesh {
         self.triangles.is_empty()
     }
 
-    /// Box around the vertices used by triangles (empty for an empty mesh). Non-finite
-    /// coordinates are skipped.
+    /// Box around the vertices used by triangles (empty for an empty mesh). Vertices
+    /// outside the coordinate domain ([`crate::domain::usable_point`]) are skipped.
     pub fn aabb(&self) -> Aabb {
         let mut b = Aabb::empty();
         for t in &self.triangles {
             for &k in t {
                 let p = &self.vertices[k as usize];
-                if p.coords.iter().all(|c| c.is_finite()) {
+                if crate::domain::usable_point(p) {
                     b.grow(p);
                 }
             }

@@ -27,7 +27,8 @@ const SHOWN: usize = 20;
 /// What [`TriMesh::validate`] found; all entries are triangle indices, ascending.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct MeshReport {
-    /// Triangles with a NaN or infinite corner coordinate.
+    /// Triangles with a corner coordinate that is NaN, infinite or outside the
+    /// coordinate domain ([`crate::domain::usable_point`]).
     pub non_finite: Vec<usize>,
     /// Triangles of zero area (repeated vertex index or position, or relative area
     /// within [`DEGENERATE_AREA_REL`]).
@@ -66,7 +67,7 @@ impl fmt::Display for MeshReport {
             Ok(())
         };
         let list = |v: &[usize]| v.iter().map(ToString::to_string).collect();
-        section(f, "non-finite", list(&self.non_finite))?;
+        section(f, "non-finite or out-of-range", list(&self.non_finite))?;
         section(f, "degenerate", list(&self.degenerate))?;
         let dups = self
             .duplicate
@@ -97,7 +98,7 @@ impl TriMesh {
         let finite: Vec<bool> = self
             .vertices
             .iter()
-            .map(|p| p.coords.iter().all(|c| c.is_finite()))
+            .map(crate::domain::usable_point)
             .collect();
         for (i, t) in self.triangles.iter().enumerate() {
             if !t.iter().all(|&k| finite[k as usize]) {
@@ -186,14 +187,18 @@ mod tests {
             [p(f64::NAN, 0.0, 0.0), b, c],
             [b, c, a],
             [a, b, p(0.5, 1e-6, 0.0)],
+            [a, b, p(0.5, 2e6, 0.0)],
         ]);
         let r = m.validate();
-        assert_eq!(r.non_finite, vec![4]);
+        assert_eq!(r.non_finite, vec![4, 7]);
         assert_eq!(r.degenerate, vec![3]);
         assert_eq!(r.duplicate, vec![(0, 2), (0, 5)]);
         assert!(!r.is_clean());
         let s = r.to_string();
-        assert!(s.contains("1 non-finite triangle(s): 4"), "{s}");
+        assert!(
+            s.contains("2 non-finite or out-of-range triangle(s): 4, 7"),
+            "{s}"
+        );
         assert!(s.contains("2 (same as 0), 5 (same as 0)"), "{s}");
     }
 

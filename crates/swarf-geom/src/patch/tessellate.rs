@@ -223,12 +223,12 @@ fn check_size(tol: f64, cells: f64) -> Result<(), GeomError> {
 /// Number of intervals [`equidistribute`] makes for `density`.
 fn cell_count(density: &[f64]) -> usize {
     let total: f64 = density.iter().sum::<f64>() / density.len() as f64;
-    if total.is_finite() && total < 1e15 {
+    if total < 1e15 {
         (total.ceil() as usize).max(MIN_CELLS)
-    } else if total.is_finite() {
-        usize::MAX
     } else {
-        MIN_CELLS
+        // Too many, infinite (a tolerance of 5e-324 mm) or NaN: refused by the
+        // caller's size check, never an endless refinement.
+        usize::MAX
     }
 }
 
@@ -363,7 +363,7 @@ mod tests {
 
     #[test]
     fn invalid_tolerances_are_named() {
-        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e-300, 1e-9] {
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 5e-324, 1e-300, 1e-9] {
             let e = wave().tessellate(bad).unwrap_err();
             assert!(
                 matches!(&e, GeomError::InvalidParameter { name, .. } if name == "tol"),

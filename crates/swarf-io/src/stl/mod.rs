@@ -32,8 +32,8 @@
 mod ascii;
 mod binary;
 
-use crate::atomic::write_atomic_with;
 use crate::error::{At, IoError};
+use crate::output_set::OutputSet;
 use std::io::{BufReader, Read};
 use std::path::Path;
 use swarf_geom::{MeshBuilder, TriMesh};
@@ -144,7 +144,7 @@ fn has_control_bytes(head: &[u8]) -> bool {
         .any(|&b| b < 0x09 || (0x0e..0x20).contains(&b) || b == 0x7f)
 }
 
-/// Writes `mesh` as a binary STL, atomically (see [`write_atomic_with`]). The 80-byte
+/// Stages `mesh` as a binary STL at `path` in `out` (see [`OutputSet`]). The 80-byte
 /// header holds `name` (truncated) and never begins with `solid`; normals are the
 /// triangles' unit normals (zero for degenerate ones); coordinates are rounded to
 /// `f32`.
@@ -152,7 +152,12 @@ fn has_control_bytes(head: &[u8]) -> bool {
 /// # Errors
 /// [`IoError::Format`] when the mesh has more than `u32::MAX` triangles or a vertex
 /// index out of range; [`IoError::Io`] when the file cannot be written.
-pub fn write_stl(path: &Path, mesh: &TriMesh, name: &str) -> Result<(), IoError> {
+pub fn write_stl(
+    out: &mut OutputSet,
+    path: &Path,
+    mesh: &TriMesh,
+    name: &str,
+) -> Result<(), IoError> {
     let file = path.display().to_string();
     let count = u32::try_from(mesh.len()).map_err(|_| {
         IoError::format(
@@ -176,7 +181,7 @@ pub fn write_stl(path: &Path, mesh: &TriMesh, name: &str) -> Result<(), IoError>
             format!("cannot write triangle {t}: vertex index out of range"),
         ));
     }
-    write_atomic_with(path, |w| binary::write(w, mesh, name, count))
+    out.write_with(path, |w| binary::write(w, mesh, name, count))
 }
 
 /// Builder sized for a mesh of `triangles` triangles sharing vertices (a closed mesh

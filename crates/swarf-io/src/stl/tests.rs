@@ -107,7 +107,9 @@ fn write_then_read_round_trips() {
     let dir = scratch_dir("stl");
     let mesh = TriMesh::from_triangles(&strip(100_000).iter().map(as_points).collect::<Vec<_>>());
     let path = dir.join("round.stl");
-    write_stl(&path, &mesh, "round trip").unwrap();
+    let mut out = OutputSet::new();
+    write_stl(&mut out, &path, &mesh, "round trip").unwrap();
+    out.commit().unwrap();
     let bytes = std::fs::read(&path).unwrap();
     assert_eq!(bytes.len(), 84 + 50 * 100_000);
     assert!(bytes.starts_with(b"binary STL by swarf: round trip"));
@@ -118,7 +120,9 @@ fn write_then_read_round_trips() {
         vertices: vec![Point3::origin()],
         triangles: vec![[0, 0, 1]],
     };
-    let e = write_stl(&path, &bad, "bad").unwrap_err().to_string();
+    let e = write_stl(&mut OutputSet::new(), &path, &bad, "bad")
+        .unwrap_err()
+        .to_string();
     assert!(
         e.ends_with("round.stl: cannot write triangle 0: vertex index out of range"),
         "{e}"

@@ -95,8 +95,8 @@ impl ProgramFormat {
 /// Motions in mm, feeds in mm/min, whatever units the file uses.
 ///
 /// # Errors
-/// [`NcError::UnknownFormat`] for an unknown extension, [`NcError::Io`] when the
-/// file cannot be read, [`NcError::Unreadable`] when it is not a program of its
+/// [`NcError::UnknownFormat`] for an unknown extension, [`NcError::Input`] when the
+/// file cannot be read (missing, not a regular file, too large), [`NcError::Unreadable`] when it is not a program of its
 /// format at all.
 pub fn read_program(path: &Path) -> Result<Program, NcError> {
     read_program_with(path, &GcodeReadOptions::default())
@@ -112,11 +112,25 @@ pub fn read_program(path: &Path) -> Result<Program, NcError> {
 /// As [`read_program`]; [`NcError::InvalidOption`] for a G-code program when
 /// `gcode.kinematics_tol` is not a positive length.
 pub fn read_program_with(path: &Path, gcode: &GcodeReadOptions) -> Result<Program, NcError> {
-    let source = path.display().to_string();
-    let format = ProgramFormat::of(path).ok_or_else(|| NcError::UnknownFormat {
+    read_program_as(path, path, gcode)
+}
+
+/// [`read_program_with`] reading the bytes of `file` as the program `name`: its
+/// format comes from `name`'s extension and messages name `name` (a program staged
+/// in a temporary file before it is renamed into place).
+///
+/// # Errors
+/// As [`read_program_with`].
+pub fn read_program_as(
+    file: &Path,
+    name: &Path,
+    gcode: &GcodeReadOptions,
+) -> Result<Program, NcError> {
+    let source = name.display().to_string();
+    let format = ProgramFormat::of(name).ok_or_else(|| NcError::UnknownFormat {
         path: source.clone(),
     })?;
-    let bytes = swarf_io::read_input(path).map_err(|e| NcError::Input(e.to_string()))?;
+    let bytes = swarf_io::read_input(file).map_err(|e| NcError::Input(e.to_string()))?;
     let text = String::from_utf8_lossy(&bytes);
     match format {
         ProgramFormat::Gcode => parse_gcode(&text, &source, gcode),

@@ -57,7 +57,7 @@ pub(crate) struct DropGrid {
 }
 
 fn finite(c: &[Point3; 3]) -> bool {
-    c.iter().all(|p| p.coords.iter().all(|v| v.is_finite()))
+    c.iter().all(swarf_geom::domain::usable_point)
 }
 
 fn entry(c: &[Point3; 3], origin: [f64; 2]) -> Entry {

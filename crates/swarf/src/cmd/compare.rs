@@ -5,6 +5,7 @@ use crate::cmd::verify::SimArgs;
 use crate::progress::Bars;
 use anyhow::{Result, bail};
 use std::path::PathBuf;
+use swarf_app::Outputs;
 use swarf_app::compare::{compare_all, five_axis_markdown, markdown};
 
 /// Arguments of `swarf compare`.
@@ -22,19 +23,26 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
-    let (rows, five) = compare_all(
-        &args.jobs,
-        &args.sim.settings(),
-        &args.out,
-        &Bars::default(),
-    )?;
+    let mut out = Outputs::new(&args.out);
+    let (rows, five) = compare_all(&args.jobs, &args.sim.settings(), &mut out, &Bars::default())?;
+    let incomplete = rows.iter().any(|r| r.incomplete);
+    if !incomplete || args.sim.partial {
+        out.commit()?;
+    }
     print!("{}", markdown(&rows));
     if !five.is_empty() {
         println!();
         print!("{}", five_axis_markdown(&five));
     }
+    if incomplete && !args.sim.partial {
+        bail!(
+            "a program stopped early: nothing was written and the previous results in {} \
+             are unchanged (--partial writes them, covering the motions before the stop)",
+            args.out.display()
+        );
+    }
     println!("tables and pictures in {}", args.out.display());
-    if rows.iter().any(|r| r.incomplete) {
+    if incomplete {
         bail!("a program stopped early; its row covers the motions before the stop");
     }
     Ok(())

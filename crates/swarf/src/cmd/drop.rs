@@ -43,7 +43,12 @@ pub fn run(args: &Args) -> Result<()> {
     let cutter: Cutter = args
         .tool
         .parse()
-        .with_context(|| format!("--tool {:?}", args.tool))?;
+        .with_context(|| format!("--tool {:?}", swarf_geom::domain::excerpt(&args.tool, 60)))?;
+    if let Some(n) = args.threads {
+        swarf_geom::domain::THREADS
+            .check_named("--threads", n as f64)
+            .map_err(anyhow::Error::msg)?;
+    }
     let start = Instant::now();
     let mesh = swarf_io::read_mesh(&args.mesh)?;
     if mesh.is_empty() {
@@ -99,7 +104,14 @@ fn write_csv(
         "x,y,z"
     };
     writeln!(w, "{header}")?;
-    for (p, r) in points.iter().zip(results) {
+    for (k, (p, r)) in points.iter().zip(results).enumerate() {
+        let numbers = r.iter().flat_map(|r| [r.z, r.cc.x, r.cc.y, r.cc.z]);
+        if !p.iter().copied().chain(numbers).all(f64::is_finite) {
+            return Err(std::io::Error::other(format!(
+                "point {}: a result that is not a finite number",
+                k + 1
+            )));
+        }
         write!(w, "{},{},", p[0], p[1])?;
         match (r, contact) {
             (Some(r), false) => writeln!(w, "{}", r.z)?,
@@ -186,7 +198,9 @@ mod tests {
         let pts = dir.join("p.csv");
         std::fs::write(&pts, "x,y\n1,2\n3,oops\n").unwrap();
         let stl = dir.join("m.stl");
-        swarf_io::write_stl(&stl, &mesh(), "m").unwrap();
+        let mut out = swarf_io::OutputSet::new();
+        swarf_io::write_stl(&mut out, &stl, &mesh(), "m").unwrap();
+        out.commit().unwrap();
         let args = |mesh: &Path, tool: &str| Args {
             mesh: mesh.to_path_buf(),
             tool: tool.into(),
@@ -206,7 +220,9 @@ mod tests {
         assert!(e.contains("none.stl"), "{e}");
         std::fs::write(&pts, "1,2\n").unwrap();
         let empty = dir.join("empty.stl");
-        swarf_io::write_stl(&empty, &TriMesh::default(), "e").unwrap();
+        let mut out = swarf_io::OutputSet::new();
+        swarf_io::write_stl(&mut out, &empty, &TriMesh::default(), "e").unwrap();
+        out.commit().unwrap();
         let e = format!("{:#}", run(&args(&empty, "ball:d=8")).unwrap_err());
         assert!(e.contains("no triangles"), "{e}");
         run(&args(&stl, "ball:d=8")).unwrap();

@@ -48,6 +48,6 @@ pub fn run(args: &Args) -> Result<()> {
         footprints: args.footprints,
     };
     let report = dsm_report(&req)?;
-    println!("{}", serde_json::to_string_pretty(&report)?);
+    print!("{}", swarf_io::json::to_pretty(&report)?);
     Ok(())
 }

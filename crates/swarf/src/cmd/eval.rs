@@ -40,6 +40,12 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let c = d.curvature();
     let arr = |x: swarf_geom::Vec3| [x.x, x.y, x.z];
+    let values = (
+        arr(d.point.coords),
+        [arr(d.du), arr(d.dv), arr(normal)],
+        c.map(|c| (c.k1, c.k2, arr(c.dir1), arr(c.dir2))),
+    );
+    swarf_io::json::check_finite(&values).map_err(|e| anyhow::anyhow!("at ({u}, {v}): {e}"))?;
     let out = serde_json::json!({
         "point": arr(d.point.coords),
         "du": arr(d.du),

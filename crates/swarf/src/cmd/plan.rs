@@ -22,7 +22,9 @@ pub fn run(args: &Args) -> Result<()> {
     let job = Job::parse(&text, &args.job.display().to_string())?;
     let job_dir = args.job.parent().unwrap_or(Path::new("."));
     let out_dir = args.out.clone().unwrap_or_else(|| job_dir.to_path_buf());
-    let summary = swarf_app::plan_job(&job, job_dir, &out_dir, &Bars::default())?;
+    let mut out = swarf_app::Outputs::new(&out_dir);
+    let summary = swarf_app::plan_job(&job, job_dir, &mut out, &Bars::default())?;
+    out.commit()?;
     println!("{summary}");
     Ok(())
 }

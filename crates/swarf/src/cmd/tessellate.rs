@@ -1,6 +1,6 @@
 //! `swarf tessellate PART --tol T -o part.stl`.
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use std::path::PathBuf;
 use swarf_app::load_part;
 
@@ -19,15 +19,14 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
-    if !(args.tol.is_finite() && args.tol > 0.0) {
-        bail!(
-            "--tol: expected a chordal tolerance > 0 mm, found {}",
-            args.tol
-        );
-    }
+    swarf_geom::domain::TOLERANCE
+        .check_named("--tol", args.tol)
+        .map_err(anyhow::Error::msg)?;
     let part = load_part(&args.part)?;
     let mesh = part.tessellate(args.tol)?;
-    swarf_io::write_stl(&args.output, &mesh, &part.name)?;
+    let mut out = swarf_io::OutputSet::new();
+    swarf_io::write_stl(&mut out, &args.output, &mesh, &part.name)?;
+    out.commit()?;
     eprintln!(
         "{}: {} triangles within {} mm -> {}",
         part.name,

@@ -128,6 +128,11 @@ pub struct SimArgs {
     /// Memory limit for the grid, MiB.
     #[arg(long, default_value_t = 4096)]
     max_memory: u64,
+    /// When a program stops before its end, still write the reports (covering the
+    /// motions before the stop); without it nothing is written and the previous
+    /// reports stay whole.
+    #[arg(long)]
+    pub partial: bool,
     /// How deviation is measured: `vertical` (along z) or `normal` (along the design
     /// normals, "mow the grass"; the scallop height of paper 004; the default).
     #[arg(long, value_parser = ["vertical", "normal"])]
@@ -163,15 +168,24 @@ pub fn run(args: &Args) -> Result<()> {
         tool_length: args.tool_length,
         sim: &sim,
         out: &args.out,
+        partial: args.sim.partial,
     };
     let done = verify_request(&req, &Bars::default())?;
     for note in &done.notes {
         eprintln!("{note}");
     }
     print!("{}", text_summary(&done.verification, &done.context));
-    println!("reports in {}", args.out.display());
-    if let Some(stop) = &done.context.stopped {
-        bail!("the program stopped at {stop}; the report covers the motions before it");
+    match (&done.context.stopped, done.written) {
+        (Some(stop), false) => bail!(
+            "the program stopped at {stop}: no report was written and the previous reports \
+             in {} are unchanged (--partial writes the report of the motions before the stop)",
+            args.out.display()
+        ),
+        (Some(stop), true) => {
+            println!("reports in {}", args.out.display());
+            bail!("the program stopped at {stop}; the report covers the motions before it")
+        }
+        (None, _) => println!("reports in {}", args.out.display()),
     }
     Ok(())
 }
@@ -204,6 +218,7 @@ mod tests {
             sample_tol: None,
             max_memory: 4096,
             deviation: None,
+            partial: false,
         }
     }
 
@@ -212,8 +227,9 @@ mod tests {
     }
 
     /// A ball raster over a plane with one CL point 0.05 mm too deep, then the same
-    /// program cut off by a bad word: the gouge is reported with its line, and the
-    /// stopped program still writes its report but fails.
+    /// program cut off by a bad word: the gouge is reported with its line; the
+    /// stopped program fails and leaves the previous reports whole, or with
+    /// `--partial` writes the report of the motions before the stop.
     #[test]
     fn verify_finds_the_gouge_and_fails_on_a_stopped_program() {
         let dir = std::env::temp_dir().join(format!("swarf-verify-test-{}", std::process::id()));
@@ -259,8 +275,28 @@ mod tests {
         let stopped = dir.join("stopped.ngc");
         let cut: String = g.lines().take(30).map(|l| format!("{l}\n")).collect();
         std::fs::write(&stopped, cut + "G1 X4 Y\n").unwrap();
-        let err = run(&args(&stopped, "stop")).unwrap_err().to_string();
-        assert!(err.contains("stopped.ngc:31"), "{err}");
+        // Without --partial the previous set stays whole.
+        let before: Vec<Vec<u8>> = ["report.json", "flagged.csv", "deviation.png"]
+            .iter()
+            .map(|f| std::fs::read(dir.join("ok").join(f)).unwrap())
+            .collect();
+        let err = run(&args(&stopped, "ok")).unwrap_err().to_string();
+        assert!(
+            err.contains("stopped.ngc:31") && err.contains("no report was written"),
+            "{err}"
+        );
+        let after: Vec<Vec<u8>> = ["report.json", "flagged.csv", "deviation.png"]
+            .iter()
+            .map(|f| std::fs::read(dir.join("ok").join(f)).unwrap())
+            .collect();
+        assert!(before == after, "the previous reports were replaced");
+        let mut partial = args(&stopped, "stop");
+        partial.sim.partial = true;
+        let err = run(&partial).unwrap_err().to_string();
+        assert!(
+            err.contains("the report covers the motions before it"),
+            "{err}"
+        );
         let report = read_report(&dir.join("stop/report.json"));
         assert_eq!(report["complete"], serde_json::Value::Bool(false));
         let _ = std::fs::remove_dir_all(&dir);
@@ -345,9 +381,9 @@ mod tests {
             .collect();
         std::fs::write(&stopped, cut + "G1 X4 Y\n").unwrap();
         let two = [&stopped, &cleanup];
-        let err = run(&args(&two, &["ball:d=6", "ball:d=2"], "stop"))
-            .unwrap_err()
-            .to_string();
+        let mut partial = args(&two, &["ball:d=6", "ball:d=2"], "stop");
+        partial.sim.partial = true;
+        let err = run(&partial).unwrap_err().to_string();
         assert!(err.contains("stopped.ngc:11"), "{err}");
         let report = read_report(&dir.join("stop/report.json"));
         assert_eq!(report["complete"], serde_json::Value::Bool(false));
