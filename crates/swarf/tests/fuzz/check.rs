@@ -20,10 +20,11 @@ pub struct Failure {
 
 /// JSON keys whose value may be `null` by design, as a path suffix (`parent.key`;
 /// `[]` for an array element), with the sibling that must then be 0 (a statistic of
-/// an empty set), if any: an absent line number, a stop that did not happen, a
-/// figure that does not apply. A `null` anywhere else is a number that was not
+/// an empty set), if any: a job without a name, an absent line number, a stop that
+/// did not happen, a figure that does not apply. A `null` anywhere else is a number that was not
 /// finite (serde_json writes NaN and infinities as `null`).
 const NULL_OK: &[(&str, Option<&str>)] = &[
+    ("job", None),
     ("line", None),
     ("motion", None),
     ("stopped", None),
