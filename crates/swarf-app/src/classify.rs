@@ -3,7 +3,7 @@
 //! per class) and `classify.png` (the classes over the part), written as one set.
 
 use crate::cleanup::part_mesh;
-use crate::error::Result;
+use crate::error::{Context, Result};
 use crate::model::load_model;
 use crate::outputs::Outputs;
 use crate::rest::{polygon_rings, relief_heights};
@@ -36,7 +36,7 @@ pub struct ClassifyRequest<'a> {
 /// cannot be written.
 pub fn classify_request(req: &ClassifyRequest<'_>) -> Result<Classification> {
     let model = load_model(req.part)?;
-    let mesh = part_mesh(&model, req.tol)?;
+    let mesh = part_mesh(&model, req.tol).with_context(|| req.part.to_string())?;
     let c = classify(&mesh, &req.params)?;
     let png = picture(&c, req, &mesh)?;
     let mut set = Outputs::new(req.out);

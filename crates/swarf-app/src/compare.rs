@@ -163,7 +163,8 @@ pub fn compare_all(
             .file_name()
             .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
         reporter.job(k, jobs.len(), &name);
-        let c = check_one(path, sim, out, reporter);
+        let c = check_one(path, sim, out, reporter)
+            .with_context(|| format!("{}: planning and verifying the job", path.display()));
         if c.is_err() {
             reporter.jobs_done();
         }
@@ -199,13 +200,16 @@ fn check_one(
         .file_stem()
         .map_or_else(|| "job".to_string(), |s| s.to_string_lossy().into_owned());
     let job_dir = path.parent().unwrap_or(Path::new("."));
-    let five = job.positioning.is_some();
+    // Five-axis programs are verified through their APT CL (part-frame poses), so
+    // the verifier needs no machine.
+    let five = job.positioning.is_some() || job.strategy.kind == swarf_path::StrategyKind::DropSpin;
     let program_file = format!("{stem}.{}", if five { "cl" } else { "ngc" });
     job.output.gcode = (!five || job.output.machine.is_some()).then(|| format!("{stem}.ngc"));
     job.output.cl = five.then(|| program_file.clone());
     job.output.summary = Some(format!("{stem}.plan.json"));
     job.output.csv = None;
     job.output.double_contacts = None;
+    job.output.contacts = None;
     job.output.units = swarf_nc::Units::Mm;
     let part = part_arg(&job, job_dir);
     let start = Instant::now();

@@ -3,7 +3,7 @@
 //! zone, and per footprint the drop (pose, `P`, normal) and both spins (angle, pose,
 //! `Q`, clearances). Lengths in mm, angles in degrees.
 
-use crate::error::{Result, bail};
+use crate::error::{AppError, Result, bail};
 use crate::model::{Model, load_model};
 use serde_json::{Value, json};
 use swarf_fiveaxis::dsm::{Dsm, Spin, SpinSide, Station};
@@ -91,8 +91,16 @@ pub fn dsm_report(req: &DsmRequest) -> Result<Value> {
         req.faces,
         &req.tool,
         Vec3::new(a.cos(), a.sin(), 0.0),
-    )?;
-    let st = dsm.station(req.station)?;
+    )
+    .map_err(|e| {
+        AppError::Message(format!(
+            "--faces {},{} --tool {} on {}: {e}",
+            req.faces[0], req.faces[1], req.tool, part.name
+        ))
+    })?;
+    let st = dsm
+        .station(req.station)
+        .map_err(|e| AppError::Message(format!("--station {}: {e}", req.station)))?;
     let (r, big) = dsm.insert();
     let mut out = json!({
         "part": part.name,

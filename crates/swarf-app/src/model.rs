@@ -73,11 +73,7 @@ pub fn load_model(arg: &str) -> Result<Model> {
     match ext.as_str() {
         "stl" | "obj" => {
             let mesh = swarf_io::read_mesh(path)?;
-            let usable = |t: &[u32; 3]| {
-                t.iter()
-                    .all(|&k| swarf_geom::domain::usable_point(&mesh.vertices[k as usize]))
-            };
-            if !mesh.triangles.iter().any(usable) {
+            if !(0..mesh.len()).any(|t| mesh.usable(t)) {
                 bail!(
                     "{arg}: the mesh has no triangle with all corners finite and within \
                      1 km of the origin ({} triangles in all)",

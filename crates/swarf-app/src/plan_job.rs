@@ -16,6 +16,7 @@ use crate::report::Reporter;
 use std::path::Path;
 use swarf_fiveaxis::machine::{Machine, load_machine};
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport};
+use swarf_geom::domain::excerpt;
 use swarf_nc::GcodeOptions;
 use swarf_path::{Plan, StrategyKind};
 use swarf_toolpath::motion_stats;
@@ -53,7 +54,11 @@ pub fn plan_model(
         .output
         .machine
         .as_deref()
-        .map(|spec| load_machine(spec, job_dir))
+        .map(|spec| {
+            load_machine(spec, job_dir).map_err(|e| {
+                AppError::Message(format!("output.machine = {:?}: {e}", excerpt(spec, 80)))
+            })
+        })
         .transpose()?;
     if job.strategy.kind == StrategyKind::Cleanup {
         return cleanup_outputs(job, model, job_dir, machine.as_ref(), out);

@@ -5,7 +5,7 @@
 use crate::cleanup::{
     boundaries_csv, detect_after, part_mesh, read_parent, rest_json, source_name,
 };
-use crate::error::{AppError, Result, bail};
+use crate::error::{AppError, Context, Result, bail};
 use crate::job::RestSource;
 use crate::model::load_model;
 use crate::outputs::Outputs;
@@ -78,7 +78,7 @@ pub fn rest_request(req: &RestRequest<'_>) -> Result<RestFound> {
         (None, None) => bail!("--part: expected the design part (or a parent --job that names it)"),
     };
     let model = load_model(&part)?;
-    let mesh = part_mesh(&model, req.tol)?;
+    let mesh = part_mesh(&model, req.tol).with_context(|| part.clone())?;
     let (detection, reference) = match (&parent, req.reference) {
         (Some((job, _)), _) => {
             let d = detect_after(job, &model, &mesh, req.source, (req.tol, &req.params))?;

@@ -17,7 +17,7 @@ pub enum GeomError {
         message: String,
     },
     /// A numeric parameter is out of its valid range (tolerance <= 0, NaN, ...).
-    #[error("{name} = {value}: {expected}")]
+    #[error("{name} = {}: {expected}", crate::domain::show(*value))]
     InvalidParameter {
         /// Parameter name as the user knows it.
         name: String,

@@ -38,8 +38,19 @@ impl Part {
     pub fn tessellate(&self, tol: f64) -> Result<TriMesh, GeomError> {
         GeomError::check_positive("tol", tol)?;
         let mut out = TriMesh::default();
-        for patch in &self.patches {
-            let m = patch.tessellate(tol)?;
+        for (k, patch) in self.patches.iter().enumerate() {
+            let m = patch.tessellate(tol).map_err(|e| match e {
+                GeomError::InvalidParameter {
+                    name,
+                    value,
+                    expected,
+                } => GeomError::InvalidParameter {
+                    name: format!("{}: patch[{k}]: {name}", self.name),
+                    value,
+                    expected,
+                },
+                other => other,
+            })?;
             let base = out.vertices.len() as u32;
             out.vertices.extend(m.vertices);
             out.triangles
@@ -86,5 +97,7 @@ mod tests {
             patches: vec![wave()],
         };
         assert!(one.tessellate(f64::NAN).is_err());
+        let e = one.tessellate(1e-300).unwrap_err().to_string();
+        assert!(e.starts_with("wave: patch[0]: tol = 1e-300: "), "{e}");
     }
 }

@@ -82,6 +82,9 @@ impl Frame {
             })
         };
         let width = (side[1] - side[0]).max(0.0);
+        let limit = range(d);
+        let length = (mesh_along[1] - mesh_along[0]).min(limit[1] - limit[0]);
+        check_work(width / stepover, length.max(0.0) + 2.0 * radius, radius)?;
         let k = (width / stepover).ceil().max(1.0) as usize;
         let spacing = if width > 0.0 {
             width / k as f64
@@ -147,11 +150,37 @@ impl Frame {
 }
 
 /// XY of the vertices of the finite triangles.
+/// Most first drops of one raster (passes times drops along each, before
+/// refinement): about 3 GB of samples and contacts.
+pub const MAX_RASTER_DROPS: f64 = 5e7;
+
+/// Refuses a raster of `passes` passes `length` mm long with a tool of `radius` mm
+/// when its first drops would exceed [`MAX_RASTER_DROPS`], before any is allocated.
+fn check_work(passes: f64, length: f64, radius: f64) -> Result<(), PathError> {
+    let per_pass = length / (crate::raster::INIT_STEP_RADII * radius) + 1.0;
+    let drops = (passes + 1.0) * per_pass;
+    if drops <= MAX_RASTER_DROPS {
+        return Ok(());
+    }
+    Err(PathError::InvalidParameter {
+        field: "strategy.stepover".into(),
+        message: format!(
+            "{} passes of {} drops over a {} mm long part need {} drops, more than the \
+             limit of {MAX_RASTER_DROPS:e}: expected a larger stepover or scallop, a \
+             boundary, or a larger tool",
+            swarf_geom::domain::show(passes.ceil() + 1.0),
+            swarf_geom::domain::show(per_pass.ceil()),
+            swarf_geom::domain::show(length),
+            swarf_geom::domain::show(drops),
+        ),
+    })
+}
+
 fn finite_xy(mesh: &TriMesh) -> Vec<[f64; 2]> {
-    mesh.triangles
-        .iter()
-        .map(|t| t.map(|k| mesh.vertices[k as usize]))
-        .filter(|c| c.iter().all(|p| p.coords.iter().all(|v| v.is_finite())))
-        .flat_map(|c| c.map(|p| [p.x, p.y]))
+    (0..mesh.len())
+        .filter(|&t| mesh.usable(t))
+        .flat_map(|t| {
+            mesh.triangles[t].map(|k| [mesh.vertices[k as usize].x, mesh.vertices[k as usize].y])
+        })
         .collect()
 }

@@ -150,19 +150,9 @@ pub fn reference_pairs(
     tolerance: f64,
 ) -> Result<Vec<RestPair>, RestError> {
     let spacing = SCAN_RADII * dropper.tool().radius();
-    let (lo, hi) = mesh
-        .vertices
-        .iter()
-        .filter(|v| v.x.is_finite() && v.y.is_finite())
-        .fold(
-            ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-            |(lo, hi), v| {
-                (
-                    [lo[0].min(v.x), lo[1].min(v.y)],
-                    [hi[0].max(v.x), hi[1].max(v.y)],
-                )
-            },
-        );
+    // The box of the usable triangles (corners within the coordinate domain).
+    let b = mesh.aabb();
+    let (lo, hi) = ([b.min.x, b.min.y], [b.max.x, b.max.y]);
     let reach = 2.0 * dropper.tool().radius();
     let drops =
         2.0 * ((hi[0] - lo[0] + reach) / spacing + 1.0) * ((hi[1] - lo[1] + reach) / spacing + 1.0);

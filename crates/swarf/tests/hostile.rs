@@ -230,6 +230,31 @@ fn job_hangs_are_refusals() {
         "the shipped inclined job has sections"
     );
     std::fs::write(&inclined, text.replace("sections = 1.0", "sections = 1e-9")).unwrap();
+    // A plate 0.9 km square (inside the coordinate domain) rastered at 0.01 mm.
+    let mut stl = String::from("solid big\n");
+    for t in [[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 1], [0, 1]]] {
+        stl += "facet normal 0 0 1\nouter loop\n";
+        for [x, y] in t {
+            stl += &format!("vertex {} {} 0\n", x * 900_000, y * 900_000);
+        }
+        stl += "endloop\nendfacet\n";
+    }
+    std::fs::write(dir.join("big.stl"), stl + "endsolid big\n").unwrap();
+    std::fs::write(
+        dir.join("big.toml"),
+        "part = \"big.stl\"\ntool = \"ball:d=6\"\n[strategy]\nkind = \"raster\"\n\
+         stepover = 0.01\ntolerance = 0.01\n[output]\ngcode = \"big.ngc\"\n",
+    )
+    .unwrap();
+    refused(
+        &dir,
+        &["plan", "big.toml"],
+        &[
+            "big.toml",
+            "strategy.stepover",
+            "more than the limit of 5e7",
+        ],
+    );
     refused(
         &dir,
         &["plan", inclined.to_str().unwrap()],
@@ -373,7 +398,7 @@ fn non_finite_numbers_are_errors() {
     std::fs::write(dir.join("far.cl"), "GOTO/0,0,5\nGOTO/1e308,0,0\n").unwrap();
     std::fs::write(
         dir.join("far.csv"),
-        "x,y,z,i,j,k\n0,0,5,0,0,1\n1e308,0,0,0,0,1\n",
+        "x,y,z,i,j,k\n0,0,5,0,0,1\n-1e300,0.6,0.8,0,0,1\n",
     )
     .unwrap();
     for (program, line) in [

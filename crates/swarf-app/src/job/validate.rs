@@ -16,6 +16,11 @@ impl Job {
     /// Checks parameter ranges that the TOML types cannot express.
     pub(super) fn validate(&self) -> Result<(), String> {
         let s = &self.strategy;
+        if self.part.trim().is_empty() {
+            return Err(
+                "part: expected a part file, a mesh or builtin:NAME, found an empty name".into(),
+            );
+        }
         self.validate_spacing()?;
         if let Some(a) = s.max_ramp
             && (a.is_nan() || a <= 0.0 || a >= 90.0)

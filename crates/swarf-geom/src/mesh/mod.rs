@@ -104,21 +104,26 @@ impl TriMesh {
         self.triangles.len()
     }
 
+    /// Whether triangle `t`'s corners are all usable: finite and within the coordinate
+    /// domain ([`crate::domain::usable_point`]). Every consumer skips the others.
+    pub fn usable(&self, t: usize) -> bool {
+        self.triangles[t]
+            .iter()
+            .all(|&k| crate::domain::usable_point(&self.vertices[k as usize]))
+    }
+
     /// True when the mesh has no triangle.
     pub fn is_empty(&self) -> bool {
         self.triangles.is_empty()
     }
 
-    /// Box around the vertices used by triangles (empty for an empty mesh). Vertices
-    /// outside the coordinate domain ([`crate::domain::usable_point`]) are skipped.
+    /// Box around the corners of the usable triangles ([`TriMesh::usable`]; empty
+    /// when there is none).
     pub fn aabb(&self) -> Aabb {
         let mut b = Aabb::empty();
-        for t in &self.triangles {
-            for &k in t {
-                let p = &self.vertices[k as usize];
-                if crate::domain::usable_point(p) {
-                    b.grow(p);
-                }
+        for (i, t) in self.triangles.iter().enumerate() {
+            if self.usable(i) {
+                t.iter().for_each(|&k| b.grow(&self.vertices[k as usize]));
             }
         }
         b

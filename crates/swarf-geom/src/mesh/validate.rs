@@ -95,19 +95,14 @@ impl TriMesh {
     /// ```
     pub fn validate(&self) -> MeshReport {
         let mut report = MeshReport::default();
-        let finite: Vec<bool> = self
-            .vertices
-            .iter()
-            .map(crate::domain::usable_point)
-            .collect();
-        for (i, t) in self.triangles.iter().enumerate() {
-            if !t.iter().all(|&k| finite[k as usize]) {
+        for i in 0..self.len() {
+            if !self.usable(i) {
                 report.non_finite.push(i);
             } else if self.is_degenerate(i) {
                 report.degenerate.push(i);
             }
         }
-        report.duplicate = self.duplicates(&finite);
+        report.duplicate = self.duplicates();
         report
     }
 
@@ -128,7 +123,7 @@ impl TriMesh {
     }
 
     /// `(first, duplicate)` pairs among the finite triangles, sorted by `duplicate`.
-    fn duplicates(&self, finite: &[bool]) -> Vec<(usize, usize)> {
+    fn duplicates(&self) -> Vec<(usize, usize)> {
         let mut welder = MeshBuilder::with_capacity(self.vertices.len(), 0);
         let mut ids = Vec::with_capacity(self.vertices.len());
         for p in &self.vertices {
@@ -142,7 +137,7 @@ impl TriMesh {
             .triangles
             .iter()
             .enumerate()
-            .filter(|(_, t)| t.iter().all(|&k| finite[k as usize]))
+            .filter(|&(i, _)| self.usable(i))
             .map(|(i, t)| {
                 let mut key = t.map(|k| ids[k as usize]);
                 key.sort_unstable();

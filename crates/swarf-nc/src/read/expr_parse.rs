@@ -8,11 +8,30 @@ use crate::read::expr::{Expr, Func, Op};
 use crate::read::lexer::Cursor;
 use crate::read::program::Diagnostic;
 
+/// Deepest nesting of values (brackets, parameters of parameters, signs) in one
+/// expression. LinuxCNC's lines are at most 256 characters, which bounds its nesting
+/// near this; it keeps the recursive reading and evaluating within the stack.
+pub(crate) const MAX_NESTING: usize = 128;
+
 impl Cursor {
     /// One value (LinuxCNC's `read_real_value`): number, parameter, bracketed
     /// expression, function, or a sign before a value.
     pub(crate) fn value(&mut self) -> Result<Expr, Diagnostic> {
         let column = self.column();
+        if self.depth >= MAX_NESTING {
+            return Err(self.error(
+                column,
+                format!("expression nested deeper than {MAX_NESTING} levels"),
+            ));
+        }
+        self.depth += 1;
+        let v = self.nested_value(column);
+        self.depth -= 1;
+        v
+    }
+
+    /// [`Cursor::value`] one level down.
+    fn nested_value(&mut self, column: usize) -> Result<Expr, Diagnostic> {
         match self.peek() {
             None => Err(self.error(column, "value missing at the end of the line")),
             Some('[') => self.bracketed(),

@@ -235,6 +235,8 @@ pub(crate) struct Cursor {
     pub(crate) at: usize,
     line: usize,
     end_column: usize,
+    /// Values being read, one inside the other ([`crate::read::expr_parse`]).
+    pub(crate) depth: usize,
 }
 
 impl Cursor {
@@ -272,6 +274,7 @@ impl Cursor {
         }
         Ok(Cursor {
             chars,
+            depth: 0,
             at: 0,
             line,
             end_column: raw.len() + 1,
@@ -483,6 +486,20 @@ mod tests {
         let d = lex_line(text, 4, Syntax::default()).unwrap_err();
         assert_eq!(d.line, 4);
         (d.column, d.message)
+    }
+
+    #[test]
+    fn nesting_is_bounded() {
+        let deep = |n: usize| format!("X{}1{}", "[".repeat(n), "]".repeat(n));
+        assert_eq!(value(&deep(100)[1..]), 1.0);
+        for text in [deep(30_000), format!("X{}1", "#".repeat(100_000))] {
+            let (column, message) = err(&text);
+            assert!(
+                message.contains("nested deeper than 128 levels"),
+                "{message}"
+            );
+            assert!(column <= 130, "{column}");
+        }
     }
 
     #[test]

@@ -315,10 +315,13 @@ impl Program {
             }
             let outside = points.into_iter().find_map(|(what, p)| {
                 let c = p.coords;
-                let worst = c
-                    .iter()
-                    .copied()
-                    .fold(0.0f64, |a, v| if v.is_nan() || v.abs() > a { v } else { a });
+                let worst = c.iter().copied().fold(0.0f64, |a, v| {
+                    if v.is_nan() || v.abs() > a.abs() {
+                        v
+                    } else {
+                        a
+                    }
+                });
                 COORDINATE
                     .check(worst)
                     .err()

@@ -56,10 +56,6 @@ pub(crate) struct DropGrid {
     pub(crate) ids: Vec<u32>,
 }
 
-fn finite(c: &[Point3; 3]) -> bool {
-    c.iter().all(swarf_geom::domain::usable_point)
-}
-
 fn entry(c: &[Point3; 3], origin: [f64; 2]) -> Entry {
     let lo = |a: usize| c.iter().map(|p| p[a]).fold(f64::INFINITY, f64::min);
     let hi = |a: usize| c.iter().map(|p| p[a]).fold(f64::NEG_INFINITY, f64::max);
@@ -88,7 +84,7 @@ impl DropGrid {
         let finite_ids: Vec<u32> = (0..mesh.len())
             .into_par_iter()
             .with_min_len(PAR_CHUNK)
-            .filter(|&t| finite(&corners(t)))
+            .filter(|&t| mesh.usable(t))
             .map(|t| t as u32)
             .collect();
         if finite_ids.is_empty() {
@@ -265,7 +261,7 @@ mod tests {
             });
             for (t, &n) in seen.iter().enumerate() {
                 let c = mesh.triangle(t);
-                if !finite(&c) {
+                if !mesh.usable(t) {
                     prop_assert_eq!(n, 0);
                     continue;
                 }

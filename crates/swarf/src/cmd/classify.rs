@@ -31,6 +31,13 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
+    use swarf_geom::domain::{CELL, TOLERANCE};
+    super::check_flags(&[
+        ("--steep-angle", args.steep_angle, super::STEEP_DEG),
+        ("--flat-angle", args.flat_angle, super::SLOPE_DEG),
+        ("--cell", args.cell, CELL),
+        ("--tol", args.tol, TOLERANCE),
+    ])?;
     let req = ClassifyRequest {
         part: &args.part,
         params: ClassifyParams {

@@ -25,7 +25,12 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     let mut out = Outputs::new(&args.out);
     let (rows, five) = compare_all(&args.jobs, &args.sim.settings(), &mut out, &Bars::default())?;
-    let incomplete = rows.iter().any(|r| r.incomplete);
+    let stopped: Vec<&str> = rows
+        .iter()
+        .filter(|r| r.incomplete)
+        .map(|r| r.job.as_str())
+        .collect();
+    let incomplete = !stopped.is_empty();
     if !incomplete || args.sim.partial {
         out.commit()?;
     }
@@ -36,14 +41,19 @@ pub fn run(args: &Args) -> Result<()> {
     }
     if incomplete && !args.sim.partial {
         bail!(
-            "a program stopped early: nothing was written and the previous results in {} \
-             are unchanged (--partial writes them, covering the motions before the stop)",
+            "the program of {} stopped early: nothing was written and \
+             the previous results in {} are unchanged (--partial writes them, covering the \
+             motions before the stop)",
+            stopped.join(", "),
             args.out.display()
         );
     }
     println!("tables and pictures in {}", args.out.display());
     if incomplete {
-        bail!("a program stopped early; its row covers the motions before the stop");
+        bail!(
+            "the program of {} stopped early; its row covers the motions before the stop",
+            stopped.join(", ")
+        );
     }
     Ok(())
 }

@@ -45,9 +45,7 @@ pub fn run(args: &Args) -> Result<()> {
         .parse()
         .with_context(|| format!("--tool {:?}", swarf_geom::domain::excerpt(&args.tool, 60)))?;
     if let Some(n) = args.threads {
-        swarf_geom::domain::THREADS
-            .check_named("--threads", n as f64)
-            .map_err(anyhow::Error::msg)?;
+        super::check_flags(&[("--threads", n as f64, swarf_geom::domain::THREADS)])?;
     }
     let start = Instant::now();
     let mesh = swarf_io::read_mesh(&args.mesh)?;

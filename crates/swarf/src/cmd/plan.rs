@@ -23,7 +23,8 @@ pub fn run(args: &Args) -> Result<()> {
     let job_dir = args.job.parent().unwrap_or(Path::new("."));
     let out_dir = args.out.clone().unwrap_or_else(|| job_dir.to_path_buf());
     let mut out = swarf_app::Outputs::new(&out_dir);
-    let summary = swarf_app::plan_job(&job, job_dir, &mut out, &Bars::default())?;
+    let summary = swarf_app::plan_job(&job, job_dir, &mut out, &Bars::default())
+        .with_context(|| format!("{}: planning the job", args.job.display()))?;
     out.commit()?;
     println!("{summary}");
     Ok(())

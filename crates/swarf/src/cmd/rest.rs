@@ -51,6 +51,15 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
+    use swarf_geom::domain::{ALLOWANCE, TOLERANCE};
+    super::check_flags(&[
+        ("--threshold", args.threshold, ALLOWANCE),
+        ("--merge", args.merge, ALLOWANCE),
+        ("--overlap", args.overlap, ALLOWANCE),
+        ("--min-area", args.min_area, super::AREA),
+        ("--smoothness", args.smoothness, ALLOWANCE),
+        ("--tol", args.tol, TOLERANCE),
+    ])?;
     let source = match args.source.as_str() {
         "contacts" => RestSource::Contacts,
         "stock" => RestSource::Stock,

@@ -19,9 +19,7 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
-    swarf_geom::domain::TOLERANCE
-        .check_named("--tol", args.tol)
-        .map_err(anyhow::Error::msg)?;
+    super::check_flags(&[("--tol", args.tol, swarf_geom::domain::TOLERANCE)])?;
     let part = load_part(&args.part)?;
     let mesh = part.tessellate(args.tol)?;
     let mut out = swarf_io::OutputSet::new();

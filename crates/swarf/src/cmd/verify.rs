@@ -157,6 +157,9 @@ impl SimArgs {
 
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
+    if let Some(l) = args.tool_length {
+        super::check_flags(&[("--tool-length", l, swarf_geom::domain::TOOL_LENGTH)])?;
+    }
     let sim = args.sim.settings();
     let gcode = args.gcode.setup()?;
     let req = VerifyRequest {

@@ -82,10 +82,10 @@ fn finite_bounds(mesh: &TriMesh) -> Aabb {
     mesh.triangles
         .par_iter()
         .with_min_len(PAR_CHUNK)
-        .fold(Aabb::empty, |mut b, t| {
-            let c = t.map(|k| mesh.vertices[k as usize]);
-            if c.iter().all(|p| p.coords.iter().all(|v| v.is_finite())) {
-                c.iter().for_each(|p| b.grow(p));
+        .enumerate()
+        .fold(Aabb::empty, |mut b, (i, t)| {
+            if mesh.usable(i) {
+                t.iter().for_each(|&k| b.grow(&mesh.vertices[k as usize]));
             }
             b
         })
@@ -96,23 +96,17 @@ fn count_finite(mesh: &TriMesh) -> usize {
     mesh.triangles
         .par_iter()
         .with_min_len(PAR_CHUNK)
-        .filter(|t| {
-            t.iter().all(|&k| {
-                mesh.vertices[k as usize]
-                    .coords
-                    .iter()
-                    .all(|v| v.is_finite())
-            })
-        })
+        .enumerate()
+        .filter(|&(i, _)| mesh.usable(i))
         .count()
 }
 
 /// Outward-rounded relative XY box of triangle `t`, `None` when a corner is not finite.
 pub(super) fn stored_box(mesh: &TriMesh, origin: [f64; 2], t: usize) -> Option<[f32; 4]> {
-    let c = mesh.triangles[t].map(|k| mesh.vertices[k as usize]);
-    if !c.iter().all(|p| p.coords.iter().all(|v| v.is_finite())) {
+    if !mesh.usable(t) {
         return None;
     }
+    let c = mesh.triangles[t].map(|k| mesh.vertices[k as usize]);
     let lo = |a: usize| c.iter().map(|p| p[a]).fold(f64::INFINITY, f64::min) - origin[a];
     let hi = |a: usize| c.iter().map(|p| p[a]).fold(f64::NEG_INFINITY, f64::max) - origin[a];
     Some([
