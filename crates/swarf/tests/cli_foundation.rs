@@ -207,11 +207,11 @@ fn classify_the_boss() {
     assert!(!o.status.success());
     let e = stderr(&o);
     assert!(
-        e.contains("classify.steep_angle") && e.contains("classify.flat_angle = 10"),
+        e.contains("--steep-angle 5: expected more than --flat-angle 10 degrees"),
         "{e}"
     );
     let o = swarf(&["classify", "boss", "--cell", "0", "-o", out]);
-    assert!(!o.status.success() && stderr(&o).contains("classify.cell"));
+    assert!(!o.status.success() && stderr(&o).contains("--cell: expected a cell size"));
     let o = swarf(&["classify", "no-such-part", "-o", out]);
     assert!(!o.status.success() && stderr(&o).contains("no-such-part"));
     std::fs::remove_dir_all(&dir).ok();

@@ -38,6 +38,13 @@ pub fn run(args: &Args) -> Result<()> {
         ("--cell", args.cell, CELL),
         ("--tol", args.tol, TOLERANCE),
     ])?;
+    if args.steep_angle <= args.flat_angle {
+        anyhow::bail!(
+            "--steep-angle {}: expected more than --flat-angle {} degrees",
+            args.steep_angle,
+            args.flat_angle
+        );
+    }
     let req = ClassifyRequest {
         part: &args.part,
         params: ClassifyParams {

@@ -38,6 +38,21 @@ pub fn run(args: &Args) -> Result<()> {
     let [a, b] = args.faces[..] else {
         anyhow::bail!("--faces: expected two patch indices, as 0,1");
     };
+    use swarf_geom::domain::{COORDINATE, Domain};
+    super::check_flags(&[
+        (
+            "--along",
+            args.along,
+            Domain::new(-360.0, 360.0, "degrees", "a direction"),
+        ),
+        ("--station", args.station, COORDINATE),
+        ("--offset", args.offset.unwrap_or(0.0), COORDINATE),
+        (
+            "--footprints",
+            args.footprints as f64,
+            Domain::new(1.0, 1000.0, "", "a count"),
+        ),
+    ])?;
     let req = DsmRequest {
         part: args.part.clone(),
         tool: args.tool,

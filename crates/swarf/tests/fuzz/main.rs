@@ -30,18 +30,19 @@
 //!
 //! # Running
 //!
-//! The fuzz tests are `#[ignore]`d while the input checks they test land (issue 15):
+//! Every input type runs in the workspace tests (and so in CI) with the default
+//! count and seed 1, a fixed set of cases that must all pass:
 //!
 //! ```sh
-//! cargo test -p swarf --test fuzz -- --ignored --nocapture          # every input type
-//! cargo test -p swarf --test fuzz -- --ignored --nocapture fuzz_gcode
+//! cargo test -p swarf --test fuzz -- --nocapture          # every input type
+//! cargo test -p swarf --test fuzz -- --nocapture fuzz_gcode
 //! ```
 //!
 //! Settings (environment):
 //!
-//! - `SWARF_FUZZ_CASES` cases per input type (default 32: the 13 input types take
-//!   about three minutes in the test profile on two cores, most of it in the cases
-//!   that run into the time limit);
+//! - `SWARF_FUZZ_CASES` cases per input type (default 32: the 13 input types and
+//!   the unmutated seeds take about two and a half minutes in the test profile on
+//!   two cores);
 //! - `SWARF_FUZZ_SEED` the seed (default 1); `SWARF_FUZZ_CASE=N` runs only case N,
 //!   to reproduce it;
 //! - `SWARF_FUZZ_TIMEOUT` seconds per run (20), `SWARF_FUZZ_MEMORY_MB` (3000);
@@ -54,7 +55,7 @@
 //!
 //! ```sh
 //! SWARF_FUZZ_CASES=300 SWARF_FUZZ_SEED=$RANDOM \
-//!   cargo test --release -p swarf --test fuzz -- --ignored --nocapture --test-threads 1
+//!   cargo test --release -p swarf --test fuzz -- --nocapture --test-threads 1
 //! ```
 
 mod cases;
@@ -69,34 +70,29 @@ mod seeds;
 use runner::fuzz;
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_part() {
     let seeds = seeds::parts();
     fuzz("part", cases::edit(), |v| cases::part(&seeds, v));
 }
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_job() {
     let seeds = seeds::jobs();
     fuzz("job", cases::edit(), |v| cases::job(&seeds, v));
 }
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_tool() {
     fuzz("tool", cases::edit(), cases::tool);
 }
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_gcode() {
     let seeds = seeds::gcode();
     fuzz("gcode", cases::edit(), |v| cases::gcode(&seeds, v));
 }
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_cl() {
     let seeds: Vec<_> = ["wave-raster.cl", "die-inclined.cl"]
         .iter()
@@ -106,7 +102,6 @@ fn fuzz_cl() {
 }
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_pose_csv() {
     let seeds: Vec<_> = ["wave-raster.csv", "tilted.csv"]
         .iter()
@@ -116,13 +111,11 @@ fn fuzz_pose_csv() {
 }
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_stl_binary() {
     fuzz("stl-binary", mesh::stl_edit(), mesh::binary_stl_case);
 }
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_stl_ascii() {
     let seed = mesh::ascii_stl(&mesh::height_field(8));
     fuzz("stl-ascii", cases::edit(), |v| {
@@ -131,7 +124,6 @@ fn fuzz_stl_ascii() {
 }
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_obj() {
     let seed = mesh::obj(8);
     fuzz("obj", cases::edit(), |v| {
@@ -140,7 +132,6 @@ fn fuzz_obj() {
 }
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_machine() {
     let seeds = seeds::dir_seeds("machines", ".toml");
     let jobs = seeds::jobs();
@@ -150,20 +141,17 @@ fn fuzz_machine() {
 }
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_points() {
     let seeds = seeds::points();
     fuzz("points", cases::edit(), |v| cases::points(&seeds, v));
 }
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_nc_setup() {
     fuzz("nc-setup", cases::edit(), cases::nc_setup);
 }
 
 #[test]
-#[ignore = "known failures while the input checks of issue 15 land: run with --ignored"]
 fn fuzz_options() {
     fuzz("options", options::option_edit(), options::option_case);
 }
@@ -172,7 +160,6 @@ fn fuzz_options() {
 /// handling of good input, not of its mutations): each seed, with no edit, through
 /// every command of its input type.
 #[test]
-#[ignore = "runs every seed through every command (a few minutes): run with --ignored"]
 fn seeds_pass_unmutated() {
     let mut all = Vec::new();
     let mut each = |n: usize, commands: &[usize], make: &dyn Fn(&cases::Edit) -> exec::Case| {

@@ -262,7 +262,7 @@ fn report(
         text += &format!("  case: {}; {}\n", f.index, f.case.about);
         text += &format!(
             "  rerun: SWARF_FUZZ_SEED={} SWARF_FUZZ_CASE={} cargo test -p swarf --test fuzz \
-             -- --ignored --exact {}\n",
+             -- --exact {}\n",
             s.seed,
             f.index,
             test_name(input)
