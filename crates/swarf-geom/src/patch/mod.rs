@@ -6,6 +6,7 @@
 //! The algorithms live in one file each beside this one.
 
 pub mod basis;
+mod curvature_range;
 mod diffgeo;
 mod eval;
 #[cfg(test)]
@@ -17,14 +18,17 @@ mod section;
 mod section_seed;
 mod section_trace;
 mod stitch;
+mod surface_box;
 mod tessellate;
 
 pub use basis::MAX_DEGREE;
+pub use curvature_range::CurvatureRange;
 pub use diffgeo::{Curvature, FundamentalForms};
 pub use eval::SurfaceDerivs;
 pub use power::PowerPatch;
 pub use project::Projection;
 pub use section::{SectionCurve, SurfaceSample};
+pub use surface_box::SurfaceBox;
 
 use crate::error::GeomError;
 use crate::math::{Aabb, Point3};
