@@ -9,8 +9,11 @@
 //! tiling is C1 and every patch is curved in both directions.
 //!
 //! ```sh
-//! cargo run --release -p swarf-app --example inspect_bench [-- N]
+//! cargo run --release -p swarf-app --example inspect_bench [-- N [KEEP.toml]]
 //! ```
+//!
+//! With `KEEP.toml` the part file is written there and kept (for timing
+//! `swarf inspect KEEP.toml` itself).
 
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
@@ -81,9 +84,10 @@ fn main() {
         .nth(1)
         .and_then(|a| a.parse().ok())
         .unwrap_or(100);
+    let keep = std::env::args().nth(2).map(std::path::PathBuf::from);
     let dir = std::env::temp_dir().join(format!("swarf-inspect-bench-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a scratch folder");
-    let path = dir.join(format!("grid{n}.toml"));
+    let path = keep.unwrap_or_else(|| dir.join(format!("grid{n}.toml")));
     let t = Instant::now();
     std::fs::write(&path, part_text(n)).expect("the part file is written");
     let write_s = t.elapsed().as_secs_f64();
