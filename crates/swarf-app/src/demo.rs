@@ -26,7 +26,7 @@
 
 use crate::compare::{compare_all, compare_jobs, five_axis_markdown, markdown};
 use crate::error::{Context, Result};
-use crate::inspect::{patch_text, summarise_patch};
+use crate::inspect::{patch_text, summarise_patches};
 use crate::job::Job;
 use crate::outputs::Outputs;
 use crate::plan_job::plan_job;
@@ -239,12 +239,7 @@ fn tessellate_parts(out: &mut Outputs, text: &mut dyn Write) -> Result<()> {
     for (name, _) in swarf_io::builtin_parts() {
         let part = swarf_io::builtin_part(name)
             .with_context(|| "built-in part does not load".to_string())?;
-        let summaries = part
-            .patches
-            .iter()
-            .enumerate()
-            .map(|(i, p)| summarise_patch(i, p))
-            .collect::<Result<Vec<_>>>()?;
+        let summaries = summarise_patches(&part.patches)?;
         write!(text, "{}", patch_text(&part.name, &summaries))?;
         let mesh = part.tessellate(DEMO_TOL)?;
         let path = out.path(format!("{name}.stl"));

@@ -1,18 +1,34 @@
 //! `swarf inspect PART`: a summary of a part (patches, degrees, box, principal
 //! curvatures) or of a mesh (counts, box, defects), as text or JSON.
+//!
+//! Per patch, computed by the kernel:
+//!
+//! - the box is [`Patch::surface_box`] to [`BOX_TOL`]: each face touches the surface
+//!   (it is spanned by surface points) and the surface reaches at most [`BOX_TOL`]
+//!   beyond it, found by Bezier subdivision;
+//! - the principal curvature ranges are [`Patch::curvature_range`] on a
+//!   [`CURVATURE_SAMPLES`]-squared uniform parameter grid, corners and edges included:
+//!   every reported extreme is attained at a grid point (the true range holds the
+//!   reported one; an extreme between grid points is not caught).
+//!
+//! Patches are summarised in parallel and reported in file order. Every number written
+//! is finite: a patch with no point that has a normal, or whose figures overflow, is
+//! an error naming the patch; a mesh with no triangle corner of finite coordinates is
+//! an error too (it has no box).
 
-use crate::error::Result;
+use crate::error::{Result, bail};
 use crate::model::Model;
+use rayon::prelude::*;
 use serde::Serialize;
-use swarf_geom::{Aabb, Patch, TriMesh};
+use swarf_geom::{Patch, TriMesh};
 
 /// Samples per direction for the curvature survey.
-const CURVATURE_SAMPLES: usize = 101;
-/// Chordal tolerance of the tessellation whose vertices bound the patch, mm.
-const BOX_TOL: f64 = 1e-3;
+pub const CURVATURE_SAMPLES: usize = 101;
+/// The reported box of a patch is within this of the surface's true box, mm.
+pub const BOX_TOL: f64 = 1e-6;
 
 /// Summary of one patch (lengths mm, curvatures 1/mm).
-#[derive(Serialize)]
+#[derive(Debug, Serialize)]
 pub struct PatchSummary {
     /// Patch index.
     pub index: usize,
@@ -34,29 +50,21 @@ pub struct PatchSummary {
     pub k2: [f64; 2],
 }
 
-/// Summarises a patch: its box from a fine tessellation (vertices lie on the surface)
-/// and the range of its principal curvatures over a parameter grid.
+/// Summarises a patch: its box to [`BOX_TOL`] and the ranges of its principal
+/// curvatures over a parameter grid (module doc).
 ///
 /// # Errors
-/// A patch that cannot be tessellated.
+/// A patch with no normal at any grid point, or with a figure that is not finite.
 pub fn summarise_patch(index: usize, patch: &Patch) -> Result<PatchSummary> {
-    let mesh = patch.tessellate(BOX_TOL)?;
-    let bbox = Aabb::from_points(&mesh.vertices);
-    let [[u0, u1], [v0, v1]] = patch.domain();
-    let mut k1 = [f64::INFINITY, f64::NEG_INFINITY];
-    let mut k2 = k1;
-    let n = CURVATURE_SAMPLES - 1;
-    for i in 0..=n {
-        for j in 0..=n {
-            let u = u0 + (u1 - u0) * i as f64 / n as f64;
-            let v = v0 + (v1 - v0) * j as f64 / n as f64;
-            if let Some(c) = patch.derivs(u, v).curvature() {
-                k1 = [k1[0].min(c.k1), k1[1].max(c.k1)];
-                k2 = [k2[0].min(c.k2), k2[1].max(c.k2)];
-            }
-        }
-    }
-    Ok(PatchSummary {
+    let bbox = patch.surface_box(BOX_TOL)?.inner;
+    let Some(k) = patch.curvature_range(CURVATURE_SAMPLES)? else {
+        let n = CURVATURE_SAMPLES;
+        bail!(
+            "patch {index}: no point of the {n} x {n} parameter grid has a normal (du x dv \
+             vanishes everywhere); expected a surface, not a curve or a point"
+        );
+    };
+    let summary = PatchSummary {
         index,
         kind: format!("{:?}", patch.kind()),
         degree: patch.degree(),
@@ -64,24 +72,59 @@ pub fn summarise_patch(index: usize, patch: &Patch) -> Result<PatchSummary> {
         domain: patch.domain(),
         bbox_min: bbox.min.coords.into(),
         bbox_max: bbox.max.coords.into(),
-        k1,
-        k2,
-    })
+        k1: k.k1,
+        k2: k.k2,
+    };
+    summary.check_finite()?;
+    Ok(summary)
+}
+
+impl PatchSummary {
+    /// Fails naming the patch and the first figure that is not finite.
+    fn check_finite(&self) -> Result<()> {
+        let [[u0, u1], [v0, v1]] = self.domain;
+        let figures: [(&str, &[f64]); 5] = [
+            ("domain", &[u0, u1, v0, v1]),
+            ("bounding box", &self.bbox_min),
+            ("bounding box", &self.bbox_max),
+            ("k1", &self.k1),
+            ("k2", &self.k2),
+        ];
+        for (name, values) in figures {
+            if let Some(x) = values.iter().find(|x| !x.is_finite()) {
+                bail!(
+                    "patch {}: {name} is {x}; expected finite numbers (control points too \
+                     large for f64 arithmetic?)",
+                    self.index
+                );
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The summaries of `patches`, computed in parallel and returned in order; the first
+/// error in patch order.
+///
+/// # Errors
+/// As [`summarise_patch`].
+pub fn summarise_patches(patches: &[Patch]) -> Result<Vec<PatchSummary>> {
+    let all: Vec<Result<PatchSummary>> = patches
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| summarise_patch(i, p))
+        .collect();
+    all.into_iter().collect()
 }
 
 /// The summary of `model` as text, or as JSON when `json`.
 ///
 /// # Errors
-/// A patch that cannot be tessellated.
+/// As [`summarise_patch`]; a mesh with no triangle corner of finite coordinates.
 pub fn inspect(model: &Model, json: bool) -> Result<String> {
     match model {
         Model::Patches(part) => {
-            let patches: Vec<PatchSummary> = part
-                .patches
-                .iter()
-                .enumerate()
-                .map(|(i, p)| summarise_patch(i, p))
-                .collect::<Result<_>>()?;
+            let patches = summarise_patches(&part.patches)?;
             if json {
                 let v = serde_json::json!({ "name": part.name, "patches": patches });
                 Ok(serde_json::to_string_pretty(&v)? + "\n")
@@ -130,6 +173,13 @@ pub fn patch_text(name: &str, patches: &[PatchSummary]) -> String {
 
 fn mesh_text(name: &str, mesh: &TriMesh, json: bool) -> Result<String> {
     let bbox = mesh.aabb();
+    if bbox.is_empty() {
+        bail!(
+            "mesh {name}: no triangle has a corner with finite coordinates ({} triangles); \
+             expected finite x, y, z",
+            mesh.triangles.len()
+        );
+    }
     let report = mesh.validate();
     if json {
         let v = serde_json::json!({
@@ -157,5 +207,79 @@ fn mesh_text(name: &str, mesh: &TriMesh, json: bool) -> Result<String> {
             s += &format!("{report}\n");
         }
         Ok(s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarf_geom::{Part, Point3};
+
+    /// `z = a x^2` over `[0, l] x [0, w]`: `x = l u`, `z = a l^2 u^2`, `y = w v`.
+    fn parabolic(a: f64, l: f64, w: f64) -> Patch {
+        let pts = [(0.0, 0.0), (0.5 * l, 0.0), (l, a * l * l)]
+            .iter()
+            .flat_map(|&(x, z)| [Point3::new(x, 0.0, z), Point3::new(x, w, z)])
+            .collect();
+        Patch::bezier([2, 1], pts).unwrap()
+    }
+
+    /// Four points on a line: a patch without a normal anywhere.
+    fn line() -> Patch {
+        let pts = (0..4).map(|k| Point3::new(k as f64, 0.0, 0.0)).collect();
+        Patch::bezier([1, 1], pts).unwrap()
+    }
+
+    #[test]
+    fn a_parabolic_cylinder_matches_its_closed_forms() {
+        let (a, l, w) = (0.02, 30.0, 12.0);
+        let s = summarise_patch(4, &parabolic(a, l, w)).unwrap();
+        assert_eq!((s.index, s.degree, s.control_points), (4, [2, 1], [3, 2]));
+        for (k, want) in [l, w, a * l * l].iter().enumerate() {
+            assert!(s.bbox_min[k].abs() <= BOX_TOL, "{:?}", s.bbox_min);
+            assert!((s.bbox_max[k] - want).abs() <= BOX_TOL, "{:?}", s.bbox_max);
+        }
+        // curvature along x: 2a / (1 + (2 a x)^2)^1.5, largest at x = 0, least at x = l
+        // (both grid points); across: 0. The normal du x dv points up (+z).
+        let kx = |x: f64| 2.0 * a / (1.0 + (2.0 * a * x).powi(2)).powf(1.5);
+        assert!((s.k1[0] - kx(l)).abs() < 1e-12 && (s.k1[1] - kx(0.0)).abs() < 1e-12);
+        assert!(s.k2.iter().all(|k| k.abs() < 1e-12), "{:?}", s.k2);
+        let text = patch_text("p", &[s]);
+        assert!(text.contains("bounding box (0.000, 0.000, 0.000) .. (30.000, 12.000, 18.000) mm"));
+    }
+
+    #[test]
+    fn the_first_bad_patch_in_order_is_named() {
+        let mut patches = vec![parabolic(0.01, 5.0, 5.0); 40];
+        patches[31] = line();
+        patches[17] = line();
+        let e = summarise_patches(&patches).unwrap_err().to_string();
+        assert!(e.starts_with("patch 17: no point of the 101 x 101"), "{e}");
+        let part = Part {
+            name: "p".into(),
+            patches: patches[..17].to_vec(),
+        };
+        let text = inspect(&Model::Patches(part), false).unwrap();
+        let order: Vec<usize> = text
+            .lines()
+            .filter_map(|l| l.trim().strip_prefix("patch "))
+            .map(|l| l.split(':').next().unwrap().parse().unwrap())
+            .collect();
+        assert_eq!(order, (0..17).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn a_mesh_without_finite_corners_has_no_box() {
+        let nan = Point3::new(f64::NAN, 0.0, f64::INFINITY);
+        let mesh = TriMesh::from_triangles(&[[nan, nan, nan]]);
+        let model = Model::Mesh {
+            name: "m".into(),
+            mesh,
+        };
+        let e = inspect(&model, true).unwrap_err().to_string();
+        assert!(
+            e.starts_with("mesh m: no triangle has a corner with finite"),
+            "{e}"
+        );
     }
 }

@@ -29,6 +29,7 @@ pub use mesh::{MeshBuilder, MeshReport, XyIndex};
 pub use part::Part;
 pub use patch::Patch;
 pub use patch::{
-    Curvature, FundamentalForms, Projection, SectionCurve, SurfaceDerivs, SurfaceSample,
+    Curvature, CurvatureRange, FundamentalForms, Projection, SectionCurve, SurfaceBox,
+    SurfaceDerivs, SurfaceSample,
 };
 pub use solve::SolveStatus;

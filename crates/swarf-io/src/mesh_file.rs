@@ -1,18 +1,20 @@
 //! Reading a mesh file of any supported format, chosen by its extension.
 
-use crate::error::IoError;
+use crate::error::{At, IoError};
 use crate::obj::read_obj;
 use crate::stl::read_stl;
 use std::path::Path;
 use swarf_geom::TriMesh;
 
-/// Reads a `.stl` or `.obj` mesh (extension in any case).
+/// Reads a `.stl` or `.obj` mesh (extension in any case) holding at least one
+/// triangle.
 ///
 /// # Units
 /// Coordinates as stored (swarf assumes mm).
 ///
 /// # Errors
-/// [`IoError::UnsupportedFormat`] for another extension; otherwise those of
+/// [`IoError::UnsupportedFormat`] for another extension; [`IoError::Format`] for a
+/// file with no triangle (no STL facet, no OBJ face); otherwise those of
 /// [`read_stl`] and [`read_obj`].
 ///
 /// # Example
@@ -24,14 +26,24 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, IoError> {
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    match ext.as_deref() {
-        Some("stl") => read_stl(path),
-        Some("obj") => read_obj(path),
-        other => Err(IoError::UnsupportedFormat {
-            file: path.display().to_string(),
-            found: other.map_or("no extension".to_owned(), |e| format!(".{e}")),
-        }),
+    let (mesh, element) = match ext.as_deref() {
+        Some("stl") => (read_stl(path)?, "`facet`"),
+        Some("obj") => (read_obj(path)?, "`f` face line"),
+        other => {
+            return Err(IoError::UnsupportedFormat {
+                file: path.display().to_string(),
+                found: other.map_or("no extension".to_owned(), |e| format!(".{e}")),
+            });
+        }
+    };
+    if mesh.triangles.is_empty() {
+        return Err(IoError::format(
+            &path.display().to_string(),
+            At::File,
+            format!("a mesh with no triangle; expected at least one {element}"),
+        ));
     }
+    Ok(mesh)
 }
 
 #[cfg(test)]
@@ -64,5 +76,24 @@ mod tests {
         );
         let e = read_mesh(&dir.join("missing.stl")).unwrap_err().to_string();
         assert!(e.contains("missing.stl: cannot read"), "{e}");
+    }
+
+    #[test]
+    fn a_mesh_with_no_triangle_is_refused() {
+        let dir = scratch_dir("mesh-empty");
+        let obj = dir.join("points.obj");
+        std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n").unwrap();
+        let e = read_mesh(&obj).unwrap_err().to_string();
+        assert!(
+            e.ends_with("points.obj: a mesh with no triangle; expected at least one `f` face line"),
+            "{e}"
+        );
+        let stl = dir.join("empty.stl");
+        std::fs::write(&stl, "solid e\nendsolid e\n").unwrap();
+        let e = read_mesh(&stl).unwrap_err().to_string();
+        assert!(
+            e.ends_with("empty.stl: a mesh with no triangle; expected at least one `facet`"),
+            "{e}"
+        );
     }
 }

@@ -554,6 +554,24 @@ mod tests {
         );
     }
 
+    #[test]
+    fn a_patch_below_the_smallest_extent_names_its_line() {
+        let tiny = "points = [[0,0,0],[0,1e-200,0],[1e-200,0,0],[1e-200,1e-200,0]]\n";
+        let e = err(&format!("{HEAD}{POINTS}[[patch]]\ndegree = [1, 1]\n{tiny}"));
+        assert_eq!(
+            e,
+            "t.toml: line 14: patch[1].points: expected control points spanning at least \
+             1e-6 mm (the longest side of their box; smaller patches have no computable \
+             normal or curvature), found 1.0e-200 mm"
+        );
+        let small = POINTS.replace("0.5", "0").replace('1', "4e-8");
+        let inch = format!("{HEAD}{small}").replace("\"mm\"", "\"inch\"");
+        assert!(
+            parse_part(&inch, "t.toml").is_ok(),
+            "4e-8 inch is 1.016e-6 mm"
+        );
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(256))]
 

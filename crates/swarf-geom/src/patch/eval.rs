@@ -8,6 +8,13 @@
 //! The common degree pairs are compiled with the degrees as constants, so that the short
 //! loops unroll.
 //!
+//! On a grid of parameters ([`Patch::derivs_on_grid`]) the row contractions depend on
+//! v alone: they run once per v over every row of the net, and each u then costs only
+//! the fold, `6 (p + 1)` multiply-adds (24 for a bicubic instead of 72 plus two basis
+//! evaluations); the basis functions are computed once per u and once per v. The
+//! contraction and the fold are the same functions as for one point, applied in the
+//! same order, so a grid value is bit for bit `Patch::derivs` there.
+//!
 //! A NURBS patch is the projection of a polynomial patch in homogeneous space,
 //! `A(u, v) = sum N M w_ij P_ij`, `w(u, v) = sum N M w_ij`, `S = A / w`. Differentiating
 //! `A = w S` (The NURBS Book eq. 4.20, the idea of A4.4) gives
@@ -158,21 +165,129 @@ impl Patch {
         let bv = basis_derivs_n::<OV>(&self.knots[1], pv, v);
         let nv = self.count[1];
         match &self.weights {
-            None => {
-                let s = sum_derivs([pu, pv], nv, &bu, &bv, &self.points, None, |p, _| p.coords);
-                SurfaceDerivs {
-                    point: Point3::from(s[0]),
-                    du: s[1],
-                    dv: s[2],
-                    duu: s[3],
-                    duv: s[4],
-                    dvv: s[5],
-                }
-            }
+            None => polynomial(&sum_derivs(
+                [pu, pv],
+                nv,
+                &bu,
+                &bv,
+                &self.points,
+                None,
+                lift3,
+            )),
             Some(w) => {
                 let a = sum_derivs([pu, pv], nv, &bu, &bv, &self.points, Some(w), homogeneous);
                 rational_quotient(&a)
             }
+        }
+    }
+
+    /// [`Patch::derivs`] at every `(us[i], vs[j])`, handed over one v at a time:
+    /// `f(j, column)` with `column[i]` at `(us[i], vs[j])`. The values are bit for bit
+    /// those of `derivs` (module doc), at about a fifth of the cost per point.
+    /// Parameters are clamped into the domain.
+    ///
+    /// # Units
+    /// mm (per unit parameter for the derivatives).
+    ///
+    /// # Example
+    /// ```
+    /// use swarf_geom::{Patch, Point3};
+    /// let p = Patch::bezier([2, 1], vec![
+    ///     Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0),
+    ///     Point3::new(1.0, 0.0, 2.0), Point3::new(1.0, 1.0, 2.0),
+    ///     Point3::new(2.0, 0.0, 0.0), Point3::new(2.0, 1.0, 0.0),
+    /// ]).unwrap();
+    /// let (us, vs) = ([0.0, 0.3, 1.0], [0.25, 0.5]);
+    /// p.derivs_on_grid(&us, &vs, |j, column| {
+    ///     for (i, d) in column.iter().enumerate() {
+    ///         assert_eq!(*d, p.derivs(us[i], vs[j]));
+    ///     }
+    /// });
+    /// ```
+    pub fn derivs_on_grid(
+        &self,
+        us: &[f64],
+        vs: &[f64],
+        mut f: impl FnMut(usize, &[SurfaceDerivs]),
+    ) {
+        match self.degree {
+            [3, 3] => self.grid_of::<4, 4>(us, vs, &mut f),
+            [2, 2] => self.grid_of::<3, 3>(us, vs, &mut f),
+            [1, 1] => self.grid_of::<2, 2>(us, vs, &mut f),
+            [2, 1] => self.grid_of::<3, 2>(us, vs, &mut f),
+            [1, 2] => self.grid_of::<2, 3>(us, vs, &mut f),
+            _ => self.grid_of::<MAX_ORDER, MAX_ORDER>(us, vs, &mut f),
+        }
+    }
+
+    /// [`Patch::derivs_on_grid`] with the orders as in [`Patch::eval_of`].
+    fn grid_of<const OU: usize, const OV: usize>(
+        &self,
+        us: &[f64],
+        vs: &[f64],
+        f: &mut impl FnMut(usize, &[SurfaceDerivs]),
+    ) {
+        let pu = if OU < MAX_ORDER {
+            OU - 1
+        } else {
+            self.degree[0]
+        };
+        let bus: Vec<BasisDerivs<OU>> = us
+            .iter()
+            .map(|&u| {
+                let (u, _) = self.clamp_params(u, 0.0);
+                basis_derivs_n::<OU>(&self.knots[0], pu, u)
+            })
+            .collect();
+        match &self.weights {
+            None => self.grid_with::<3, OU, OV>(&bus, vs, None, lift3, polynomial, f),
+            Some(w) => {
+                self.grid_with::<4, OU, OV>(&bus, vs, Some(w), homogeneous, rational_quotient, f);
+            }
+        }
+    }
+
+    /// The loop of [`Patch::grid_of`] on the lifted net: per v the contraction of every
+    /// row, then per u (basis `bus`) the fold.
+    #[inline(always)]
+    fn grid_with<const D: usize, const OU: usize, const OV: usize>(
+        &self,
+        bus: &[BasisDerivs<OU>],
+        vs: &[f64],
+        weights: Option<&[f64]>,
+        lift: impl Fn(&Point3, f64) -> SVector<f64, D>,
+        finish: impl Fn(&[SVector<f64, D>; 6]) -> SurfaceDerivs,
+        f: &mut impl FnMut(usize, &[SurfaceDerivs]),
+    ) {
+        let pu = if OU < MAX_ORDER {
+            OU - 1
+        } else {
+            self.degree[0]
+        };
+        let pv = if OV < MAX_ORDER {
+            OV - 1
+        } else {
+            self.degree[1]
+        };
+        let [nu, nv] = self.count;
+        let mut rows = vec![[SVector::<f64, D>::zeros(); 3]; nu];
+        let mut column = Vec::with_capacity(bus.len());
+        for (j, &v) in vs.iter().enumerate() {
+            let (_, v) = self.clamp_params(0.0, v);
+            let bv = basis_derivs_n::<OV>(&self.knots[1], pv, v);
+            for (a, r) in rows.iter_mut().enumerate() {
+                let row = net_row(&self.points, weights, a * nv + bv.span - pv, pv + 1);
+                *r = contract_row(row, &bv, &lift);
+            }
+            column.clear();
+            column.extend(bus.iter().map(|bu| {
+                let mut out = [SVector::<f64, D>::zeros(); 6];
+                for a in 0..pu + 1 {
+                    fold_row(&mut out, &rows[bu.span - pu + a], bu, a);
+                }
+                finish(&out)
+            }));
+            f(j, &column);
         }
     }
 }
@@ -234,23 +349,65 @@ fn sum_derivs<const D: usize, const OU: usize, const OV: usize>(
     let first = (bu.span - pu) * nv + bv.span - pv;
     let mut out = [SVector::<f64, D>::zeros(); 6];
     for a in 0..pu + 1 {
-        let mut s = [SVector::<f64, D>::zeros(); 3];
         let row = net_row(points, weights, first + a * nv, pv + 1);
-        for (b, (c, w)) in row.enumerate() {
-            let c = lift(c, *w);
-            s[0] += c * bv.d[0][b];
-            s[1] += c * bv.d[1][b];
-            s[2] += c * bv.d[2][b];
-        }
-        let (n0, n1, n2) = (bu.d[0][a], bu.d[1][a], bu.d[2][a]);
-        out[0] += s[0] * n0;
-        out[1] += s[0] * n1;
-        out[2] += s[1] * n0;
-        out[3] += s[0] * n2;
-        out[4] += s[1] * n1;
-        out[5] += s[2] * n0;
+        fold_row(&mut out, &contract_row(row, bv, &lift), bu, a);
     }
     out
+}
+
+/// `[X, X_v, X_vv]` of one row of the net: `sum_b M_b lift(P_b, w_b)` and the same
+/// with `M'` and `M''`.
+#[inline(always)]
+fn contract_row<'a, const D: usize, const OV: usize>(
+    row: impl Iterator<Item = (&'a Point3, &'a f64)>,
+    bv: &BasisDerivs<OV>,
+    lift: impl Fn(&Point3, f64) -> SVector<f64, D>,
+) -> [SVector<f64, D>; 3] {
+    let mut s = [SVector::<f64, D>::zeros(); 3];
+    for (b, (c, w)) in row.enumerate() {
+        let c = lift(c, *w);
+        s[0] += c * bv.d[0][b];
+        s[1] += c * bv.d[1][b];
+        s[2] += c * bv.d[2][b];
+    }
+    s
+}
+
+/// Adds row `a`'s contraction `s` into `out = [X, X_u, X_v, X_uu, X_uv, X_vv]` with
+/// `N_a, N'_a, N''_a`.
+#[inline(always)]
+fn fold_row<const D: usize, const OU: usize>(
+    out: &mut [SVector<f64, D>; 6],
+    s: &[SVector<f64, D>; 3],
+    bu: &BasisDerivs<OU>,
+    a: usize,
+) {
+    let (n0, n1, n2) = (bu.d[0][a], bu.d[1][a], bu.d[2][a]);
+    out[0] += s[0] * n0;
+    out[1] += s[0] * n1;
+    out[2] += s[1] * n0;
+    out[3] += s[0] * n2;
+    out[4] += s[1] * n1;
+    out[5] += s[2] * n0;
+}
+
+/// A polynomial patch's control point as it is summed.
+#[inline(always)]
+fn lift3(p: &Point3, _w: f64) -> Vec3 {
+    p.coords
+}
+
+/// The derivatives of a polynomial patch from `[S, S_u, S_v, S_uu, S_uv, S_vv]`.
+#[inline(always)]
+fn polynomial(s: &[Vec3; 6]) -> SurfaceDerivs {
+    SurfaceDerivs {
+        point: Point3::from(s[0]),
+        du: s[1],
+        dv: s[2],
+        duu: s[3],
+        duv: s[4],
+        dvv: s[5],
+    }
 }
 
 /// `(w x, w y, w z, w)`.
@@ -384,6 +541,43 @@ mod tests {
         check_against_differences(&quarter_cylinder(5.0, 3.0), "cylinder");
     }
 
+    /// `n + 1` parameters across `[lo, hi]` and two outside it (clamped).
+    fn across(lo: f64, hi: f64, n: u32) -> Vec<f64> {
+        (0..=n)
+            .map(|k| lo + (hi - lo) * f64::from(k) / f64::from(n))
+            .chain([lo - 1.0, hi + 2.0])
+            .collect()
+    }
+
+    /// Every grid value is bit for bit `derivs` there, each visited once in order.
+    fn check_grid(p: &Patch, name: &str) {
+        let [[u0, u1], [v0, v1]] = p.domain();
+        let (us, vs) = (across(u0, u1, 13), across(v0, v1, 9));
+        let mut next = 0;
+        p.derivs_on_grid(&us, &vs, |j, column| {
+            assert_eq!(
+                (j, column.len()),
+                (next, us.len()),
+                "{name}: columns in order"
+            );
+            for (i, d) in column.iter().enumerate() {
+                assert_eq!(*d, p.derivs(us[i], vs[j]), "{name} at ({i}, {j})");
+            }
+            next += 1;
+        });
+        assert_eq!(next, vs.len(), "{name}: every column");
+    }
+
+    #[test]
+    fn grid_values_are_those_of_derivs() {
+        for (name, p) in shared_patches() {
+            check_grid(&p, name);
+        }
+        check_grid(&nurbs_spline(), "nurbs spline");
+        check_grid(&sphere_octant(10.0), "sphere");
+        check_grid(&quarter_cylinder(5.0, 3.0), "cylinder");
+    }
+
     #[test]
     fn parameters_are_clamped_into_the_domain() {
         let p = nurbs_spline();
@@ -458,6 +652,11 @@ mod tests {
             let want = de_casteljau(p.degree(), &hom, u, v);
             prop_assert!((p.eval(u, v) - want).norm() < 1e-10);
             prop_assert!((p.derivs(u, v).point - want).norm() < 1e-10);
+        }
+
+        #[test]
+        fn grid_agrees_with_derivs_for_any_degree((p, _) in random_bezier()) {
+            check_grid(&p, "random");
         }
 
         #[test]

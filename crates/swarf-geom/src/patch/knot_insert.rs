@@ -6,6 +6,12 @@
 //! `Q_i = a_i P_i + (1 - a_i) P_{i-1}`, `a_i = (t - U_i) / (U_{i+p} - U_i)`, keeps the
 //! points before and shifts the ones after by one. A NURBS patch is refined on its
 //! homogeneous points `(w P, w)`, so the rational surface is unchanged too.
+//!
+//! Inserting every interior knot until its multiplicity is the degree cuts the patch
+//! into Bezier patches, one per pair of spans (The NURBS Book §5.3): the power form of
+//! [`super::PowerPatch`] and the surface box of [`super::surface_box`] start from
+//! those nets ([`Patch::bezier_spans`]). The refinement runs on the homogeneous net
+//! itself, without a [`Patch`] (and its checks) per inserted knot.
 
 use super::Patch;
 use super::basis::find_span;
@@ -46,6 +52,107 @@ impl Patch {
                 expected: format!("a knot of multiplicity below the degree {p}, found {s}"),
             });
         }
+        let mut net = HomNet::of(self);
+        net.insert(dir, t);
+        let points = net
+            .hom
+            .iter()
+            .map(|h| crate::math::Point3::new(h.x / h.w, h.y / h.w, h.z / h.w))
+            .collect();
+        let weights = self
+            .weights
+            .as_ref()
+            .map(|_| net.hom.iter().map(|h| h.w).collect());
+        let [ku, kv] = net.knots;
+        Patch::new(self.degree, points, [Some(ku), Some(kv)], weights)
+    }
+
+    /// The patch cut into its Bezier patches (module doc).
+    pub(crate) fn bezier_spans(&self) -> BezierSpans {
+        let mut net = HomNet::of(self);
+        for dir in 0..2 {
+            let p = self.degree[dir];
+            let knots = self.knots[dir].clone();
+            let (lo, hi) = (knots[0], knots[knots.len() - 1]);
+            let mut k = 0;
+            while k < knots.len() {
+                let t = knots[k];
+                let mult = knots[k..].iter().take_while(|&&x| x == t).count();
+                if t > lo && t < hi {
+                    for _ in mult..p {
+                        net.insert(dir, t);
+                    }
+                }
+                k += mult;
+            }
+        }
+        let [p, q] = self.degree;
+        let breaks = net.knots.clone().map(|mut b| {
+            b.dedup();
+            b
+        });
+        let spans = [breaks[0].len() - 1, breaks[1].len() - 1];
+        let nv = net.count[1];
+        let mut nets = Vec::with_capacity(spans[0] * spans[1]);
+        for a in 0..spans[0] {
+            for b in 0..spans[1] {
+                let span = (0..=p).flat_map(|i| {
+                    let row = (a * p + i) * nv + b * q;
+                    net.hom[row..=row + q].iter().map(|h| [h.x, h.y, h.z, h.w])
+                });
+                nets.push(span.collect());
+            }
+        }
+        BezierSpans {
+            degree: self.degree,
+            breaks,
+            nets,
+        }
+    }
+}
+
+/// A patch cut into Bezier patches ([`Patch::bezier_spans`]).
+pub(crate) struct BezierSpans {
+    /// `[p, q]`, as the patch's.
+    pub degree: [usize; 2],
+    /// Span boundaries per direction (the distinct knots).
+    pub breaks: [Vec<f64>; 2],
+    /// Per span pair, u-major (`a * spans_v + b`), the `(p + 1) * (q + 1)` homogeneous
+    /// control points `(w x, w y, w z, w)` of its Bezier patch, row-major.
+    pub nets: Vec<Vec<[f64; 4]>>,
+}
+
+/// A patch's knots and homogeneous control net, refined in place.
+struct HomNet {
+    degree: [usize; 2],
+    knots: [Vec<f64>; 2],
+    count: [usize; 2],
+    hom: Vec<Vector4<f64>>,
+}
+
+impl HomNet {
+    fn of(patch: &Patch) -> HomNet {
+        let [nu, nv] = patch.count;
+        let hom = (0..nu * nv)
+            .map(|k| {
+                let (q, w) = (patch.point(k / nv, k % nv), patch.weight(k / nv, k % nv));
+                Vector4::new(q.x * w, q.y * w, q.z * w, w)
+            })
+            .collect();
+        HomNet {
+            degree: patch.degree,
+            knots: patch.knots.clone(),
+            count: patch.count,
+            hom,
+        }
+    }
+
+    /// Inserts `t` once in direction `dir` (module doc); `t` lies strictly inside the
+    /// range with a multiplicity below the degree.
+    fn insert(&mut self, dir: usize, t: f64) {
+        let p = self.degree[dir];
+        let knots = &self.knots[dir];
+        let s = knots.iter().filter(|k| **k == t).count();
         let k = find_span(knots, p, t);
         let alpha: Vec<f64> = (k + 1 - p..=k - s)
             .map(|i| (t - knots[i]) / (knots[i + p] - knots[i]))
@@ -58,9 +165,7 @@ impl Patch {
                 let (c, fetch) = if dir == 0 { (i, (0, j)) } else { (j, (i, 0)) };
                 let at = |m: usize| {
                     let (a, b) = if dir == 0 { (m, fetch.1) } else { (fetch.0, m) };
-                    let w = self.weight(a, b);
-                    let q = self.point(a, b);
-                    Vector4::new(q.x * w, q.y * w, q.z * w, w)
+                    self.hom[a * nv + b]
                 };
                 hom.push(if c + p <= k {
                     at(c)
@@ -72,19 +177,9 @@ impl Patch {
                 });
             }
         }
-        let mut new_knots = knots.clone();
-        new_knots.insert(k + 1, t);
-        let mut all_knots = [Some(self.knots[0].clone()), Some(self.knots[1].clone())];
-        all_knots[dir] = Some(new_knots);
-        let points = hom
-            .iter()
-            .map(|h| crate::math::Point3::new(h.x / h.w, h.y / h.w, h.z / h.w))
-            .collect();
-        let weights = self
-            .weights
-            .as_ref()
-            .map(|_| hom.iter().map(|h| h.w).collect());
-        Patch::new(self.degree, points, all_knots, weights)
+        self.knots[dir].insert(k + 1, t);
+        self.count = new_count;
+        self.hom = hom;
     }
 }
 

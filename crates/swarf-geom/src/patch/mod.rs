@@ -6,6 +6,7 @@
 //! The algorithms live in one file each beside this one.
 
 pub mod basis;
+mod curvature_range;
 mod diffgeo;
 mod eval;
 #[cfg(test)]
@@ -17,17 +18,21 @@ mod section;
 mod section_seed;
 mod section_trace;
 mod stitch;
+mod surface_box;
 mod tessellate;
 
 pub use basis::MAX_DEGREE;
+pub use curvature_range::CurvatureRange;
 pub use diffgeo::{Curvature, FundamentalForms};
 pub use eval::SurfaceDerivs;
 pub use power::PowerPatch;
 pub use project::Projection;
 pub use section::{SectionCurve, SurfaceSample};
+pub use surface_box::SurfaceBox;
 
 use crate::error::GeomError;
 use crate::math::{Aabb, Point3};
+use crate::tol::MIN_PATCH_EXTENT;
 use serde::{Deserialize, Serialize};
 
 /// Which family a patch belongs to (for reports; the algorithms treat all alike).
@@ -74,7 +79,8 @@ impl Patch {
     /// [`GeomError::InvalidPatch`] naming the field (`degree`, `knots_u`, `knots_v`,
     /// `points`, `weights`) when a degree is 0 or above [`MAX_DEGREE`], a knot vector is not finite,
     /// decreasing, unclamped, of the wrong length or has an empty range, the number of
-    /// points does not match, a point is not finite, or a weight is not finite and > 0.
+    /// points does not match, a point is not finite, the points span less than
+    /// [`MIN_PATCH_EXTENT`] (1e-6 mm), or a weight is not finite and > 0.
     pub fn new(
         degree: [usize; 2],
         points: Vec<Point3>,
@@ -112,6 +118,17 @@ impl Patch {
             return Err(GeomError::patch(
                 format!("points[{i}]"),
                 "expected three finite coordinates",
+            ));
+        }
+        let extent = Aabb::from_points(&points).size().amax();
+        if extent < MIN_PATCH_EXTENT {
+            return Err(GeomError::patch(
+                "points",
+                format!(
+                    "expected control points spanning at least {MIN_PATCH_EXTENT:e} mm (the \
+                     longest side of their box; smaller patches have no computable normal or \
+                     curvature), found {extent:.1e} mm"
+                ),
             ));
         }
         if let Some(w) = &weights {
@@ -369,6 +386,27 @@ mod tests {
         assert!(e.to_string().starts_with("points[2]"), "{e}");
         let e = Patch::bezier([0, 1], grid(1, 2)).unwrap_err();
         assert!(e.to_string().starts_with("degree"), "{e}");
+    }
+
+    #[test]
+    fn patches_below_the_smallest_extent_are_refused() {
+        let scaled = |s: f64| grid(2, 2).into_iter().map(|p| p * s).collect::<Vec<_>>();
+        let e = Patch::bezier([1, 1], scaled(1e-200)).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "points: expected control points spanning at least 1e-6 mm (the longest side \
+             of their box; smaller patches have no computable normal or curvature), found \
+             1.0e-200 mm"
+        );
+        let e = Patch::bezier([1, 1], vec![Point3::new(5.0, 5.0, 5.0); 4]).unwrap_err();
+        assert!(e.to_string().contains("found 0.0e0 mm"), "{e}");
+        assert!(Patch::bezier([1, 1], scaled(0.99e-6)).is_err());
+        let p = Patch::bezier([1, 1], scaled(1e-6)).unwrap();
+        let c = p.derivs(0.5, 0.5);
+        assert!(
+            c.normal().is_some(),
+            "the smallest patch still has a normal"
+        );
     }
 
     #[test]

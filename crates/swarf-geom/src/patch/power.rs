@@ -10,8 +10,8 @@
 //! basis), and a test holds it to the kernel's evaluator.
 //!
 //! Construction (The NURBS Book §5.3 and §6.6): insert every interior knot until its
-//! multiplicity is the degree (decomposition into Bezier patches, via the kernel's
-//! `Patch::insert_knot`); then, per span, take the homogeneous control points
+//! multiplicity is the degree (decomposition into Bezier patches, the kernel's
+//! `Patch::bezier_spans`); then, per span, take the homogeneous control points
 //! `(w x, w y, w z, w)` and change basis from Bernstein to monomials,
 //! `a_k = sum_{i<=k} C(p, k) C(k, i) (-1)^(k-i) B_i`, in u and then in v. Evaluation is
 //! Horner's rule in the span's local parameters; a rational patch divides by the
@@ -59,57 +59,26 @@ impl PowerPatch {
     /// # Errors
     /// The [`GeomError`] of a knot insertion that fails (it cannot for a valid patch).
     pub fn new(patch: &Patch) -> Result<PowerPatch, GeomError> {
-        let mut bez = patch.clone();
-        for dir in 0..2 {
-            let p = bez.degree()[dir];
-            let knots = bez.knots(dir).to_vec();
-            let (lo, hi) = (knots[0], knots[knots.len() - 1]);
-            let mut k = 0;
-            while k < knots.len() {
-                let t = knots[k];
-                let mult = knots[k..].iter().take_while(|&&x| x == t).count();
-                if t > lo && t < hi {
-                    for _ in mult..p {
-                        bez = bez.insert_knot(dir, t)?;
-                    }
+        let bez = patch.bezier_spans();
+        let [p, q] = bez.degree;
+        let mut coef = Vec::with_capacity(bez.nets.len() * (p + 1) * (q + 1));
+        for net in &bez.nets {
+            // monomial in u for each v-row of Bernstein points, then in v
+            let rows: Vec<Vec<[f64; 4]>> = (0..=q)
+                .map(|j| to_monomial(&(0..=p).map(|i| net[i * (q + 1) + j]).collect::<Vec<_>>()))
+                .collect();
+            let mut span = vec![[0.0; 4]; (p + 1) * (q + 1)];
+            for k in 0..=p {
+                let col = to_monomial(&(0..=q).map(|j| rows[j][k]).collect::<Vec<_>>());
+                for (l, c) in col.into_iter().enumerate() {
+                    span[k * (q + 1) + l] = c;
                 }
-                k += mult;
             }
-        }
-        let [p, q] = bez.degree();
-        let breaks = [0, 1].map(|d| {
-            let mut b = bez.knots(d).to_vec();
-            b.dedup();
-            b
-        });
-        let spans = [breaks[0].len() - 1, breaks[1].len() - 1];
-        let mut coef = Vec::with_capacity(spans[0] * spans[1] * (p + 1) * (q + 1));
-        for a in 0..spans[0] {
-            for b in 0..spans[1] {
-                let h = |i: usize, j: usize| {
-                    let (pt, w) = (
-                        bez.point(a * p + i, b * q + j),
-                        bez.weight(a * p + i, b * q + j),
-                    );
-                    [w * pt.x, w * pt.y, w * pt.z, w]
-                };
-                // monomial in u for each v-row of Bernstein points, then in v
-                let rows: Vec<Vec<[f64; 4]>> = (0..=q)
-                    .map(|j| to_monomial(&(0..=p).map(|i| h(i, j)).collect::<Vec<_>>()))
-                    .collect();
-                let mut span = vec![[0.0; 4]; (p + 1) * (q + 1)];
-                for k in 0..=p {
-                    let col = to_monomial(&(0..=q).map(|j| rows[j][k]).collect::<Vec<_>>());
-                    for (l, c) in col.into_iter().enumerate() {
-                        span[k * (q + 1) + l] = c;
-                    }
-                }
-                coef.extend(span);
-            }
+            coef.extend(span);
         }
         Ok(PowerPatch {
             degree: [p, q],
-            breaks,
+            breaks: bez.breaks,
             coef,
         })
     }

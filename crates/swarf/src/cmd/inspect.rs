@@ -1,6 +1,6 @@
 //! `swarf inspect PART`: a summary of a part or mesh ([`swarf_app::inspect`]).
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use swarf_app::load_model;
 
 /// Arguments of `swarf inspect`.
@@ -16,6 +16,7 @@ pub struct Args {
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
     let model = load_model(&args.part)?;
-    print!("{}", swarf_app::inspect::inspect(&model, args.json)?);
+    let text = swarf_app::inspect::inspect(&model, args.json).with_context(|| args.part.clone())?;
+    print!("{text}");
     Ok(())
 }
