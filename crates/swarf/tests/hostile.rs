@@ -81,6 +81,43 @@ fn refused(dir: &Path, args: &[&str], needles: &[&str]) {
     assert!(text.len() < 4000, "a message of {} bytes", text.len());
 }
 
+/// `swarf verify --part PART --program PROGRAM --tool TOOL -o v EXTRA...`.
+fn verify_cmd<'a>(
+    part: &'a str,
+    program: &'a str,
+    tool: &'a str,
+    extra: &[&'a str],
+) -> Vec<&'a str> {
+    let mut args = vec![
+        "verify",
+        "--part",
+        part,
+        "--program",
+        program,
+        "--tool",
+        tool,
+        "-o",
+        "v",
+    ];
+    args.extend_from_slice(extra);
+    args
+}
+
+/// A line cut, `line.ngc`.
+fn line_ngc(dir: &Path) {
+    std::fs::write(
+        dir.join("line.ngc"),
+        "G21 G90\nG0 X0 Y0 Z5\nG1 X10 F100\nM2\n",
+    )
+    .unwrap();
+}
+
+/// The built-in wave tessellated within 0.1 mm, `w.stl`.
+fn wave_stl(dir: &Path) {
+    let (ok, text, _) = swarf_in(dir, &["tessellate", "wave", "--tol", "0.1", "-o", "w.stl"]);
+    assert!(ok && dir.join("w.stl").exists(), "{text}");
+}
+
 /// A flat 20 x 10 mm plate at z = 0.
 fn plate(dir: &Path) -> String {
     let path = dir.join("plate.toml");
@@ -116,36 +153,11 @@ fn aborts_are_refusals() {
         "G21 G90 G17\nG0 X0 Y0 Z1\nG2 X0 Y0 I1e30 F100\nM2\n",
     )
     .unwrap();
-    let (ok, text, _) = swarf_in(
-        &dir,
-        &[
-            "verify",
-            "--part",
-            &part,
-            "--program",
-            "arc.ngc",
-            "--tool",
-            "ball:d=6",
-            "-o",
-            "v",
-        ],
-    );
+    let (ok, text, _) = swarf_in(&dir, &verify_cmd(&part, "arc.ngc", "ball:d=6", &[]));
     assert!(!ok && text.contains("arc.ngc:3"), "{text}");
     refused(
         &dir,
-        &[
-            "verify",
-            "--part",
-            &part,
-            "--program",
-            "arc.ngc",
-            "--tool",
-            "ball:d=6",
-            "--sample-tol",
-            "1e-9",
-            "-o",
-            "v",
-        ],
+        &verify_cmd(&part, "arc.ngc", "ball:d=6", &["--sample-tol", "1e-9"]),
         &[
             "--sample-tol",
             "expected a sampling distance",
@@ -155,38 +167,22 @@ fn aborts_are_refusals() {
     );
     refused(
         &dir,
-        &[
-            "verify",
-            "--part",
+        &verify_cmd(
             "wave",
-            "--program",
             "arc.ngc",
-            "--tool",
             "ball:d=6",
-            "--cell",
-            "0.0001",
-            "--max-memory",
-            "100000000",
-            "-o",
-            "v",
-        ],
+            &["--cell", "0.0001", "--max-memory", "100000000"],
+        ),
         &["--cell", "expected a cell size"],
     );
     refused(
         &dir,
-        &[
-            "verify",
-            "--part",
+        &verify_cmd(
             "wave",
-            "--program",
             "arc.ngc",
-            "--tool",
             "ball:d=6",
-            "--max-memory",
-            "100000000",
-            "-o",
-            "v",
-        ],
+            &["--max-memory", "100000000"],
+        ),
         &["--max-memory", "1048576 MiB"],
     );
 }
@@ -266,24 +262,10 @@ fn job_hangs_are_refusals() {
 fn command_hangs_are_refusals() {
     let dir = scratch("hangs");
     let part = plate(&dir);
-    std::fs::write(
-        dir.join("line.ngc"),
-        "G21 G90\nG0 X0 Y0 Z5\nG1 X10 F100\nM2\n",
-    )
-    .unwrap();
+    line_ngc(&dir);
     refused(
         &dir,
-        &[
-            "verify",
-            "--part",
-            &part,
-            "--program",
-            "line.ngc",
-            "--tool",
-            "cone:d=1e9,angle=90",
-            "-o",
-            "v",
-        ],
+        &verify_cmd(&part, "line.ngc", "cone:d=1e9,angle=90", &[]),
         &["--tool cone:d=1e9,angle=90", "expected a tool diameter"],
     );
     refused(
@@ -332,13 +314,8 @@ fn command_hangs_are_refusals() {
 fn unbounded_reads_are_refused() {
     let dir = scratch("reads");
     let part = plate(&dir);
-    std::fs::write(
-        dir.join("line.ngc"),
-        "G21 G90\nG0 X0 Y0 Z5\nG1 X10 F100\nM2\n",
-    )
-    .unwrap();
-    let (ok, text, _) = swarf_in(&dir, &["tessellate", "wave", "--tol", "0.1", "-o", "w.stl"]);
-    assert!(ok, "{text}");
+    line_ngc(&dir);
+    wave_stl(&dir);
     for args in [
         vec!["inspect", "/dev/zero"],
         vec![
@@ -406,20 +383,7 @@ fn non_finite_numbers_are_errors() {
         ("far.cl", "far.cl:2"),
         ("far.csv", "far.csv:3"),
     ] {
-        let (ok, text, _) = swarf_in(
-            &dir,
-            &[
-                "verify",
-                "--part",
-                &part,
-                "--program",
-                program,
-                "--tool",
-                "ball:d=4",
-                "-o",
-                "v",
-            ],
-        );
+        let (ok, text, _) = swarf_in(&dir, &verify_cmd(&part, program, "ball:d=4", &[]));
         assert!(
             !ok && text.contains(line) && !text.contains("inf"),
             "{program}: {text}"
@@ -430,8 +394,7 @@ fn non_finite_numbers_are_errors() {
         );
     }
     std::fs::write(dir.join("p.csv"), "x,y\n100,100\n").unwrap();
-    let (ok, text, _) = swarf_in(&dir, &["tessellate", "wave", "--tol", "0.1", "-o", "w.stl"]);
-    assert!(ok, "{text}");
+    wave_stl(&dir);
     refused(
         &dir,
         &[
@@ -451,11 +414,7 @@ fn non_finite_numbers_are_errors() {
 fn flags_beyond_their_domains_are_refused() {
     let dir = scratch("flags");
     let part = plate(&dir);
-    std::fs::write(
-        dir.join("line.ngc"),
-        "G21 G90\nG0 X0 Y0 Z5\nG1 X10 F100\nM2\n",
-    )
-    .unwrap();
+    line_ngc(&dir);
     for (flag, value, what) in [
         ("--tol", "1e308", "a tolerance"),
         ("--tol", "5e-324", "a tolerance"),
@@ -465,19 +424,7 @@ fn flags_beyond_their_domains_are_refused() {
     ] {
         refused(
             &dir,
-            &[
-                "verify",
-                "--part",
-                &part,
-                "--program",
-                "line.ngc",
-                "--tool",
-                "ball:d=4",
-                flag,
-                value,
-                "-o",
-                "v",
-            ],
+            &verify_cmd(&part, "line.ngc", "ball:d=4", &[flag, value]),
             &[flag, what, value],
         );
     }
@@ -509,24 +456,10 @@ fn far_coordinates_fail_fast_naming_the_file_and_patch() {
         assert!(!text.contains("tol = 0.001"), "{text}");
     }
     std::fs::write(dir.join("empty.obj"), "v 0 0 0\nv 1 0 0\n").unwrap();
-    std::fs::write(
-        dir.join("line.ngc"),
-        "G21 G90\nG0 X0 Y0 Z5\nG1 X10 F100\nM2\n",
-    )
-    .unwrap();
+    line_ngc(&dir);
     refused(
         &dir,
-        &[
-            "verify",
-            "--part",
-            "empty.obj",
-            "--program",
-            "line.ngc",
-            "--tool",
-            "ball:d=4",
-            "-o",
-            "v",
-        ],
+        &verify_cmd("empty.obj", "line.ngc", "ball:d=4", &[]),
         &["empty.obj", "no triangle"],
     );
 }

@@ -82,21 +82,30 @@ impl Patch {
         }
     }
 
+    /// The degrees `[u, v]` for `OU`, `OV` basis functions per direction (read from
+    /// the patch when the order is [`MAX_ORDER`]).
+    #[inline(always)]
+    fn degrees_of<const OU: usize, const OV: usize>(&self) -> [usize; 2] {
+        [
+            if OU < MAX_ORDER {
+                OU - 1
+            } else {
+                self.degree[0]
+            },
+            if OV < MAX_ORDER {
+                OV - 1
+            } else {
+                self.degree[1]
+            },
+        ]
+    }
+
     /// [`Patch::eval`] with `OU`, `OV` basis functions per direction: the orders
     /// (degree + 1) as compile-time constants, or [`MAX_ORDER`] to read the degrees.
     #[inline(always)]
     fn eval_of<const OU: usize, const OV: usize>(&self, u: f64, v: f64) -> Point3 {
         let (u, v) = self.clamp_params(u, v);
-        let pu = if OU < MAX_ORDER {
-            OU - 1
-        } else {
-            self.degree[0]
-        };
-        let pv = if OV < MAX_ORDER {
-            OV - 1
-        } else {
-            self.degree[1]
-        };
+        let [pu, pv] = self.degrees_of::<OU, OV>();
         let su = find_span(&self.knots[0], pu, u);
         let sv = find_span(&self.knots[1], pv, v);
         let nu = basis_funs_n::<OU>(&self.knots[0], pu, su, u);
@@ -151,16 +160,7 @@ impl Patch {
     #[inline(always)]
     fn derivs_of<const OU: usize, const OV: usize>(&self, u: f64, v: f64) -> SurfaceDerivs {
         let (u, v) = self.clamp_params(u, v);
-        let pu = if OU < MAX_ORDER {
-            OU - 1
-        } else {
-            self.degree[0]
-        };
-        let pv = if OV < MAX_ORDER {
-            OV - 1
-        } else {
-            self.degree[1]
-        };
+        let [pu, pv] = self.degrees_of::<OU, OV>();
         let bu = basis_derivs_n::<OU>(&self.knots[0], pu, u);
         let bv = basis_derivs_n::<OV>(&self.knots[1], pv, v);
         let nv = self.count[1];
@@ -227,11 +227,7 @@ impl Patch {
         vs: &[f64],
         f: &mut impl FnMut(usize, &[SurfaceDerivs]),
     ) {
-        let pu = if OU < MAX_ORDER {
-            OU - 1
-        } else {
-            self.degree[0]
-        };
+        let [pu, _] = self.degrees_of::<OU, OV>();
         let bus: Vec<BasisDerivs<OU>> = us
             .iter()
             .map(|&u| {
@@ -259,16 +255,7 @@ impl Patch {
         finish: impl Fn(&[SVector<f64, D>; 6]) -> SurfaceDerivs,
         f: &mut impl FnMut(usize, &[SurfaceDerivs]),
     ) {
-        let pu = if OU < MAX_ORDER {
-            OU - 1
-        } else {
-            self.degree[0]
-        };
-        let pv = if OV < MAX_ORDER {
-            OV - 1
-        } else {
-            self.degree[1]
-        };
+        let [pu, pv] = self.degrees_of::<OU, OV>();
         let [nu, nv] = self.count;
         let mut rows = vec![[SVector::<f64, D>::zeros(); 3]; nu];
         let mut column = Vec::with_capacity(bus.len());
