@@ -215,6 +215,14 @@ cl = "die.cl"
                 "line 11: unknown variant `g93`, expected `inverse-time`",
             ),
             (
+                FIVE.replace("gcode = \"die.ngc\"", "gcode = \"\""),
+                "output.gcode: expected a file name inside the output folder",
+            ),
+            (
+                FIVE.replace("cl = \"die.cl\"", "cl = \"../up.cl\""),
+                "output.cl: expected a file name",
+            ),
+            (
                 FIVE.replace("gcode = ", "tool_length = -5\ngcode = "),
                 "output.tool_length",
             ),

@@ -267,6 +267,18 @@ impl Job {
                 .map_err(|(field, message)| format!("{field}: {message}"))?;
         }
         let o = &self.output;
+        for (name, file) in [
+            ("output.gcode", &o.gcode),
+            ("output.cl", &o.cl),
+            ("output.csv", &o.csv),
+            ("output.summary", &o.summary),
+            ("output.contacts", &o.contacts),
+            ("output.double_contacts", &o.double_contacts),
+        ] {
+            if let Some(f) = file {
+                output_file(name, f)?;
+            }
+        }
         if self.strategy.kind == StrategyKind::DropSpin {
             self.validate_drop_spin()?;
         }
@@ -290,6 +302,21 @@ fn in_domain(name: &str, v: Option<f64>, domain: Domain) -> Result<(), String> {
         Some(x) => domain.check_named(name, x).map(|_| ()),
         None => Ok(()),
     }
+}
+
+/// An output named `name` is a file name inside the output folder: not empty, not a
+/// folder (`.`, `..`, a trailing `/`), not absolute and not climbing out with `..`.
+fn output_file(name: &str, file: &str) -> Result<(), String> {
+    let path = std::path::Path::new(file);
+    let climbs = path
+        .components()
+        .any(|c| !matches!(c, std::path::Component::Normal(_)));
+    if file.trim().is_empty() || file.ends_with(['/', '\\']) || climbs {
+        return Err(format!(
+            "{name}: expected a file name inside the output folder (e.g. \"part.ngc\"), found {file:?}"
+        ));
+    }
+    Ok(())
 }
 
 /// A value's name as a job file writes it.

@@ -64,11 +64,13 @@ impl ToolTable {
             let mut tool = Tool::default();
             let mut number = None;
             for (column, word) in words(content) {
-                let letter = word.chars().next().unwrap_or(' ').to_ascii_uppercase();
-                let value: f64 = word[1..].parse().map_err(|_| {
+                let mut chars = word.chars();
+                let letter = chars.next().unwrap_or(' ').to_ascii_uppercase();
+                let number_text = chars.as_str();
+                let value: f64 = number_text.parse().map_err(|_| {
                     err(
                         column,
-                        format!("{letter} word: expected a number, found '{}'", &word[1..]),
+                        format!("{letter} word: expected a number, found '{number_text}'"),
                     )
                 })?;
                 if !value.is_finite() {
@@ -170,5 +172,17 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("unknown tool table word K"), "{e}");
+    }
+
+    #[test]
+    fn a_word_starting_with_a_multibyte_letter_is_an_error_not_a_panic() {
+        let e = ToolTable::parse("T1 P1\n\u{e9}3 T2\n", "t.tbl")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("t.tbl:2:1"), "{e}");
+        let e = ToolTable::parse("T1 D\u{20ac}\n", "t.tbl")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("expected a number"), "{e}");
     }
 }
