@@ -36,6 +36,7 @@ pub struct ClassifyRequest<'a> {
 /// cannot be written.
 pub fn classify_request(req: &ClassifyRequest<'_>) -> Result<Classification> {
     let model = load_model(req.part)?;
+    model.check_covers_xy(req.part)?;
     let mesh = part_mesh(&model, req.tol).with_context(|| req.part.to_string())?;
     let c = classify(&mesh, &req.params)?;
     let png = picture(&c, req, &mesh)?;

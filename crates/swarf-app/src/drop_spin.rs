@@ -24,6 +24,7 @@
 
 use crate::error::{Result, bail};
 use crate::five_axis::post_options;
+use crate::job::MAX_DROP_SPIN_PASSES;
 use crate::job::{Job, SpinChoice, ZoneChoice};
 use swarf_fiveaxis::FiveAxisError;
 use swarf_fiveaxis::dsm::{Dsm, EdgePasses, EdgePose, PassParams, Reachable, Side};
@@ -119,7 +120,15 @@ pub fn plan_drop_spin(job: &Job, part: &Part, machine: Option<&Machine>) -> Resu
                 (0, Some(step)) => {
                     let mid = dsm.station(stations[stations.len() / 2])?;
                     let z = dsm.zone(&mid, s.bands.faces()[0])?;
-                    ((z.t2 - z.t1) / step).ceil().max(1.0) as usize
+                    let n = ((z.t2 - z.t1) / step).ceil().max(1.0);
+                    if !(n <= MAX_DROP_SPIN_PASSES as f64) {
+                        bail!(
+                            "strategy.stepover: {step} mm across a zone of {:.3} mm gives {n} passes; expected at most {MAX_DROP_SPIN_PASSES} (a stepover of at least {:.6} mm)",
+                            z.t2 - z.t1,
+                            (z.t2 - z.t1) / MAX_DROP_SPIN_PASSES as f64
+                        );
+                    }
+                    n as usize
                 }
                 (n, _) => n.max(1),
             };

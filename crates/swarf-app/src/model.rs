@@ -18,6 +18,31 @@ pub enum Model {
     },
 }
 
+impl Model {
+    /// Refuses a design that covers no area seen from above (a vertical plane, a
+    /// line): the commands that lay a grid over the part's XY box (verify, rest,
+    /// classify) have nothing to measure. `name` is the part as the user gave it.
+    ///
+    /// # Errors
+    /// A box of zero width or depth in XY, naming `name` and the box.
+    pub fn check_covers_xy(&self, name: &str) -> Result<()> {
+        let b = match self {
+            Model::Patches(part) => part.control_box(),
+            Model::Mesh { mesh, .. } => mesh.aabb(),
+        };
+        if b.max.x > b.min.x && b.max.y > b.min.y {
+            return Ok(());
+        }
+        bail!(
+            "{name}: the design covers no area in XY (x {} to {}, y {} to {} mm): expected a part seen from above, with width in both x and y",
+            b.min.x,
+            b.max.x,
+            b.min.y,
+            b.max.y
+        )
+    }
+}
+
 /// Names of the built-in parts (patches, then meshes), for messages.
 pub fn builtin_names() -> Vec<&'static str> {
     let parts = swarf_io::builtin_parts().map(|(n, _)| n);

@@ -78,6 +78,7 @@ pub fn rest_request(req: &RestRequest<'_>) -> Result<RestFound> {
         (None, None) => bail!("--part: expected the design part (or a parent --job that names it)"),
     };
     let model = load_model(&part)?;
+    model.check_covers_xy(&part)?;
     let mesh = part_mesh(&model, req.tol).with_context(|| part.clone())?;
     let (detection, reference) = match (&parent, req.reference) {
         (Some((job, _)), _) => {

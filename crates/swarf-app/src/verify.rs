@@ -230,6 +230,7 @@ pub fn verify_request(req: &VerifyRequest<'_>, progress: &dyn Progress) -> Resul
     }
     let tools = parse_tools(req.tools, req.programs.len())?;
     let model = load_model(req.part)?;
+    model.check_covers_xy(req.part)?;
     let planned = match req.sim.scallop {
         Some(_) => None,
         None => planned_scallop(req.programs),

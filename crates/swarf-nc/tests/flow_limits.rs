@@ -42,7 +42,8 @@ fn a_loop_that_never_ends_stops_at_the_limit() {
         ..FlowLimits::default()
     };
     let p = read_with("G21\no1 do\no1 while [1]\nM2\n", blocks);
-    assert!(p.stopped.unwrap().message.contains("more than 10000 lines"));
+    let m = p.stopped.unwrap().message;
+    assert!(m.contains("more than 10000 lines beyond its own 4"), "{m}");
 }
 
 #[test]

@@ -39,6 +39,7 @@ use geo::{
     MultiPolygon, Point, Polygon, unary_union,
 };
 use swarf_geom::Point3;
+use swarf_geom::domain::Domain;
 use swarf_tool::drop::MeshDropper;
 
 /// Consecutive samples of a chain at most this many directory pitches apart are
@@ -78,17 +79,47 @@ impl Default for RegionParams {
     }
 }
 
+/// Rest thickness thresholds, mm.
+pub const THRESHOLD: Domain = Domain::new(0.0, 1000.0, "mm", "a rest thickness");
+/// Merge distances between regions, mm.
+pub const MERGE: Domain = Domain::new(1e-3, 1000.0, "mm", "a merge distance");
+/// Outward offsets of region boundaries, mm.
+pub const OVERLAP: Domain = Domain::new(1e-3, 1000.0, "mm", "an overlap");
+/// Least raw area of a region, mm².
+pub const MIN_AREA: Domain = Domain::new(1e-6, 1e12, "mm²", "a least region area");
+/// Corner rounding radii of region boundaries, mm.
+pub const SMOOTHNESS: Domain = Domain::new(0.0, 1000.0, "mm", "a corner radius");
+
 impl RegionParams {
-    /// Checks every domain (see the fields).
+    /// The parameters with their names (`strategy.<name>` as a job names them) and
+    /// domains.
+    pub fn domains(&self) -> [(&'static str, f64, Domain); 5] {
+        [
+            ("threshold", self.threshold, THRESHOLD),
+            ("merge", self.merge, MERGE),
+            ("overlap", self.overlap, OVERLAP),
+            ("min_area", self.min_area, MIN_AREA),
+            ("smoothness", self.smoothness, SMOOTHNESS),
+        ]
+    }
+
+    /// Checks every domain (see the fields and [`RegionParams::domains`]).
     ///
     /// # Errors
     /// [`RestError::InvalidParameter`] naming the field (as `strategy.<name>`).
     pub fn validate(&self) -> Result<(), RestError> {
-        RestError::check("strategy.threshold", self.threshold, true)?;
-        RestError::check("strategy.merge", self.merge, false)?;
-        RestError::check("strategy.overlap", self.overlap, false)?;
-        RestError::check("strategy.min_area", self.min_area, false)?;
-        RestError::check("strategy.smoothness", self.smoothness, true)?;
+        for (name, value, domain) in self.domains() {
+            domain
+                .check(value)
+                .map_err(|expected| RestError::InvalidParameter {
+                    field: format!("strategy.{name}"),
+                    value: swarf_geom::domain::show(value),
+                    expected: expected
+                        .strip_prefix("expected ")
+                        .unwrap_or(&expected)
+                        .to_string(),
+                })?;
+        }
         Ok(())
     }
 }

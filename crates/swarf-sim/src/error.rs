@@ -52,7 +52,7 @@ pub enum SimError {
     },
     /// Sampling the motions within the tolerance asked would take too many samples.
     #[error(
-        "{}sweeping within the sample tolerance would take {} samples, more than the {} \
+        "{file}: {}sweeping within the sample tolerance would take {} samples, more than the {} \
          swarf takes{}: use a sample tolerance of at least {} mm (--sample-tol)",
         line.map_or(String::new(), |l| format!("line {l}: ")),
         swarf_geom::domain::show(samples.round()),
@@ -61,6 +61,8 @@ pub enum SimError {
         swarf_geom::domain::show(*suggested)
     )]
     TooManySamples {
+        /// The program file.
+        file: String,
         /// The motion's source line (None: the program as a whole).
         line: Option<usize>,
         /// Samples the tolerance asks for.
@@ -69,6 +71,25 @@ pub enum SimError {
         limit: f64,
         /// A sample tolerance that fits, mm.
         suggested: f64,
+    },
+    /// A tilted motion takes the tool's tip below the floor
+    /// ([`crate::sweep_budget::floor`]).
+    #[error(
+        "{file}: line {line}: the tilted tool's tip goes down to z = {}, below the floor \
+         at z = {} (the design's lowest point less the tool's reach): such a motion cuts \
+         through whatever holds the part; swarf refuses it rather than sample it",
+        swarf_geom::domain::show(*tip),
+        swarf_geom::domain::show(*floor)
+    )]
+    BelowFloor {
+        /// The program file.
+        file: String,
+        /// The motion's source line.
+        line: usize,
+        /// The tip's lowest height on the motion, mm.
+        tip: f64,
+        /// The floor, mm.
+        floor: f64,
     },
     /// There is nothing to build a grid over (an empty part, a degenerate box).
     #[error("{0}")]

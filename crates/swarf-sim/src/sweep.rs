@@ -232,24 +232,18 @@ fn arc_shape(m: &Motion, center: &Point3, normal: &Vec3) -> Option<(f64, f64, f6
     Some((r1, r2, (len * len - h * h).max(0.0).sqrt() / mean, h))
 }
 
-/// Most samples one motion may be swept with, and most in a whole program: the
-/// sample tolerance asked for must give no more (see [`check_sampling`]).
-pub const MAX_MOTION_SAMPLES: f64 = 2_000_000.0;
-/// Most samples of all the motions of one verification.
-pub const MAX_TOTAL_SAMPLES: f64 = 200_000_000.0;
-
 /// How a motion is swept: exactly, as a polyline of `n` segments, or as `n + 1` tool
 /// instances; with the distance bound the sampling keeps.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum SweepPlan {
+pub(crate) enum SweepPlan {
     Exact,
     Polyline { n: usize, bound: f64 },
     Instances { n: usize, bound: f64 },
 }
 
 /// The sampling of motion `m` for `tool` within `sample_tol` (mm), and the sample
-/// count before it is capped (for [`check_sampling`]).
-fn sweep_plan(tool: &SimTool, m: &Motion, sample_tol: f64) -> (SweepPlan, f64) {
+/// count before it is capped (for [`crate::sweep_budget::check_sampling`]).
+pub(crate) fn sweep_plan(tool: &SimTool, m: &Motion, sample_tol: f64) -> (SweepPlan, f64) {
     let straight = matches!(m.kind, MotionKind::Rapid | MotionKind::Linear);
     let arc = match m.kind {
         MotionKind::Arc { center, normal, .. } => arc_shape(m, &center, &normal),
@@ -281,37 +275,6 @@ fn sweep_plan(tool: &SimTool, m: &Motion, sample_tol: f64) -> (SweepPlan, f64) {
     let (n, wanted) = steps(0.5 * travel, tol, false);
     let bound = 0.5 * travel / n as f64;
     (SweepPlan::Instances { n, bound }, wanted)
-}
-
-/// Refuses a sampling that would take more than [`MAX_MOTION_SAMPLES`] for one motion
-/// or [`MAX_TOTAL_SAMPLES`] in all, before any is made.
-///
-/// # Errors
-/// [`SimError::TooManySamples`] naming the motion's line (or the program), the
-/// samples wanted, the limit and a sample tolerance that fits.
-pub fn check_sampling(tool: &SimTool, motions: &[Motion], sample_tol: f64) -> Result<(), SimError> {
-    let mut total = 0.0;
-    for m in motions {
-        let wanted = sweep_plan(tool, m, sample_tol).1;
-        if wanted > MAX_MOTION_SAMPLES {
-            return Err(SimError::TooManySamples {
-                line: Some(m.line),
-                samples: wanted,
-                limit: MAX_MOTION_SAMPLES,
-                suggested: sample_tol * wanted / MAX_MOTION_SAMPLES,
-            });
-        }
-        total += wanted;
-    }
-    if total > MAX_TOTAL_SAMPLES {
-        return Err(SimError::TooManySamples {
-            line: None,
-            samples: total,
-            limit: MAX_TOTAL_SAMPLES,
-            suggested: sample_tol * total / MAX_TOTAL_SAMPLES,
-        });
-    }
-    Ok(())
 }
 
 /// The primitives of motion `m` for `tool`, sampled within `sample_tol` (mm) where
@@ -351,14 +314,14 @@ pub fn sweep_motion(tool: &SimTool, m: &Motion, sample_tol: f64) -> MotionSweep 
 }
 
 /// Least `n >= 1` with `err / n^2 <= tol` (`quadratic`) or `err / n <= tol`, capped at
-/// [`MAX_MOTION_SAMPLES`], and the count before the cap.
+/// [`crate::sweep_budget::MAX_MOTION_SAMPLES`], and the count before the cap.
 fn steps(err: f64, tol: f64, quadratic: bool) -> (usize, f64) {
     if err.is_nan() || err <= tol || !err.is_finite() {
         return (1, 1.0);
     }
     let ratio = err / tol;
     let n = if quadratic { ratio.sqrt() } else { ratio }.ceil().max(1.0);
-    (n.min(MAX_MOTION_SAMPLES) as usize, n)
+    (n.min(crate::sweep_budget::MAX_MOTION_SAMPLES) as usize, n)
 }
 
 #[cfg(test)]

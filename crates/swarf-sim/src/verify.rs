@@ -213,7 +213,11 @@ struct Checked {
 
 /// Checks the options and cutters and that sampling the stages' motions stays within
 /// budget, before anything is allocated.
-fn check_settings(stages: &[Stage<'_>], opts: &VerifyOptions) -> Result<Checked, SimError> {
+fn check_settings(
+    design: &Design<'_>,
+    stages: &[Stage<'_>],
+    opts: &VerifyOptions,
+) -> Result<Checked, SimError> {
     if stages.is_empty() {
         return Err(SimError::Empty(
             "nothing to verify: no program was given".into(),
@@ -229,8 +233,13 @@ fn check_settings(stages: &[Stage<'_>], opts: &VerifyOptions) -> Result<Checked,
         .iter()
         .map(|s| SimTool::new(s.cutter))
         .collect::<Result<Vec<_>, _>>()?;
+    let design_low = match design {
+        Design::Part(p) => p.control_box().min.z,
+        Design::Mesh(m) => m.aabb().min.z,
+    };
     for (stage, tool) in stages.iter().zip(&tools) {
-        crate::sweep::check_sampling(tool, &stage.program.motions, sample_tol)?;
+        let p = stage.program;
+        crate::sweep_budget::check_sampling(tool, &p.motions, sample_tol, &p.source, design_low)?;
     }
     Ok(Checked {
         tol,
@@ -262,7 +271,7 @@ pub fn verify_stages(
         cell,
         sample_tol,
         tools,
-    } = check_settings(stages, opts)?;
+    } = check_settings(&design, stages, opts)?;
     let t0 = Instant::now();
     let surface = DesignSurface::new(design)?;
     let b = surface.bounds();

@@ -513,6 +513,7 @@ impl Job {
 }
 
 mod validate;
+pub use validate::MAX_DROP_SPIN_PASSES;
 
 #[cfg(test)]
 mod tests;

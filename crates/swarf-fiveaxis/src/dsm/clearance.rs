@@ -4,8 +4,10 @@
 //! tool is in the face's material.
 //!
 //! The face is sampled once on an even parameter grid (about [`SAMPLE_SPACING`]
-//! times the corner radius apart in space); per pose the samples in the tool's
-//! bounding sphere are measured, and the best local minima of the grid are refined
+//! times the corner radius apart in space), kept in square blocks of [`BLOCK`]
+//! samples a side with their bounding spheres; per pose the samples in the tool's
+//! bounding sphere are measured (only those of blocks whose sphere meets it are
+//! looked at, so a query costs what lies near the tool, not the whole face), and the best local minima of the grid are refined
 //! by Newton steps on the distance over `(u, v)` (central differences, a gradient
 //! step where the Hessian is not positive definite, backtracking so the distance
 //! never grows, the parameter box enforced). Outside the tool the distance is C1 in
@@ -13,7 +15,7 @@
 //! the tool is in the material the answer is the deepest point found, which is all a
 //! sign test needs.
 
-use swarf_geom::{Patch, Point3};
+use swarf_geom::{Patch, Point3, Vec3};
 use swarf_tool::{Pose, Profile};
 
 /// Grid spacing in space as a fraction of the cutter's smallest feature (the corner
@@ -21,6 +23,8 @@ use swarf_tool::{Pose, Profile};
 pub const SAMPLE_SPACING: f64 = 0.5;
 /// Most grid samples along one parameter direction.
 pub const MAX_SAMPLES: usize = 400;
+/// Samples along each side of a block.
+pub const BLOCK: usize = 8;
 /// Local minima of the grid refined per query, best first.
 pub const STARTS: usize = 3;
 /// Newton iterations per start.
@@ -49,16 +53,28 @@ pub struct Face {
     dom: [[f64; 2]; 2],
     n: [usize; 2],
     samples: Vec<Point3>,
+    blocks: Vec<Block>,
+    /// Distance between neighbouring samples along u and v, mm (longest iso curve).
+    spacing: [f64; 2],
+}
+
+/// A square of the sample grid, `[i0, i1) x [j0, j1)`, and a sphere holding its
+/// samples.
+#[derive(Debug, Clone, Copy)]
+struct Block {
+    i: [usize; 2],
+    j: [usize; 2],
+    centre: Point3,
+    radius: f64,
 }
 
 impl Face {
     /// Samples `patch` at about `spacing` mm (at most [`MAX_SAMPLES`] a side).
     pub fn new(patch: &Patch, spacing: f64) -> Face {
         let dom = patch.domain();
-        let per = |k: usize| {
-            let length = iso_length(patch, dom, k);
-            ((length / spacing.max(1e-3)).ceil() as usize).clamp(8, MAX_SAMPLES)
-        };
+        let lengths = [iso_length(patch, dom, 0), iso_length(patch, dom, 1)];
+        let per =
+            |k: usize| ((lengths[k] / spacing.max(1e-3)).ceil() as usize).clamp(8, MAX_SAMPLES);
         let n = [per(0), per(1)];
         let mut samples = Vec::with_capacity((n[0] + 1) * (n[1] + 1));
         for i in 0..=n[0] {
@@ -67,12 +83,29 @@ impl Face {
                 samples.push(patch.eval(u, v));
             }
         }
+        let blocks = blocks(&samples, n);
         Face {
             patch: patch.clone(),
             dom,
             n,
             samples,
+            blocks,
+            spacing: [lengths[0] / n[0] as f64, lengths[1] / n[1] as f64],
         }
+    }
+
+    /// The samples a query whose bounding sphere has radius `bound` (mm) measures, at
+    /// most: those of the sphere's widest section through the face at this sampling,
+    /// and never more than the face has.
+    pub fn samples_within(&self, bound: f64) -> f64 {
+        let area = std::f64::consts::PI * bound * bound;
+        (area / (self.spacing[0] * self.spacing[1]).max(f64::MIN_POSITIVE))
+            .min(self.samples.len() as f64)
+    }
+
+    /// Samples on the grid, `(n0 + 1) (n1 + 1)`.
+    pub fn sample_count(&self) -> usize {
+        self.samples.len()
     }
 
     /// The patch.
@@ -98,31 +131,54 @@ impl Face {
     /// `None` when no sample lies within the tool's bounding sphere plus
     /// `reach` mm (the face is farther than `reach` from the tool).
     pub fn clearance(&self, profile: &Profile, pose: &Pose, reach: f64) -> Option<Clearance> {
-        let half = 0.5 * profile.length();
-        let centre = pose.cl + pose.axis * half;
-        let bound = (half * half + profile.radius().powi(2)).sqrt() + reach;
+        let centre = pose.cl + pose.axis * (0.5 * profile.length());
+        let bound = query_radius(profile, reach);
         let d = |p: &Point3| profile.signed_distance(pose, p);
         let stride = self.n[1] + 1;
-        let mut values = vec![f64::INFINITY; self.samples.len()];
-        for (k, p) in self.samples.iter().enumerate() {
-            if (p - centre).norm() <= bound {
-                values[k] = d(p);
+        let near: Vec<&Block> = self
+            .blocks
+            .iter()
+            .filter(|b| (b.centre - centre).norm() <= bound + b.radius)
+            .collect();
+        // The window of the grid the near blocks span; every sample outside it is
+        // farther than `bound` and counts as unmeasured (infinite).
+        let lo = [
+            near.iter().map(|b| b.i[0]).min()?,
+            near.iter().map(|b| b.j[0]).min()?,
+        ];
+        let hi = [
+            near.iter().map(|b| b.i[1]).max()?,
+            near.iter().map(|b| b.j[1]).max()?,
+        ];
+        let width = hi[1] - lo[1];
+        let mut values = vec![f64::INFINITY; (hi[0] - lo[0]) * width];
+        for b in &near {
+            for i in b.i[0]..b.i[1] {
+                for j in b.j[0]..b.j[1] {
+                    let p = &self.samples[i * stride + j];
+                    if (p - centre).norm() <= bound {
+                        values[(i - lo[0]) * width + j - lo[1]] = d(p);
+                    }
+                }
             }
         }
+        let at = |i: usize, j: usize| values[(i - lo[0]) * width + j - lo[1]];
         let mut starts: Vec<(f64, usize)> = Vec::new();
-        for (k, &v) in values.iter().enumerate() {
-            if !v.is_finite() {
-                continue;
-            }
-            let (i, j) = (k / stride, k % stride);
-            let neighbours = [
-                (i > 0).then(|| k - stride),
-                (i < self.n[0]).then(|| k + stride),
-                (j > 0).then(|| k - 1),
-                (j < self.n[1]).then(|| k + 1),
-            ];
-            if neighbours.iter().flatten().all(|&m| values[m] >= v) {
-                starts.push((v, k));
+        for i in lo[0]..hi[0] {
+            for j in lo[1]..hi[1] {
+                let v = at(i, j);
+                if !v.is_finite() {
+                    continue;
+                }
+                let neighbours = [
+                    (i > lo[0]).then(|| (i - 1, j)),
+                    (i + 1 < hi[0]).then(|| (i + 1, j)),
+                    (j > lo[1]).then(|| (i, j - 1)),
+                    (j + 1 < hi[1]).then(|| (i, j + 1)),
+                ];
+                if neighbours.iter().flatten().all(|&(a, c)| at(a, c) >= v) {
+                    starts.push((v, i * stride + j));
+                }
             }
         }
         starts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
@@ -162,6 +218,38 @@ fn iso_length(patch: &Patch, dom: [[f64; 2]; 2], k: usize) -> f64 {
                 .sum::<f64>()
         })
         .fold(0.0, f64::max)
+}
+
+/// The radius of a clearance query's sphere (the tool's bounding sphere about its
+/// middle, grown by `reach`), mm.
+pub fn query_radius(profile: &Profile, reach: f64) -> f64 {
+    let half = 0.5 * profile.length();
+    (half * half + profile.radius().powi(2)).sqrt() + reach
+}
+
+/// The grid's samples (`n[1] + 1` to a row) in blocks of [`BLOCK`] a side.
+fn blocks(samples: &[Point3], n: [usize; 2]) -> Vec<Block> {
+    let stride = n[1] + 1;
+    let mut out = Vec::new();
+    for i0 in (0..=n[0]).step_by(BLOCK) {
+        for j0 in (0..=n[1]).step_by(BLOCK) {
+            let (i1, j1) = ((i0 + BLOCK).min(n[0] + 1), (j0 + BLOCK).min(n[1] + 1));
+            let points = || (i0..i1).flat_map(move |i| (j0..j1).map(move |j| i * stride + j));
+            let count = ((i1 - i0) * (j1 - j0)) as f64;
+            let sum = points().fold(Vec3::zeros(), |a, k| a + samples[k].coords);
+            let centre = Point3::from(sum / count);
+            let radius = points()
+                .map(|k| (samples[k] - centre).norm())
+                .fold(0.0, f64::max);
+            out.push(Block {
+                i: [i0, i1],
+                j: [j0, j1],
+                centre,
+                radius,
+            });
+        }
+    }
+    out
 }
 
 fn param(dom: [[f64; 2]; 2], n: [usize; 2], i: usize, j: usize) -> (f64, f64) {

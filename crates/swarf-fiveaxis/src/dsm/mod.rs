@@ -65,6 +65,10 @@ pub const SPIN_SCAN: f64 = 2.0 * std::f64::consts::PI / 180.0;
 pub const ROOT_TOL: f64 = 1e-12;
 /// A pose clears a face when its clearance is at least minus this, mm.
 pub const CONTACT_TOL: f64 = 1e-6;
+/// Most face samples one clearance query may measure (about twice what the shipped
+/// edge job's bull d = 12, r = 2 measures): the work of a job grows with it,
+/// so a corner too small for the faces is refused before any query.
+pub const MAX_QUERY_SAMPLES: f64 = 6000.0;
 
 use crate::error::FiveAxisError;
 use swarf_geom::height::PartHeights;
@@ -178,5 +182,27 @@ fn sampled_faces(patches: [&Patch; 2], cutter: &Cutter) -> Result<[Face; 2], Fiv
         }
     };
     let spacing = clearance::SAMPLE_SPACING * corner;
-    Ok(patches.map(|p| Face::new(p, spacing)))
+    let faces = patches.map(|p| Face::new(p, spacing));
+    let bound = clearance::query_radius(&cutter.profile(), cutter.radius());
+    let per_query = faces[0]
+        .samples_within(bound)
+        .max(faces[1].samples_within(bound));
+    if per_query > MAX_QUERY_SAMPLES {
+        let fits =
+            bound / clearance::SAMPLE_SPACING * (std::f64::consts::PI / MAX_QUERY_SAMPLES).sqrt();
+        return Err(FiveAxisError::parameter(
+            "tool",
+            format!(
+                "{cutter}: a corner radius of {} mm samples the faces so finely that each \
+                 clearance query would measure about {} points, more than the {} \
+                 drop-and-spin takes: use a corner radius of at least {} mm with this \
+                 cutter",
+                swarf_geom::domain::show(corner),
+                swarf_geom::domain::show(per_query.round()),
+                swarf_geom::domain::show(MAX_QUERY_SAMPLES),
+                swarf_geom::domain::show((fits * 1000.0).ceil() / 1000.0)
+            ),
+        ));
+    }
+    Ok(faces)
 }

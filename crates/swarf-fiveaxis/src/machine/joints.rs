@@ -215,14 +215,15 @@ fn fit_limits(
                 if n0 > n1 {
                     return Err(limit_error(m, angles, k, pass));
                 }
+                // |mid + TAU n - target| is convex in n: the best whole turn in
+                // [n0, n1] is one of the two around the unconstrained optimum (the
+                // lower on a tie), so limits of any width cost two evaluations.
                 let mid = 0.5 * (lo_v + hi_v);
-                let best = (n0..=n1)
-                    .min_by(|a, b| {
-                        let da = (mid + TAU * *a as f64 - target).abs();
-                        let db = (mid + TAU * *b as f64 - target).abs();
-                        da.total_cmp(&db)
-                    })
-                    .unwrap_or(0);
+                let x = (target - mid) / TAU;
+                let clamp = |v: f64| (v as i64).clamp(n0, n1);
+                let (a, b) = (clamp(x.floor()), clamp(x.ceil()));
+                let off = |n: i64| (mid + TAU * n as f64 - target).abs();
+                let best = if off(b) < off(a) { b } else { a };
                 TAU * best as f64
             }
         };

@@ -10,7 +10,7 @@
 //! read beyond its O words.
 //!
 //! Every loop stops at [`FlowLimits::loop_iterations`] turns and the program at
-//! [`FlowLimits::blocks`] lines run, with an error naming the line, so that a loop
+//! [`FlowLimits::blocks`] lines run beyond its own, with an error naming the line, so that a loop
 //! that never ends is a refusal, not a hang; calls nest at most
 //! [`MAX_CALL_DEPTH`] deep (LinuxCNC's limit).
 
@@ -35,16 +35,19 @@ pub const MAX_CALL_DEPTH: usize = 9;
 pub struct FlowLimits {
     /// Most turns of one loop (while, do, repeat, Fanuc WHILE/DO, M98 L, G65 L).
     pub loop_iterations: u64,
-    /// Most lines run in all.
+    /// Most lines run beyond the program's own line count: a straight program of any
+    /// length runs, loops and calls may add this many lines.
     pub blocks: u64,
 }
 
 impl Default for FlowLimits {
-    /// 10 million turns per loop, 200 million lines.
+    /// One million turns per loop, 20 million lines beyond the program's own (an
+    /// endless loop stops in seconds; LinuxCNC's example programs turn at most a few
+    /// thousand times).
     fn default() -> Self {
         FlowLimits {
-            loop_iterations: 10_000_000,
-            blocks: 200_000_000,
+            loop_iterations: 1_000_000,
+            blocks: 20_000_000,
         }
     }
 }
@@ -213,13 +216,14 @@ impl<'k> Runner<'k> {
             let line = index + 1;
             self.pc.1 += 1;
             self.blocks += 1;
-            if self.blocks > self.opts.limits.blocks {
+            let own = self.sources[0].line_count() as u64;
+            if self.blocks > own.saturating_add(self.opts.limits.blocks) {
                 return Err(self.error(
                     line,
                     1,
                     format!(
-                        "the program runs more than {} lines: stopped here (a loop that never \
-                         ends?)",
+                        "the program runs more than {} lines beyond its own {own}: stopped \
+                         here (a loop that never ends?)",
                         self.opts.limits.blocks
                     ),
                 ));

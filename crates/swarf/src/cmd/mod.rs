@@ -33,6 +33,3 @@ pub const SLOPE_DEG: Domain = Domain::new(0.0, 90.0, "degrees", "a slope angle")
 
 /// Slope angles that must be above horizontal, degrees.
 pub const STEEP_DEG: Domain = Domain::new(0.01, 90.0, "degrees", "a slope angle");
-
-/// Areas, mm².
-pub const AREA: Domain = Domain::new(0.0, 1e12, "mm²", "an area");

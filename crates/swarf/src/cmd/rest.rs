@@ -51,14 +51,14 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
-    use swarf_geom::domain::{ALLOWANCE, TOLERANCE};
+    use swarf_rest::region::{MERGE, MIN_AREA, OVERLAP, SMOOTHNESS, THRESHOLD};
     super::check_flags(&[
-        ("--threshold", args.threshold, ALLOWANCE),
-        ("--merge", args.merge, ALLOWANCE),
-        ("--overlap", args.overlap, ALLOWANCE),
-        ("--min-area", args.min_area, super::AREA),
-        ("--smoothness", args.smoothness, ALLOWANCE),
-        ("--tol", args.tol, TOLERANCE),
+        ("--threshold", args.threshold, THRESHOLD),
+        ("--merge", args.merge, MERGE),
+        ("--overlap", args.overlap, OVERLAP),
+        ("--min-area", args.min_area, MIN_AREA),
+        ("--smoothness", args.smoothness, SMOOTHNESS),
+        ("--tol", args.tol, swarf_geom::domain::TOLERANCE),
     ])?;
     let source = match args.source.as_str() {
         "contacts" => RestSource::Contacts,
@@ -147,7 +147,8 @@ mod tests {
             "-o",
             out,
         ]);
-        assert!(e.unwrap_err().to_string().contains("strategy.merge"));
+        let e = e.unwrap_err().to_string();
+        assert!(e.contains("--merge: expected a merge distance"), "{e}");
         let e = run_with(&["--part", "v-grooves", "--reference", "ball:x=1", "-o", out]);
         assert!(e.unwrap_err().to_string().contains("--reference"));
         let e = run_with(&["--part", "v-grooves", "-o", out]);

@@ -1,0 +1,198 @@
+//! What the long fuzz runs found beyond the issue's list: each failed (a panic, a run
+//! past the fuzz suite's time limit, an error without its place) before its fix.
+
+use crate::support::*;
+use std::path::Path;
+
+/// The shipped edge job on the built-in edge-concave part with `tool` and the
+/// strategy's `passes = 4` line replaced by `passes`.
+fn edge_job(dir: &Path, tool: &str, passes: &str) -> String {
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs/edge-concave-drop-spin.toml"),
+    )
+    .unwrap();
+    let text = text
+        .lines()
+        .map(|l| {
+            if l.starts_with("tool = ") {
+                format!("tool = \"{tool}\"")
+            } else if l.starts_with("passes = ") {
+                passes.to_string()
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    std::fs::write(dir.join("edge.toml"), text).unwrap();
+    "edge.toml".to_string()
+}
+
+#[test]
+fn a_tool_table_word_with_a_multibyte_letter_is_an_error_at_its_place() {
+    let dir = scratch("tooltable");
+    let part = plate(&dir);
+    line_ngc(&dir);
+    std::fs::write(dir.join("t.tbl"), "T1 P1 D4\n\u{e9}3 T2\n").unwrap();
+    refused(
+        &dir,
+        &verify_cmd(&part, "line.ngc", "ball:d=4", &["--tool-table", "t.tbl"]),
+        &["t.tbl:2:1", "unknown tool table word"],
+    );
+}
+
+#[test]
+fn an_empty_output_name_is_refused_naming_the_field() {
+    let dir = scratch("empty-output");
+    let job = wave_job(
+        &dir,
+        "j.toml",
+        "ball:d=8",
+        "kind = \"raster\"\nscallop = 0.15",
+    );
+    let text = std::fs::read_to_string(&job)
+        .unwrap()
+        .replace("gcode = \"out.ngc\"", "gcode = \"\"");
+    std::fs::write(&job, text).unwrap();
+    refused(
+        &dir,
+        &["plan", &job, "--out", "o"],
+        &["j.toml", "output.gcode", "expected a file name"],
+    );
+}
+
+#[test]
+fn an_endless_loop_stops_at_the_turn_limit() {
+    let dir = scratch("endless");
+    let part = plate(&dir);
+    std::fs::write(
+        dir.join("loop.ngc"),
+        "G21 G90\nG0 X0 Y0 Z5\no100 while [1]\n#1 = [#1 + 1]\no100 endwhile\nM2\n",
+    )
+    .unwrap();
+    refused(
+        &dir,
+        &verify_cmd(&part, "loop.ngc", "ball:d=4", &["--cell", "0.5"]),
+        &["loop.ngc:5", "more than 1000000 times"],
+    );
+}
+
+#[test]
+fn a_design_without_area_in_xy_is_refused_naming_the_file() {
+    let dir = scratch("vertical");
+    line_ngc(&dir);
+    std::fs::write(
+        dir.join("wall.obj"),
+        "v 0 0 0\nv 0 10 0\nv 0 10 10\nv 0 0 10\nf 1 2 3\nf 1 3 4\n",
+    )
+    .unwrap();
+    let want = ["wall.obj", "covers no area in XY"];
+    refused(
+        &dir,
+        &verify_cmd("wall.obj", "line.ngc", "ball:d=4", &[]),
+        &want,
+    );
+    refused(
+        &dir,
+        &[
+            "rest",
+            "--part",
+            "wall.obj",
+            "--reference",
+            "ball:d=4",
+            "-o",
+            "r",
+        ],
+        &want,
+    );
+    refused(&dir, &["classify", "wall.obj", "-o", "c"], &want);
+}
+
+#[test]
+fn a_tilted_plunge_through_the_floor_is_refused_before_sampling() {
+    let dir = scratch("plunge");
+    std::fs::write(
+        dir.join("plunge.cl"),
+        "PARTNO/DIE\nUNITS/MM\nCUTTER/38.1,6.35,12.7,6.35,0,0,25.4\nSPINDL/RPM,1200,CLW\n\
+         RAPID\nGOTO/-10.1,-109.1,60.4,-0.110702341,0.805998831,0.581473022\n\
+         FEDRAT/100,MMPM\nGOTO/-9.9,-110.7,-1000,-0.110702341,0.805998831,0.581473022\nFINI\n",
+    )
+    .unwrap();
+    refused(
+        &dir,
+        &[
+            "verify",
+            "--part",
+            "builtin:die",
+            "--program",
+            "plunge.cl",
+            "--cell",
+            "0.5",
+            "-o",
+            "v",
+        ],
+        &["plunge.cl: line 8", "z = -1000", "below the floor"],
+    );
+}
+
+#[test]
+fn drop_spin_refuses_a_corner_too_small_for_its_sampling_and_too_many_passes() {
+    let dir = scratch("dsm");
+    let job = edge_job(&dir, "bull:d=12,r=1e-30", "passes = 4");
+    refused(
+        &dir,
+        &["plan", &job, "--out", "o"],
+        &["edge.toml", "tool", "use a corner radius of at least"],
+    );
+    let job = edge_job(&dir, "bull:d=12,r=2,length=30", "stepover = 0.001");
+    refused(
+        &dir,
+        &["plan", &job, "--out", "o"],
+        &["strategy.stepover", "expected at most 1000"],
+    );
+}
+
+#[test]
+fn rotary_limits_of_any_width_are_fitted_at_once() {
+    let dir = scratch("wide-limits");
+    let machines = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../machines");
+    let machine = std::fs::read_to_string(machines.join("xyzac-trunnion.toml"))
+        .unwrap()
+        .replace("limits = [-30, 120]", "limits = [-360, 1e30]")
+        .replace("continuous = true", "limits = [-1e30, 1e30]");
+    std::fs::write(dir.join("m.toml"), machine).unwrap();
+    let jobs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs");
+    let job = std::fs::read_to_string(jobs.join("die-inclined-3.toml"))
+        .unwrap()
+        .replace("builtin:xyzac-trunnion", "m.toml");
+    std::fs::write(dir.join("die.toml"), job).unwrap();
+    let (ok, text, _) = swarf_in(&dir, &["plan", "die.toml", "--out", "o"]);
+    assert!(ok, "{text}");
+    assert!(text.contains("rotary_ranges_deg"), "{text}");
+}
+
+#[test]
+fn region_flags_have_their_own_domains() {
+    let dir = scratch("region-flags");
+    for (flag, want) in [
+        ("--merge", "--merge: expected a merge distance"),
+        ("--overlap", "--overlap: expected an overlap"),
+        ("--min-area", "--min-area: expected a least region area"),
+    ] {
+        refused(
+            &dir,
+            &[
+                "rest",
+                "--part",
+                "builtin:v-grooves",
+                "--reference",
+                "ball:d=12",
+                flag,
+                "0",
+                "-o",
+                "r",
+            ],
+            &[want, "found 0"],
+        );
+    }
+}
