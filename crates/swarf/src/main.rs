@@ -49,7 +49,23 @@ enum Command {
     Demo(cmd::demo::Args),
 }
 
+/// Ends the process quietly when standard output is a closed pipe (`swarf plan ... |
+/// head`), as command-line tools do, instead of panicking on the failed write: the
+/// default action of SIGPIPE, which Rust's runtime sets to ignored.
+#[cfg(unix)]
+fn quiet_broken_pipe() {
+    // SAFETY: called first in main, before any thread exists; SIG_DFL is a valid
+    // disposition for SIGPIPE.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
+#[cfg(not(unix))]
+fn quiet_broken_pipe() {}
+
 fn main() -> ExitCode {
+    quiet_broken_pipe();
     let cli = Cli::parse();
     // One command per process: no output may replace a file it read.
     swarf_io::track_inputs();

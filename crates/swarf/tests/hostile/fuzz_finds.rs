@@ -196,3 +196,35 @@ fn region_flags_have_their_own_domains() {
         );
     }
 }
+
+#[test]
+fn a_closed_output_pipe_ends_the_command_quietly() {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    let dir = scratch("pipe");
+    let job = wave_job(
+        &dir,
+        "j.toml",
+        "ball:d=8",
+        "kind = \"raster\"\nscallop = 0.15",
+    );
+    let mut child = Command::new(env!("CARGO_BIN_EXE_swarf"))
+        .args(["plan", &job, "--out", "o"])
+        .current_dir(&dir)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The reader is gone before the plan prints its summary (`swarf plan | true`).
+    drop(child.stdout.take());
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
+    let status = child.wait().unwrap();
+    assert!(!err.contains("panicked"), "{err}");
+    assert_ne!(status.code(), Some(101), "{err}");
+}
