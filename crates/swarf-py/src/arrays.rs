@@ -30,7 +30,8 @@ fn as_array<'py>(
         .map_err(|_| value_err(format!("{arg}: expected an array of numbers")))
 }
 
-/// Describes an array's dtype and shape for messages: `float32 array of shape (4, 2)`.
+/// Describes an array's dtype and shape for messages: `an array of dtype float32 and
+/// shape (4, 2)`.
 fn describe(a: &Bound<'_, PyUntypedArray>) -> String {
     let shape: Vec<String> = a.shape().iter().map(ToString::to_string).collect();
     let shape = match shape.len() {
@@ -41,18 +42,20 @@ fn describe(a: &Bound<'_, PyUntypedArray>) -> String {
         .dtype()
         .str()
         .map_or_else(|_| "?".to_string(), |s| s.to_string());
-    format!("{dtype} array of shape {shape}")
+    format!("an array of dtype {dtype} and shape {shape}")
 }
 
-/// Checks the shape `(N, K)` of an array argument.
+/// Checks the shape `(rows, K)` of an array argument (`rows` names the row count in
+/// the message: `N`, `M`).
 fn check_rows<const K: usize>(
     arg: &str,
     a: &Bound<'_, PyUntypedArray>,
     what: &str,
+    rows: &str,
 ) -> PyResult<()> {
     if a.ndim() != 2 || a.shape()[1] != K {
         return Err(value_err(format!(
-            "{arg}: expected {what} of shape (N, {K}), found a {}",
+            "{arg}: expected {what} of shape ({rows}, {K}), found {}",
             describe(a)
         )));
     }
@@ -90,11 +93,11 @@ pub fn float_rows<const K: usize>(arg: &str, obj: &Bound<'_, PyAny>) -> PyResult
     let what = "a float64 array";
     if !a.dtype().is_equiv_to(&numpy::dtype::<f64>(obj.py())) {
         return Err(value_err(format!(
-            "{arg}: expected {what} of shape (N, {K}), found a {} (convert it with .astype(numpy.float64))",
+            "{arg}: expected {what} of shape (N, {K}), found {} (convert it with .astype(numpy.float64))",
             describe(&a)
         )));
     }
-    check_rows::<K>(arg, &a, what)?;
+    check_rows::<K>(arg, &a, what, "N")?;
     let typed = a.cast::<PyArray2<f64>>()?.readonly();
     let view = typed.as_array();
     let mut out = Vec::with_capacity(view.nrows());
@@ -123,11 +126,11 @@ pub fn index_rows(arg: &str, obj: &Bound<'_, PyAny>, vertices: usize) -> PyResul
     let kind = a.dtype().kind();
     if kind != b'i' && kind != b'u' {
         return Err(value_err(format!(
-            "{arg}: expected an integer array of shape (M, 3), found a {}",
+            "{arg}: expected an integer array of shape (M, 3), found {}",
             describe(&a)
         )));
     }
-    check_rows::<3>(arg, &a, "an integer array")?;
+    check_rows::<3>(arg, &a, "an integer array", "M")?;
     let wide = if kind == b'u' { "uint64" } else { "int64" };
     let wide = a.call_method1("astype", (wide,))?;
     if kind == b'u' {

@@ -61,7 +61,7 @@ impl Tool {
     }
 
     fn __repr__(&self) -> String {
-        format!("Tool({:?})", self.cutter.to_string())
+        format!("Tool('{}')", self.cutter)
     }
 }
 
