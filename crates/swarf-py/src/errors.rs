@@ -74,3 +74,32 @@ where
         }
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::chain;
+
+    #[derive(Debug)]
+    struct Outer(std::io::Error);
+
+    impl std::fmt::Display for Outer {
+        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            write!(f, "job.toml: cannot read the job file")
+        }
+    }
+
+    impl std::error::Error for Outer {
+        fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+            Some(&self.0)
+        }
+    }
+
+    #[test]
+    fn causes_are_joined_as_the_command_line_prints_them() {
+        let e = Outer(std::io::Error::other("no such file"));
+        assert_eq!(
+            chain(&e),
+            "job.toml: cannot read the job file: no such file"
+        );
+    }
+}

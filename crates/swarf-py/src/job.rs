@@ -286,3 +286,19 @@ pub fn job_arg(obj: &Bound<'_, PyAny>) -> PyResult<Job> {
         obj.get_type().name()?
     )))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::key_at;
+
+    #[test]
+    fn keys_of_generated_toml_lines() {
+        let text = "part = \"builtin:wave\"\ntool = \"ball:d=8\"\n\n[strategy]\nkind = \"raster\"\n\
+                    foo = 1\n\n[[chain]]\nd = 3\n";
+        assert_eq!(key_at(text, 1).as_deref(), Some("part"));
+        assert_eq!(key_at(text, 6).as_deref(), Some("strategy.foo"));
+        assert_eq!(key_at(text, 4).as_deref(), Some("strategy"));
+        assert_eq!(key_at(text, 9).as_deref(), Some("chain.d"));
+        assert_eq!(key_at(text, 99), None);
+    }
+}
