@@ -161,6 +161,29 @@ def test_plan_dict_errors_name_the_key():
         swarf.plan(3)
 
 
+def test_drop_spin_job_with_and_without_a_machine(cli, repo, tmp_path):
+    """jobs/edge-concave-drop-spin.toml with fewer stations and passes: five-axis
+    G-code for its machine as `swarf plan` writes it; without a machine, APT CL and
+    no G-code (a tilted path needs a machine)."""
+    tomllib = pytest.importorskip("tomllib")
+    d = tomllib.loads((repo / "jobs" / "edge-concave-drop-spin.toml").read_text())
+    d["strategy"].update(step=20, passes=2, bands="first")
+    job = swarf.Job.from_dict(d)
+    path = tmp_path / "ds.toml"
+    path.write_text(job.toml)
+    cli.run("plan", path, "--out", tmp_path / "cli")
+    p = swarf.plan(job)
+    assert p.gcode == (tmp_path / "cli" / d["output"]["gcode"]).read_text()
+    assert p.cl == (tmp_path / "cli" / d["output"]["cl"]).read_text()
+    assert untimed(p.summary) == untimed(json.loads((tmp_path / "cli" / d["output"]["summary"]).read_text()))
+    assert not np.allclose(p.poses[:, 5], 1.0), "the drop-spin tool is tilted"
+    d["output"] = {"cl": "x.cl"}
+    bare = swarf.plan(d)
+    assert bare.gcode is None and bare.cl == p.cl
+    with pytest.raises(swarf.SwarfError, match="this plan has no G-code"):
+        bare.write_gcode(tmp_path / "never.ngc")
+
+
 def test_raster_and_waterline_match_swarf_plan(cli, tmp_path):
     """The strategy functions give the passes of a job with that strategy."""
     cases = [

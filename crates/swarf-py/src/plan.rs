@@ -80,8 +80,11 @@ fn plan_job_values(job: &Job, out: Option<&Path>) -> PyResult<Planned> {
         None => {
             let mut j = job.job.clone();
             let o = &mut j.output;
-            let five_axis_without_machine = j.positioning.is_some() && o.machine.is_none();
-            o.gcode = (!five_axis_without_machine).then(|| "plan.ngc".to_string());
+            // A tilted path is written as G-code only for a machine (the job schema's
+            // rule, `output.machine`).
+            let tilted =
+                j.positioning.is_some() || j.strategy.kind == swarf_path::StrategyKind::DropSpin;
+            o.gcode = (!tilted || o.machine.is_some()).then(|| "plan.ngc".to_string());
             o.cl = Some("plan.cl".to_string());
             (o.csv, o.summary, o.double_contacts, o.contacts) = (None, None, None, None);
             (j, Some(Scratch::new()?))
