@@ -31,5 +31,5 @@ pub use job::Job;
 pub use model::{Model, load_model, load_part};
 pub use outputs::Outputs;
 pub use plan::{PlanInput, plan};
-pub use plan_job::plan_job;
+pub use plan_job::{Planned, plan_job, plan_model_toolpath};
 pub use report::Reporter;

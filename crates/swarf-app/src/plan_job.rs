@@ -19,7 +19,7 @@ use swarf_fiveaxis::positioning::{Positioning, PositioningReport};
 use swarf_geom::domain::excerpt;
 use swarf_nc::GcodeOptions;
 use swarf_path::{Plan, StrategyKind};
-use swarf_toolpath::motion_stats;
+use swarf_toolpath::{Toolpath, motion_stats};
 
 /// Loads the job's part, plans it (and positions it, for a five-axis job) and stages
 /// every requested output in `out` (relative to its directory). Returns the JSON
@@ -50,6 +50,31 @@ pub fn plan_model(
     out: &mut Outputs,
     reporter: &dyn Reporter,
 ) -> Result<serde_json::Value> {
+    plan_model_toolpath(job, model, job_dir, out, reporter).map(|p| p.summary)
+}
+
+/// A planned job as values: its JSON summary and the tool path its program cuts.
+#[derive(Debug, Clone)]
+pub struct Planned {
+    /// The JSON summary (as [`plan_job`] returns it).
+    pub summary: serde_json::Value,
+    /// The tool path the job's program cuts (a cleanup job's last stage; a five-axis
+    /// job's positioned poses).
+    pub toolpath: Toolpath,
+}
+
+/// [`plan_model`], also returning the tool path (for callers that use the plan as
+/// data, such as the Python package).
+///
+/// # Errors
+/// As [`plan_job`].
+pub fn plan_model_toolpath(
+    job: &Job,
+    model: &Model,
+    job_dir: &Path,
+    out: &mut Outputs,
+    reporter: &dyn Reporter,
+) -> Result<Planned> {
     let machine = job
         .output
         .machine
@@ -92,7 +117,11 @@ pub fn plan_model(
         positioning: positioning.as_ref(),
         notes: &[],
     };
-    write_outputs(job, &plan, &written, out)
+    let summary = write_outputs(job, &plan, &written, out)?;
+    Ok(Planned {
+        summary,
+        toolpath: plan.toolpath,
+    })
 }
 
 /// What a job's outputs say besides its plan.
@@ -111,7 +140,7 @@ fn drop_spin_outputs(
     model: &Model,
     machine: Option<&Machine>,
     out: &mut Outputs,
-) -> Result<serde_json::Value> {
+) -> Result<Planned> {
     let Model::Patches(part) = model else {
         bail!(
             "strategy.kind: drop-spin needs a parametric part (.toml) with two faces, not a mesh"
@@ -137,7 +166,10 @@ fn drop_spin_outputs(
     if let Some(rel) = &summary_file {
         out.write_json(rel, &s)?;
     }
-    Ok(s)
+    Ok(Planned {
+        summary: s,
+        toolpath: ds.plan.toolpath,
+    })
 }
 
 /// Plans a cleanup job ([`crate::cleanup`]) and writes each stage's outputs (stage
@@ -150,8 +182,8 @@ fn cleanup_outputs(
     job_dir: &Path,
     machine: Option<&Machine>,
     out: &mut Outputs,
-) -> Result<serde_json::Value> {
-    let stages = plan_cleanup_job(job, model, job_dir)?;
+) -> Result<Planned> {
+    let mut stages = plan_cleanup_job(job, model, job_dir)?;
     let name = match model {
         Model::Patches(part) => part.name.clone(),
         Model::Mesh { name, .. } => name.clone(),
@@ -194,7 +226,14 @@ fn cleanup_outputs(
         summaries.push(last.clone());
         last["stages"] = serde_json::Value::Array(summaries);
     }
-    Ok(last)
+    let toolpath = match stages.pop() {
+        Some(stage) => stage.plan.toolpath,
+        None => bail!("strategy.kind: the cleanup job planned no stage"),
+    };
+    Ok(Planned {
+        summary: last,
+        toolpath,
+    })
 }
 
 /// The job's part as a `load_model` argument: built-in or absolute as given, else

@@ -58,6 +58,18 @@ pub struct RestFound {
 /// cannot be read; a source the parent cannot give; the detection's errors; outputs
 /// that cannot be written.
 pub fn rest_request(req: &RestRequest<'_>) -> Result<RestFound> {
+    let (found, part, mesh) = rest_detect(req)?;
+    write_rest(&found, &part, &mesh, req.out)?;
+    Ok(found)
+}
+
+/// [`rest_request`] without writing anything (`req.out` is not used): the detection,
+/// the part as the request resolved it (the `part` of `rest.json`) and the mesh it
+/// was detected on, for callers that take the regions as data (the Python package).
+///
+/// # Errors
+/// As [`rest_request`], less the outputs.
+pub fn rest_detect(req: &RestRequest<'_>) -> Result<(RestFound, String, swarf_geom::TriMesh)> {
     let parent = match (req.reference, req.job) {
         (Some(_), Some(_)) | (None, None) => {
             bail!("expected one of --reference TOOL and --job PARENT.toml")
@@ -104,16 +116,26 @@ pub fn rest_request(req: &RestRequest<'_>) -> Result<RestFound> {
         reference,
         source: source_name(req.source),
     };
-    write_rest(&found, &part, &mesh, req.out)?;
-    Ok(found)
+    Ok((found, part, mesh.into_owned()))
 }
 
-/// Writes the three files of a detection.
-fn write_rest(f: &RestFound, part: &str, mesh: &swarf_geom::TriMesh, out: &Path) -> Result<()> {
+/// `rest.json` of a detection: the regions ([`rest_json`]) with the part, the
+/// reference tool and the source.
+pub fn rest_report(f: &RestFound, part: &str) -> serde_json::Value {
     let mut json = rest_json(&f.detection);
     json["part"] = serde_json::json!(part);
     json["reference_tool"] = serde_json::json!(f.reference.to_string());
     json["source"] = serde_json::json!(f.source);
+    json
+}
+
+/// Writes the three files of a detection (`rest.json`, `rest.csv`, `rest.png`) under
+/// `out` as one set; `part` and `mesh` as [`rest_detect`] gives them.
+///
+/// # Errors
+/// A picture that cannot be drawn; outputs that cannot be written.
+pub fn write_rest(f: &RestFound, part: &str, mesh: &swarf_geom::TriMesh, out: &Path) -> Result<()> {
+    let json = rest_report(f, part);
     let png = picture(f, part, mesh)?;
     let csv = boundaries_csv(&f.detection);
     let mut set = Outputs::new(out);
@@ -168,7 +190,7 @@ pub(crate) fn relief_heights(mesh: &swarf_geom::TriMesh) -> Result<(Grid, Vec<f6
 }
 
 /// The rings of a polygon (outer first, then holes) as XY points, mm.
-pub(crate) fn polygon_rings(p: &geo::Polygon<f64>) -> Vec<Vec<[f64; 2]>> {
+pub fn polygon_rings(p: &geo::Polygon<f64>) -> Vec<Vec<[f64; 2]>> {
     std::iter::once(p.exterior())
         .chain(p.interiors())
         .map(|r| r.coords().map(|c| [c.x, c.y]).collect())

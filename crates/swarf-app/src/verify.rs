@@ -225,6 +225,50 @@ pub struct Verified {
 /// (naming its file); a head machine without a tool length; a program with no cutter
 /// (neither a tool nor a CUTTER record); the errors of [`verify_and_write`].
 pub fn verify_request(req: &VerifyRequest<'_>, progress: &dyn Progress) -> Result<Verified> {
+    let mut out = Outputs::new(req.out);
+    let mut done = verify_with(req, |model, stages, opts, context| {
+        verify_and_write(model, stages, opts, (&mut out, ""), context, progress)
+    })?;
+    done.written = done.context.stopped.is_none() || req.partial;
+    if done.written {
+        out.commit()?;
+    }
+    Ok(done)
+}
+
+/// [`verify_request`] without writing anything (`req.out` and `req.partial` are not
+/// used): the verification as values, for callers that take the report and the
+/// deviation grid as data (the Python package). The report is
+/// [`swarf_sim::report::json_report`] of the result and its context, as in
+/// `report.json`.
+///
+/// # Errors
+/// As [`verify_request`], less the outputs.
+pub fn verify_in_memory(req: &VerifyRequest<'_>, progress: &dyn Progress) -> Result<Verified> {
+    verify_with(req, |model, stages, opts, _| {
+        Ok(swarf_sim::verify_stages(
+            design_of(model),
+            stages,
+            opts,
+            progress,
+        )?)
+    })
+}
+
+/// The design a model gives the verifier.
+fn design_of(model: &Model) -> Design<'_> {
+    match model {
+        Model::Patches(p) => Design::Part(p),
+        Model::Mesh { mesh, .. } => Design::Mesh(mesh),
+    }
+}
+
+/// Reads the programs of `req` and runs `verify` on them (module doc of
+/// [`verify_request`]); [`Verified::written`] is left false.
+fn verify_with<F>(req: &VerifyRequest<'_>, verify: F) -> Result<Verified>
+where
+    F: FnOnce(&Model, &[Stage<'_>], &VerifyOptions, &ReportContext) -> Result<Verification>,
+{
     if req.programs.is_empty() {
         bail!("--program: give at least one NC program to verify");
     }
@@ -274,18 +318,12 @@ pub fn verify_request(req: &VerifyRequest<'_>, progress: &dyn Progress) -> Resul
         .map(|(program, cutter)| Stage { program, cutter })
         .collect();
     let context = context(req.part, &stages, &opts);
-    let mut out = Outputs::new(req.out);
-    let verification =
-        verify_and_write(&model, &stages, &opts, (&mut out, ""), &context, progress)?;
-    let written = context.stopped.is_none() || req.partial;
-    if written {
-        out.commit()?;
-    }
+    let verification = verify(&model, &stages, &opts, &context)?;
     Ok(Verified {
         verification,
         context,
         notes,
-        written,
+        written: false,
     })
 }
 
@@ -326,11 +364,7 @@ pub fn verify_and_write(
     progress: &dyn Progress,
 ) -> Result<Verification> {
     let (out, prefix) = to;
-    let design = match model {
-        Model::Patches(p) => Design::Part(p),
-        Model::Mesh { mesh, .. } => Design::Mesh(mesh),
-    };
-    let v = swarf_sim::verify_stages(design, stages, opts, progress)?;
+    let v = swarf_sim::verify_stages(design_of(model), stages, opts, progress)?;
     let file = |name: &str| format!("{prefix}{name}");
     out.write_json(file("report.json"), &json_report(&v, ctx))?;
     out.write(file("flagged.csv"), flagged_csv(&v).as_bytes())?;
