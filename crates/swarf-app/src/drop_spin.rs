@@ -121,7 +121,7 @@ pub fn plan_drop_spin(job: &Job, part: &Part, machine: Option<&Machine>) -> Resu
                     let mid = dsm.station(stations[stations.len() / 2])?;
                     let z = dsm.zone(&mid, s.bands.faces()[0])?;
                     let n = ((z.t2 - z.t1) / step).ceil().max(1.0);
-                    if !(n <= MAX_DROP_SPIN_PASSES as f64) {
+                    if n.is_nan() || n > MAX_DROP_SPIN_PASSES as f64 {
                         bail!(
                             "strategy.stepover: {step} mm across a zone of {:.3} mm gives {n} passes; expected at most {MAX_DROP_SPIN_PASSES} (a stepover of at least {:.6} mm)",
                             z.t2 - z.t1,
