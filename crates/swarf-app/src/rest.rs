@@ -63,6 +63,24 @@ pub fn rest_request(req: &RestRequest<'_>) -> Result<RestFound> {
     Ok(found)
 }
 
+/// Checks the numbers of a request against their domains, naming each as the flag
+/// of `swarf rest` that gives it (`--merge`, `--min-area`, `--tol`).
+///
+/// # Errors
+/// The first number outside its domain, with the domain and the nearest value that
+/// fits.
+pub fn check_flags(params: &RegionParams, tol: f64) -> Result<()> {
+    for (name, value, domain) in params.domains() {
+        domain
+            .check_named(&format!("--{}", name.replace('_', "-")), value)
+            .map_err(AppError::Message)?;
+    }
+    swarf_geom::domain::TOLERANCE
+        .check_named("--tol", tol)
+        .map_err(AppError::Message)?;
+    Ok(())
+}
+
 /// [`rest_request`] without writing anything (`req.out` is not used): the detection,
 /// the part as the request resolved it (the `part` of `rest.json`) and the mesh it
 /// was detected on, for callers that take the regions as data (the Python package).
@@ -70,6 +88,7 @@ pub fn rest_request(req: &RestRequest<'_>) -> Result<RestFound> {
 /// # Errors
 /// As [`rest_request`], less the outputs.
 pub fn rest_detect(req: &RestRequest<'_>) -> Result<(RestFound, String, swarf_geom::TriMesh)> {
+    check_flags(&req.params, req.tol)?;
     let parent = match (req.reference, req.job) {
         (Some(_), Some(_)) | (None, None) => {
             bail!("expected one of --reference TOOL and --job PARENT.toml")

@@ -12,11 +12,7 @@ use pyo3::types::PyList;
 use std::path::PathBuf;
 use swarf_app::job::RestSource;
 use swarf_app::rest::{RestRequest, polygon_rings, rest_detect, rest_report, write_rest};
-use swarf_geom::domain::{ALLOWANCE, Domain, TOLERANCE};
 use swarf_rest::RegionParams;
-
-/// Areas, mm² (the domain of `swarf rest --min-area`).
-const AREA: Domain = Domain::new(0.0, 1e12, "mm²", "an area");
 
 /// The rest material a finishing tool or job leaves, as `swarf rest` finds it.
 ///
@@ -50,16 +46,6 @@ pub fn rest(
     tol: f64,
     out: Option<PathBuf>,
 ) -> PyResult<Rest> {
-    for (flag, value, domain) in [
-        ("--threshold", threshold, ALLOWANCE),
-        ("--merge", merge, ALLOWANCE),
-        ("--overlap", overlap, ALLOWANCE),
-        ("--min-area", min_area, AREA),
-        ("--smoothness", smoothness, ALLOWANCE),
-        ("--tol", tol, TOLERANCE),
-    ] {
-        domain.check_named(flag, value).map_err(swarf_msg)?;
-    }
     let source = match source.as_str() {
         "reference" => RestSource::Reference,
         "contacts" => RestSource::Contacts,
@@ -122,6 +108,7 @@ pub fn rest(
 }
 
 /// A region's figures and rings.
+#[derive(Clone)]
 struct RegionRings {
     area: f64,
     raw_area: f64,
@@ -175,7 +162,7 @@ impl Rest {
     #[getter]
     fn regions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let items: PyResult<Vec<Py<RestRegion>>> = (0..self.regions.len())
-            .map(|k| Py::new(py, RestRegion::of(&self.regions[k])))
+            .map(|k| Py::new(py, RestRegion(self.regions[k].clone())))
             .collect();
         PyList::new(py, items?)
     }
@@ -192,67 +179,45 @@ impl Rest {
 /// One rest region: its boundary as polygons (outer ring first, then holes) of
 /// `(K, 2)` float64 arrays of XY points, mm, each ring closed.
 #[pyclass(module = "swarf", frozen)]
-pub struct RestRegion {
-    area: f64,
-    raw_area: f64,
-    depth: f64,
-    deepest: (f64, f64, f64),
-    kinds: Vec<String>,
-    boundary: Vec<Vec<[f64; 2]>>,
-    raw: Vec<Vec<Vec<[f64; 2]>>>,
-}
-
-impl RestRegion {
-    fn of(r: &RegionRings) -> RestRegion {
-        RestRegion {
-            area: r.area,
-            raw_area: r.raw_area,
-            depth: r.depth,
-            deepest: r.deepest,
-            kinds: r.kinds.clone(),
-            boundary: r.boundary.clone(),
-            raw: r.raw.clone(),
-        }
-    }
-}
+pub struct RestRegion(RegionRings);
 
 #[pymethods]
 impl RestRegion {
     /// Area inside the boundary, mm².
     #[getter]
     fn area(&self) -> f64 {
-        self.area
+        self.0.area
     }
 
     /// Area of what detection found, before the boundary operations, mm².
     #[getter]
     fn raw_area(&self) -> f64 {
-        self.raw_area
+        self.0.raw_area
     }
 
     /// Largest rest thickness, mm.
     #[getter]
     fn depth(&self) -> f64 {
-        self.depth
+        self.0.depth
     }
 
     /// Where the rest is thickest, `(x, y, z)`, mm.
     #[getter]
     fn deepest(&self) -> (f64, f64, f64) {
-        self.deepest
+        self.0.deepest
     }
 
     /// The kinds of rest it holds (`"valley"`, `"ramp"`, `"stock"`).
     #[getter]
     fn kinds(&self) -> Vec<String> {
-        self.kinds.clone()
+        self.0.kinds.clone()
     }
 
     /// The final boundary: a list of rings, outer first then holes, each a `(K, 2)`
     /// array, mm.
     #[getter]
     fn boundary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        PyList::new(py, self.boundary.iter().map(|r| rows_out(py, r)))
+        PyList::new(py, self.0.boundary.iter().map(|r| rows_out(py, r)))
     }
 
     /// What detection found, before smoothing, merging and the overlap: a list of
@@ -260,6 +225,7 @@ impl RestRegion {
     #[getter]
     fn raw<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let polygons: PyResult<Vec<Bound<'py, PyList>>> = self
+            .0
             .raw
             .iter()
             .map(|p| PyList::new(py, p.iter().map(|r| rows_out(py, r))))
@@ -270,7 +236,7 @@ impl RestRegion {
     fn __repr__(&self) -> String {
         format!(
             "RestRegion(area {:.1} mm², depth {:.3} mm)",
-            self.area, self.depth
+            self.0.area, self.0.depth
         )
     }
 }

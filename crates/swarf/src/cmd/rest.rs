@@ -51,15 +51,6 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
-    use swarf_rest::region::{MERGE, MIN_AREA, OVERLAP, SMOOTHNESS, THRESHOLD};
-    super::check_flags(&[
-        ("--threshold", args.threshold, THRESHOLD),
-        ("--merge", args.merge, MERGE),
-        ("--overlap", args.overlap, OVERLAP),
-        ("--min-area", args.min_area, MIN_AREA),
-        ("--smoothness", args.smoothness, SMOOTHNESS),
-        ("--tol", args.tol, swarf_geom::domain::TOLERANCE),
-    ])?;
     let source = match args.source.as_str() {
         "contacts" => RestSource::Contacts,
         "stock" => RestSource::Stock,
