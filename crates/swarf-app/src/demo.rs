@@ -99,7 +99,7 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
     tessellate_parts(out, text)?;
     reporter.job(1, DEMO_SECTIONS, "demo: tool paths");
     writeln!(text, "\n== tool paths (paper 004 on wave.toml)")?;
-    let jobs_dir = dir.join("jobs");
+    let jobs_dir = out.path("jobs");
     let mut paths = Vec::new();
     for (name, job_text) in JOBS {
         let job = Job::parse(job_text, name)?;

@@ -21,10 +21,12 @@ pub struct Outputs {
 }
 
 impl Outputs {
-    /// An empty set whose relative names are under `dir`.
+    /// An empty set whose relative names are under `dir`, made absolute (against the
+    /// working directory) so that a path built from [`Outputs::path`] names the same
+    /// file when it is given back.
     pub fn new(dir: &Path) -> Self {
         Outputs {
-            dir: dir.to_path_buf(),
+            dir: std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf()),
             set: OutputSet::new(),
         }
     }
@@ -117,7 +119,8 @@ impl Outputs {
     /// # Errors
     /// As [`swarf_io::read_input_text`].
     pub fn read_text(&self, path: &Path) -> Result<String> {
-        let file = self.set.staged(path).unwrap_or(path);
+        let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+        let file = self.set.staged(&absolute).unwrap_or(path);
         Ok(swarf_io::read_input_text(file)?)
     }
 
@@ -127,5 +130,26 @@ impl Outputs {
     /// As [`OutputSet::commit`].
     pub fn commit(self) -> Result<()> {
         Ok(self.set.commit()?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_relative_folder_names_each_staged_file_once() {
+        // `swarf demo --out swarf-demo`: the paths the set hands out are read back.
+        let rel = PathBuf::from(format!("swarf-outputs-test-{}", std::process::id()));
+        let mut out = Outputs::new(&rel);
+        let job = out.path("jobs").join("a.toml");
+        out.write(&job, b"name = \"a\"").unwrap();
+        assert_eq!(out.read_text(&job).unwrap(), "name = \"a\"");
+        assert_eq!(
+            out.read_text(&rel.join("jobs/a.toml")).unwrap(),
+            "name = \"a\""
+        );
+        drop(out);
+        std::fs::remove_dir_all(&rel).ok();
     }
 }

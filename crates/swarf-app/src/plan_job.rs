@@ -183,7 +183,7 @@ fn cleanup_outputs(
     machine: Option<&Machine>,
     out: &mut Outputs,
 ) -> Result<Planned> {
-    let mut stages = plan_cleanup_job(job, model, job_dir)?;
+    let mut stages = plan_cleanup_job(job, model, job_dir, Some(out))?;
     let name = match model {
         Model::Patches(part) => part.name.clone(),
         Model::Mesh { name, .. } => name.clone(),

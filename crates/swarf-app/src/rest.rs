@@ -99,7 +99,7 @@ pub fn rest_detect(req: &RestRequest<'_>) -> Result<(RestFound, String, swarf_ge
                 .file_name()
                 .map(|f| f.to_string_lossy().into_owned())
                 .unwrap_or_default();
-            Some(read_parent(&rel, dir)?)
+            Some(read_parent(&rel, dir, None)?)
         }
         (Some(_), None) => None,
     };

@@ -38,6 +38,7 @@
 use crate::error::{AppError, Context, Result, bail};
 use crate::job::{Job, RestMaterial, RestSource};
 use crate::model::Model;
+use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
@@ -85,13 +86,18 @@ pub fn part_mesh(model: &Model, tol: f64) -> Result<Cow<'_, TriMesh>> {
     })
 }
 
-/// Reads the parent job `rel` (relative to `job_dir`).
+/// Reads the parent job `rel` (relative to `job_dir`): as staged in `staged` when the
+/// command wrote it there (the demo stages the jobs it runs), else from disk.
 ///
 /// # Errors
 /// A file that cannot be read or parsed; a parent that is itself a cleanup.
-pub fn read_parent(rel: &str, job_dir: &Path) -> Result<(Job, PathBuf)> {
+pub fn read_parent(rel: &str, job_dir: &Path, staged: Option<&Outputs>) -> Result<(Job, PathBuf)> {
     let path = job_dir.join(rel);
-    let text = swarf_io::read_input_text(&path)
+    let text = staged
+        .map_or_else(
+            || Ok(swarf_io::read_input_text(&path)?),
+            |o| o.read_text(&path),
+        )
         .with_context(|| format!("parent.job: {}: cannot read the parent job", path.display()))?;
     let parent = Job::parse(&text, &path.display().to_string())?;
     if parent.strategy.kind == StrategyKind::Cleanup {
@@ -181,19 +187,25 @@ fn simulate_parent(
     )?)
 }
 
-/// Plans the cleanup job `job` (module doc) on `model`.
+/// Plans the cleanup job `job` (module doc) on `model`; its parent job is read as
+/// [`read_parent`] reads it.
 ///
 /// # Errors
 /// A parent that cannot be read, planned or verified; a tool larger than the tool
 /// before it; steep rest after a parent that is not a raster; the detection's and
 /// the planning's errors.
-pub fn plan_cleanup_job(job: &Job, model: &Model, job_dir: &Path) -> Result<Vec<CleanupStage>> {
+pub fn plan_cleanup_job(
+    job: &Job,
+    model: &Model,
+    job_dir: &Path,
+    staged: Option<&Outputs>,
+) -> Result<Vec<CleanupStage>> {
     let Some(parent_spec) = &job.parent else {
         bail!("parent: a cleanup job needs a [parent] table");
     };
     let mesh = part_mesh(model, job.strategy.tolerance)?;
     let parent = match (&parent_spec.job, parent_spec.tool) {
-        (Some(rel), _) => Some(read_parent(rel, job_dir)?.0),
+        (Some(rel), _) => Some(read_parent(rel, job_dir, staged)?.0),
         (None, _) => None,
     };
     let reference = parent

@@ -24,7 +24,7 @@ fn a_chain_cleans_up_after_each_tool_in_turn() {
     );
     let j = job(&text).unwrap();
     let model = load_model(&j.part).unwrap();
-    let stages = plan_cleanup_job(&j, &model, Path::new(".")).unwrap();
+    let stages = plan_cleanup_job(&j, &model, Path::new("."), None).unwrap();
     assert_eq!(stages.len(), 2);
     assert_eq!(
         (stages[0].reference.to_string(), stages[0].tool.to_string()),
@@ -98,12 +98,12 @@ fn cleanup_jobs_say_what_is_wrong() {
     // A parent job that does not exist; a cleanup tool larger than the parent's.
     let j = job(&PENCIL.replace("tool = \"ball:d=12\"", "job = \"no-such-finish.toml\"")).unwrap();
     let model = load_model(&j.part).unwrap();
-    let e = plan_cleanup_job(&j, &model, Path::new("/nonexistent"))
+    let e = plan_cleanup_job(&j, &model, Path::new("/nonexistent"), None)
         .unwrap_err()
         .to_string();
     assert!(e.contains("no-such-finish.toml"), "{e}");
     let j = job(&PENCIL.replace("tool = \"ball:d=4\"", "tool = \"ball:d=16\"")).unwrap();
-    let e = plan_cleanup_job(&j, &model, Path::new("."))
+    let e = plan_cleanup_job(&j, &model, Path::new("."), None)
         .unwrap_err()
         .to_string();
     assert!(e.contains("ball:d=16") && e.contains("ball:d=12"), "{e}");
@@ -228,7 +228,24 @@ fn steep_cleanup_jobs_say_what_is_wrong() {
     .unwrap();
     let j = steep_job(|t| t).unwrap();
     let model = load_model(&j.part).unwrap();
-    let e = plan_cleanup_job(&j, &model, &dir).unwrap_err().to_string();
+    let e = plan_cleanup_job(&j, &model, &dir, None)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("the parent job is \"waterline\""), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_parent_staged_by_the_same_command_is_read_from_the_set() {
+    // The demo stages the jobs it runs; nothing is on disk before its set commits.
+    let dir = std::env::temp_dir().join(format!("swarf-staged-parent-{}", std::process::id()));
+    let mut out = crate::Outputs::new(&dir);
+    let text = std::fs::read_to_string(jobs_dir().join("fillet-pocket-finish.toml")).unwrap();
+    out.write("finish.toml", text.as_bytes()).unwrap();
+    let (parent, _) = read_parent("finish.toml", out.dir(), Some(&out)).unwrap();
+    assert_eq!(parent.tool.to_string(), "ball:d=12");
+    let e = read_parent("finish.toml", out.dir(), None).unwrap_err();
+    assert!(e.to_string().contains("cannot read the parent job"), "{e}");
+    drop(out);
     std::fs::remove_dir_all(&dir).ok();
 }
