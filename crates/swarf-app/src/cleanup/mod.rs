@@ -358,14 +358,19 @@ fn add_steep(job: &Job, parent: &Job, mesh: &TriMesh, stage: &mut CleanupStage) 
 
 /// The steep rest of a stage as JSON: the angle, the area, the level steps.
 pub fn steep_json(rest: &SteepRest) -> serde_json::Value {
-    serde_json::json!({
+    let mut json = serde_json::json!({
         "angle_deg": rest.angle.to_degrees(),
         "xy_area_mm2": rest.region.xy_area,
         "surface_area_mm2": rest.region.surface_area,
         "triangles": rest.region.triangles,
         "cells": rest.region.cells,
-        "level_step_mm": rest.level_step,
-    })
+    });
+    // Levels exist only where there is steep rest to cut: no field (rather than a
+    // null where a number belongs) when there is none.
+    if let Some(step) = rest.level_step {
+        json["level_step_mm"] = serde_json::json!(step);
+    }
+    json
 }
 
 /// The name of a rest source in reports.

@@ -228,3 +228,22 @@ fn a_closed_output_pipe_ends_the_command_quietly() {
     assert!(!err.contains("panicked"), "{err}");
     assert_ne!(status.code(), Some(101), "{err}");
 }
+
+#[test]
+fn steep_cleanup_without_steep_rest_writes_no_null() {
+    let dir = scratch("no-steep-rest");
+    let jobs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs");
+    std::fs::copy(jobs.join("boss-raster.toml"), dir.join("boss-raster.toml")).unwrap();
+    let text = std::fs::read_to_string(jobs.join("boss-steep-cleanup.toml"))
+        .unwrap()
+        .replace("threshold = 0.015", "threshold = 0x10");
+    std::fs::write(dir.join("steep.toml"), text).unwrap();
+    let (ok, out, _) = swarf_in(&dir, &["plan", "steep.toml", "--out", "o"]);
+    assert!(ok, "{out}");
+    let summary: serde_json::Value = serde_json::from_str(out.lines().next().unwrap()).unwrap();
+    let steep = summary["steep_rest"]
+        .as_object()
+        .expect("a steep_rest table");
+    assert!(steep.values().all(|v| !v.is_null()), "{out}");
+    assert_eq!(steep["cells"], 0, "{out}");
+}
