@@ -11,9 +11,9 @@ export function buildPanel(view, api) {
     const box = document.createElement('input');
     box.type = 'checkbox';
     box.checked = api.visible(name);
-    box.id = `layer-${name.replace(' ', '-')}`;
+    box.id = `layer-${name}`;
     box.addEventListener('change', () => api.setVisible(name, box.checked));
-    label.append(box, ` ${name}`);
+    label.append(box, ` ${name.replace('_', ' ')}`);
     layers.append(label);
   }
   const slider = $('motion');

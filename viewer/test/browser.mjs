@@ -4,11 +4,10 @@
 // VIEW_DIR is a view of the iso-scallop program of wave, written by
 //   swarf view --job jobs/wave-iso-scallop.toml --cell 0.2 --scallop 0 --max-vertices 600000 -o VIEW_DIR
 // (every cell a vertex, every scallop crest above the tolerance flagged as excess).
-import { chromium } from 'playwright-core';
-import { createServer } from 'node:http';
 import { readFileSync, readdirSync } from 'node:fs';
-import { extname, join, normalize } from 'node:path';
+import { join } from 'node:path';
 import assert from 'node:assert/strict';
+import { openView } from './page.mjs';
 
 const dir = process.argv[2];
 const shot = process.argv[3];
@@ -16,20 +15,6 @@ if (!dir) {
   console.error('usage: node test/browser.mjs VIEW_DIR [SCREENSHOT.png]');
   process.exit(2);
 }
-const types = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.json': 'application/json', '.glb': 'model/gltf-binary' };
-const server = createServer((req, res) => {
-  const rel = normalize(decodeURIComponent(req.url.split('?')[0])).replace(/^\/+/, '') || 'index.html';
-  try {
-    const body = readFileSync(join(dir, rel));
-    res.writeHead(200, { 'Content-Type': types[extname(rel)] ?? 'application/octet-stream' });
-    res.end(body);
-  } catch {
-    res.writeHead(404);
-    res.end();
-  }
-});
-await new Promise((ok) => server.listen(0, '127.0.0.1', ok));
-const url = `http://127.0.0.1:${server.address().port}/`;
 
 // Modal X Y Z of every line of a G-code program, read here on its own (G0/G1 words
 // only): the expected cutter position after each line.
@@ -55,15 +40,8 @@ const ok = (cond, what) => {
   console.log(`ok ${checks} - ${what}`);
 };
 
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  args: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox'],
-});
+const { page, close } = await openView(dir);
 try {
-  const page = await browser.newPage({ viewport: { width: 1200, height: 800 } });
-  page.on('pageerror', (e) => console.error('page error:', e.message));
-  await page.goto(url);
-  await page.waitForFunction(() => window.swarfView && (window.swarfView.ready || window.swarfView.error), null, { timeout: 120000 });
   const error = await page.evaluate(() => window.swarfView.error);
   ok(!error, `the page loads the view (${error ?? 'no error'})`);
 
@@ -144,6 +122,5 @@ try {
   ok(view.motions.count > 0, `${view.motions.count} motions in view.json`);
   console.log(`${checks} checks passed`);
 } finally {
-  await browser.close();
-  server.close();
+  await close();
 }

@@ -52,7 +52,8 @@ pub fn part_glb(mesh: &TriMesh) -> Result<Vec<u8>, ReportError> {
 }
 
 /// The program's tool path as a GLB scene (nodes `cuts`, `links`, `rapids`, and
-/// `tool axes` as long as the cutter's flutes for a five-axis program).
+/// `tool axes` half as long as the cutter's flutes (at most twice its diameter) for a
+/// five-axis program).
 ///
 /// # Errors
 /// A file beyond 4 GiB.
@@ -61,7 +62,7 @@ pub fn toolpath_glb(motions: &[Motion], cutter: &Cutter) -> Result<Vec<u8>, Repo
     toolpath::add_toolpath(
         &mut glb,
         motions,
-        cutter.length().min(4.0 * cutter.radius()),
+        0.5 * cutter.length().min(4.0 * cutter.radius()),
     );
     finish(&glb, "toolpath")
 }
