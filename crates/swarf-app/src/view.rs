@@ -90,12 +90,12 @@ pub fn check_view_inputs(model: &Model, program: &Program, cutter: &Cutter) -> R
         Model::Mesh { mesh, .. } => mesh.aabb(),
     };
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for m in &program.motions {
-        for p in [m.start.cl, m.end.cl] {
-            for k in 0..2 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
+    // Where the motions go (the first motion's start is the control's initial
+    // position, not a point of the program).
+    for p in program.motions.iter().map(|m| m.end.cl) {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
         }
     }
     let r = cutter.radius();
