@@ -56,7 +56,7 @@ impl Glb {
 
     /// Appends `bytes` as a buffer view for `target`; its index.
     fn view(&mut self, bytes: &[u8], target: u32) -> usize {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         let offset = self.bin.len();
@@ -194,7 +194,7 @@ impl Glb {
     /// The GLB file: header, JSON chunk, binary chunk (module doc).
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut json = self.document().to_string().into_bytes();
-        while json.len() % 4 != 0 {
+        while !json.len().is_multiple_of(4) {
             json.push(b' ');
         }
         let bin_len = self.padded_bin_len();
@@ -256,7 +256,7 @@ mod tests {
     fn empty_scene_is_a_glb_header_and_json() {
         let bytes = Glb::new().to_bytes();
         assert_eq!(&bytes[..4], b"glTF");
-        assert_eq!(bytes.len() % 4, 0);
+        assert!(bytes.len().is_multiple_of(4));
         assert_eq!(
             u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize,
             bytes.len()
