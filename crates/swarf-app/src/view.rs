@@ -441,3 +441,71 @@ fn plan_job_input(
     }
     Ok((model, program, job.tool, opts, part))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarf_geom::Point3;
+    use swarf_nc::read::{Motion, MotionKind};
+    use swarf_tool::Pose;
+
+    /// A program of straight moves through `points` (the first from the origin).
+    fn program(points: &[[f64; 3]]) -> Program {
+        let mut p = Program::new("p.ngc");
+        let mut at = Pose::vertical(Point3::origin());
+        for (k, &q) in points.iter().enumerate() {
+            let end = Pose::vertical(Point3::from(q));
+            let kind = if k == 0 {
+                MotionKind::Rapid
+            } else {
+                MotionKind::Linear
+            };
+            p.motions.push(Motion {
+                kind,
+                start: at,
+                end,
+                feed: 300.0,
+                line: k + 2,
+            });
+            at = end;
+        }
+        p
+    }
+
+    fn wave() -> Model {
+        crate::model::load_model("builtin:wave").unwrap()
+    }
+
+    #[test]
+    fn inputs_are_checked_before_verifying() {
+        let ball: Cutter = "ball:d=8".parse().unwrap();
+        let err = check_view_inputs(&wave(), &program(&[]), &ball)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("p.ngc") && err.contains("no moves"), "{err}");
+        let apart = program(&[[1000.0, 1000.0, 50.0], [1100.0, 1000.0, 0.0]]);
+        let err = check_view_inputs(&wave(), &apart, &ball)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("do not overlap") && err.contains("x 1000.000 to 1100.000"),
+            "{err}"
+        );
+        // Just off the part's edge, within the cutter's radius, is near enough.
+        let edge = program(&[[-3.0, 10.0, 50.0], [-3.0, 20.0, 0.0]]);
+        check_view_inputs(&wave(), &edge, &ball).unwrap();
+    }
+
+    #[test]
+    fn motions_hold_the_start_then_each_end_pose() {
+        let p = program(&[[1.0, 2.0, 30.0], [1.0, 2.0, 3.0], [9.0, 2.0, 3.0]]);
+        let m = motions_json(&p);
+        assert_eq!(m["count"], 3);
+        assert_eq!(m["line"], json!([2, 3, 4]));
+        assert_eq!(m["kind"], "rlc");
+        let pose: Vec<f64> = serde_json::from_value(m["pose"].clone()).unwrap();
+        assert_eq!(pose.len(), 6 * 4);
+        assert_eq!(&pose[..6], &[0.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+        assert_eq!(&pose[18..], &[9.0, 2.0, 3.0, 0.0, 0.0, 1.0]);
+    }
+}
