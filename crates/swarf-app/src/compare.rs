@@ -157,13 +157,28 @@ pub fn compare_all(
     out: &mut Outputs,
     reporter: &dyn Reporter,
 ) -> Result<(Vec<Row>, Vec<FiveAxisRow>)> {
+    compare_all_views(jobs, sim, out, reporter, false)
+}
+
+/// [`compare_all`], writing the 3D view of each verified program into
+/// `{stem}.view/` when `views` is set ([`crate::view`]; `swarf demo`).
+///
+/// # Errors
+/// As [`compare_jobs`]; a view that cannot be written.
+pub fn compare_all_views(
+    jobs: &[PathBuf],
+    sim: &SimSettings,
+    out: &mut Outputs,
+    reporter: &dyn Reporter,
+    views: bool,
+) -> Result<(Vec<Row>, Vec<FiveAxisRow>)> {
     let (mut rows, mut five) = (Vec::new(), Vec::new());
     for (k, path) in jobs.iter().enumerate() {
         let name = path
             .file_name()
             .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
         reporter.job(k, jobs.len(), &name);
-        let c = check_one(path, sim, out, reporter)
+        let c = check_one(path, sim, out, reporter, views)
             .with_context(|| format!("{}: planning and verifying the job", path.display()));
         if c.is_err() {
             reporter.jobs_done();
@@ -191,6 +206,7 @@ fn check_one(
     sim: &SimSettings,
     out: &mut Outputs,
     reporter: &dyn Reporter,
+    views: bool,
 ) -> Result<Checked> {
     let text = out
         .read_text(path)
@@ -231,6 +247,17 @@ fn check_one(
     let start = Instant::now();
     let prefix = format!("{stem}.");
     let v = verify_and_write(&model, &stages, &opts, (out, &prefix), &ctx, reporter)?;
+    if views {
+        let input = crate::view::ViewInput {
+            model: &model,
+            tol: job.strategy.tolerance,
+            program: &program,
+            cutter: &job.tool,
+            verification: &v,
+        };
+        let opts = swarf_report::gltf::StockMeshOptions::default();
+        crate::view::write_view(out, &format!("{stem}.view"), &input, &opts)?;
+    }
     Ok(Checked {
         name: job.name.clone().unwrap_or(stem),
         summary,

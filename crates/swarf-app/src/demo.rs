@@ -21,10 +21,13 @@
 //!    single-point positioning along the same edge, cut on a dexel stock through
 //!    their CL (`edges/edges.md`, `edges/edges.json`; [`crate::edge_compare`]).
 //!
+//! Every program verified in steps 3 and 4 also gets its 3D view (`*.view/`: GLB
+//! files, `view.json`, and the viewer page where it has been built; [`crate::view`]).
+//!
 //! The jobs are embedded so that the demo needs no files; their parts and machine are
 //! built-in.
 
-use crate::compare::{compare_all, compare_jobs, five_axis_markdown, markdown};
+use crate::compare::{compare_all_views, five_axis_markdown, markdown};
 use crate::error::{Context, Result};
 use crate::inspect::{patch_text, summarise_patches};
 use crate::job::Job;
@@ -123,8 +126,8 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         text,
         "\n== verification (dexel simulation against the design; paper 004, Table 1)"
     )?;
-    let rows = out.in_dir("compare", |out| {
-        compare_jobs(&paths, &SimSettings::default(), out, reporter)
+    let (rows, _) = out.in_dir("compare", |out| {
+        compare_all_views(&paths, &SimSettings::default(), out, reporter, true)
     })?;
     write!(text, "{}", markdown(&rows))?;
     reporter.job(3, DEMO_SECTIONS, "demo: five-axis");
@@ -149,6 +152,19 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
     edges(out, text, reporter)?;
     reporter.jobs_done();
     outputs.commit()?;
+    match crate::view::viewer_dist() {
+        Some(_) => writeln!(
+            text,
+            "\n3D views: {}/compare/*.view/index.html, die/*.view/",
+            dir.display()
+        )?,
+        None => writeln!(
+            text,
+            "\n3D views (GLB): {}/compare/*.view/, die/*.view/\n{}",
+            dir.display(),
+            crate::view::missing_viewer_note()
+        )?,
+    }
     writeln!(
         text,
         "\nall results in {} ({:.1} s)",
@@ -173,7 +189,7 @@ fn die(
     }
     let dir = out.path("die");
     let (_, rows) = out.in_dir("die", |out| {
-        compare_all(&paths, &SimSettings::default(), out, reporter)
+        compare_all_views(&paths, &SimSettings::default(), out, reporter, true)
     })?;
     let table = five_axis_markdown(&rows);
     out.write(dir.join("die.md"), table.as_bytes())?;

@@ -2,7 +2,7 @@
 //! runs the pipeline plan -> position -> post -> verify -> rest -> cleanup
 //! ([`plan_job()`], [`five_axis`], [`verify`] reading its programs with [`programs`],
 //! [`cleanup`]), tabulates the comparison of paper 004 and thesis 000 ([`compare`]),
-//! and runs the demo ([`demo`]). It calls the kernel crates; it does not compute
+//! writes 3D views of verified programs ([`view`]) and runs the demo ([`demo`]). It calls the kernel crates; it does not compute
 //! geometry. The `swarf` command line and the Python package are thin layers over it.
 
 pub mod classify;
@@ -25,6 +25,7 @@ pub mod programs;
 pub mod report;
 pub mod rest;
 pub mod verify;
+pub mod view;
 
 pub use error::{AppError, Result};
 pub use job::Job;

@@ -1,4 +1,4 @@
-//! swarf-report: what the machinist reads: pictures (PNG) now, tables and glTF later.
+//! swarf-report: what the machinist reads: pictures (PNG) and 3D scenes (glTF).
 //!
 //! Drawing primitives, independent of the simulator:
 //! - [`canvas`]: a small RGB raster (rectangles, lines, rings, 8x8 bitmap text) and
@@ -13,11 +13,16 @@
 //! - [`rest_picture`]: rest regions over the part.
 //! - [`classify_picture`]: steep, horizontal and other areas over the part.
 //!
+//! 3D scenes:
+//! - [`gltf`]: GLB files of the design, the tool path, the cutter and the simulated
+//!   stock coloured by deviation, for the viewer page and any glTF viewer.
+//!
 //! Units: millimetres in the world, pixels on the canvas.
 
 pub mod canvas;
 pub mod classify_picture;
 pub mod error;
+pub mod gltf;
 pub mod page;
 pub mod picture;
 pub mod rest_picture;

@@ -53,8 +53,27 @@ pub fn diverging(t: f64) -> Rgb {
     [0, 1, 2].map(|c| mix(ramp[k][c], ramp[k + 1][c]))
 }
 
+/// The colour of a cell (or a pixel over several) whose picked deviation is `pick`
+/// (NaN: none measured): the diverging ramp scaled by `below` (red side) and
+/// `above` (blue side), else grey where the design has no stock measured
+/// (`any_design`), light grey off the part. One scale for the PNG heat map and the
+/// glTF stock ([`crate::gltf`]).
+pub fn deviation_colour(pick: f64, any_design: bool, below: f64, above: f64) -> Rgb {
+    if pick.is_finite() {
+        diverging(if pick < 0.0 {
+            pick / below
+        } else {
+            pick / above
+        })
+    } else if any_design {
+        NO_MATERIAL
+    } else {
+        OFF_PART
+    }
+}
+
 /// The colour scale's limits: `(below, above)`, both > 0, mm.
-fn limits(v: &Verification) -> (f64, f64) {
+pub fn limits(v: &Verification) -> (f64, f64) {
     let s = &v.deviation.summary;
     let floor = 2.0 * s.tol;
     let above = s
@@ -129,17 +148,7 @@ fn heat_map(c: &mut Canvas, map: &Map, v: &Verification, below: f64, above: f64)
                     }
                 }
             }
-            let col = if pick.is_finite() {
-                diverging(if pick < 0.0 {
-                    pick / below
-                } else {
-                    pick / above
-                })
-            } else if any_design {
-                NO_MATERIAL
-            } else {
-                OFF_PART
-            };
+            let col = deviation_colour(pick, any_design, below, above);
             c.set(map.left + upx, map.top + vpx, col);
         }
     }

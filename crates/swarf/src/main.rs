@@ -47,6 +47,9 @@ enum Command {
     Dsm(cmd::dsm::Args),
     /// Run the main job on the built-in shared parts and write the results.
     Demo(cmd::demo::Args),
+    /// Verify a program (or a job's) and write its 3D view: GLB files of the part,
+    /// tool path, cutter and stock coloured by deviation, and the viewer page.
+    View(Box<cmd::view::Args>),
 }
 
 /// Ends the process quietly when standard output is a closed pipe (`swarf plan ... |
@@ -81,6 +84,7 @@ fn main() -> ExitCode {
         Command::Compare(a) => cmd::compare::run(&a),
         Command::Rest(a) => cmd::rest::run(&a),
         Command::Classify(a) => cmd::classify::run(&a),
+        Command::View(a) => cmd::view::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -11,6 +11,7 @@ pub mod plan;
 pub mod rest;
 pub mod tessellate;
 pub mod verify;
+pub mod view;
 
 use swarf_geom::domain::Domain;
 

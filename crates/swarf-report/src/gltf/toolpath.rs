@@ -1,0 +1,142 @@
+//! The tool path as line sets: the path of the tool tip (CL points) in three named
+//! nodes, `cuts`, `links` and `rapids`, and for five-axis programs the tool axis at
+//! each cutting pose as a short line from the CL point (`tool axes`).
+//!
+//! A program read back from G-code or APT CL does not say which feed moves are
+//! links, so they are recognised by their shape: a straight feed move along the tool
+//! axis (within 45 degrees of it: a plunge, an approach or a retract) is a link,
+//! every other feed move is a cut. Arcs are drawn as [`ARC_CHORDS`] chords each.
+
+use super::glb::{Glb, LINES, linear};
+use swarf_nc::read::{Motion, MotionKind};
+
+/// Chords per arc motion.
+pub const ARC_CHORDS: usize = 32;
+/// At most this many tool axes are drawn (every k-th pose beyond it).
+pub const MAX_AXES: usize = 20_000;
+
+/// What a motion is, for drawing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Class {
+    /// A feed move that cuts.
+    Cut,
+    /// A feed move along the tool axis (module doc).
+    Link,
+    /// A rapid.
+    Rapid,
+}
+
+impl Class {
+    /// The node name of this class.
+    pub fn name(self) -> &'static str {
+        match self {
+            Class::Cut => "cuts",
+            Class::Link => "links",
+            Class::Rapid => "rapids",
+        }
+    }
+
+    /// One letter for the viewer's JSON: `c`, `l` or `r`.
+    pub fn letter(self) -> char {
+        match self {
+            Class::Cut => 'c',
+            Class::Link => 'l',
+            Class::Rapid => 'r',
+        }
+    }
+}
+
+/// The class of `m` (module doc).
+pub fn classify(m: &Motion) -> Class {
+    match m.kind {
+        MotionKind::Rapid => Class::Rapid,
+        MotionKind::Arc { .. } => Class::Cut,
+        MotionKind::Linear => {
+            let d = m.end.cl - m.start.cl;
+            let along = d.dot(&m.start.axis).abs();
+            if d.norm() > 0.0 && along >= std::f64::consts::FRAC_1_SQRT_2 * d.norm() {
+                Class::Link
+            } else {
+                Class::Cut
+            }
+        }
+    }
+}
+
+/// Whether any pose of `motions` has a tool axis other than +z.
+pub fn is_five_axis(motions: &[Motion]) -> bool {
+    motions
+        .iter()
+        .any(|m| (m.end.axis.z - 1.0).abs() > 1e-9 || (m.start.axis.z - 1.0).abs() > 1e-9)
+}
+
+/// The line segments (pairs of points, f32 mm) of the motions of `class`.
+pub fn segments(motions: &[Motion], class: Class) -> Vec<f32> {
+    let mut out = Vec::new();
+    let mut push = |a: swarf_geom::Point3, b: swarf_geom::Point3| {
+        out.extend([a.x, a.y, a.z, b.x, b.y, b.z].map(|x| x as f32));
+    };
+    for m in motions.iter().filter(|m| classify(m) == class) {
+        match m.kind {
+            MotionKind::Arc { .. } => {
+                for k in 0..ARC_CHORDS {
+                    let t = |k: usize| k as f64 / ARC_CHORDS as f64;
+                    push(m.point_at(t(k)).cl, m.point_at(t(k + 1)).cl);
+                }
+            }
+            _ => push(m.start.cl, m.end.cl),
+        }
+    }
+    out
+}
+
+/// The tool axis at the end of every cutting motion (every k-th beyond
+/// [`MAX_AXES`]), `length` mm long, as line segments.
+pub fn axis_segments(motions: &[Motion], length: f64) -> Vec<f32> {
+    let cuts: Vec<&Motion> = motions
+        .iter()
+        .filter(|m| classify(m) == Class::Cut)
+        .collect();
+    let step = cuts.len().div_ceil(MAX_AXES).max(1);
+    let mut out = Vec::new();
+    for m in cuts.iter().step_by(step) {
+        let (a, b) = (m.end.cl, m.end.cl + m.end.axis * length);
+        out.extend([a.x, a.y, a.z, b.x, b.y, b.z].map(|x| x as f32));
+    }
+    out
+}
+
+/// Colours of the line sets (sRGB): cuts, links, rapids, tool axes.
+const COLOURS: [(&str, [u8; 3]); 4] = [
+    ("cuts", [20, 90, 200]),
+    ("links", [20, 160, 60]),
+    ("rapids", [230, 80, 20]),
+    ("tool axes", [120, 60, 160]),
+];
+
+/// Adds the program's nodes to `glb`: `cuts`, `links`, `rapids` (each present, empty
+/// sets as nodes without a mesh) and, for a five-axis program, `tool axes` of
+/// `axis_length` mm.
+///
+/// # Units
+/// mm.
+pub fn add_toolpath(glb: &mut Glb, motions: &[Motion], axis_length: f64) {
+    let mut sets: Vec<(&str, Vec<f32>)> = [Class::Cut, Class::Link, Class::Rapid]
+        .into_iter()
+        .map(|c| (c.name(), segments(motions, c)))
+        .collect();
+    if is_five_axis(motions) {
+        sets.push(("tool axes", axis_segments(motions, axis_length)));
+    }
+    for (name, data) in sets {
+        let colour = COLOURS.iter().find(|c| c.0 == name).map_or([0; 3], |c| c.1);
+        if data.is_empty() {
+            glb.empty_node(name);
+            continue;
+        }
+        let p = glb.floats(&data, "VEC3", 3);
+        let [r, g, b] = colour.map(linear);
+        let mat = glb.material(name, [r, g, b, 1.0], 0.0);
+        glb.mesh_node(name, &[("POSITION", p)], None, LINES, mat);
+    }
+}

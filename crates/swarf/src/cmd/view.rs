@@ -1,0 +1,217 @@
+//! `swarf view (--job JOB.toml | --part P --program PROG [--tool SPEC]) -o DIR
+//! [--serve]`: the 3D view of a verified program ([`swarf_app::view`]): GLB files of
+//! the design, tool path, cutter and simulated stock, `view.json`, the verification's
+//! report and pictures, and the viewer page where it has been built. `--serve`
+//! serves the folder on 127.0.0.1 until Ctrl-C (or `--serve-for` seconds).
+
+use crate::progress::Bars;
+use anyhow::{Context, Result, bail};
+use std::io::{Read, Write};
+use std::net::{TcpListener, TcpStream};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+use swarf_app::verify::SimSettings;
+use swarf_app::view::{VIEWER_BUILD, ViewRequest, ViewSource, view_request, viewer_dist};
+use swarf_report::gltf::StockMeshOptions;
+
+/// Arguments of `swarf view`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Job file: plan it, verify its program and show both.
+    #[arg(long, conflicts_with_all = ["part", "program", "tool", "machine"], required_unless_present = "program")]
+    job: Option<PathBuf>,
+    /// Design part (part file, STL/OBJ mesh or built-in name), with --program.
+    #[arg(long, requires = "program")]
+    part: Option<String>,
+    /// NC program (G-code, APT CL or pose CSV), with --part.
+    #[arg(long, requires = "part")]
+    program: Option<PathBuf>,
+    /// Tool spec, e.g. ball:d=8 (default: the program's CUTTER record).
+    #[arg(long)]
+    tool: Option<String>,
+    /// Machine file or builtin:NAME for five-axis G-code.
+    #[arg(long)]
+    machine: Option<String>,
+    /// Stock: box, box:TOP, offset:ALLOWANCE or a mesh file.
+    #[arg(long, default_value = "offset:0.5")]
+    stock: String,
+    /// Dexel cell size, mm (default: 5 x the tolerance; 0.5 for five-axis jobs).
+    #[arg(long)]
+    cell: Option<f64>,
+    /// Gouge / excess tolerance, mm.
+    #[arg(long)]
+    tol: Option<f64>,
+    /// Scallop allowance, mm (default: as planned).
+    #[arg(long)]
+    scallop: Option<f64>,
+    /// Deviation along the design normals (normal) or along z (vertical).
+    #[arg(long, value_parser = ["vertical", "normal"])]
+    deviation: Option<String>,
+    /// Memory limit for the grid, MiB.
+    #[arg(long, default_value_t = 4096)]
+    max_memory: u64,
+    /// Most vertices of the stock mesh (decimated above it; its height error is stated).
+    #[arg(long, default_value_t = 250_000)]
+    max_vertices: usize,
+    /// Output folder (written as one set).
+    #[arg(short = 'o', long = "out")]
+    out: PathBuf,
+    /// Serve the folder on 127.0.0.1 after writing it.
+    #[arg(long)]
+    serve: bool,
+    /// Port to serve on (0: any free port).
+    #[arg(long, default_value_t = 8017, requires = "serve")]
+    port: u16,
+    /// Stop serving after this many seconds (default: until Ctrl-C).
+    #[arg(long, requires = "serve")]
+    serve_for: Option<u64>,
+}
+
+/// Runs the subcommand.
+pub fn run(args: &Args) -> Result<()> {
+    if args.serve && viewer_dist().is_none() {
+        bail!(
+            "--serve: the viewer page is not built: build it with `{VIEWER_BUILD}` from the repository root"
+        );
+    }
+    if !(1000..=50_000_000).contains(&args.max_vertices) {
+        bail!(
+            "--max-vertices: expected 1000 to 50000000 vertices, found {}",
+            args.max_vertices
+        );
+    }
+    let sim = SimSettings {
+        stock: args.stock.clone(),
+        cell: args.cell,
+        tol: args.tol,
+        scallop: args.scallop,
+        max_memory: args.max_memory,
+        deviation: args.deviation.clone(),
+        ..SimSettings::default()
+    };
+    let source = match (&args.job, &args.part, &args.program) {
+        (Some(job), _, _) => ViewSource::Job(job),
+        (None, Some(part), Some(program)) => ViewSource::Program {
+            part,
+            program,
+            tool: args.tool.as_deref(),
+            machine: args.machine.as_deref(),
+        },
+        _ => bail!("give --job JOB.toml, or --part PART with --program PROGRAM"),
+    };
+    let req = ViewRequest {
+        source,
+        sim: &sim,
+        stock: StockMeshOptions {
+            max_vertices: args.max_vertices,
+        },
+        out: &args.out,
+    };
+    let viewed = view_request(&req, &Bars::default())?;
+    print!("{}", viewed.summary);
+    let s = &viewed.written.stock;
+    println!(
+        "stock mesh: {} vertices, {} triangles, every {} cell(s), height error <= {:.4} mm",
+        s.vertices, s.triangles, s.stride, s.height_error
+    );
+    for n in &viewed.notes {
+        eprintln!("{n}");
+    }
+    println!("view written to {}", args.out.display());
+    if args.serve {
+        serve(
+            &args.out,
+            args.port,
+            args.serve_for.map(Duration::from_secs),
+        )?;
+    }
+    Ok(())
+}
+
+/// Largest request head read, bytes.
+const MAX_REQUEST: usize = 8192;
+
+/// Serves the files under `root` on 127.0.0.1:`port` (GET only, no listing), until
+/// `time` has passed (or forever).
+fn serve(root: &Path, port: u16, time: Option<Duration>) -> Result<()> {
+    let listener = TcpListener::bind(("127.0.0.1", port))
+        .with_context(|| format!("--port {port}: cannot listen on 127.0.0.1"))?;
+    let addr = listener.local_addr()?;
+    println!(
+        "serving {} at http://{addr}/ (Ctrl-C stops)",
+        root.display()
+    );
+    std::io::stdout().flush()?;
+    let start = Instant::now();
+    listener.set_nonblocking(time.is_some())?;
+    loop {
+        if time.is_some_and(|t| start.elapsed() >= t) {
+            return Ok(());
+        }
+        match listener.accept() {
+            Ok((stream, _)) => {
+                if let Err(e) = answer(root, stream) {
+                    eprintln!("serve: {e}");
+                }
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {
+                std::thread::sleep(Duration::from_millis(20))
+            }
+            Err(e) => return Err(e).context("serve: accepting a connection"),
+        }
+    }
+}
+
+/// The content type of a served file.
+fn content_type(path: &Path) -> &'static str {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("html") => "text/html; charset=utf-8",
+        Some("js") => "text/javascript; charset=utf-8",
+        Some("css") => "text/css; charset=utf-8",
+        Some("json") => "application/json",
+        Some("glb") => "model/gltf-binary",
+        Some("png") => "image/png",
+        _ => "application/octet-stream",
+    }
+}
+
+/// Answers one request.
+fn answer(root: &Path, mut stream: TcpStream) -> std::io::Result<()> {
+    stream.set_nonblocking(false)?;
+    stream.set_read_timeout(Some(Duration::from_secs(5)))?;
+    let mut head = vec![0; MAX_REQUEST];
+    let n = stream.read(&mut head)?;
+    let head = String::from_utf8_lossy(&head[..n]);
+    let target = head
+        .lines()
+        .next()
+        .and_then(|l| l.strip_prefix("GET "))
+        .and_then(|l| l.split(' ').next());
+    let rel = target.map(|t| {
+        t.split(['?', '#'])
+            .next()
+            .unwrap_or("")
+            .trim_start_matches('/')
+    });
+    let rel = rel.map(|r| if r.is_empty() { "index.html" } else { r });
+    let safe = rel.filter(|r| {
+        !r.split('/')
+            .any(|c| c == ".." || c.is_empty() || c.contains('\\'))
+    });
+    let file = safe.map(|r| root.join(r)).filter(|p| p.is_file());
+    let (status, kind, body) = match file {
+        Some(p) => ("200 OK", content_type(&p), std::fs::read(&p)?),
+        None if target.is_none() => (
+            "405 Method Not Allowed",
+            "text/plain",
+            b"GET only\n".to_vec(),
+        ),
+        None => ("404 Not Found", "text/plain", b"not found\n".to_vec()),
+    };
+    write!(
+        stream,
+        "HTTP/1.1 {status}\r\nContent-Type: {kind}\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
+        body.len()
+    )?;
+    stream.write_all(&body)
+}
