@@ -38,7 +38,7 @@ pub fn classify_request(req: &ClassifyRequest<'_>) -> Result<Classification> {
     let model = load_model(req.part)?;
     model.check_covers_xy(req.part)?;
     let mesh = part_mesh(&model, req.tol).with_context(|| req.part.to_string())?;
-    let c = classify(&mesh, &req.params)?;
+    let c = classify(&mesh, &req.params).with_context(|| req.part.to_string())?;
     let png = picture(&c, req, &mesh)?;
     let mut set = Outputs::new(req.out);
     set.write_json("classify.json", &classify_json(&c, req))?;

@@ -27,7 +27,8 @@ pub(super) struct Facet {
     pub xy: [[f64; 2]; 3],
     /// Whether the footprint is a segment (see [`VERTICAL_NZ`]).
     pub vertical: bool,
-    /// Whether the triangle has no normal (zero area or non-finite).
+    /// Whether the triangle has no normal (zero area, non-finite, or a corner outside
+    /// the coordinate domain).
     pub degenerate: bool,
 }
 
@@ -35,7 +36,9 @@ impl Facet {
     /// Triangle `i` of `mesh`, classified by `params`.
     pub fn new(mesh: &TriMesh, i: usize, params: &ClassifyParams) -> Facet {
         let [a, b, c] = mesh.triangle(i);
-        let normal = mesh.normal(i);
+        // A triangle outside the coordinate domain is skipped, as by every mesh
+        // consumer: it counts as degenerate.
+        let normal = mesh.normal(i).filter(|_| mesh.usable(i));
         let vertical = normal.is_some_and(|n| n.z.abs() <= VERTICAL_NZ);
         let class = normal
             .filter(|n| vertical || n.z > 0.0)

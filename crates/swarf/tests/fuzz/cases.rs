@@ -130,8 +130,9 @@ pub fn job(seeds: &[Seed], (k, ms, cmd): &Edit) -> Case {
 pub fn tool_spec(seeds: &[&str], k: usize, ms: &[Mutation]) -> String {
     let seed = seeds[k % seeds.len()];
     let text = String::from_utf8_lossy(&apply_all(seed.as_bytes(), ms)).replace('\0', "");
-    // One argument may hold at most 128 KiB on Linux.
-    text.chars().take(100_000).collect()
+    // One argument may hold at most 128 KiB on Linux: cut by bytes, not characters
+    // (a replacement character takes three).
+    crate::check::head(&text, 100_000)
 }
 
 /// `s` as a TOML basic string.

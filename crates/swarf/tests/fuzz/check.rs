@@ -183,6 +183,15 @@ pub fn normalise(s: &str) -> String {
     out.chars().take(100).collect()
 }
 
+/// The first `n` bytes of `s`, at a character boundary.
+pub fn head(s: &str, n: usize) -> String {
+    let mut end = n.min(s.len());
+    while !s.is_char_boundary(end) {
+        end -= 1;
+    }
+    s[..end].to_string()
+}
+
 /// The last `n` bytes of `s`, at a character boundary.
 pub fn tail(s: &str, n: usize) -> String {
     let mut start = s.len().saturating_sub(n);

@@ -288,7 +288,7 @@ pub fn option_case((cmd, raws): &(usize, Vec<Raw>)) -> Case {
     let mut fuzzed: Vec<(&str, String)> = Vec::new();
     for r in raws {
         let (flag, kind) = base.fuzz[r.flag % base.fuzz.len()];
-        let value: String = render(kind, r).chars().take(100_000).collect();
+        let value = crate::check::head(&render(kind, r), 100_000);
         fuzzed.retain(|(f, _)| *f != flag);
         fuzzed.push((flag, value));
     }

@@ -247,3 +247,27 @@ fn steep_cleanup_without_steep_rest_writes_no_null() {
     assert!(steep.values().all(|v| !v.is_null()), "{out}");
     assert_eq!(steep["cells"], 0, "{out}");
 }
+
+#[test]
+fn classify_skips_triangles_outside_the_domain_and_names_the_file() {
+    let dir = scratch("classify-far");
+    // Two facets of a plate, and one with a corner 2 147 km away (outside the
+    // coordinate domain: skipped, as every mesh consumer skips it).
+    std::fs::write(
+        dir.join("far.obj"),
+        "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv 0 2147483648 0\n\
+         f 1 2 3\nf 1 3 4\nf 4 3 5\n",
+    )
+    .unwrap();
+    let (ok, text, _) = swarf_in(&dir, &["classify", "far.obj", "--cell", "1", "-o", "c"]);
+    assert!(ok, "{text}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("c/classify.json")).unwrap())
+            .unwrap();
+    assert!(json.to_string().contains("100"), "{json}");
+    refused(
+        &dir,
+        &["classify", "far.obj", "--cell", "0.001", "-o", "c"],
+        &["far.obj", "expected a larger cell"],
+    );
+}
