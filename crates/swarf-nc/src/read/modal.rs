@@ -22,6 +22,9 @@
 //! (`X Y Z` and two rotary words, in degrees, absolute in G90 and incremental in G91,
 //! not scaled by G20), turned into part-frame motions by [`crate::read::axes`]. Feeds
 //! follow G93/G94 as [`crate::read::feed`] describes.
+//!
+//! The tool words and the loaded tool's table entry are in `tools`; the state as
+//! parameters and callers read it (codes, the current point) in `queries`.
 
 use crate::read::arc::Plane;
 use crate::read::axes::Axes;
@@ -35,9 +38,11 @@ use crate::read::program::{Diagnostic, Motion};
 use crate::read::tooltable::ToolTable;
 use crate::read::warnings::Warnings;
 use crate::read::words::{Word, Words};
-use swarf_geom::Point3;
 use swarf_geom::units::MM_PER_INCH;
 use swarf_tool::Pose;
+
+mod queries;
+mod tools;
 
 /// Most turns one G2/G3 block may make (`P`): thread milling needs tens; more is
 /// taken for a mistake rather than handed to a simulation that samples every turn.
@@ -321,75 +326,6 @@ impl<'k> Interpreter<'k> {
         Ok(())
     }
 
-    /// M6, M61, M3/M4/M5.
-    fn m_codes(&mut self, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
-        for &(_, action, w) in &parsed.m {
-            match action {
-                Action::ToolChange => self.tool_change(self.selected_tool.unwrap_or(0), w, line)?,
-                Action::SetTool => {
-                    let Some(q) = parsed.get('Q') else {
-                        return Err(Diagnostic::new(line, w.column, "M61 requires a Q word"));
-                    };
-                    let tool = whole(q, line, "tool number Q of M61")?;
-                    self.tool_change(tool, w, line)?;
-                }
-                Action::Spindle(turn) => self.spindle = turn,
-                _ => {}
-            }
-        }
-        if let Some(g4) = parsed.has_g(Action::Dwell) {
-            if parsed.get('P').is_none() {
-                return Err(Diagnostic::new(
-                    line,
-                    g4.column,
-                    "dwell time P word missing with G4",
-                ));
-            }
-            self.warn(
-                line,
-                g4.column,
-                "G4 dwell ignored: machining times exclude it",
-            );
-        }
-        Ok(())
-    }
-
-    /// Loads `tool` (M6 or M61): one tool per program.
-    /// Loads `tool` (M6 or M61): one cutting tool per program; T0 unloads it.
-    fn tool_change(&mut self, tool: u32, w: Word, line: usize) -> Result<(), Diagnostic> {
-        match self.cutting_tool {
-            Some(cutting) if tool != 0 && tool != cutting => Err(Diagnostic::new(
-                line,
-                w.column,
-                format!(
-                    "a second cutting tool (T{cutting} then T{tool}) is not supported: swarf \
-                     verifies one tool per program; split the program at the tool change"
-                ),
-            )),
-            _ => {
-                self.loaded_tool = Some(tool);
-                Ok(())
-            }
-        }
-    }
-
-    /// Notes the tool a motion is made with; feed motions need one loaded once a
-    /// tool has been (T0 M6 unloads it).
-    pub(crate) fn check_tool(&mut self, feed: bool, line: usize) -> Result<(), Diagnostic> {
-        match self.loaded_tool {
-            Some(0) if feed && self.cutting_tool.is_some() => Err(Diagnostic::new(
-                line,
-                1,
-                "feed motion with no tool in the spindle: T0 M6 unloaded it",
-            )),
-            Some(t) if t != 0 && self.cutting_tool.is_none() => {
-                self.cutting_tool = Some(t);
-                Ok(())
-            }
-            _ => Ok(()),
-        }
-    }
-
     /// Plane, units, cutter compensation, tool length offset, coordinate system,
     /// distance modes and retract mode, in LinuxCNC's order.
     fn set_modes(&mut self, parsed: &Words, line: usize) -> Result<(), Diagnostic> {
@@ -514,120 +450,6 @@ impl<'k> Interpreter<'k> {
                 return;
             }
         }
-    }
-
-    /// Warns once when the tool length offset in force is not the loaded tool's: the
-    /// tip is then off the programmed point.
-    pub(crate) fn check_tool_offset(&mut self, line: usize) {
-        if self.tool_warned {
-            return;
-        }
-        let loaded = self.loaded_offset();
-        let dz = (self.offsets.tool[2] - loaded[2]) * self.scale();
-        if dz.abs() > 1e-9 {
-            self.tool_warned = true;
-            let tool = self.loaded_tool.unwrap_or(0);
-            self.warn(
-                line,
-                1,
-                format!(
-                    "the tool length offset in force differs from the loaded tool T{tool}'s by \
-                     {dz:.4} mm: the tip is simulated {:.4} mm {} the programmed point",
-                    dz.abs(),
-                    if dz > 0.0 { "above" } else { "below" }
-                ),
-            );
-        }
-    }
-
-    /// The loaded tool's offsets from the tool table, program units.
-    pub(crate) fn loaded_offset(&self) -> Pos {
-        let tool = self.loaded_tool.and_then(|t| self.tools.get(t));
-        let mut out = [0.0; 6];
-        if let Some(t) = tool {
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = if k < 3 {
-                    self.user_to_program(t.offset[k])
-                } else {
-                    t.offset[k]
-                };
-            }
-        }
-        out
-    }
-
-    /// `#5401 + k` of the loaded tool's table entry, machine units: its offsets
-    /// X Y Z A B C U V W (k = 0 ... 8) and its diameter (k = 9).
-    pub(crate) fn loaded_tool_parameter(&self, k: usize) -> f64 {
-        let Some(tool) = self.loaded_tool.and_then(|t| self.tools.get(t)) else {
-            return 0.0;
-        };
-        match k {
-            0..=5 => tool.offset[k],
-            9 => tool.diameter,
-            _ => 0.0,
-        }
-    }
-
-    /// The selected tool (T), 0 when none.
-    pub(crate) fn selected_tool(&self) -> f64 {
-        f64::from(self.selected_tool.unwrap_or(0))
-    }
-
-    /// The coordinate system as a G code times ten: 540 (G54) ... 593 (G59.3).
-    pub(crate) fn coord_system_code(&self) -> f64 {
-        let n = f64::from(self.offsets.index);
-        if n <= 6.0 {
-            530.0 + 10.0 * n
-        } else {
-            590.0 + (n - 6.0)
-        }
-    }
-
-    /// The plane as a G code times ten: 170, 180, 190.
-    pub(crate) fn plane_code(&self) -> f64 {
-        match self.plane {
-            Plane::Xy => 170.0,
-            Plane::Xz => 180.0,
-            Plane::Yz => 190.0,
-        }
-    }
-
-    /// Cutter compensation as a G code times ten: 400, 410, 420.
-    pub(crate) fn comp_code(&self) -> f64 {
-        match self.comp.side() {
-            None => 400.0,
-            Some(true) => 410.0,
-            Some(false) => 420.0,
-        }
-    }
-
-    /// The motion mode as its G code number (80 when none).
-    pub(crate) fn motion_code(&self) -> f64 {
-        match self.motion {
-            Some(Action::Rapid) => 0.0,
-            Some(Action::Linear) => 1.0,
-            Some(Action::ArcCw) => 2.0,
-            Some(Action::ArcCcw) => 3.0,
-            Some(Action::Cycle(n)) => f64::from(n),
-            _ => 80.0,
-        }
-    }
-
-    /// The tool number of the last M6, if any.
-    pub fn tool_number(&self) -> Option<u32> {
-        self.loaded_tool
-    }
-
-    /// The current point in program coordinates (program units, degrees).
-    pub fn current(&self) -> Pos {
-        self.cur
-    }
-
-    /// The part-frame point of the program position `p` (see the module docs), mm.
-    pub fn part_point(&self, p: &Pos) -> Point3 {
-        let m = self.to_machine(p);
-        Point3::new(m[0], m[1], m[2])
     }
 }
 
