@@ -10,6 +10,7 @@ use crate::rest::{polygon_rings, relief_heights};
 use serde_json::json;
 use std::path::Path;
 use swarf_geom::TriMesh;
+use swarf_path::PathError;
 use swarf_path::classify::{Classification, ClassifyParams, SurfaceClass, classify};
 use swarf_report::classify_picture::{ClassRings, classify_png};
 
@@ -31,14 +32,25 @@ pub struct ClassifyRequest<'a> {
 /// under `req.out`.
 ///
 /// # Errors
-/// A part that cannot be read or tessellated; parameters out of range (naming
-/// `classify.steep_angle`, `classify.flat_angle` or `classify.cell`); outputs that
+/// A part that cannot be read or tessellated; parameters out of range (naming the
+/// part and the flag: `--steep-angle`, `--flat-angle` or `--cell`); outputs that
 /// cannot be written.
 pub fn classify_request(req: &ClassifyRequest<'_>) -> Result<Classification> {
     let model = load_model(req.part)?;
     model.check_covers_xy(req.part)?;
     let mesh = part_mesh(&model, req.tol).with_context(|| req.part.to_string())?;
-    let c = classify(&mesh, &req.params).with_context(|| req.part.to_string())?;
+    // The parameters came from `swarf classify`'s flags: name the flag.
+    let c = classify(&mesh, &req.params)
+        .map_err(|e| match e {
+            PathError::InvalidParameter { field, message } => PathError::InvalidParameter {
+                field: field
+                    .strip_prefix("classify.")
+                    .map_or(field.clone(), |f| format!("--{}", f.replace('_', "-"))),
+                message,
+            },
+            e => e,
+        })
+        .with_context(|| req.part.to_string())?;
     let png = picture(&c, req, &mesh)?;
     let mut set = Outputs::new(req.out);
     set.write_json("classify.json", &classify_json(&c, req))?;

@@ -318,7 +318,15 @@ where
         .map(|(program, cutter)| Stage { program, cutter })
         .collect();
     let context = context(req.part, &stages, &opts);
-    let verification = verify(&model, &stages, &opts, &context)?;
+    // A grid that cannot be laid over the design is the part's doing: name it.
+    let verification = verify(&model, &stages, &opts, &context).map_err(|e| match e {
+        AppError::Sim(
+            swarf_sim::SimError::GridTooLarge { .. }
+            | swarf_sim::SimError::NoMemory { .. }
+            | swarf_sim::SimError::Empty(_),
+        ) => AppError::Message(format!("{}: {e}", req.part)),
+        e => e,
+    })?;
     Ok(Verified {
         verification,
         context,

@@ -11,7 +11,7 @@
 //! | `apt` | `d`, `r`, `e`, `f`, `alpha` (bottom, in [0, 90)), `beta` (side, in (-90, 90)), `h`; `e`, `f`, `h` optional |
 //!
 //! Every shape also takes `length` (flute length; for `apt` the same as `h`). Diameters
-//! are from 0.01 to 1000 mm and lengths up to 2000 mm
+//! are from 0.01 to 1000 mm, a bull's corner radius 0 or at least 0.001 mm, and lengths up to 2000 mm
 //! ([`swarf_geom::domain::TOOL_DIAMETER`], [`swarf_geom::domain::TOOL_LENGTH`]). Shapes
 //! and keys are case-insensitive; spaces around items are ignored. Degrees live only
 //! here, at the I/O edge; the kernel holds radians. `Display` writes `length` only when

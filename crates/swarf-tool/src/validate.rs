@@ -22,6 +22,11 @@ fn finite(field: &'static str, value: f64) -> Result<(), ToolError> {
     }
 }
 
+/// The least corner radius of a bull nose, mm (0 is a sharp corner): a thousandth of a
+/// millimetre, below any ground insert, and where strategies that offset by the corner
+/// would work at sub-micrometre steps.
+pub const MIN_CORNER: f64 = 1e-3;
+
 fn check_radius(radius: f64) -> Result<(), ToolError> {
     finite("d", 2.0 * radius)?;
     if radius <= 0.0 {
@@ -103,6 +108,16 @@ impl Cutter {
                     return Err(ToolError::Negative {
                         field: "r",
                         value: corner,
+                    });
+                }
+                if corner > 0.0 && corner < MIN_CORNER {
+                    return Err(ToolError::OutOfDomain {
+                        field: "r",
+                        message: format!(
+                            "expected 0 (a sharp corner) or a corner radius of at least \
+                             {MIN_CORNER} mm, found {}",
+                            swarf_geom::domain::show(corner)
+                        ),
                     });
                 }
                 Ok(())

@@ -139,18 +139,21 @@ impl CsvState {
         let value = value.trim();
         match key.trim().to_ascii_lowercase().as_str() {
             "feed" => {
-                let feed: f64 = value
+                let rate = swarf_geom::domain::RATE;
+                let feed = value
                     .parse()
                     .ok()
-                    .filter(|f: &f64| f.is_finite() && *f > 0.0)
+                    .map(|f: f64| f * self.scale)
+                    .filter(|&f| rate.contains(f))
                     .ok_or_else(|| {
+                        let shown = swarf_geom::domain::excerpt(value, 40);
                         Diagnostic::new(
                             line,
                             column,
-                            format!("feed: expected a number > 0, found '{value}'"),
+                            format!("feed: expected {rate}, found '{shown}'"),
                         )
                     })?;
-                self.feed = feed * self.scale;
+                self.feed = feed;
             }
             "units" => {
                 self.scale = match value.to_ascii_lowercase().as_str() {
@@ -266,5 +269,9 @@ mod tests {
         assert_eq!(p.stopped.map(|d| d.line), Some(3));
         let p = parse_pose_csv("# feed=-3\nx,y,z\n", "t.csv").unwrap();
         assert_eq!(p.stopped.map(|d| (d.line, d.column)), Some((1, 8)));
+        // A feed so small that the time is not finite: outside the stated domain.
+        let p = parse_pose_csv("# feed=2e-308\nx,y,z\n0,0,0\n1,0,0\n", "t.csv").unwrap();
+        let stop = p.stopped.expect("refused");
+        assert!(stop.message.contains("expected a rate"), "{}", stop.message);
     }
 }

@@ -271,3 +271,49 @@ fn classify_skips_triangles_outside_the_domain_and_names_the_file() {
         &["far.obj", "expected a larger cell"],
     );
 }
+
+#[test]
+fn second_long_run_finds_are_refused_naming_their_place() {
+    let dir = scratch("seed-4242");
+    // A bull nose with a corner of 1e-19 mm planned for minutes.
+    let job = wave_job(
+        &dir,
+        "tool.toml",
+        "bull:d=10,r=1e-19",
+        "kind = \"iso-planar\"\nscallop = 0.1",
+    );
+    refused(
+        &dir,
+        &["plan", &job, "--out", "o"],
+        &["tool.toml", "`r`", "at least 0.001 mm"],
+    );
+    // A feed of 2e-308 mm/min made the time infinite (null in report.json).
+    std::fs::write(
+        dir.join("slow.csv"),
+        "# feed=2e-308\nx,y,z,i,j,k\n0,0,5,0,0,1\n10,0,5,0,0,1\n",
+    )
+    .unwrap();
+    let part = plate(&dir);
+    refused(
+        &dir,
+        &verify_cmd(&part, "slow.csv", "ball:d=4", &["--cell", "0.5"]),
+        &["slow.csv", "feed: expected a rate"],
+    );
+    // classify's cell limit names the flag; verify's grid limit names the part.
+    refused(
+        &dir,
+        &["classify", "builtin:wave", "--cell", "0.01", "-o", "c"],
+        &["wave", "--cell", "expected a larger cell"],
+    );
+    line_ngc(&dir);
+    refused(
+        &dir,
+        &verify_cmd(
+            &part,
+            "line.ngc",
+            "ball:d=4",
+            &["--cell", "0.001", "--max-memory", "1"],
+        ),
+        &["plate.toml", "--cell"],
+    );
+}
