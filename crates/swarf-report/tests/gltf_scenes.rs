@@ -3,8 +3,10 @@
 //! the stated decimation error against a brute-force one, the cutter at a tilted
 //! pose, and byte-identical repeats.
 
+mod common;
+
 use swarf_geom::{Part, Patch, Point3, Vec3};
-use swarf_nc::read::{Motion, MotionKind, Program};
+use swarf_nc::read::{MotionKind, Program};
 use swarf_report::gltf::{StockMeshOptions, cutter_glb, part_glb, stock_glb, toolpath_glb};
 use swarf_report::picture::{deviation_colour, limits};
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};
@@ -28,17 +30,7 @@ fn program() -> Program {
             points.push(([x, y, z(x.clamp(0.0, 40.0), y) + dz], MotionKind::Linear));
         }
         points.push(([40.0, y, 10.0], MotionKind::Rapid));
-        for (to, kind) in points {
-            let line = program.motions.len() + 1;
-            program.motions.push(Motion {
-                kind,
-                start: Pose::vertical(Point3::from(at)),
-                end: Pose::vertical(Point3::from(to)),
-                feed: 300.0,
-                line,
-            });
-            at = to;
-        }
+        common::chain(&mut program, &mut at, points);
     }
     program
 }

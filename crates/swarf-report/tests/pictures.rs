@@ -3,13 +3,15 @@
 //! Text that ran off the canvas would leave ink in its outer band; the layout's own
 //! tests (swarf_report::page) check that no two labels overlap.
 
+mod common;
+
 use std::io::Cursor;
 use swarf_geom::{Part, Patch, Point3};
-use swarf_nc::read::{Motion, MotionKind, Program};
+use swarf_nc::read::{MotionKind, Program};
 use swarf_report::picture::{deviation_png, toolpath_png};
 use swarf_sim::report::{ReportContext, text_summary};
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};
-use swarf_tool::{Cutter, Pose};
+use swarf_tool::Cutter;
 
 /// Width of the canvas band that must stay white, px.
 const BAND: usize = 4;
@@ -29,17 +31,7 @@ fn program() -> Program {
             points.push(([-4.0 + 2.0 * s as f64, y, z], MotionKind::Linear));
         }
         points.push(([40.0, y, 5.0], MotionKind::Rapid));
-        for (to, kind) in points {
-            let line = program.motions.len() + 1;
-            program.motions.push(Motion {
-                kind,
-                start: Pose::vertical(Point3::from(at)),
-                end: Pose::vertical(Point3::from(to)),
-                feed: 300.0,
-                line,
-            });
-            at = to;
-        }
+        common::chain(&mut program, &mut at, points);
     }
     program
 }
