@@ -10,7 +10,6 @@ use std::io::{Read, Write};
 use std::net::{TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
-use swarf_app::verify::SimSettings;
 use swarf_app::view::{VIEWER_BUILD, ViewRequest, ViewSource, view_request, viewer_dist};
 use swarf_report::gltf::StockMeshOptions;
 
@@ -32,24 +31,9 @@ pub struct Args {
     /// Machine file or builtin:NAME for five-axis G-code.
     #[arg(long)]
     machine: Option<String>,
-    /// Stock: box, box:TOP, offset:ALLOWANCE or a mesh file.
-    #[arg(long, default_value = "offset:0.5")]
-    stock: String,
-    /// Dexel cell size, mm (default: 5 x the tolerance; 0.5 for five-axis jobs).
-    #[arg(long)]
-    cell: Option<f64>,
-    /// Gouge / excess tolerance, mm.
-    #[arg(long)]
-    tol: Option<f64>,
-    /// Scallop allowance, mm (default: as planned).
-    #[arg(long)]
-    scallop: Option<f64>,
-    /// Deviation along the design normals (normal) or along z (vertical).
-    #[arg(long, value_parser = ["vertical", "normal"])]
-    deviation: Option<String>,
-    /// Memory limit for the grid, MiB.
-    #[arg(long, default_value_t = 4096)]
-    max_memory: u64,
+    /// The simulation's settings, as `swarf verify` takes them.
+    #[command(flatten)]
+    sim: super::verify::SimArgs,
     /// Most vertices of the stock mesh (decimated above it; its height error is stated).
     #[arg(long, default_value_t = 250_000)]
     max_vertices: usize,
@@ -80,15 +64,10 @@ pub fn run(args: &Args) -> Result<()> {
             args.max_vertices
         );
     }
-    let sim = SimSettings {
-        stock: args.stock.clone(),
-        cell: args.cell,
-        tol: args.tol,
-        scallop: args.scallop,
-        max_memory: args.max_memory,
-        deviation: args.deviation.clone(),
-        ..SimSettings::default()
-    };
+    if args.sim.partial {
+        bail!("--partial: swarf view shows programs that run to their end");
+    }
+    let sim = args.sim.settings();
     let source = match (&args.job, &args.part, &args.program) {
         (Some(job), _, _) => ViewSource::Job(job),
         (None, Some(part), Some(program)) => ViewSource::Program {
