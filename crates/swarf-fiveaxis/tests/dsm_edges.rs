@@ -174,3 +174,31 @@ fn the_spins_mirror_each_other_and_touch_both_faces() {
         }
     }
 }
+
+#[test]
+fn a_corner_too_small_for_the_sampling_is_refused_with_one_that_fits() {
+    let part = swarf_io::builtin_part("edge-concave").unwrap();
+    let small = Cutter::bull(12.0, 0.5, Some(30.0)).unwrap();
+    let e = Dsm::new(&part, [0, 1], &small, Vec3::x())
+        .unwrap_err()
+        .to_string();
+    let fits: f64 = e
+        .split("at least ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("no radius in: {e}"));
+    assert!(fits > 0.5 && fits < 6.0, "{e}");
+    // The radius the message names is accepted; a tenth less is not (the sample
+    // counts round up per side, so the count is not strictly monotone in r).
+    let at = |r: f64| {
+        Dsm::new(
+            &part,
+            [0, 1],
+            &Cutter::bull(12.0, r, Some(30.0)).unwrap(),
+            Vec3::x(),
+        )
+    };
+    assert!(at(fits).is_ok(), "{fits} refused");
+    assert!(at(0.9 * fits).is_err(), "{fits} is far from the least");
+}

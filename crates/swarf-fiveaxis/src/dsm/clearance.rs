@@ -103,11 +103,6 @@ impl Face {
             .min(self.samples.len() as f64)
     }
 
-    /// Samples on the grid, `(n0 + 1) (n1 + 1)`.
-    pub fn sample_count(&self) -> usize {
-        self.samples.len()
-    }
-
     /// The patch.
     pub fn patch(&self) -> &Patch {
         &self.patch

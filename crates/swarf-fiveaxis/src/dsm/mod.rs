@@ -164,6 +164,16 @@ impl Dsm {
     }
 }
 
+/// The two faces sampled for a corner radius `corner` (mm), and the most samples a
+/// clearance query of radius `bound` (mm) measures on either.
+fn faces_at(patches: [&Patch; 2], corner: f64, bound: f64) -> ([Face; 2], f64) {
+    let faces = patches.map(|p| Face::new(p, clearance::SAMPLE_SPACING * corner));
+    let per_query = faces[0]
+        .samples_within(bound)
+        .max(faces[1].samples_within(bound));
+    (faces, per_query)
+}
+
 /// The two faces sampled for the clearance of `cutter`, at a spacing set by its
 /// insert radius (a bull's corner, a ball's radius).
 ///
@@ -181,15 +191,20 @@ fn sampled_faces(patches: [&Patch; 2], cutter: &Cutter) -> Result<[Face; 2], Fiv
             ));
         }
     };
-    let spacing = clearance::SAMPLE_SPACING * corner;
-    let faces = patches.map(|p| Face::new(p, spacing));
     let bound = clearance::query_radius(&cutter.profile(), cutter.radius());
-    let per_query = faces[0]
-        .samples_within(bound)
-        .max(faces[1].samples_within(bound));
+    let (faces, per_query) = faces_at(patches, corner, bound);
     if per_query > MAX_QUERY_SAMPLES {
-        let fits =
+        // The least corner that fits, to the thousandth of a mm above: from the
+        // sphere's section at the nominal spacing, then up by 1% until the faces'
+        // own sampling fits (a few tries on this error path).
+        let mut fits =
             bound / clearance::SAMPLE_SPACING * (std::f64::consts::PI / MAX_QUERY_SAMPLES).sqrt();
+        for _ in 0..100 {
+            if faces_at(patches, fits, bound).1 <= MAX_QUERY_SAMPLES {
+                break;
+            }
+            fits *= 1.01;
+        }
         return Err(FiveAxisError::parameter(
             "tool",
             format!(
