@@ -63,11 +63,13 @@ pub fn classify(m: &Motion) -> Class {
     }
 }
 
-/// Whether any pose of `motions` has a tool axis other than +z.
+/// Whether any pose of `motions` has a tool axis other than +z (by the kernel's
+/// parallel tolerance, as the simulator decides which motions are upright).
 pub fn is_five_axis(motions: &[Motion]) -> bool {
+    let tilted = |a: &swarf_geom::Vec3| a.z < 1.0 - swarf_geom::tol::PARALLEL_COS;
     motions
         .iter()
-        .any(|m| (m.end.axis.z - 1.0).abs() > 1e-9 || (m.start.axis.z - 1.0).abs() > 1e-9)
+        .any(|m| tilted(&m.start.axis) || tilted(&m.end.axis))
 }
 
 /// The line segments (pairs of points, f32 mm) of the motions of `class`.
