@@ -19,6 +19,18 @@ pub enum Model {
 }
 
 impl Model {
+    /// The design's triangles: a mesh as it is, patches tessellated within the
+    /// chordal tolerance `chord` (mm).
+    ///
+    /// # Errors
+    /// A tessellation that fails.
+    pub fn triangles(&self, chord: f64) -> Result<std::borrow::Cow<'_, TriMesh>> {
+        Ok(match self {
+            Model::Mesh { mesh, .. } => std::borrow::Cow::Borrowed(mesh),
+            Model::Patches(part) => std::borrow::Cow::Owned(part.tessellate(chord)?),
+        })
+    }
+
     /// Refuses a design that covers no area seen from above (a vertical plane, a
     /// line): the commands that lay a grid over the part's XY box (verify, rest,
     /// classify) have nothing to measure. `name` is the part as the user gave it.

@@ -119,14 +119,6 @@ pub fn check_view_inputs(model: &Model, program: &Program, cutter: &Cutter) -> R
     Ok(())
 }
 
-/// The design's triangles: a mesh as it is, patches tessellated within `tol`.
-fn design_mesh(model: &Model, tol: f64) -> Result<std::borrow::Cow<'_, swarf_geom::TriMesh>> {
-    Ok(match model {
-        Model::Patches(p) => std::borrow::Cow::Owned(p.tessellate(tol)?),
-        Model::Mesh { mesh, .. } => std::borrow::Cow::Borrowed(mesh),
-    })
-}
-
 /// The motions for the page: their source lines, classes and end poses.
 fn motions_json(program: &Program) -> Value {
     let r = |x: f64| (x * 1e5).round() / 1e5;
@@ -167,7 +159,7 @@ pub fn write_view(
         ..
     } = *input;
     let file = |name: &str| Path::new(dir).join(name);
-    let mesh = design_mesh(model, input.tol)?;
+    let mesh = model.triangles(input.tol)?;
     out.write(file("part.glb"), &gltf::part_glb(&mesh)?)?;
     out.write(
         file("toolpath.glb"),

@@ -80,10 +80,7 @@ pub struct CleanupStage {
 /// # Errors
 /// A tessellation that fails.
 pub fn part_mesh(model: &Model, tol: f64) -> Result<Cow<'_, TriMesh>> {
-    Ok(match model {
-        Model::Mesh { mesh, .. } => Cow::Borrowed(mesh),
-        Model::Patches(part) => Cow::Owned(part.tessellate(0.1 * tol)?),
-    })
+    model.triangles(0.1 * tol)
 }
 
 /// Reads the parent job `rel` (relative to `job_dir`): as staged in `staged` when the
