@@ -55,18 +55,6 @@ fn cutter_spec(obj: &Bound<'_, PyAny>) -> PyResult<String> {
     Ok(cutter_arg("tool", obj)?.to_string())
 }
 
-/// The settings of a verification, as `swarf verify`'s flags.
-struct Flags {
-    stock: String,
-    cell: Option<f64>,
-    tol: Option<f64>,
-    scallop: Option<f64>,
-    rapid: Option<f64>,
-    sample_tol: Option<f64>,
-    max_memory: u64,
-    deviation: Option<String>,
-}
-
 /// Simulates NC programs on a dexel stock and measures the result against the
 /// design, as `swarf verify --part PART --program PROGRAM --tool TOOL` does.
 ///
@@ -120,7 +108,7 @@ pub fn verify(
     })?;
     let programs = paths_arg("program", program)?;
     let tools = tools_arg(tool)?;
-    let flags = Flags {
+    let sim = SimSettings {
         stock,
         cell,
         tol,
@@ -130,7 +118,7 @@ pub fn verify(
         max_memory,
         deviation,
     };
-    if let Some(d) = flags.deviation.as_deref()
+    if let Some(d) = sim.deviation.as_deref()
         && d != "normal"
         && d != "vertical"
     {
@@ -152,16 +140,6 @@ pub fn verify(
             &sub_path,
         )
         .map_err(swarf_err)?;
-        let sim = SimSettings {
-            stock: flags.stock,
-            cell: flags.cell,
-            tol: flags.tol,
-            scallop: flags.scallop,
-            rapid: flags.rapid,
-            sample_tol: flags.sample_tol,
-            max_memory: flags.max_memory,
-            deviation: flags.deviation,
-        };
         let scratch = PathBuf::new();
         let req = VerifyRequest {
             part: &part,
