@@ -255,10 +255,7 @@ mod tests {
         patches[17] = line();
         let e = summarise_patches(&patches).unwrap_err().to_string();
         assert!(e.starts_with("patch 17: no point of the 101 x 101"), "{e}");
-        let part = Part {
-            name: "p".into(),
-            patches: patches[..17].to_vec(),
-        };
+        let part = Part::new("p", patches[..17].to_vec());
         let text = inspect(&Model::Patches(part), false).unwrap();
         let order: Vec<usize> = text
             .lines()

@@ -141,6 +141,7 @@ mod tests {
         let p = |x: f64, y: f64| Point3::new(x, y, 20.0);
         let part = Part {
             name: "plane".into(),
+            faces: Vec::new(),
             patches: vec![
                 swarf_geom::Patch::bezier(
                     [1, 1],

@@ -123,10 +123,7 @@ pub(crate) mod tests {
             [-4.9, -103.2, 49.8],
         ];
         let points = pts.iter().map(|p| Point3::new(p[0], p[1], p[2])).collect();
-        Part {
-            name: "die".into(),
-            patches: vec![Patch::bezier([2, 2], points).unwrap()],
-        }
+        Part::new("die", vec![Patch::bezier([2, 2], points).unwrap()])
     }
 
     /// Eq. 6.1 in closed form.
@@ -172,10 +169,7 @@ pub(crate) mod tests {
             )
             .unwrap()
         };
-        let part = Part {
-            name: "two".into(),
-            patches: vec![flat(1.0), flat(2.0)],
-        };
+        let part = Part::new("two", vec![flat(1.0), flat(2.0)]);
         assert_eq!(
             DesignSurface::new(&part).unwrap().height(3.0, 4.0),
             Some((2.0, 1))

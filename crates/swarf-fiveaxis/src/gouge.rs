@@ -322,6 +322,7 @@ mod tests {
         let p = |x: f64, y: f64| Point3::new(x, y, z);
         Part {
             name: "plane".into(),
+            faces: Vec::new(),
             patches: vec![
                 Patch::bezier(
                     [1, 1],

@@ -262,10 +262,7 @@ mod tests {
     }
 
     fn part(patch: Patch) -> Part {
-        Part {
-            name: "test".into(),
-            patches: vec![patch],
-        }
+        Part::new("test", vec![patch])
     }
 
     /// Contacts along u at `v`, normal toward the trough's axis (`inside`) or away.

@@ -11,6 +11,7 @@
 //!
 //! Units: millimetres and radians throughout.
 
+pub mod curve;
 pub mod domain;
 pub mod error;
 pub mod height;
@@ -20,16 +21,19 @@ pub mod part;
 pub mod patch;
 pub mod solve;
 pub mod tol;
+pub mod trim;
 pub mod units;
 
+pub use curve::NurbsCurve;
 pub use error::GeomError;
 pub use math::{Aabb, Plane, Point3, Polyline, Vec3};
 pub use mesh::TriMesh;
 pub use mesh::{MeshBuilder, MeshReport, XyIndex};
-pub use part::Part;
+pub use part::{Face, Part};
 pub use patch::Patch;
 pub use patch::{
     Curvature, CurvatureRange, FundamentalForms, Projection, SectionCurve, SurfaceBox,
     SurfaceDerivs, SurfaceSample,
 };
 pub use solve::SolveStatus;
+pub use trim::Trim;

@@ -115,7 +115,7 @@ pub fn parse_part(text: &str, source: &str) -> Result<Part, IoError> {
         .enumerate()
         .map(|(k, t)| doc.patch(k, t, scale))
         .collect::<Result<_, _>>()?;
-    Ok(Part { name, patches })
+    Ok(Part::new(name, patches))
 }
 
 /// The source text and file name, for errors.

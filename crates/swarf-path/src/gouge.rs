@@ -191,10 +191,7 @@ mod tests {
             )
             .unwrap()
         };
-        Part {
-            name: "valley".into(),
-            patches: vec![plane(-10.0, 0.0), plane(0.0, 10.0)],
-        }
+        Part::new("valley", vec![plane(-10.0, 0.0), plane(0.0, 10.0)])
     }
 
     #[test]

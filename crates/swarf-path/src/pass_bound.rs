@@ -110,7 +110,7 @@ pub struct PassBound {
 /// // A 40 x 20 mm plane, ball d = 8, h = 0.15: 20 mm / flat step + 1/2 passes.
 /// let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
 /// let plane = Patch::bezier([1, 1], vec![p(0.0, 0.0), p(0.0, 20.0), p(40.0, 0.0), p(40.0, 20.0)]).unwrap();
-/// let part = Part { name: "plane".into(), patches: vec![plane] };
+/// let part = Part::new("plane", vec![plane]);
 /// let side = SideStep::new(&"ball:d=8".parse().unwrap(), 0.15).unwrap();
 /// let b = pass_bound(&part, &side, Feed::Param(ParamDir::U));
 /// let want = 20.0 / ball_step(4.0, 0.0, 0.15).unwrap() + 0.5;
@@ -285,10 +285,7 @@ mod tests {
         }
         let weights = vec![1.0, w, 1.0, 1.0, w, 1.0];
         let patch = Patch::new([1, 2], pts, [None, None], Some(weights)).unwrap();
-        let part = Part {
-            name: "cone".into(),
-            patches: vec![patch],
-        };
+        let part = Part::new("cone", vec![patch]);
         let b = &pass_bound(&part, &side("ball:d=8", h), Feed::Param(ParamDir::U))[0];
         let cos_beta = len / len.hypot(r1 - r0);
         let want = r1 * 60f64.to_radians() / ball_step(4.0, -cos_beta / r1, h).unwrap() + 0.5;
@@ -315,10 +312,7 @@ mod tests {
             pts.push(Point3::new(x, 0.0, 20.0 + c * y_half * y_half));
             pts.push(Point3::new(x, y_half, 20.0 - c * y_half * y_half));
         }
-        let part = Part {
-            name: "ridge".into(),
-            patches: vec![Patch::bezier([1, 2], pts).unwrap()],
-        };
+        let part = Part::new("ridge", vec![Patch::bezier([1, 2], pts).unwrap()]);
         let s = side("bull:d=10,r=2", 0.15);
         let b = &pass_bound(&part, &s, Feed::Param(ParamDir::U))[0];
         let n = 200_000;

@@ -110,10 +110,7 @@ mod tests {
             ],
         )
         .unwrap();
-        let part = Part {
-            name: "flat".into(),
-            patches: vec![flat.clone(), flat],
-        };
+        let part = Part::new("flat", vec![flat.clone(), flat]);
         let m = |face, u, v, value| Marked {
             face,
             uv: [u, v],

@@ -16,10 +16,7 @@ fn fixed_stepover_on_a_plane() {
         vec![p(0.0, 0.0), p(0.0, 10.0), p(20.0, 0.0), p(20.0, 10.0)],
     )
     .unwrap();
-    let part = Part {
-        name: "plane".into(),
-        patches: vec![plane],
-    };
+    let part = Part::new("plane", vec![plane]);
     let with = |extra: &str| {
         Job::parse(
             &format!(

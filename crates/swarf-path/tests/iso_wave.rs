@@ -167,10 +167,7 @@ fn the_scallop_oracle_measures_the_closed_form() {
     let c = crests(&plan, &flat, r, 1.0, 64, 10.0);
     let want = r - (r * r - s * s / 4.0).sqrt();
     assert!((c.max() - want).abs() < 1e-3 * want && (c.min() - want).abs() < 1e-3 * want);
-    let part = Part {
-        name: "flat".into(),
-        patches: vec![flat],
-    };
+    let part = Part::new("flat", vec![flat]);
     // Outside the two passes nothing is cut.
     assert_eq!(max_residual(&plan, &part, r, 1.0).0, f64::INFINITY);
 

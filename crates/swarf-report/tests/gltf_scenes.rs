@@ -50,10 +50,7 @@ fn part() -> Part {
             net.push(Point3::new(20.0 * i as f64, 10.0 * j as f64, z));
         }
     }
-    Part {
-        name: "dome".into(),
-        patches: vec![Patch::bezier([2, 2], net).unwrap()],
-    }
+    Part::new("dome", vec![Patch::bezier([2, 2], net).unwrap()])
 }
 
 fn verification() -> (Verification, Program, Cutter) {

@@ -39,10 +39,7 @@ fn program() -> Program {
 fn verification() -> (Verification, Program) {
     let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
     let corners = vec![p(0.0, 0.0), p(0.0, 20.0), p(40.0, 0.0), p(40.0, 20.0)];
-    let part = Part {
-        name: "plane".into(),
-        patches: vec![Patch::bezier([1, 1], corners).unwrap()],
-    };
+    let part = Part::new("plane", vec![Patch::bezier([1, 1], corners).unwrap()]);
     let cutter: Cutter = "ball:d=6".parse().unwrap();
     let opts = VerifyOptions {
         cell: Some(0.125),

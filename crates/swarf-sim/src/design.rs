@@ -205,10 +205,7 @@ mod tests {
     #[test]
     fn part_heights_are_exact_at_cell_centres() {
         let (patch, f) = graph_patch();
-        let part = Part {
-            name: "graph".into(),
-            patches: vec![patch],
-        };
+        let part = Part::new("graph", vec![patch]);
         let surf = DesignSurface::new(Design::Part(&part)).unwrap();
         let b = surf.bounds();
         assert!((b.max.x - 20.0).abs() < 1e-12 && (b.max.y - 10.0).abs() < 1e-12);

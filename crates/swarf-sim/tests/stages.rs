@@ -31,6 +31,7 @@ fn plane() -> Part {
     let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
     Part {
         name: "plane".into(),
+        faces: Vec::new(),
         patches: vec![
             Patch::bezier(
                 [1, 1],

@@ -26,10 +26,7 @@ pub fn cylinder_patch(c: f64) -> Patch {
 
 /// [`cylinder_patch`] as a one-patch part.
 pub fn cylinder(c: f64) -> Part {
-    Part {
-        name: "cylinder".into(),
-        patches: vec![cylinder_patch(c)],
-    }
+    Part::new("cylinder", vec![cylinder_patch(c)])
 }
 
 /// The built-in die (thesis 000 eq. 6.1).
@@ -61,8 +58,5 @@ pub fn groove() -> Part {
         Some(vec![1.0, c, 1.0, 1.0, c, 1.0]),
     )
     .expect("the groove patch is valid");
-    Part {
-        name: "groove".into(),
-        patches: vec![patch],
-    }
+    Part::new("groove", vec![patch])
 }

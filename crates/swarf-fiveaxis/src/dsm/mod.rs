@@ -119,10 +119,10 @@ impl Dsm {
             ));
         };
         let heights = |k: usize| {
-            let one = Part {
-                name: format!("{} face {}", part.name, faces[k]),
-                patches: vec![part.patches[faces[k]].clone()],
-            };
+            let one = Part::new(
+                format!("{} face {}", part.name, faces[k]),
+                vec![part.patches[faces[k]].clone()],
+            );
             PartHeights::new(&one).map_err(|e| FiveAxisError::parameter("part", e.to_string()))
         };
         Ok(Dsm {

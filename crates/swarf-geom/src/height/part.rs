@@ -54,7 +54,7 @@ impl PartHeights {
     /// let p = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
     /// let tilted = Patch::bezier([1, 1], vec![p(0.0, 0.0, 0.0), p(0.0, 10.0, 0.0),
     ///     p(10.0, 0.0, 5.0), p(10.0, 10.0, 5.0)]).unwrap();
-    /// let part = Part { name: "ramp".into(), patches: vec![tilted] };
+    /// let part = Part::new("ramp", vec![tilted]);
     /// let h = PartHeights::new(&part).unwrap();
     /// assert!((h.at(4.0, 3.0).unwrap().z - 2.0).abs() < 1e-9);
     /// assert!(h.at(11.0, 3.0).is_none());

@@ -9,10 +9,7 @@ use crate::part::Part;
 use crate::patch::Patch;
 
 fn part(patches: Vec<Patch>) -> Part {
-    Part {
-        name: "test".into(),
-        patches,
-    }
+    Part::new("test", patches)
 }
 
 fn bern3(t: f64) -> [f64; 4] {
