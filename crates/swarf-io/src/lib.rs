@@ -13,6 +13,7 @@
 
 pub mod atomic;
 pub mod builtin;
+pub mod cad;
 pub mod csv;
 pub mod error;
 pub mod input;
@@ -26,6 +27,7 @@ pub mod stl;
 
 pub use atomic::{write_atomic, write_atomic_with};
 pub use builtin::{builtin_part, builtin_parts, project_parts};
+pub use cad::{CadOptions, CadPart, Unsupported};
 pub use csv::{parse_xy_points, read_xy_points};
 pub use error::{At, IoError};
 pub use input::{checked_open, max_input_bytes, read_input, read_input_text, track_inputs};

@@ -1,0 +1,49 @@
+//! What the CAD readers (STEP, IGES) share: the
+//! options a job or the command line gives them and what they return beside the part.
+
+use swarf_geom::Part;
+
+/// What to do with an entity the reader does not support.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Unsupported {
+    /// Skip the face that uses it and say so in [`CadPart::warnings`].
+    #[default]
+    Warn,
+    /// Refuse the file, naming the entity and its id.
+    Refuse,
+}
+
+/// Options of the CAD readers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CadOptions {
+    /// Unsupported entities: skip with a warning, or refuse.
+    pub unsupported: Unsupported,
+    /// Chordal tolerance for sampling trimming edges into loops, mm, in
+    /// [`MIN_TRIM_CHORD`, `MAX_TRIM_CHORD`].
+    pub trim_chord: f64,
+}
+
+/// Smallest trimming chord accepted, mm.
+pub const MIN_TRIM_CHORD: f64 = 1e-7;
+/// Largest trimming chord accepted, mm.
+pub const MAX_TRIM_CHORD: f64 = 1.0;
+
+impl Default for CadOptions {
+    fn default() -> Self {
+        CadOptions {
+            unsupported: Unsupported::Warn,
+            trim_chord: 1e-4,
+        }
+    }
+}
+
+/// A part read from a CAD file.
+#[derive(Debug, Clone)]
+pub struct CadPart {
+    /// The faces, in mm whatever the file's unit; `Part::faces` holds names and trims.
+    pub part: Part,
+    /// One line per skipped entity or face: `#id ENTITY_NAME: why`.
+    pub warnings: Vec<String>,
+    /// The file's length unit as written (`mm`, `inch`, `m`...), for reports.
+    pub unit: String,
+}
