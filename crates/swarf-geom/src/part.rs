@@ -72,8 +72,9 @@ impl Part {
             .fold(Aabb::empty(), |b, p| b.union(&p.control_box()))
     }
 
-    /// All patches tessellated within `tol` ([`Patch::tessellate`]) in one mesh; each
-    /// patch keeps its own vertices (patches of a part need not share edges).
+    /// All faces tessellated within `tol` in one mesh ([`Patch::tessellate`], or
+    /// [`Patch::tessellate_trimmed`] for a trimmed face); each face keeps its own
+    /// vertices (faces of a part need not share edges).
     ///
     /// # Units
     /// `tol` in mm.
@@ -84,7 +85,11 @@ impl Part {
         GeomError::check_positive("tol", tol)?;
         let mut out = TriMesh::default();
         for (k, patch) in self.patches.iter().enumerate() {
-            let m = patch.tessellate(tol).map_err(|e| match e {
+            let m = match self.trim(k) {
+                Some(trim) => patch.tessellate_trimmed(trim, tol),
+                None => patch.tessellate(tol),
+            };
+            let m = m.map_err(|e| match e {
                 GeomError::InvalidParameter {
                     name,
                     value,
@@ -93,6 +98,10 @@ impl Part {
                     name: format!("{}: patch[{k}]: {name}", self.name),
                     value,
                     expected,
+                },
+                GeomError::InvalidPatch { field, message } => GeomError::InvalidPatch {
+                    field: format!("{}: patch[{k}]: {field}", self.name),
+                    message,
                 },
                 other => other,
             })?;

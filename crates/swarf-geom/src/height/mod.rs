@@ -33,7 +33,9 @@
 //! kept (two sheets cross at a common edge; a third rarely reaches the top). Where a
 //! patch folds over itself in XY, the highest sampled sheet gives the start, so the
 //! root found is the one nearest the top. The answer is the highest converged root:
-//! the upper envelope. Newton's method for the ray-surface problem: Kajiya, "Ray
+//! the upper envelope. A trimmed face answers only where the root's `(u, v)` lies
+//! inside its loops, and its sample cells wholly outside them are dropped so that they
+//! take no start slot. Newton's method for the ray-surface problem: Kajiya, "Ray
 //! tracing parametric patches" (1982), §3; the clamped form is projected Newton
 //! (Bertsekas 1982) restricted to the domain box.
 //!

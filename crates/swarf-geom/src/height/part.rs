@@ -8,6 +8,7 @@ use crate::error::GeomError;
 use crate::math::{Aabb, Vec3};
 use crate::part::Part;
 use crate::patch::PowerPatch;
+use crate::trim::Trim;
 use rayon::prelude::*;
 
 /// A part prepared for height queries: its patches in power form and their sample
@@ -16,6 +17,8 @@ use rayon::prelude::*;
 pub struct PartHeights {
     samples: Samples,
     power: Vec<PowerPatch>,
+    /// Per patch, its trimming loops (`None`: the whole patch).
+    trims: Vec<Option<Trim>>,
 }
 
 impl PartHeights {
@@ -34,6 +37,9 @@ impl PartHeights {
         Ok(PartHeights {
             samples: Samples::new(part),
             power,
+            trims: (0..part.patches.len())
+                .map(|k| part.trim(k).cloned())
+                .collect(),
         })
     }
 
@@ -116,12 +122,20 @@ impl PartHeights {
         }
     }
 
-    /// Newton from each start; the highest answer.
+    /// Whether `uv` is on face `patch` (inside its trimming loops, if any).
+    fn inside(&self, patch: usize, uv: [f64; 2]) -> bool {
+        self.trims[patch]
+            .as_ref()
+            .is_none_or(|t| t.contains(uv[0], uv[1]))
+    }
+
+    /// Newton from each start; the highest answer on a face.
     fn solve(&self, x: f64, y: f64, pair: &[Guess; 2]) -> Option<Height> {
         let mut top: Option<Height> = None;
         for g in pair.iter().filter(|g| g.patch != u32::MAX) {
             let patch = g.patch as usize;
             let h = match vertical_ray(&self.power[patch], x, y, g.uv) {
+                Ray::Hit { uv, .. } if !self.inside(patch, uv) => continue,
                 Ray::Hit { z, normal, uv } => Height {
                     z,
                     normal,
@@ -130,6 +144,7 @@ impl PartHeights {
                     status: HeightStatus::Converged,
                 },
                 Ray::Off => continue,
+                Ray::Singular if !self.inside(patch, g.uv) => continue,
                 Ray::Singular => Height {
                     z: g.z,
                     normal: Vec3::z(),

@@ -7,6 +7,7 @@
 use crate::mesh::{TriMesh, XyIndex};
 use crate::part::Part;
 use crate::patch::Patch;
+use crate::trim::Trim;
 
 /// Target control-net length per sample of a patch, mm.
 pub const SAMPLE_SPACING: f64 = 1.0;
@@ -61,8 +62,12 @@ impl Samples {
                 }
             }
             let id = |a: usize, b: usize| base + (a * (nv + 1) + b) as u32;
+            let on_face = part.trim(pi).map(|t| face_cells(t, patch.domain(), nu, nv));
             for a in 0..nu {
                 for b in 0..nv {
+                    if on_face.as_ref().is_some_and(|c| !c[a * nv + b]) {
+                        continue;
+                    }
                     triangles.push([id(a, b), id(a + 1, b), id(a + 1, b + 1)]);
                     triangles.push([id(a, b), id(a + 1, b + 1), id(a, b + 1)]);
                     patch_of.extend([pi as u32; 2]);
@@ -122,6 +127,47 @@ pub(super) fn keep_top_two(pair: &mut [Guess; 2], g: Guess) {
     } else if g.z > pair[1].z {
         pair[1] = g;
     }
+}
+
+/// Per sample cell `a * nv + b` of a `nu x nv` grid over `domain`, whether any of it
+/// may be on the face: a corner inside the loops, or a loop passing through (each loop
+/// edge is walked in steps shorter than a cell).
+fn face_cells(trim: &Trim, domain: [[f64; 2]; 2], nu: usize, nv: usize) -> Vec<bool> {
+    let [[u0, u1], [v0, v1]] = domain;
+    let (du, dv) = ((u1 - u0) / nu as f64, (v1 - v0) / nv as f64);
+    let mut keep = vec![false; nu * nv];
+    let cell = |u: f64, v: f64| {
+        let a = (((u - u0) / du).floor().max(0.0) as usize).min(nu - 1);
+        let b = (((v - v0) / dv).floor().max(0.0) as usize).min(nv - 1);
+        a * nv + b
+    };
+    for l in trim.loops() {
+        for k in 0..l.len() {
+            let (p, q) = (l[k], l[(k + 1) % l.len()]);
+            let steps = (((q[0] - p[0]) / du).abs() + ((q[1] - p[1]) / dv).abs()).ceil();
+            let steps = steps.clamp(1.0, (nu + nv) as f64 * 2.0) as usize;
+            for s in 0..=steps {
+                let t = s as f64 / steps as f64;
+                keep[cell(p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]))] = true;
+            }
+        }
+    }
+    for a in 0..=nu {
+        for b in 0..=nv {
+            let (u, v) = (u0 + du * a as f64, v0 + dv * b as f64);
+            if trim.contains(u, v) {
+                for (ca, cb) in [(a, b), (a.wrapping_sub(1), b), (a, b.wrapping_sub(1))]
+                    .into_iter()
+                    .chain([(a.wrapping_sub(1), b.wrapping_sub(1))])
+                {
+                    if ca < nu && cb < nv {
+                        keep[ca * nv + cb] = true;
+                    }
+                }
+            }
+        }
+    }
+    keep
 }
 
 /// Samples per direction: control-net length over [`SAMPLE_SPACING`], clamped.

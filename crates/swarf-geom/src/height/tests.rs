@@ -174,3 +174,48 @@ fn mesh_upper_and_lower_envelopes() {
     });
     assert_eq!(n, 55);
 }
+
+#[test]
+fn a_trimmed_plate_over_a_floor_shows_the_floor_through_its_hole() {
+    let flat = |z: f64| {
+        let p = |x: f64, y: f64| Point3::new(x, y, z);
+        Patch::bezier(
+            [1, 1],
+            vec![p(0.0, 0.0), p(0.0, 50.0), p(50.0, 0.0), p(50.0, 50.0)],
+        )
+        .unwrap()
+    };
+    let hole: Vec<[f64; 2]> = (0..200)
+        .map(|k| {
+            let t = std::f64::consts::TAU * k as f64 / 200.0;
+            [0.5 + 0.2 * t.cos(), 0.5 + 0.2 * t.sin()]
+        })
+        .collect();
+    let outer = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let mut part = part(vec![flat(10.0), flat(0.0)]);
+    part.faces = vec![crate::part::Face {
+        name: Some("plate".into()),
+        trim: Some(crate::trim::Trim::new(vec![outer, hole]).unwrap()),
+    }];
+    let h = PartHeights::new(&part).unwrap();
+    // On a 1 mm grid: over the hole (radius 10 mm about (25, 25), as a 200-gon whose
+    // edges stay within 10 (1 - cos(pi / 200)) of the circle) the floor, elsewhere the
+    // plate.
+    let mut seen = [0usize; 2];
+    // (The square's own edges are on the outer loop, either side; they are skipped.)
+    for i in 1..50 {
+        for j in 1..50 {
+            let (x, y) = (i as f64, j as f64);
+            let r = ((x - 25.0).powi(2) + (y - 25.0).powi(2)).sqrt();
+            if (r - 10.0).abs() < 0.01 {
+                continue;
+            }
+            let got = h.at(x, y).expect("a height over the part");
+            let want = if r < 10.0 { 0.0 } else { 10.0 };
+            assert_eq!(got.z, want, "at ({x}, {y})");
+            assert_eq!(got.patch, usize::from(r < 10.0));
+            seen[usize::from(r < 10.0)] += 1;
+        }
+    }
+    assert!(seen[0] > 2000 && seen[1] > 300, "{seen:?}");
+}

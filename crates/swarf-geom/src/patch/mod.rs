@@ -5,6 +5,7 @@
 //! (absent = polynomial). Control points are row-major, index `i * n_v + j`, `i` along u.
 //! The algorithms live in one file each beside this one.
 
+mod area;
 pub mod basis;
 mod curvature_range;
 mod diffgeo;
@@ -20,6 +21,7 @@ mod section_trace;
 mod stitch;
 mod surface_box;
 mod tessellate;
+mod tessellate_trimmed;
 
 pub use basis::MAX_DEGREE;
 pub use curvature_range::CurvatureRange;

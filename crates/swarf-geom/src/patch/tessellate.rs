@@ -76,7 +76,7 @@ impl Patch {
     }
 
     /// The initial grid's cells, split until each one passes [`Patch::split_dirs`].
-    fn refine(&self, spans: &Spans, tol: f64) -> Result<Vec<Cell>, GeomError> {
+    pub(super) fn refine(&self, spans: &Spans, tol: f64) -> Result<Vec<Cell>, GeomError> {
         let [ku, kv] = self.initial_grid(spans, tol)?;
         let mut stack: Vec<Cell> = Vec::new();
         for u in ku.windows(2) {
