@@ -23,7 +23,7 @@
 
 use crate::error::{Context, Result};
 use crate::job::Job;
-use crate::model::load_model;
+use crate::model::load_model_with;
 use crate::outputs::Outputs;
 use crate::plan_job::{part_arg, plan_model};
 use crate::report::Reporter;
@@ -229,7 +229,7 @@ fn check_one(
     job.output.units = swarf_nc::Units::Mm;
     let part = part_arg(&job, job_dir);
     let start = Instant::now();
-    let model = load_model(&part)?;
+    let model = load_model_with(&part, &job.load_options())?;
     let summary = plan_model(&job, &model, job_dir, out, reporter)?;
     let planning_s = start.elapsed().as_secs_f64();
     let program = out.read_program(&program_file)?;

@@ -255,7 +255,7 @@ fn tessellate_parts(out: &mut Outputs, text: &mut dyn Write) -> Result<()> {
     for (name, _) in swarf_io::builtin_parts() {
         let part = swarf_io::builtin_part(name)
             .with_context(|| "built-in part does not load".to_string())?;
-        let summaries = summarise_patches(&part.patches)?;
+        let summaries = summarise_patches(&part)?;
         write!(text, "{}", patch_text(&part.name, &summaries))?;
         let mesh = part.tessellate(DEMO_TOL)?;
         let path = out.path(format!("{name}.stl"));

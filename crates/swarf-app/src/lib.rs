@@ -29,7 +29,7 @@ pub mod view;
 
 pub use error::{AppError, Result};
 pub use job::Job;
-pub use model::{Model, load_model, load_part};
+pub use model::{FaceRef, LoadOptions, Model, load_model, load_model_with, load_part};
 pub use outputs::Outputs;
 pub use plan::{PlanInput, plan};
 pub use plan_job::{Planned, plan_job, plan_model_toolpath};

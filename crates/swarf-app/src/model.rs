@@ -2,8 +2,64 @@
 //! name.
 
 use crate::error::{Result, bail};
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 use swarf_geom::{Part, TriMesh};
+use swarf_io::CadOptions;
+
+/// A face as a job names it: its index (as `swarf inspect` lists it) or its name in
+/// the CAD file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum FaceRef {
+    /// The face's index, from 0.
+    Index(usize),
+    /// The face's name.
+    Name(String),
+}
+
+/// How a part is read: the CAD readers' options and the faces to keep.
+#[derive(Debug, Clone, Default)]
+pub struct LoadOptions {
+    /// STEP and IGES reading.
+    pub cad: CadOptions,
+    /// The faces to keep (all when `None`).
+    pub faces: Option<Vec<FaceRef>>,
+}
+
+/// Keeps the faces `refs` of `part`, in the order given; `arg` names the part.
+///
+/// # Errors
+/// A name no face has (the names listed), an index out of range or repeated.
+pub fn select_faces(part: &Part, refs: &[FaceRef], arg: &str) -> Result<Part> {
+    let mut keep = Vec::with_capacity(refs.len());
+    for r in refs {
+        keep.push(match r {
+            FaceRef::Index(k) => *k,
+            FaceRef::Name(n) => {
+                match (0..part.patches.len()).find(|&k| part.face_name(k) == Some(n)) {
+                    Some(k) => k,
+                    None => {
+                        let names: Vec<&str> = (0..part.patches.len())
+                            .filter_map(|k| part.face_name(k))
+                            .take(20)
+                            .collect();
+                        bail!(
+                            "faces: {arg} has no face named {n:?} (names: {})",
+                            if names.is_empty() {
+                                "none in the file".to_string()
+                            } else {
+                                names.join(", ")
+                            }
+                        )
+                    }
+                }
+            }
+        });
+    }
+    part.select(&keep)
+        .map_err(|e| crate::error::AppError::Message(format!("{arg}: {e}")))
+}
 
 /// A part as the user named it: parametric patches or a triangle mesh.
 pub enum Model {
@@ -75,6 +131,29 @@ pub fn builtin_names() -> Vec<&'static str> {
 /// # Errors
 /// An unknown built-in name; a file that cannot be read or parsed.
 pub fn load_model(arg: &str) -> Result<Model> {
+    load_model_with(arg, &LoadOptions::default())
+}
+
+/// [`load_model`] with reading options: a CAD file read with `opts.cad` (its
+/// warnings go to standard error), and only the faces `opts.faces` kept.
+///
+/// # Errors
+/// As [`load_model`]; a face selection on a mesh, or one [`select_faces`] refuses.
+pub fn load_model_with(arg: &str, opts: &LoadOptions) -> Result<Model> {
+    let model = read_model(arg, &opts.cad)?;
+    match (&opts.faces, model) {
+        (None, m) => Ok(m),
+        (Some(refs), Model::Patches(part)) => Ok(Model::Patches(select_faces(&part, refs, arg)?)),
+        (Some(_), Model::Mesh { .. }) => {
+            bail!(
+                "faces: {arg} is a mesh, which has no faces to select; expected a part file, STEP or IGES"
+            )
+        }
+    }
+}
+
+/// Reads `arg` as [`load_model`] describes.
+fn read_model(arg: &str, cad: &CadOptions) -> Result<Model> {
     let path = Path::new(arg);
     let is_file = path.is_file();
     let known = |name: &str| {
@@ -136,5 +215,55 @@ pub fn load_part(arg: &str) -> Result<Part> {
         Model::Mesh { .. } => {
             bail!("{arg}: this command needs a parametric part (.toml), not a mesh")
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarf_geom::Face;
+
+    #[test]
+    fn faces_are_selected_by_index_and_name() {
+        let wave = swarf_io::builtin_part("wave").unwrap();
+        let mut part = Part::new("three", vec![wave.patches[0].clone(); 3]);
+        part.faces = vec![
+            Face::default(),
+            Face {
+                name: Some("floor".into()),
+                ..Face::default()
+            },
+        ];
+        let got = select_faces(
+            &part,
+            &[FaceRef::Name("floor".into()), FaceRef::Index(2)],
+            "p.step",
+        )
+        .unwrap();
+        assert_eq!(got.patches.len(), 2);
+        assert_eq!(got.face_name(0), Some("floor"));
+        let e = select_faces(&part, &[FaceRef::Name("wall".into())], "p.step")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "faces: p.step has no face named \"wall\" (names: floor)");
+        let e = select_faces(&part, &[FaceRef::Index(3)], "p.step")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("p.step: faces = 3: a face index below 3"),
+            "{e}"
+        );
+        let opts = LoadOptions {
+            faces: Some(vec![FaceRef::Index(0)]),
+            ..LoadOptions::default()
+        };
+        let e = load_model_with("builtin:fillet-pocket", &opts)
+            .err()
+            .map(|e| e.to_string());
+        if let Some(e) = e {
+            assert!(e.contains("is a mesh, which has no faces"), "{e}");
+        }
+        let die = load_model_with("builtin:die", &opts).unwrap();
+        assert!(matches!(die, Model::Patches(p) if p.patches.len() == 1));
     }
 }

@@ -8,7 +8,7 @@ use crate::drop_spin::{contacts_csv, drop_spin_json, plan_drop_spin};
 use crate::error::{AppError, Result, bail};
 use crate::five_axis::{position_plan, write_job_gcode};
 use crate::job::Job;
-use crate::model::{Model, load_model};
+use crate::model::{Model, load_model_with};
 use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
 use crate::programs::SCALLOP_COMMENT;
@@ -34,7 +34,7 @@ pub fn plan_job(
     out: &mut Outputs,
     reporter: &dyn Reporter,
 ) -> Result<serde_json::Value> {
-    let model = load_model(&part_arg(job, job_dir))?;
+    let model = load_model_with(&part_arg(job, job_dir), &job.load_options())?;
     plan_model(job, &model, job_dir, out, reporter)
 }
 

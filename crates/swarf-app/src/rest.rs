@@ -7,7 +7,7 @@ use crate::cleanup::{
 };
 use crate::error::{AppError, Context, Result, bail};
 use crate::job::RestSource;
-use crate::model::load_model;
+use crate::model::{LoadOptions, load_model_with};
 use crate::outputs::Outputs;
 use crate::plan_job::part_arg;
 use std::path::Path;
@@ -103,12 +103,12 @@ pub fn rest_detect(req: &RestRequest<'_>) -> Result<(RestFound, String, swarf_ge
         }
         (Some(_), None) => None,
     };
-    let part = match (req.part, &parent) {
-        (Some(p), _) => p.to_string(),
-        (None, Some((job, dir))) => part_arg(job, dir),
+    let (part, opts) = match (req.part, &parent) {
+        (Some(p), _) => (p.to_string(), LoadOptions::default()),
+        (None, Some((job, dir))) => (part_arg(job, dir), job.load_options()),
         (None, None) => bail!("--part: expected the design part (or a parent --job that names it)"),
     };
-    let model = load_model(&part)?;
+    let model = load_model_with(&part, &opts)?;
     model.check_covers_xy(&part)?;
     let mesh = part_mesh(&model, req.tol).with_context(|| part.clone())?;
     let (detection, reference) = match (&parent, req.reference) {

@@ -418,7 +418,7 @@ fn plan_job_input(
     ) = (None, None, None);
     let job_dir = path.parent().unwrap_or(Path::new("."));
     let part = crate::plan_job::part_arg(&job, job_dir);
-    let model = crate::model::load_model(&part)?;
+    let model = crate::model::load_model_with(&part, &job.load_options())?;
     crate::plan_job::plan_model(&job, &model, job_dir, out, reporter)?;
     let program = out.read_program(&program_file)?;
     let scallop = job.strategy.scallop.unwrap_or(0.0);

@@ -25,11 +25,15 @@ pub struct Part {
     pub faces: Vec<Face>,
 }
 
-/// A face's name and trimming loops (`None`: the whole patch).
+/// A face's name, origin and trimming loops (`None`: the whole patch).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Face {
     /// The name the CAD file gives the face, if any.
     pub name: Option<String>,
+    /// Where the surface came from in the file, e.g. `#31 CYLINDRICAL_SURFACE` (the
+    /// patch is its exact NURBS form).
+    #[serde(default)]
+    pub surface: Option<String>,
     /// The region of the patch's `(u, v)` rectangle that is the face.
     pub trim: Option<Trim>,
 }
@@ -52,6 +56,44 @@ impl Part {
     /// The name of face `k` from the file, if any.
     pub fn face_name(&self, k: usize) -> Option<&str> {
         self.faces.get(k).and_then(|f| f.name.as_deref())
+    }
+
+    /// The part restricted to the faces `keep` (indices into `patches`, in the order
+    /// given; names and trims follow their faces).
+    ///
+    /// # Errors
+    /// [`GeomError::InvalidParameter`] naming `faces` for an index out of range or
+    /// repeated, or an empty selection.
+    pub fn select(&self, keep: &[usize]) -> Result<Part, GeomError> {
+        let bad = |value: usize, expected: String| GeomError::InvalidParameter {
+            name: "faces".into(),
+            value: value as f64,
+            expected,
+        };
+        if keep.is_empty() {
+            return Err(bad(0, "at least one face".into()));
+        }
+        let n = self.patches.len();
+        let mut seen = vec![false; n];
+        for &k in keep {
+            if k >= n {
+                return Err(bad(
+                    k,
+                    format!("a face index below {n} ({} has {n} faces)", self.name),
+                ));
+            }
+            if std::mem::replace(&mut seen[k], true) {
+                return Err(bad(k, "each face once".into()));
+            }
+        }
+        Ok(Part {
+            name: self.name.clone(),
+            patches: keep.iter().map(|&k| self.patches[k].clone()).collect(),
+            faces: keep
+                .iter()
+                .map(|&k| self.faces.get(k).cloned().unwrap_or_default())
+                .collect(),
+        })
     }
 
     /// Whether face `k` contains the parameters `(u, v)`: inside its patch's domain
@@ -133,6 +175,33 @@ mod tests {
             mb.triangles[0].map(|i| i + n)
         );
         assert_eq!(m.vertices[n as usize], mb.vertices[0]);
+    }
+
+    #[test]
+    fn selecting_faces_keeps_their_trims_and_names() {
+        let [a, b] = edge_convex();
+        let mut part = Part::new("two", vec![a.clone(), b.clone()]);
+        let tri = Trim::new(vec![vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]]).unwrap();
+        part.faces = vec![Face {
+            name: Some("first".into()),
+            surface: None,
+            trim: Some(tri.clone()),
+        }];
+        let one = part.select(&[1, 0]).unwrap();
+        assert_eq!(one.patches, vec![b, a]);
+        assert_eq!(one.face_name(1), Some("first"));
+        assert_eq!(one.trim(1), Some(&tri));
+        assert!(one.trim(0).is_none() && one.face_name(0).is_none());
+        let e = |k: &[usize]| part.select(k).unwrap_err().to_string();
+        assert!(
+            e(&[2]).starts_with("faces = 2: a face index below 2"),
+            "{}",
+            e(&[2])
+        );
+        assert!(e(&[0, 0]).contains("each face once"));
+        assert!(e(&[]).contains("at least one face"));
+        assert!(!part.face_contains(0, 0.6, 0.6) && part.face_contains(0, 0.2, 0.2));
+        assert!(!part.face_contains(5, 0.2, 0.2) && part.face_contains(1, 0.9, 0.9));
     }
 
     #[test]

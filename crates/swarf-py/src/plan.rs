@@ -74,7 +74,7 @@ fn plan_job_values(job: &Job, out: Option<&Path>) -> PyResult<Planned> {
         ))
     };
     let part = swarf_app::plan_job::part_arg(&job.job, &job.dir);
-    let model = swarf_app::load_model(&part).map_err(context)?;
+    let model = swarf_app::load_model_with(&part, &job.job.load_options()).map_err(context)?;
     let (staged_job, scratch) = match out {
         Some(_) => (job.job.clone(), None),
         None => {

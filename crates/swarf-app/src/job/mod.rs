@@ -24,6 +24,17 @@
 //! summary = "wave-iso-scallop.json"
 //! ```
 //!
+//! A STEP or IGES part may be machined in part, and read with options:
+//!
+//! ```toml
+//! part = "mold.step"
+//! faces = [3, 7, "cavity-floor"]  # indices as `swarf inspect` lists them, or names
+//!
+//! [import]
+//! unsupported = "refuse"          # or "warn" (default): skip the face, say so
+//! trim_chord = 0.0001             # trimming edges sampled within this, mm
+//! ```
+//!
 //! Five-axis jobs add a `positioning` table (how the tool is placed on the CC paths of
 //! the strategy, thesis 000 §7.3) and, for G-code, a machine:
 //!
@@ -52,6 +63,7 @@
 //! used, at the input edge).
 
 use crate::error::AppError;
+use crate::model::{FaceRef, LoadOptions};
 use serde::{Deserialize, Serialize};
 use swarf_fiveaxis::positioning::Positioning;
 use swarf_fiveaxis::post::FeedMode;
@@ -74,6 +86,13 @@ pub struct Job {
     /// Part file (`.toml` patches, or `.stl`/`.obj` mesh), relative to the job file,
     /// or `builtin:NAME` for a shared part embedded in swarf.
     pub part: String,
+    /// The faces of the part to machine, by index (as `swarf inspect` lists them) or
+    /// by name (STEP and IGES names); all faces when absent.
+    #[serde(default)]
+    pub faces: Option<Vec<FaceRef>>,
+    /// How a STEP or IGES part is read.
+    #[serde(default)]
+    pub import: Import,
     /// The cutter.
     pub tool: Cutter,
     /// Strategy and its parameters.
@@ -93,6 +112,52 @@ pub struct Job {
     /// What a cleanup job cleans up after (`kind = "cleanup"` only).
     #[serde(default)]
     pub parent: Option<Parent>,
+}
+
+/// How a STEP or IGES part is read (`[import]`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Import {
+    /// An entity the reader does not support: `"warn"` skips its face with a warning,
+    /// `"refuse"` refuses the file.
+    pub unsupported: UnsupportedChoice,
+    /// Chordal tolerance for sampling trimming edges, mm.
+    pub trim_chord: f64,
+}
+
+impl Default for Import {
+    fn default() -> Self {
+        Import {
+            unsupported: UnsupportedChoice::Warn,
+            trim_chord: swarf_io::CadOptions::default().trim_chord,
+        }
+    }
+}
+
+/// `import.unsupported`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum UnsupportedChoice {
+    /// Skip the face with a warning.
+    Warn,
+    /// Refuse the file.
+    Refuse,
+}
+
+impl Job {
+    /// How the job's part is read: its `[import]` table and `faces`.
+    pub fn load_options(&self) -> LoadOptions {
+        LoadOptions {
+            cad: swarf_io::CadOptions {
+                unsupported: match self.import.unsupported {
+                    UnsupportedChoice::Warn => swarf_io::Unsupported::Warn,
+                    UnsupportedChoice::Refuse => swarf_io::Unsupported::Refuse,
+                },
+                trim_chord: self.import.trim_chord,
+            },
+            faces: self.faces.clone(),
+        }
+    }
 }
 
 /// The parent of a cleanup job: a finishing job, or just the tool that finished.

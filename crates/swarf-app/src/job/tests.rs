@@ -297,3 +297,32 @@ fn drop_spin_jobs_name_the_field() {
         .replace("zone = \"full\"", "zone = \"snug\"");
     assert!(Job::parse(&snug, "ds.toml").is_ok());
 }
+
+#[test]
+fn faces_and_import_options_parse_and_are_checked() {
+    let text = GOOD.replace(
+        "tool = \"ball:d=8\"",
+        "faces = [3, \"floor\"]\ntool = \"ball:d=8\"\n[import]\nunsupported = \"refuse\"\ntrim_chord = 0.001",
+    );
+    let job = Job::parse(&text, "job.toml").unwrap();
+    assert_eq!(
+        job.faces,
+        Some(vec![FaceRef::Index(3), FaceRef::Name("floor".into())])
+    );
+    let opts = job.load_options();
+    assert_eq!(opts.cad.unsupported, swarf_io::Unsupported::Refuse);
+    assert_eq!(opts.cad.trim_chord, 0.001);
+    let plain = Job::parse(GOOD, "job.toml").unwrap().load_options();
+    assert_eq!(plain.cad, swarf_io::CadOptions::default());
+    assert!(plain.faces.is_none());
+    for (bad, field) in [
+        ("trim_chord = 0", "import.trim_chord: 0: expected a chordal tolerance"),
+        ("trim_chord = 2", "import.trim_chord: 2: expected"),
+        ("unsupported = \"maybe\"", "line 6: unknown variant `maybe`, expected `warn` or `refuse`"),
+        ("chord = 0.1", "chord"),
+    ] {
+        let t = text.replace("unsupported = \"refuse\"\ntrim_chord = 0.001", bad);
+        let e = Job::parse(&t, "job.toml").unwrap_err().to_string();
+        assert!(e.contains(field), "{bad}: {e}");
+    }
+}

@@ -21,6 +21,16 @@ impl Job {
                 "part: expected a part file, a mesh or builtin:NAME, found an empty name".into(),
             );
         }
+        if !(swarf_io::cad::MIN_TRIM_CHORD..=swarf_io::cad::MAX_TRIM_CHORD)
+            .contains(&self.import.trim_chord)
+        {
+            return Err(format!(
+                "import.trim_chord: {}: expected a chordal tolerance from {} to {} mm",
+                self.import.trim_chord,
+                swarf_io::cad::MIN_TRIM_CHORD,
+                swarf_io::cad::MAX_TRIM_CHORD
+            ));
+        }
         self.validate_spacing()?;
         if let Some(a) = s.max_ramp
             && (a.is_nan() || a <= 0.0 || a >= 90.0)

@@ -195,6 +195,7 @@ fn a_trimmed_plate_over_a_floor_shows_the_floor_through_its_hole() {
     let mut part = part(vec![flat(10.0), flat(0.0)]);
     part.faces = vec![crate::part::Face {
         name: Some("plate".into()),
+        surface: None,
         trim: Some(crate::trim::Trim::new(vec![outer, hole]).unwrap()),
     }];
     let h = PartHeights::new(&part).unwrap();
