@@ -8,6 +8,7 @@
 pub mod basis;
 mod curvature_range;
 mod diffgeo;
+mod elementary;
 mod eval;
 #[cfg(test)]
 pub(crate) mod fixtures;
@@ -24,6 +25,7 @@ mod tessellate;
 pub use basis::MAX_DEGREE;
 pub use curvature_range::CurvatureRange;
 pub use diffgeo::{Curvature, FundamentalForms};
+pub use elementary::Frame;
 pub use eval::SurfaceDerivs;
 pub use power::PowerPatch;
 pub use project::Projection;
