@@ -78,6 +78,22 @@ fn arc(center: [f64; 2], radius: f64, a0: f64, a1: f64) -> Profile {
     }
 }
 
+/// The parameter of a patch built here (its `u`, or the `v` of a sphere or torus)
+/// at which its arc over `angles` reaches `angle` (radians, within `angles`): the
+/// inverse of the rational arc's parametrisation. On a segment of sweep `d` centred
+/// at `m`, `tan((angle - m) / 2) = s tan(d / 4)` with `s = 2t - 1` the local
+/// parameter (substitute into the segment's rational form), so `t` is closed-form.
+pub fn arc_parameter(angles: [f64; 2], angle: f64) -> f64 {
+    let (a0, a1) = (angles[0], angles[1]);
+    let n = ((a1 - a0) / std::f64::consts::FRAC_PI_2 - 1e-9).ceil().max(1.0);
+    let d = (a1 - a0) / n;
+    let k = ((angle - a0) / d).floor().clamp(0.0, n - 1.0);
+    let s = a0 + k * d;
+    let local = angle.clamp(a0, a1) - (s + d / 2.0);
+    let t = 0.5 * (1.0 + (local / 2.0).tan() / (d / 4.0).tan());
+    if k + 1.0 == n && t >= 1.0 { a1 } else { s + t.clamp(0.0, 1.0) * d }
+}
+
 /// The straight profile from `(rho0, z0)` to `(rho1, z1)`, parametrised over `[t0, t1]`.
 fn line(p0: [f64; 2], p1: [f64; 2], t: [f64; 2]) -> Profile {
     Profile {
@@ -308,6 +324,20 @@ mod tests {
         // Knot angles in v are exact: tube angle pi/2 is the top of the tube.
         let q = f.to_local(&t.eval(0.0, FRAC_PI_2));
         assert!((q[0] - 5.0).abs() < 1e-12 && (q[2] - 1.5).abs() < 1e-12, "{q:?}");
+    }
+
+    #[test]
+    fn arc_parameter_inverts_the_arc() {
+        let f = frame();
+        let w = [-0.7, 4.9];
+        let p = Patch::cylinder(&f, 2.0, w, [0.0, 1.0]).unwrap();
+        for k in 0..=40 {
+            let a = w[0] + (w[1] - w[0]) * k as f64 / 40.0;
+            let q = f.to_local(&p.eval(arc_parameter(w, a), 0.5));
+            let back = q[1].atan2(q[0]);
+            let diff = (back - a).rem_euclid(TAU);
+            assert!(diff.min(TAU - diff) < 1e-12, "{a} {back}");
+        }
     }
 
     #[test]

@@ -25,7 +25,7 @@ mod tessellate;
 pub use basis::MAX_DEGREE;
 pub use curvature_range::CurvatureRange;
 pub use diffgeo::{Curvature, FundamentalForms};
-pub use elementary::Frame;
+pub use elementary::{Frame, arc_parameter};
 pub use eval::SurfaceDerivs;
 pub use power::PowerPatch;
 pub use project::Projection;
