@@ -96,7 +96,7 @@ fn spline(geo: &Geo<'_>, parts: &[Ent<'_>]) -> Result<Patch, SurfFail> {
     // Complex: B_SPLINE_SURFACE(du, dv, points, ...) + WITH_KNOTS(umult, vmult, uk, vk, spec).
     let (s, c0, k0) = match by("B_SPLINE_SURFACE") {
         Some(bs) => (bs, 0, 0),
-        None => (wk, 1, 7),
+        None => (wk, 1, 8),
     };
     let degree = [s.int(c0)?, s.int(c0 + 1)?];
     let rows = s.list(c0 + 2)?;

@@ -79,7 +79,7 @@ fn bad_input_names_file_line_entity_and_argument() {
     assert!(m.contains("#53") && m.contains("not define"), "{m}");
     let m = e(&s.replace("#30 = PLANE('',#31);", "#30 = PLANE('',5.);"));
     assert!(m.contains("line 22") && m.contains("#30 PLANE") && m.contains("argument 2"), "{m}");
-    let m = e(&s.replace("(10.,10.,0.)", "(10.,12.,0.)"));
+    let m = e(&s.replace("#13 = EDGE_CURVE('',#23,", "#13 = EDGE_CURVE('',#21,"));
     assert!(m.contains("open loop"), "{m}");
     let m = e(&s.replace("PLANE('',#31)", "DEGENERATE_TOROIDAL_SURFACE('',#31,1.,2.,.T.)"));
     assert!(m.contains("no faces") && m.contains("#30 DEGENERATE_TOROIDAL_SURFACE"), "{m}");
