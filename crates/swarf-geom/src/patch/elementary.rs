@@ -55,7 +55,9 @@ struct Profile {
 /// The circular arc of `radius` about `center` from angle `a0` to `a1` (radians,
 /// `a1 > a0`) as a rational quadratic B-spline whose knots are the segment angles.
 fn arc(center: [f64; 2], radius: f64, a0: f64, a1: f64) -> Profile {
-    let n = ((a1 - a0) / std::f64::consts::FRAC_PI_2 - 1e-9).ceil().max(1.0) as usize;
+    let n = ((a1 - a0) / std::f64::consts::FRAC_PI_2 - 1e-9)
+        .ceil()
+        .max(1.0) as usize;
     let d = (a1 - a0) / n as f64;
     let w = (d / 2.0).cos();
     let at = |a: f64, s: f64| [center[0] + s * a.cos(), center[1] + s * a.sin()];
@@ -85,13 +87,19 @@ fn arc(center: [f64; 2], radius: f64, a0: f64, a1: f64) -> Profile {
 /// parameter (substitute into the segment's rational form), so `t` is closed-form.
 pub fn arc_parameter(angles: [f64; 2], angle: f64) -> f64 {
     let (a0, a1) = (angles[0], angles[1]);
-    let n = ((a1 - a0) / std::f64::consts::FRAC_PI_2 - 1e-9).ceil().max(1.0);
+    let n = ((a1 - a0) / std::f64::consts::FRAC_PI_2 - 1e-9)
+        .ceil()
+        .max(1.0);
     let d = (a1 - a0) / n;
     let k = ((angle - a0) / d).floor().clamp(0.0, n - 1.0);
     let s = a0 + k * d;
     let local = angle.clamp(a0, a1) - (s + d / 2.0);
     let t = 0.5 * (1.0 + (local / 2.0).tan() / (d / 4.0).tan());
-    if k + 1.0 == n && t >= 1.0 { a1 } else { s + t.clamp(0.0, 1.0) * d }
+    if k + 1.0 == n && t >= 1.0 {
+        a1
+    } else {
+        s + t.clamp(0.0, 1.0) * d
+    }
 }
 
 /// The straight profile from `(rho0, z0)` to `(rho1, z1)`, parametrised over `[t0, t1]`.
@@ -110,7 +118,10 @@ fn check_range(name: &str, r: [f64; 2]) -> Result<(), GeomError> {
     } else {
         Err(GeomError::patch(
             name,
-            format!("expected a finite range with end > start, found [{}, {}]", r[0], r[1]),
+            format!(
+                "expected a finite range with end > start, found [{}, {}]",
+                r[0], r[1]
+            ),
         ))
     }
 }
@@ -201,7 +212,10 @@ impl Patch {
         let t = half_angle.tan();
         let r0 = radius + vs[0] * t;
         let r1 = radius + vs[1] * t;
-        if !(t.is_finite() && r0 >= -1e-12 * radius.abs().max(1.0) && r1 >= -1e-12 * radius.abs().max(1.0)) {
+        if !(t.is_finite()
+            && r0 >= -1e-12 * radius.abs().max(1.0)
+            && r1 >= -1e-12 * radius.abs().max(1.0))
+        {
             return Err(GeomError::patch(
                 "v",
                 format!("the cone's window [{}, {}] crosses its apex", vs[0], vs[1]),
@@ -226,7 +240,10 @@ impl Patch {
         check_range("lats", lats)?;
         let h = std::f64::consts::FRAC_PI_2 * (1.0 + 1e-12);
         if lats[0] < -h || lats[1] > h {
-            return Err(GeomError::patch("lats", "expected latitudes within [-pi/2, pi/2]"));
+            return Err(GeomError::patch(
+                "lats",
+                "expected latitudes within [-pi/2, pi/2]",
+            ));
         }
         revolve(frame, arc([0.0, 0.0], radius, lats[0], lats[1]), angles)
     }
@@ -323,7 +340,10 @@ mod tests {
         assert!(zmax > 1.4);
         // Knot angles in v are exact: tube angle pi/2 is the top of the tube.
         let q = f.to_local(&t.eval(0.0, FRAC_PI_2));
-        assert!((q[0] - 5.0).abs() < 1e-12 && (q[2] - 1.5).abs() < 1e-12, "{q:?}");
+        assert!(
+            (q[0] - 5.0).abs() < 1e-12 && (q[2] - 1.5).abs() < 1e-12,
+            "{q:?}"
+        );
     }
 
     #[test]

@@ -241,7 +241,11 @@ pub fn sample_edge(
     let closed = (a - b).norm() <= tol;
     let mut pts = match curve {
         Curve::Line => vec![s, e],
-        Curve::Conic { frame, a: ra, b: rb } => {
+        Curve::Conic {
+            frame,
+            a: ra,
+            b: rb,
+        } => {
             let t0 = conic_param(frame, *ra, *rb, &s);
             let mut t1 = conic_param(frame, *ra, *rb, &e);
             while t1 <= t0 + if closed { 1e-9 } else { 0.0 } {
@@ -265,7 +269,9 @@ pub fn sample_edge(
         }
         Curve::Nurbs(c) => {
             let [d0, d1] = c.domain();
-            let coarse = c.polyline(d0, d1, (tol * 100.0).max(1e-3)).map_err(|e| e.to_string())?;
+            let coarse = c
+                .polyline(d0, d1, (tol * 100.0).max(1e-3))
+                .map_err(|e| e.to_string())?;
             let t0 = nurbs_param(c, &s, &coarse);
             let mut t1 = nurbs_param(c, &e, &coarse);
             if closed || t1 <= t0 {

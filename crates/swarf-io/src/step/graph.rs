@@ -72,7 +72,12 @@ impl<'a> Graph<'a> {
 
     /// `#id` as one record: the simple instance, or the partial named like one of
     /// `names` of a complex instance; `None` when neither.
-    pub fn find(&self, id: u64, names: &[&str], from: &Ent<'_>) -> Result<Option<Ent<'a>>, IoError> {
+    pub fn find(
+        &self,
+        id: u64,
+        names: &[&str],
+        from: &Ent<'_>,
+    ) -> Result<Option<Ent<'a>>, IoError> {
         Ok(self
             .parts(id, Some(from))?
             .into_iter()
@@ -117,7 +122,10 @@ impl<'a> Ent<'a> {
             .args
             .get(i)
             .map_or_else(|| "nothing".to_string(), describe);
-        self.err(format!("argument {}: expected {expected}, found {found}", i + 1))
+        self.err(format!(
+            "argument {}: expected {expected}, found {found}",
+            i + 1
+        ))
     }
 
     /// Argument `i`.

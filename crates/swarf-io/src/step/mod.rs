@@ -85,8 +85,12 @@ pub fn parse_step(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart
             ),
         ));
     }
-    let ex = parser::parse(text).map_err(|e| IoError::format(source, At::Line(e.line), e.message))?;
-    let g = graph::Graph { ex: &ex, file: source };
+    let ex =
+        parser::parse(text).map_err(|e| IoError::format(source, At::Line(e.line), e.message))?;
+    let g = graph::Graph {
+        ex: &ex,
+        file: source,
+    };
     let u = units::units(&g)?;
     let geo = curves::Geo {
         g: &g,

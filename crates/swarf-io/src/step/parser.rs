@@ -114,7 +114,10 @@ impl<'a> Scanner<'a> {
                 Ok(())
             }
             Some(x) => self.err(format!("expected '{}', found '{}'", c as char, x as char)),
-            None => self.err(format!("expected '{}', found the end of the file", c as char)),
+            None => self.err(format!(
+                "expected '{}', found the end of the file",
+                c as char
+            )),
         }
     }
 
@@ -122,7 +125,8 @@ impl<'a> Scanner<'a> {
         self.skip()?;
         let st = self.i;
         while let Some(c) = self.s.get(self.i) {
-            if c.is_ascii_alphanumeric() || *c == b'_' || *c == b'-' || (*c == b'!' && self.i == st) {
+            if c.is_ascii_alphanumeric() || *c == b'_' || *c == b'-' || (*c == b'!' && self.i == st)
+            {
                 self.i += 1;
             } else {
                 break;
@@ -228,7 +232,9 @@ impl<'a> Scanner<'a> {
                 self.expect(b'"')?;
                 Ok(Value::Null)
             }
-            Some(c) if c.is_ascii_digit() || c == b'-' || c == b'+' => Ok(Value::Num(self.number()?)),
+            Some(c) if c.is_ascii_digit() || c == b'-' || c == b'+' => {
+                Ok(Value::Num(self.number()?))
+            }
             Some(c) if c.is_ascii_alphabetic() => {
                 let k = self.keyword()?;
                 Ok(Value::Typed(k, self.list(depth + 1)?))
@@ -316,13 +322,11 @@ pub fn parse(text: &str) -> Result<Exchange, SyntaxError> {
         }
         let args = sc.list(1)?;
         sc.expect(b';')?;
-        if k == "FILE_SCHEMA" {
-            if let Some(Value::List(v)) = args.first() {
-                schemas.extend(v.iter().filter_map(|x| match x {
-                    Value::Str(s) => Some(s.clone()),
-                    _ => None,
-                }));
-            }
+        if let ("FILE_SCHEMA", Some(Value::List(v))) = (k.as_str(), args.first()) {
+            schemas.extend(v.iter().filter_map(|x| match x {
+                Value::Str(s) => Some(s.clone()),
+                _ => None,
+            }));
         }
     }
     let mut ex = Exchange {
@@ -340,7 +344,11 @@ pub fn parse(text: &str) -> Result<Exchange, SyntaxError> {
                 data(&mut sc, &mut ex)?;
             }
             "END-ISO-10303-21" => return Ok(ex),
-            k => return sc.err(format!("expected 'DATA;' or 'END-ISO-10303-21;', found {k:?}")),
+            k => {
+                return sc.err(format!(
+                    "expected 'DATA;' or 'END-ISO-10303-21;', found {k:?}"
+                ));
+            }
         }
     }
 }
@@ -394,15 +402,26 @@ mod tests {
         let c = &ex.instances[&2];
         assert_eq!(c.line, 8);
         assert_eq!(c.parts.len(), 2);
-        assert_eq!(c.parts[1].1[4], Value::Typed("LENGTH_MEASURE".into(), vec![Value::Num(2.0)]));
+        assert_eq!(
+            c.parts[1].1[4],
+            Value::Typed("LENGTH_MEASURE".into(), vec![Value::Num(2.0)])
+        );
     }
 
     #[test]
     fn errors_name_the_line() {
-        assert!(parse("solid x\n").unwrap_err().message.contains("not a STEP file"));
+        assert!(
+            parse("solid x\n")
+                .unwrap_err()
+                .message
+                .contains("not a STEP file")
+        );
         let e = parse(&format!("{HEAD}#1 = A(1,2;\n")).unwrap_err();
         assert_eq!(e.line, 6);
-        let e = parse(&format!("{HEAD}#1 = A(1.0.0);\nENDSEC;\nEND-ISO-10303-21;\n")).unwrap_err();
+        let e = parse(&format!(
+            "{HEAD}#1 = A(1.0.0);\nENDSEC;\nEND-ISO-10303-21;\n"
+        ))
+        .unwrap_err();
         assert!(e.message.contains("number"), "{}", e.message);
         let deep = format!("{HEAD}#1 = A({}{});", "(".repeat(1000), ")".repeat(1000));
         assert!(parse(&deep).unwrap_err().message.contains("nested"));

@@ -48,7 +48,10 @@ impl From<IoError> for SurfFail {
 /// [`SurfFail::Bad`] for malformed entities.
 pub fn surface(geo: &Geo<'_>, id: u64, face: &Ent<'_>) -> Result<Surf, SurfFail> {
     let parts = geo.g.parts(id, Some(face))?;
-    if parts.iter().any(|p| p.name == "B_SPLINE_SURFACE_WITH_KNOTS") {
+    if parts
+        .iter()
+        .any(|p| p.name == "B_SPLINE_SURFACE_WITH_KNOTS")
+    {
         return spline(geo, &parts).map(Surf::Spline);
     }
     let e = parts[0];
@@ -68,7 +71,9 @@ pub fn surface(geo: &Geo<'_>, id: u64, face: &Ent<'_>) -> Result<Surf, SurfFail>
             let r = e.num(2)? * geo.mm;
             let a = e.num(3)? * geo.rad;
             if !(r >= 0.0 && a > 0.0 && a < std::f64::consts::FRAC_PI_2) {
-                return Err(e.err("expected a radius >= 0 and a semi-angle in (0, 90) degrees").into());
+                return Err(e
+                    .err("expected a radius >= 0 and a semi-angle in (0, 90) degrees")
+                    .into());
             }
             Surf::Cone(frame(&e)?, r, a)
         }
@@ -85,7 +90,9 @@ pub fn surface(geo: &Geo<'_>, id: u64, face: &Ent<'_>) -> Result<Surf, SurfFail>
 
 fn clamped(k: &[f64], p: usize) -> bool {
     let n = k.len();
-    n >= 2 * (p + 1) && k[..=p].iter().all(|x| *x == k[0]) && k[n - p - 1..].iter().all(|x| *x == k[n - 1])
+    n >= 2 * (p + 1)
+        && k[..=p].iter().all(|x| *x == k[0])
+        && k[n - p - 1..].iter().all(|x| *x == k[n - 1])
 }
 
 /// A B-spline surface from its simple or complex instance.
@@ -121,8 +128,12 @@ fn spline(geo: &Geo<'_>, parts: &[Ent<'_>]) -> Result<Patch, SurfFail> {
     for d in 0..2 {
         let m = wk.nums(k0 + d)?;
         let v = wk.nums(k0 + 2 + d)?;
-        let k = expand_knots(&m, &v)
-            .ok_or_else(|| wk.arg_err(k0 + d, "positive integer multiplicities, one per knot value"))?;
+        let k = expand_knots(&m, &v).ok_or_else(|| {
+            wk.arg_err(
+                k0 + d,
+                "positive integer multiplicities, one per knot value",
+            )
+        })?;
         if !clamped(&k, degree[d]) {
             return Err(SurfFail::Unsupported(wk.err(format!(
                 "unclamped (periodic) knots in {}: not supported",
@@ -148,8 +159,13 @@ pub fn reverse_u(p: &Patch) -> Patch {
     let (a, b) = (ku[0], ku[ku.len() - 1]);
     let rk: Vec<f64> = ku.iter().rev().map(|k| a + b - k).collect();
     let idx = |i: usize, j: usize| (nu - 1 - i) * nv + j;
-    let pts: Vec<Point3> = (0..nu * nv).map(|k| p.points()[idx(k / nv, k % nv)]).collect();
-    let w = p.weights().map(|w| (0..nu * nv).map(|k| w[idx(k / nv, k % nv)]).collect());
+    let pts: Vec<Point3> = (0..nu * nv)
+        .map(|k| p.points()[idx(k / nv, k % nv)])
+        .collect();
+    let w = p
+        .weights()
+        .map(|w| (0..nu * nv).map(|k| w[idx(k / nv, k % nv)]).collect());
     // Same degrees, counts and validity as `p`: the reversed knots are clamped too.
-    Patch::new(p.degree(), pts, [Some(rk), Some(p.knots(1).to_vec())], w).unwrap_or_else(|_| p.clone())
+    Patch::new(p.degree(), pts, [Some(rk), Some(p.knots(1).to_vec())], w)
+        .unwrap_or_else(|_| p.clone())
 }

@@ -78,22 +78,44 @@ fn bad_input_names_file_line_entity_and_argument() {
     let m = e(&s.replace("#53 = CARTESIAN_POINT('',(10.,10.,0.));", ""));
     assert!(m.contains("#53") && m.contains("not define"), "{m}");
     let m = e(&s.replace("#30 = PLANE('',#31);", "#30 = PLANE('',5.);"));
-    assert!(m.contains("line 22") && m.contains("#30 PLANE") && m.contains("argument 2"), "{m}");
+    assert!(
+        m.contains("line 22") && m.contains("#30 PLANE") && m.contains("argument 2"),
+        "{m}"
+    );
     let m = e(&s.replace("#13 = EDGE_CURVE('',#23,", "#13 = EDGE_CURVE('',#21,"));
     assert!(m.contains("open loop"), "{m}");
-    let m = e(&s.replace("PLANE('',#31)", "DEGENERATE_TOROIDAL_SURFACE('',#31,1.,2.,.T.)"));
-    assert!(m.contains("no faces") && m.contains("#30 DEGENERATE_TOROIDAL_SURFACE"), "{m}");
+    let m = e(&s.replace(
+        "PLANE('',#31)",
+        "DEGENERATE_TOROIDAL_SURFACE('',#31,1.,2.,.T.)",
+    ));
+    assert!(
+        m.contains("no faces") && m.contains("#30 DEGENERATE_TOROIDAL_SURFACE"),
+        "{m}"
+    );
     let refuse = CadOptions {
         unsupported: Unsupported::Refuse,
         ..CadOptions::default()
     };
-    let m = parse_step(&s.replace("PLANE('',#31)", "FOO('',#31)"), "t.step", &refuse)
-        .unwrap_err()
-        .to_string();
-    assert!(m.starts_with("t.step: line 22: #30 FOO: unsupported"), "{m}");
+    let m = parse_step(
+        &s.replace("PLANE('',#31)", "FOO('',#31)"),
+        "t.step",
+        &refuse,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        m.starts_with("t.step: line 22: #30 FOO: unsupported"),
+        "{m}"
+    );
     // Cyclic references are walked by type: an error, no hang.
-    let m = e(&s.replace("#31 = AXIS2_PLACEMENT_3D('',#50,#32,#33);", "#31 = AXIS2_PLACEMENT_3D('',#31,#32,#33);"));
+    let m = e(&s.replace(
+        "#31 = AXIS2_PLACEMENT_3D('',#50,#32,#33);",
+        "#31 = AXIS2_PLACEMENT_3D('',#31,#32,#33);",
+    ));
     assert!(m.contains("#31") && m.contains("CARTESIAN_POINT"), "{m}");
-    let m = e(&s.replace("#2 = ADVANCED_FACE('top',(#3),#30,.T.);", "#2 = ADVANCED_FACE('top',(#2),#30,.T.);"));
+    let m = e(&s.replace(
+        "#2 = ADVANCED_FACE('top',(#3),#30,.T.);",
+        "#2 = ADVANCED_FACE('top',(#2),#30,.T.);",
+    ));
     assert!(m.contains("FACE_OUTER_BOUND"), "{m}");
 }

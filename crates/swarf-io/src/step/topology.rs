@@ -26,7 +26,11 @@ pub fn face_ids(geo: &Geo<'_>) -> Result<Vec<u64>, IoError> {
         if e.name == "CLOSED_SHELL" || e.name == "OPEN_SHELL" {
             for f in e.refs(1)? {
                 let fe = g.get(f, &["ADVANCED_FACE", "FACE_SURFACE", "ORIENTED_FACE"], &e)?;
-                let f = if fe.name == "ORIENTED_FACE" { fe.refr(1)? } else { f };
+                let f = if fe.name == "ORIENTED_FACE" {
+                    fe.refr(1)?
+                } else {
+                    f
+                };
                 if seen.insert(f) {
                     out.push(f);
                 }
@@ -65,7 +69,12 @@ struct Bound {
 ///
 /// # Errors
 /// Malformed topology or geometry, open or crossing loops: naming the entity.
-pub fn face(geo: &Geo<'_>, id: u64, cache: &mut EdgeCache, chord: f64) -> Result<FaceResult, IoError> {
+pub fn face(
+    geo: &Geo<'_>,
+    id: u64,
+    cache: &mut EdgeCache,
+    chord: f64,
+) -> Result<FaceResult, IoError> {
     let g = geo.g;
     let fe = g.parts(id, None)?[0];
     let name = fe.string(0)?;
@@ -113,7 +122,10 @@ pub fn face(geo: &Geo<'_>, id: u64, cache: &mut EdgeCache, chord: f64) -> Result
         s => uv::elementary(s, &loops3, &seams).map_err(|m| fe.err(m))?,
     };
     // The outer loop first: the file's FACE_OUTER_BOUND, else the widest in (u, v).
-    let outer = bounds.iter().position(|b| b.outer).unwrap_or_else(|| widest(&loops));
+    let outer = bounds
+        .iter()
+        .position(|b| b.outer)
+        .unwrap_or_else(|| widest(&loops));
     loops.swap(0, outer);
     let trim = if all_seam || uv::covers_domain(&loops, patch.domain()) {
         None
@@ -127,7 +139,9 @@ pub fn face(geo: &Geo<'_>, id: u64, cache: &mut EdgeCache, chord: f64) -> Result
     };
     let patch = if same_sense { patch } else { reverse_u(&patch) };
     let trim = match (same_sense, trim) {
-        (false, Some(t)) => Some(mirror_u(&t, patch.domain()[0]).map_err(|e| fe.err(e.to_string()))?),
+        (false, Some(t)) => {
+            Some(mirror_u(&t, patch.domain()[0]).map_err(|e| fe.err(e.to_string()))?)
+        }
         (_, t) => t,
     };
     let face = Face {
@@ -183,9 +197,8 @@ fn edge_loop(
         let forward = oe.boolean(4)?;
         let eid = oe.refr(3)?;
         let ee = g.get(eid, &["EDGE_CURVE"], &oe)?;
-        if !cache.contains_key(&eid) {
-            let s = edge_points(geo, &ee, chord)?;
-            cache.insert(eid, s);
+        if let std::collections::hash_map::Entry::Vacant(slot) = cache.entry(eid) {
+            slot.insert(edge_points(geo, &ee, chord)?);
         }
         let s = &cache[&eid];
         let it: Box<dyn Iterator<Item = &Point3>> = if forward {

@@ -54,8 +54,12 @@ fn factor(g: &Graph<'_>, id: u64, from: &Ent<'_>, depth: usize) -> Result<(f64, 
     if let Some(si) = parts.iter().find(|e| e.name == "SI_UNIT") {
         let pre = si.args.first().map_or(1.0, si_prefix);
         let name = match (si.args.first(), si.args.get(1)) {
-            (Some(Value::Enum(p)), Some(Value::Enum(n))) if p == "MILLI" && n == "METRE" => "mm".into(),
-            (Some(Value::Enum(p)), Some(Value::Enum(n))) => format!("{}{}", p.to_lowercase(), n.to_lowercase()),
+            (Some(Value::Enum(p)), Some(Value::Enum(n))) if p == "MILLI" && n == "METRE" => {
+                "mm".into()
+            }
+            (Some(Value::Enum(p)), Some(Value::Enum(n))) => {
+                format!("{}{}", p.to_lowercase(), n.to_lowercase())
+            }
             (_, Some(Value::Enum(n))) if n == "METRE" => "m".into(),
             (_, Some(Value::Enum(n))) => n.to_lowercase(),
             _ => "?".into(),
@@ -85,7 +89,10 @@ pub fn units(g: &Graph<'_>) -> Result<Units, IoError> {
     let mut out = Units::default();
     for id in &g.ex.order {
         let parts = g.parts(*id, None)?;
-        let Some(ctx) = parts.iter().find(|e| e.name == "GLOBAL_UNIT_ASSIGNED_CONTEXT") else {
+        let Some(ctx) = parts
+            .iter()
+            .find(|e| e.name == "GLOBAL_UNIT_ASSIGNED_CONTEXT")
+        else {
             continue;
         };
         for u in ctx.refs(0)? {

@@ -6,9 +6,10 @@
 //! (longitude, the torus tube angle) by the loops' largest angular gap, the patch's
 //! seam put in its middle, or, when the face has a seam edge (an edge used twice),
 //! one full turn starting at the seam. Loop points then map to `(u, v)` in closed
-//! form: local coordinates, angles unwrapped by continuity along the loop from its
-//! point farthest from the window's ends (so a seam's two sides land on the two
-//! ends of the window), and [`arc_parameter`] for angles. A point on the axis (a
+//! form: local coordinates, angles taken within the window (a window is at most one
+//! turn, so each angle has one place in it) and [`arc_parameter`]; a run of points on
+//! the seam of a full turn takes the side of its neighbour off the seam (the one
+//! before it, or after it when a pole comes before). A point on the axis (a
 //! pole, a cone apex) takes the longitudes of its two neighbours: a straight `u`
 //! segment along the degenerate edge.
 //!
@@ -37,6 +38,9 @@ const MAX_PROJECTION_GAP: f64 = 1e-4;
 /// Local coordinates of a point: `[a, b]` the two surface coordinates before the arc
 /// reparametrisation, and whether it is a pole.
 type Local = ([f64; 2], bool);
+
+/// Loops in a patch's `(u, v)`.
+pub type UvLoops = Vec<Vec<[f64; 2]>>;
 
 /// What the loops need: coordinates per direction and which are angles.
 fn locals(s: &Surf, p: &Point3) -> Local {
@@ -116,18 +120,31 @@ pub fn elementary(
     s: &Surf,
     loops: &[Vec<Point3>],
     seams: &[Vec<Point3>],
-) -> Result<(Patch, Vec<Vec<[f64; 2]>>), String> {
+) -> Result<(Patch, UvLoops), String> {
     let per = periodic(s);
-    let loc: Vec<Vec<Local>> = loops.iter().map(|l| l.iter().map(|p| locals(s, p)).collect()).collect();
+    let loc: Vec<Vec<Local>> = loops
+        .iter()
+        .map(|l| l.iter().map(|p| locals(s, p)).collect())
+        .collect();
     let mut win = [[0.0; 2]; 2];
     for d in 0..2 {
-        let vals: Vec<f64> = loc.iter().flatten().filter(|x| !(x.1 && d == 0)).map(|x| x.0[d]).collect();
+        let vals: Vec<f64> = loc
+            .iter()
+            .flatten()
+            .filter(|x| !(x.1 && d == 0))
+            .map(|x| x.0[d])
+            .collect();
         if vals.is_empty() {
             return Err("the face's edges lie on the surface's axis".into());
         }
         win[d] = if per[d] {
             let seam = seams.iter().find_map(|sm| {
-                let a: Vec<f64> = sm.iter().map(|p| locals(s, p)).filter(|x| !x.1).map(|x| x.0[d]).collect();
+                let a: Vec<f64> = sm
+                    .iter()
+                    .map(|p| locals(s, p))
+                    .filter(|x| !x.1)
+                    .map(|x| x.0[d])
+                    .collect();
                 (!a.is_empty() && spread(&a) < 1e-7).then(|| a[0])
             });
             angle_window(&vals, seam)
@@ -162,41 +179,25 @@ fn build(s: &Surf, w: [[f64; 2]; 2]) -> Result<Patch, swarf_geom::GeomError> {
 /// One loop's local coordinates to patch `(u, v)`.
 fn unwrap(l: &[Local], win: &[[f64; 2]; 2], per: [bool; 2], s: &Surf) -> Vec<[f64; 2]> {
     let n = l.len();
-    let mid = |d: usize| 0.5 * (win[d][0] + win[d][1]);
-    let wrap = |x: f64, near: f64| x + TAU * ((near - x) / TAU).round();
-    // Start at the point farthest from the window's ends (in the periodic directions).
-    let depth = |x: &Local| {
-        (0..2)
-            .filter(|d| per[*d] && !(x.1 && *d == 0))
-            .map(|d| {
-                let a = wrap(x.0[d], mid(d));
-                (a - win[d][0]).min(win[d][1] - a)
-            })
-            .fold(PI, f64::min)
-    };
-    let start = (0..n)
-        .max_by(|a, b| depth(&l[*a]).total_cmp(&depth(&l[*b])))
-        .unwrap_or(0);
-    let mut out = vec![[f64::NAN; 2]; n];
-    let mut prev = [mid(0), mid(1)];
-    for k in 0..n {
-        let i = (start + k) % n;
-        let (c, pole) = l[i];
-        let mut q = [0.0; 2];
-        for d in 0..2 {
-            q[d] = if pole && d == 0 {
-                f64::NAN
-            } else if per[d] {
-                wrap(c[d], prev[d]).clamp(win[d][0], win[d][1])
-            } else {
-                c[d]
-            };
+    let mut out: Vec<[f64; 2]> = l
+        .iter()
+        .map(|(c, pole)| {
+            let mut q = *c;
+            if *pole {
+                q[0] = f64::NAN;
+            }
+            for d in 0..2 {
+                if per[d] && !q[d].is_nan() {
+                    q[d] = (win[d][0] + (q[d] - win[d][0]).rem_euclid(TAU)).min(win[d][1]);
+                }
+            }
+            q
+        })
+        .collect();
+    for d in 0..2 {
+        if per[d] && win[d][1] - win[d][0] >= TAU * (1.0 - 1e-12) {
+            seam_sides(l, &mut out, d, win[d]);
         }
-        if !q[0].is_nan() {
-            prev[0] = q[0];
-        }
-        prev[1] = q[1];
-        out[i] = q;
     }
     let mut res = Vec::with_capacity(n + 4);
     for i in 0..n {
@@ -222,6 +223,51 @@ fn unwrap(l: &[Local], win: &[[f64; 2]; 2], per: [bool; 2], s: &Surf) -> Vec<[f6
         }
     }
     res
+}
+
+/// Puts each run of loop points on the seam of a full-turn direction `d` on the side
+/// of its neighbour off the seam: the one before the run, or after it when the run
+/// starts at a pole. Continuation alone cannot tell the side of a seam walked right
+/// after a pole (a cone's apex): no point between says which way it went.
+fn seam_sides(l: &[Local], out: &mut [[f64; 2]], d: usize, w: [f64; 2]) {
+    let n = l.len();
+    let on_seam = |i: usize| {
+        !(l[i].1 && d == 0) && {
+            let x = (l[i].0[d] - w[0]).rem_euclid(TAU);
+            x.min(TAU - x) < 1e-9
+        }
+    };
+    let free = |i: usize| !on_seam(i) && !(l[i].1 && d == 0);
+    let Some(anchor) = (0..n).find(|i| free(*i)) else {
+        return;
+    };
+    let side = |q: f64| if q - w[0] < PI { w[0] } else { w[1] };
+    let mut k = 0;
+    while k < n {
+        let i = (anchor + k) % n;
+        if !on_seam(i) {
+            k += 1;
+            continue;
+        }
+        let run_start = k;
+        while k < n && on_seam((anchor + k) % n) {
+            k += 1;
+        }
+        let before = (anchor + run_start + n - 1) % n;
+        let after = (anchor + k) % n;
+        let pick = if free(before) {
+            Some(side(out[before][d]))
+        } else if free(after) {
+            Some(side(out[after][d]))
+        } else {
+            None
+        };
+        if let Some(v) = pick {
+            for j in run_start..k {
+                out[(anchor + j) % n][d] = v;
+            }
+        }
+    }
 }
 
 /// Loops of a B-spline patch in `(u, v)` by projection with continuation.
@@ -273,7 +319,10 @@ pub fn covers_domain(loops: &[Vec<[f64; 2]>], dom: [[f64; 2]; 2]) -> bool {
     if loops.len() != 1 {
         return false;
     }
-    let eps = [1e-9 * (dom[0][1] - dom[0][0]), 1e-9 * (dom[1][1] - dom[1][0])];
+    let eps = [
+        1e-9 * (dom[0][1] - dom[0][0]),
+        1e-9 * (dom[1][1] - dom[1][0]),
+    ];
     let on = |q: &[f64; 2]| {
         (0..2).any(|d| (q[d] - dom[d][0]).abs() <= eps[d] || (q[d] - dom[d][1]).abs() <= eps[d])
     };

@@ -8,7 +8,8 @@ OUT_DIR/NAME.csv with one row per sample point inside a face:
     face,kind,u,v,x,y,z
 where (u, v) are OCC's face parameters and (x, y, z) OCC's own evaluation of the face's
 surface there (BRepAdaptor_Surface, which applies the face's location), in mm.
-Cases: bspline, rational, plate_hole, fillet, cylinder, torus, wave (from WAVE_TOML).
+Cases: bspline, rational, plate_hole, fillet, cylinder, cone (with its apex),
+sphere (part, with a pole), torus, wave (from WAVE_TOML).
 With --bench N, writes only bench.step: N copies of the filleted, drilled plate.
 """
 
@@ -23,6 +24,8 @@ from OCP.BRepClass import BRepClass_FaceClassifier
 from OCP.BRepFilletAPI import BRepFilletAPI_MakeFillet
 from OCP.BRepPrimAPI import (
     BRepPrimAPI_MakeBox,
+    BRepPrimAPI_MakeCone,
+    BRepPrimAPI_MakeSphere,
     BRepPrimAPI_MakeCylinder,
     BRepPrimAPI_MakeTorus,
 )
@@ -191,6 +194,8 @@ def main():
         "plate_hole": plate_hole(),
         "fillet": fillet(),
         "cylinder": BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(1, 2, 3), gp_Dir(0.3, 0.4, 1.0)), 4.0, 9.0).Shape(),
+        "cone": BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(3, 0, 1), gp_Dir(1, 0, 1)), 5.0, 0.0, 8.0).Shape(),
+        "sphere": BRepPrimAPI_MakeSphere(gp_Pnt(1, 1, 1), 6.0, -0.4, math.pi / 2, 4.0).Shape(),
         "torus": BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(-2, 1, 0), gp_Dir(0, 1, 1)), 10.0, 3.0).Shape(),
     }
     if len(args) > 1:
