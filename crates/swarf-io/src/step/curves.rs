@@ -12,13 +12,14 @@
 
 use super::graph::{Ent, Graph, nums_of};
 use super::parser::Value;
+use super::surfaces::SurfFail;
 use crate::error::IoError;
 use swarf_geom::patch::Frame;
 use swarf_geom::{NurbsCurve, Point3, Vec3};
 
 /// A curve in mm.
 pub enum Curve {
-    /// Through `p` along unit `d`.
+    /// A straight edge between its vertices.
     Line,
     /// `frame.origin + a cos t x + b sin t y` (a circle when `a == b`).
     Conic { frame: Frame, a: f64, b: f64 },
@@ -100,7 +101,11 @@ impl Geo<'_> {
     }
 
     /// The 3D curve `#id` (through trimmed and surface curves).
-    pub fn curve(&self, id: u64, from: &Ent<'_>) -> Result<Curve, IoError> {
+    ///
+    /// # Errors
+    /// [`SurfFail::Unsupported`] for other curve types, [`SurfFail::Bad`] for
+    /// malformed ones.
+    pub fn curve(&self, id: u64, from: &Ent<'_>) -> Result<Curve, SurfFail> {
         let mut id = id;
         let mut from = *from;
         for _ in 0..MAX_CURVE_CHAIN {
@@ -108,7 +113,7 @@ impl Geo<'_> {
             let e = parts[0];
             let names: Vec<&str> = parts.iter().map(|p| p.name).collect();
             if names.contains(&"B_SPLINE_CURVE_WITH_KNOTS") {
-                return self.bspline(&parts).map(Curve::Nurbs);
+                return Ok(self.bspline(&parts).map(Curve::Nurbs)?);
             }
             match e.name {
                 "LINE" => return Ok(Curve::Line),
@@ -126,10 +131,15 @@ impl Geo<'_> {
                     id = e.refr(1)?;
                     from = e;
                 }
-                other => return Err(e.err(format!("unsupported curve type {other}"))),
+                other => {
+                    return Err(SurfFail::Unsupported(e.err(format!(
+                        "unsupported curve type {other} (supported: LINE, CIRCLE, ELLIPSE, \
+                         B_SPLINE_CURVE_WITH_KNOTS, TRIMMED_CURVE, SURFACE_CURVE, SEAM_CURVE)"
+                    ))));
+                }
             }
         }
-        Err(from.err("curve references nest too deep"))
+        Err(from.err("curve references nest too deep").into())
     }
 
     fn bspline(&self, parts: &[Ent<'_>]) -> Result<NurbsCurve, IoError> {

@@ -119,3 +119,70 @@ fn bad_input_names_file_line_entity_and_argument() {
     ));
     assert!(m.contains("FACE_OUTER_BOUND"), "{m}");
 }
+
+#[test]
+fn an_unsupported_edge_curve_skips_its_face_or_refuses() {
+    let s = square(MM).replace("#40 = LINE('',#50,#41);", "#40 = POLYLINE('',(#51,#52));");
+    let m = read(&s).unwrap_err().to_string();
+    assert!(
+        m.contains("no faces") && m.contains("#40 POLYLINE: unsupported curve type"),
+        "{m}"
+    );
+    let refuse = CadOptions {
+        unsupported: Unsupported::Refuse,
+        ..CadOptions::default()
+    };
+    let m = parse_step(&s, "t.step", &refuse).unwrap_err().to_string();
+    assert!(
+        m.starts_with("t.step: line 26: #40 POLYLINE: unsupported"),
+        "{m}"
+    );
+}
+
+#[test]
+fn a_cone_semi_angle_in_degrees() {
+    let deg = "#62 = ( CONVERSION_BASED_UNIT('DEGREE',#66) NAMED_UNIT(#64) PLANE_ANGLE_UNIT() );
+#64 = DIMENSIONAL_EXPONENTS(0.,0.,0.,0.,0.,0.,0.);
+#66 = PLANE_ANGLE_MEASURE_WITH_UNIT(PLANE_ANGLE_MEASURE(0.0174532925199433),#67);
+#67 = ( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) );";
+    // The square's plane swapped for a 45-degree cone whose apex is far away: read
+    // in degrees the face exists; read as 45 radians it is refused.
+    let s = square(MM)
+        .replace(
+            "#62 = ( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) );",
+            deg,
+        )
+        .replace(
+            "#30 = PLANE('',#31);",
+            "#30 = CONICAL_SURFACE('',#31,100.,45.);",
+        );
+    let g = graph::Graph {
+        ex: &parser::parse(&s).unwrap(),
+        file: "t.step",
+    };
+    let u = units::units(&g).unwrap();
+    assert!((u.rad - std::f64::consts::PI / 180.0).abs() < 1e-15);
+    let rad = square(MM).replace(
+        "#30 = PLANE('',#31);",
+        "#30 = CONICAL_SURFACE('',#31,100.,45.);",
+    );
+    let m = read(&rad).unwrap_err().to_string();
+    assert!(
+        m.contains("#30 CONICAL_SURFACE") && m.contains("semi-angle"),
+        "{m}"
+    );
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+    #[test]
+    fn damaged_files_never_panic(cut in 0usize..2000, at in 0usize..2000, byte in 32u8..127) {
+        let s = square(MM);
+        let mut b = s.into_bytes();
+        let i = at % b.len();
+        b[i] = byte;
+        b.truncate(b.len() - cut % b.len());
+        let t = String::from_utf8_lossy(&b);
+        let _ = read(&t);
+    }
+}

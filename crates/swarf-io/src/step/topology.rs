@@ -91,7 +91,11 @@ pub fn face(
         if le.name != "EDGE_LOOP" {
             continue; // a loop of one vertex (apex, pole) bounds nothing
         }
-        let (points, edges) = edge_loop(geo, &le, cache, chord)?;
+        let (points, edges) = match edge_loop(geo, &le, cache, chord) {
+            Ok(x) => x,
+            Err(SurfFail::Unsupported(e)) => return Ok(FaceResult::Skipped(e)),
+            Err(SurfFail::Bad(e)) => return Err(e),
+        };
         bounds.push(Bound {
             outer: be.name == "FACE_OUTER_BOUND",
             points,
@@ -184,13 +188,13 @@ fn edge_loop(
     le: &Ent<'_>,
     cache: &mut EdgeCache,
     chord: f64,
-) -> Result<(Vec<Point3>, Vec<u64>), IoError> {
+) -> Result<(Vec<Point3>, Vec<u64>), SurfFail> {
     let g = geo.g;
     let mut pts: Vec<Point3> = Vec::new();
     let mut edges = Vec::new();
     let oes = le.refs(1)?;
     if oes.is_empty() {
-        return Err(le.err("expected at least one ORIENTED_EDGE"));
+        return Err(le.err("expected at least one ORIENTED_EDGE").into());
     }
     for (k, oe) in oes.iter().enumerate() {
         let oe = g.get(*oe, &["ORIENTED_EDGE"], le)?;
@@ -210,12 +214,12 @@ fn edge_loop(
         if let Some(last) = pts.last() {
             let gap = (seg[0] - last).norm();
             if gap > LOOP_GAP {
-                return Err(le.err(format!(
+                return Err(SurfFail::Bad(le.err(format!(
                     "open loop: edge {} (#{}) starts {gap:.3e} mm from the end of the edge before \
                      it (expected consecutive edges to meet within {LOOP_GAP:e} mm)",
                     k + 1,
                     ee.id
-                )));
+                ))));
             }
             pts.extend_from_slice(&seg[1..]);
         } else {
@@ -225,10 +229,10 @@ fn edge_loop(
     }
     let gap = (pts[0] - pts[pts.len() - 1]).norm();
     if gap > LOOP_GAP {
-        return Err(le.err(format!(
+        return Err(SurfFail::Bad(le.err(format!(
             "open loop: the last edge ends {gap:.3e} mm from the start of the first (expected \
              within {LOOP_GAP:e} mm)"
-        )));
+        ))));
     }
     if pts.len() > 1 {
         pts.pop();
@@ -237,7 +241,7 @@ fn edge_loop(
 }
 
 /// Samples of `EDGE_CURVE` `ee` from its start to its end vertex.
-fn edge_points(geo: &Geo<'_>, ee: &Ent<'_>, chord: f64) -> Result<Vec<Point3>, IoError> {
+fn edge_points(geo: &Geo<'_>, ee: &Ent<'_>, chord: f64) -> Result<Vec<Point3>, SurfFail> {
     let g = geo.g;
     let vertex = |i: usize| -> Result<Point3, IoError> {
         let v = g.get(ee.refr(i)?, &["VERTEX_POINT"], ee)?;
@@ -245,5 +249,5 @@ fn edge_points(geo: &Geo<'_>, ee: &Ent<'_>, chord: f64) -> Result<Vec<Point3>, I
     };
     let (a, b) = (vertex(1)?, vertex(2)?);
     let curve = geo.curve(ee.refr(3)?, ee)?;
-    sample_edge(&curve, a, b, ee.boolean(4)?, chord).map_err(|m| ee.err(m))
+    sample_edge(&curve, a, b, ee.boolean(4)?, chord).map_err(|m| SurfFail::Bad(ee.err(m)))
 }
