@@ -4,6 +4,7 @@
 //!   the shared test parts embedded in the binary;
 //! - [`stl`], [`obj`], [`mesh_file`]: triangle meshes;
 //! - [`rest_parts`]: built-in mesh parts for rest-material detection, built in code;
+//! - [`step`]: STEP (ISO 10303-21) B-rep parts as trimmed NURBS faces;
 //! - [`csv`]: numeric point lists; [`json`]: JSON whose numbers are all finite;
 //! - [`atomic`], [`output_set`]: writes that never leave a half-written file, or a
 //!   mix of two runs' files, behind.
@@ -23,6 +24,7 @@ pub mod obj;
 pub mod output_set;
 pub mod part;
 pub mod rest_parts;
+pub mod step;
 pub mod stl;
 
 pub use atomic::{write_atomic, write_atomic_with};
@@ -36,6 +38,7 @@ pub use obj::{parse_obj, read_obj};
 pub use output_set::OutputSet;
 pub use part::{parse_part, read_part};
 pub use rest_parts::{MESH_PART_CHORD, builtin_mesh, builtin_mesh_names};
+pub use step::{parse_step, read_step};
 pub use stl::{parse_stl, read_stl, write_stl};
 
 /// Scratch directories for tests.

@@ -9,6 +9,7 @@ mod area;
 pub mod basis;
 mod curvature_range;
 mod diffgeo;
+mod elementary;
 mod eval;
 #[cfg(test)]
 pub(crate) mod fixtures;
@@ -26,6 +27,7 @@ mod tessellate_trimmed;
 pub use basis::MAX_DEGREE;
 pub use curvature_range::CurvatureRange;
 pub use diffgeo::{Curvature, FundamentalForms};
+pub use elementary::{Frame, arc_parameter};
 pub use eval::SurfaceDerivs;
 pub use power::PowerPatch;
 pub use project::Projection;

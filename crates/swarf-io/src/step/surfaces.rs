@@ -1,0 +1,171 @@
+//! Face surfaces: `B_SPLINE_SURFACE_WITH_KNOTS` (simple, or the rational complex
+//! instance `(BOUNDED_SURFACE() B_SPLINE_SURFACE(..) B_SPLINE_SURFACE_WITH_KNOTS(..)
+//! .. RATIONAL_B_SPLINE_SURFACE(..) ..)` that OpenCASCADE writes) read as they are,
+//! and the elementary surfaces (ISO 10303-42 `plane`, `cylindrical_surface`,
+//! `conical_surface`, `spherical_surface`, `toroidal_surface`) kept as closed forms
+//! until the face's edges size them ([`super::uv`]).
+
+use super::curves::{Geo, expand_knots, nested_nums};
+use super::graph::Ent;
+use crate::error::IoError;
+use swarf_geom::patch::Frame;
+use swarf_geom::{Patch, Point3};
+
+/// A face's surface, in mm and radians.
+pub enum Surf {
+    /// `PLANE`.
+    Plane(Frame),
+    /// `CYLINDRICAL_SURFACE`: radius.
+    Cylinder(Frame, f64),
+    /// `CONICAL_SURFACE`: radius at the placement, semi-angle.
+    Cone(Frame, f64, f64),
+    /// `SPHERICAL_SURFACE`: radius.
+    Sphere(Frame, f64),
+    /// `TOROIDAL_SURFACE`: major and minor radius.
+    Torus(Frame, f64, f64),
+    /// A B-spline or NURBS surface.
+    Spline(Patch),
+}
+
+/// Why a surface was not read.
+pub enum SurfFail {
+    /// A type or form this reader does not handle: skip or refuse by the options.
+    Unsupported(IoError),
+    /// Malformed input.
+    Bad(IoError),
+}
+
+impl From<IoError> for SurfFail {
+    fn from(e: IoError) -> Self {
+        SurfFail::Bad(e)
+    }
+}
+
+/// The surface `#id` of face `face`.
+///
+/// # Errors
+/// [`SurfFail::Unsupported`] for other surface types and unclamped knots;
+/// [`SurfFail::Bad`] for malformed entities.
+pub fn surface(geo: &Geo<'_>, id: u64, face: &Ent<'_>) -> Result<Surf, SurfFail> {
+    let parts = geo.g.parts(id, Some(face))?;
+    if parts
+        .iter()
+        .any(|p| p.name == "B_SPLINE_SURFACE_WITH_KNOTS")
+    {
+        return spline(geo, &parts).map(Surf::Spline);
+    }
+    let e = parts[0];
+    let frame = |e: &Ent<'_>| geo.frame(e.refr(1)?, e);
+    let len = |i: usize| -> Result<f64, IoError> {
+        let x = e.num(i)? * geo.mm;
+        if x > 0.0 {
+            Ok(x)
+        } else {
+            Err(e.arg_err(i, "a positive length"))
+        }
+    };
+    Ok(match e.name {
+        "PLANE" => Surf::Plane(frame(&e)?),
+        "CYLINDRICAL_SURFACE" => Surf::Cylinder(frame(&e)?, len(2)?),
+        "CONICAL_SURFACE" => {
+            let r = e.num(2)? * geo.mm;
+            let a = e.num(3)? * geo.rad;
+            if !(r >= 0.0 && a > 0.0 && a < std::f64::consts::FRAC_PI_2) {
+                return Err(e
+                    .err("expected a radius >= 0 and a semi-angle in (0, 90) degrees")
+                    .into());
+            }
+            Surf::Cone(frame(&e)?, r, a)
+        }
+        "SPHERICAL_SURFACE" => Surf::Sphere(frame(&e)?, len(2)?),
+        "TOROIDAL_SURFACE" => Surf::Torus(frame(&e)?, len(2)?, len(3)?),
+        other => {
+            return Err(SurfFail::Unsupported(e.err(format!(
+                "unsupported surface type {other} (supported: B_SPLINE_SURFACE_WITH_KNOTS, PLANE, \
+                 CYLINDRICAL_SURFACE, CONICAL_SURFACE, SPHERICAL_SURFACE, TOROIDAL_SURFACE)"
+            ))));
+        }
+    })
+}
+
+fn clamped(k: &[f64], p: usize) -> bool {
+    let n = k.len();
+    n >= 2 * (p + 1)
+        && k[..=p].iter().all(|x| *x == k[0])
+        && k[n - p - 1..].iter().all(|x| *x == k[n - 1])
+}
+
+/// A B-spline surface from its simple or complex instance.
+fn spline(geo: &Geo<'_>, parts: &[Ent<'_>]) -> Result<Patch, SurfFail> {
+    let by = |n: &str| parts.iter().find(|p| p.name == n).copied();
+    let wk = by("B_SPLINE_SURFACE_WITH_KNOTS").ok_or_else(|| parts[0].err("no knots"))?;
+    // Simple: (name, du, dv, points, form, uc, vc, si, umult, vmult, uknots, vknots, spec).
+    // Complex: B_SPLINE_SURFACE(du, dv, points, ...) + WITH_KNOTS(umult, vmult, uk, vk, spec).
+    let (s, c0, k0) = match by("B_SPLINE_SURFACE") {
+        Some(bs) => (bs, 0, 0),
+        None => (wk, 1, 8),
+    };
+    let degree = [s.int(c0)?, s.int(c0 + 1)?];
+    let rows = s.list(c0 + 2)?;
+    let mut points = Vec::new();
+    let mut nv = None;
+    for row in rows {
+        let super::parser::Value::List(r) = row else {
+            return Err(s.arg_err(c0 + 2, "a list of lists of points").into());
+        };
+        if nv.is_some_and(|n| n != r.len()) {
+            return Err(s.arg_err(c0 + 2, "rows of equal length").into());
+        }
+        nv = Some(r.len());
+        for v in r {
+            let super::parser::Value::Ref(id) = v else {
+                return Err(s.arg_err(c0 + 2, "references to CARTESIAN_POINTs").into());
+            };
+            points.push(geo.point(*id, &s)?);
+        }
+    }
+    let mut knots = Vec::new();
+    for d in 0..2 {
+        let m = wk.nums(k0 + d)?;
+        let v = wk.nums(k0 + 2 + d)?;
+        let k = expand_knots(&m, &v).ok_or_else(|| {
+            wk.arg_err(
+                k0 + d,
+                "positive integer multiplicities, one per knot value",
+            )
+        })?;
+        if !clamped(&k, degree[d]) {
+            return Err(SurfFail::Unsupported(wk.err(format!(
+                "unclamped (periodic) knots in {}: not supported",
+                ["u", "v"][d]
+            ))));
+        }
+        knots.push(k);
+    }
+    let weights = match by("RATIONAL_B_SPLINE_SURFACE") {
+        Some(r) => Some(nested_nums(&r, 0)?.concat()),
+        None => None,
+    };
+    let kv = knots.pop();
+    let ku = knots.pop();
+    Patch::new(degree, points, [ku, kv], weights)
+        .map_err(|e| SurfFail::Bad(wk.err(format!("invalid B-spline surface: {e}"))))
+}
+
+/// The patch with its `u` direction reversed (the normal flipped), same surface.
+pub fn reverse_u(p: &Patch) -> Patch {
+    let [nu, nv] = p.count();
+    let ku = p.knots(0);
+    let (a, b) = (ku[0], ku[ku.len() - 1]);
+    let rk: Vec<f64> = ku.iter().rev().map(|k| a + b - k).collect();
+    let idx = |i: usize, j: usize| (nu - 1 - i) * nv + j;
+    let pts: Vec<Point3> = (0..nu * nv)
+        .map(|k| p.points()[idx(k / nv, k % nv)])
+        .collect();
+    let w = p
+        .weights()
+        .map(|w| (0..nu * nv).map(|k| w[idx(k / nv, k % nv)]).collect());
+    // Same degrees, counts and validity as `p`: the reversed knots are clamped too.
+    Patch::new(p.degree(), pts, [Some(rk), Some(p.knots(1).to_vec())], w)
+        .unwrap_or_else(|_| p.clone())
+}
