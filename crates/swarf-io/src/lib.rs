@@ -4,6 +4,7 @@
 //!   the shared test parts embedded in the binary;
 //! - [`stl`], [`obj`], [`mesh_file`]: triangle meshes;
 //! - [`rest_parts`]: built-in mesh parts for rest-material detection, built in code;
+//! - [`iges`]: IGES 5.3 trimmed NURBS faces ([`cad`] options and result);
 //! - [`csv`]: numeric point lists; [`json`]: JSON whose numbers are all finite;
 //! - [`atomic`], [`output_set`]: writes that never leave a half-written file, or a
 //!   mix of two runs' files, behind.
@@ -16,6 +17,7 @@ pub mod builtin;
 pub mod cad;
 pub mod csv;
 pub mod error;
+pub mod iges;
 pub mod input;
 pub mod json;
 pub mod mesh_file;
@@ -30,6 +32,7 @@ pub use builtin::{builtin_part, builtin_parts, project_parts};
 pub use cad::{CadOptions, CadPart, Unsupported};
 pub use csv::{parse_xy_points, read_xy_points};
 pub use error::{At, IoError};
+pub use iges::{parse_iges, read_iges};
 pub use input::{checked_open, max_input_bytes, read_input, read_input_text, track_inputs};
 pub use mesh_file::read_mesh;
 pub use obj::{parse_obj, read_obj};

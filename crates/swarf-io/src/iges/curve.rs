@@ -1,0 +1,118 @@
+//! Trimming curves sampled into polylines (IGES 5.3 sec. 4.3, 4.5, 4.13, 4.23):
+//! 110 line (its two ends), 100 circular arc (centre, start, end, counter-clockwise
+//! in the plane `z = ZT`; steps of `2 acos(1 - tol / r)` keep the sagitta within
+//! `tol`), 126 rational B-spline curve (knots possibly unclamped, sampled by
+//! [`NurbsCurve::polyline`] on `[V0, V1]`) and 102 composite curve (its pieces in
+//! order, each end within `gap` of the next start). Each is mapped by its 124.
+
+use super::{Iges, MAX_DEPTH, Problem};
+use std::f64::consts::TAU;
+use swarf_geom::{NurbsCurve, Point3};
+
+/// Most points a circular arc is cut into.
+const MAX_ARC_STEPS: f64 = 1e6;
+
+impl Iges<'_> {
+    /// Points along curve `de` within `tol` (in the curve's space: file units, or
+    /// parameter units of a surface), pieces of a composite joined within `gap`.
+    ///
+    /// # Errors
+    /// An unsupported curve type, bad parameters, a composite whose pieces do not
+    /// join, or nesting deeper than [`MAX_DEPTH`].
+    pub(crate) fn sample_curve(
+        &self,
+        de: usize,
+        tol: f64,
+        gap: f64,
+        depth: usize,
+    ) -> Result<Vec<Point3>, Problem> {
+        if depth > MAX_DEPTH {
+            return Err(self.err(de, format!("curves nested deeper than {MAX_DEPTH}; expected no cycle")).into());
+        }
+        let p = self.params(de, "curve")?;
+        let pts = match p.ty {
+            110 => {
+                let v = p.reals(self, 1, 6)?;
+                vec![Point3::new(v[0], v[1], v[2]), Point3::new(v[3], v[4], v[5])]
+            }
+            100 => {
+                let v = p.reals(self, 1, 7)?;
+                arc(v[0], [v[1], v[2]], [v[3], v[4]], [v[5], v[6]], tol)
+                    .ok_or_else(|| self.err(de, "expected a circular arc of finite, positive radius"))?
+            }
+            126 => self.bspline_curve(&p, tol)?,
+            102 => {
+                let n = p.count(self, 1, p.toks.len())?;
+                let mut out: Vec<Point3> = Vec::new();
+                for k in 0..n {
+                    let c = p.ptr(self, 2 + k)?;
+                    let piece = self.sample_curve(c, tol, gap, depth + 1)?;
+                    if let (Some(end), Some(start)) = (out.last(), piece.first()) {
+                        let d = (end - start).norm();
+                        if d > gap {
+                            return Err(self.err(de, format!(
+                                "piece {} (DE {c}) starts {d:.3e} from the end of piece {k}; expected a connected curve (gap <= {gap:.1e})",
+                                k + 1
+                            )).into());
+                        }
+                        out.pop();
+                    }
+                    out.extend(piece);
+                }
+                out
+            }
+            t => return Err(p.unsupported(format!("curve type {t} in a trimming loop (expected 100, 102, 110 or 126)"))),
+        };
+        let map = self.transform_of(de)?;
+        Ok(pts.iter().map(|q| map.apply(q)).collect())
+    }
+
+    /// A 126 sampled on `[V0, V1]`.
+    fn bspline_curve(&self, p: &super::Params, tol: f64) -> Result<Vec<Point3>, Problem> {
+        let size = p.toks.len();
+        let k = p.count(self, 1, size)?;
+        let m = p.count(self, 2, size)?;
+        let n = k + 1;
+        let nk = n + m + 1;
+        let at = 7;
+        let knots = p.reals(self, at, nk)?;
+        let w = p.reals(self, at + nk, n)?;
+        let xyz = p.reals(self, at + nk + n, 3 * n)?;
+        let t = p.reals(self, at + nk + 4 * n, 2)?;
+        let points = xyz.chunks(3).map(|c| Point3::new(c[0], c[1], c[2])).collect();
+        let rational = p.int(self, 5)? == 0;
+        let curve = NurbsCurve::new(m, knots, points, rational.then_some(w))
+            .map_err(|e| self.err(p.de, format!("rational B-spline curve: {e}")))?;
+        curve
+            .polyline(t[0], t[1], tol)
+            .map(|v| v.into_iter().map(|(_, q)| q).collect())
+            .map_err(|e| self.err(p.de, format!("sampling: {e}")).into())
+    }
+}
+
+/// An arc in the plane `z = zt` about `c` from `s` to `e`, counter-clockwise (a full
+/// circle when `s == e`), within sagitta `tol`.
+fn arc(zt: f64, c: [f64; 2], s: [f64; 2], e: [f64; 2], tol: f64) -> Option<Vec<Point3>> {
+    let r = (s[0] - c[0]).hypot(s[1] - c[1]);
+    if !(r.is_finite() && r > 0.0) {
+        return None;
+    }
+    let a0 = (s[1] - c[1]).atan2(s[0] - c[0]);
+    let a1 = (e[1] - c[1]).atan2(e[0] - c[0]);
+    let mut sweep = (a1 - a0).rem_euclid(TAU);
+    if sweep <= 1e-12 {
+        sweep = TAU;
+    }
+    let step = 2.0 * (1.0 - (tol / r).min(1.0)).acos();
+    let n = (sweep / step.max(1e-300)).ceil().clamp(2.0, MAX_ARC_STEPS) as usize;
+    let mut out: Vec<Point3> = (0..=n)
+        .map(|k| {
+            let a = a0 + sweep * k as f64 / n as f64;
+            Point3::new(c[0] + r * a.cos(), c[1] + r * a.sin(), zt)
+        })
+        .collect();
+    if let Some(last) = out.last_mut() {
+        *last = Point3::new(e[0], e[1], zt);
+    }
+    Some(out)
+}

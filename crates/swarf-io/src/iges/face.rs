@@ -1,0 +1,180 @@
+//! Faces: entity 144 (trimmed surface, IGES 5.3 sec. 4.34) as a patch and its
+//! [`Trim`], each loop a 142 (curve on a parametric surface, sec. 4.32) sampled in
+//! the surface's `(u, v)` (module doc of [`super`] for the tolerances), and a bare
+//! independent 128 as a whole patch.
+
+use super::{FaceOut, Iges, Problem};
+use swarf_geom::trim::Trim;
+use swarf_geom::{Face, Patch, Point3};
+
+/// Largest gap closed between the pieces of a loop and between its ends, mm (IGES
+/// writers print 9 to 15 significant digits).
+const GAP_MM: f64 = 1e-3;
+/// Largest distance of a model-space trimming point from its surface, mm.
+const OFF_SURFACE_MM: f64 = 1e-3;
+/// Samples per direction of the grid bounding `|S_u| + |S_v|`.
+const SPEED_GRID: usize = 16;
+
+impl Iges<'_> {
+    /// An independent 128: its whole patch.
+    pub(crate) fn bare_surface(&self, de: usize) -> Result<FaceOut, Problem> {
+        let patch = self.nurbs_surface(de)?;
+        Ok((patch, Face { name: self.name(de, None), trim: None }))
+    }
+
+    /// A 144: the patch of its surface and its trimming loops.
+    pub(crate) fn trimmed_surface(&self, de: usize) -> Result<FaceOut, Problem> {
+        let p = self.params(de, "trimmed surface")?;
+        let sptr = p.ptr(self, 1)?;
+        let n1 = p.int(self, 2)?;
+        let n2 = p.count(self, 3, p.toks.len())?;
+        let mut curves = Vec::with_capacity(n2 + 1);
+        if n1 != 0 {
+            curves.push(p.ptr(self, 4)?);
+        }
+        for k in 0..n2 {
+            curves.push(p.ptr(self, 5 + k)?);
+        }
+        let ty = self.entry(sptr, &format!("DE {de} parameter 1 (surface)"))?.ty;
+        let (patch, mut loops) = match ty {
+            128 => {
+                let patch = self.nurbs_surface(sptr)?;
+                let loops = curves
+                    .iter()
+                    .map(|c| self.loop_uv(*c, sptr, &patch))
+                    .collect::<Result<Vec<_>, _>>()?;
+                (patch, loops)
+            }
+            108 if n1 != 0 => {
+                let model = curves
+                    .iter()
+                    .map(|c| self.loop_model(*c, sptr))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let plane = self.params(sptr, "plane")?;
+                let patch = self.plane_patch(&plane, &model[0])?;
+                let loops = curves
+                    .iter()
+                    .zip(&model)
+                    .map(|(c, m)| self.project_loop(*c, m, &patch))
+                    .collect::<Result<Vec<_>, _>>()?;
+                (patch, loops)
+            }
+            108 => return Err(p.unsupported("an unbounded plane (108) as the outer boundary")),
+            t => return Err(p.unsupported(format!("surface DE {sptr} of type {t} (expected 128 or a bounded 108)"))),
+        };
+        if n1 == 0 {
+            if loops.is_empty() {
+                return Ok((patch, Face { name: self.name(de, Some(sptr)), trim: None }));
+            }
+            let [u, v] = patch.domain();
+            loops.insert(0, vec![[u[0], v[0]], [u[1], v[0]], [u[1], v[1]], [u[0], v[1]]]);
+            curves.insert(0, 0);
+        }
+        let trim = Trim::new(loops).map_err(|e| {
+            let which: Vec<String> = curves
+                .iter()
+                .enumerate()
+                .map(|(k, c)| if *c == 0 { format!("loop[{k}] = the surface's domain") } else { format!("loop[{k}] = DE {c}") })
+                .collect();
+            self.err(de, format!("trimming loops ({}): {e}", which.join(", ")))
+        })?;
+        Ok((patch, Face { name: self.name(de, Some(sptr)), trim: Some(trim) }))
+    }
+
+    /// The 142 at `c`, checked to lie on surface `sptr`: (BPTR, CPTR).
+    fn curve_on_surface(&self, c: usize, sptr: usize) -> Result<(usize, usize), Problem> {
+        let p = self.params(c, "curve on surface")?;
+        if p.ty != 142 {
+            return Err(p.unsupported(format!("trimming loop of type {} (expected 142)", p.ty)));
+        }
+        let s = p.ptr(self, 2)?;
+        if s != sptr {
+            return Err(self.err(c, format!("parameter 2: surface DE {s}; expected the trimmed surface's DE {sptr}")).into());
+        }
+        Ok((p.ptr(self, 3)?, p.ptr(self, 4)?))
+    }
+
+    /// Loop `c` in `(u, v)` of the 128 `patch`: its parameter-space curve, or its
+    /// model-space curve projected.
+    fn loop_uv(&self, c: usize, sptr: usize, patch: &Patch) -> Result<Vec<[f64; 2]>, Problem> {
+        let (b, m) = self.curve_on_surface(c, sptr)?;
+        if b == 0 {
+            let model = self.loop_model(c, sptr)?;
+            return self.project_loop(c, &model, patch);
+        }
+        let speed = speed_bound(patch);
+        let tol = self.opts.trim_chord / speed;
+        let pts = self.sample_curve(b, tol, GAP_MM / speed, 0)?;
+        let _ = m;
+        let uv: Vec<[f64; 2]> = pts.iter().map(|q| [q.x, q.y]).collect();
+        self.closed(c, uv, GAP_MM / speed)
+    }
+
+    /// Loop `c`'s model-space curve in mm.
+    fn loop_model(&self, c: usize, sptr: usize) -> Result<Vec<Point3>, Problem> {
+        let (_, m) = self.curve_on_surface(c, sptr)?;
+        if m == 0 {
+            return Err(self.err(c, "parameter 4: no model-space curve, and no parameter-space curve swarf can use").into());
+        }
+        let s = self.rec.mm_per_unit;
+        let pts = self.sample_curve(m, self.opts.trim_chord / s, GAP_MM / s, 0)?;
+        Ok(pts.into_iter().map(|q| q * s).collect())
+    }
+
+    /// Model-space loop points (mm) projected on `patch`, each from the previous.
+    fn project_loop(&self, c: usize, model: &[Point3], patch: &Patch) -> Result<Vec<[f64; 2]>, Problem> {
+        let mut uv: Vec<[f64; 2]> = Vec::with_capacity(model.len());
+        for (k, q) in model.iter().enumerate() {
+            let pr = match uv.last() {
+                None => patch.project(q),
+                Some(&[u, v]) => patch.project_from(q, u, v),
+            };
+            if !(pr.distance <= OFF_SURFACE_MM) {
+                return Err(self.err(c, format!(
+                    "model-space point {k} ({:.6}, {:.6}, {:.6}) mm lies {:.3e} mm from the surface; expected within {OFF_SURFACE_MM:e}",
+                    q.x, q.y, q.z, pr.distance
+                )).into());
+            }
+            uv.push([pr.u, pr.v]);
+        }
+        let speed = speed_bound(patch);
+        self.closed(c, uv, GAP_MM / speed)
+    }
+
+    /// `uv` as a closed loop (last point dropped when it meets the first within `gap`).
+    fn closed(&self, c: usize, mut uv: Vec<[f64; 2]>, gap: f64) -> Result<Vec<[f64; 2]>, Problem> {
+        let (Some(a), Some(b)) = (uv.first(), uv.last()) else {
+            return Err(self.err(c, "empty trimming loop").into());
+        };
+        let d = (a[0] - b[0]).hypot(a[1] - b[1]);
+        if !(d <= gap) || uv.len() < 3 {
+            return Err(self.err(c, format!(
+                "open trimming loop: its end is {d:.3e} (u, v) from its start; expected a closed loop (gap <= {gap:.1e})"
+            )).into());
+        }
+        uv.pop();
+        Ok(uv)
+    }
+
+    /// A face's name: the label of entity `de`, else of `other`.
+    fn name(&self, de: usize, other: Option<usize>) -> Option<String> {
+        let label = |d: usize| self.rec.entries.get(d / 2).and_then(|e| e.label.clone());
+        label(de).or_else(|| other.and_then(label))
+    }
+}
+
+/// An upper bound (sampled, times 2) of `|S_u| + |S_v|` over the patch, mm per
+/// parameter unit, at least 1e-12.
+fn speed_bound(patch: &Patch) -> f64 {
+    let [u, v] = patch.domain();
+    let mut best: f64 = 1e-12;
+    for a in 0..=SPEED_GRID {
+        for b in 0..=SPEED_GRID {
+            let s = u[0] + (u[1] - u[0]) * a as f64 / SPEED_GRID as f64;
+            let t = v[0] + (v[1] - v[0]) * b as f64 / SPEED_GRID as f64;
+            let d = patch.derivs(s, t);
+            best = best.max(d.du.norm() + d.dv.norm());
+        }
+    }
+    2.0 * best
+}

@@ -1,0 +1,301 @@
+//! IGES 5.3 reader (fixed ASCII form): trimmed NURBS faces in, a [`CadPart`] out.
+//!
+//! Read: entities 128 (rational B-spline surface), 144 (trimmed surface) with its 142
+//! (curve on a parametric surface) boundaries, 108 (plane, bounded by its trimming
+//! curves) and the curves that make up trimming loops: 126 (rational B-spline curve),
+//! 110 (line), 100 (circular arc) and 102 (composite curve), each under its 124
+//! (transformation matrix). Every independent 144 and 128 is a face.
+//!
+//! Derivations (IGES 5.3 sec. 4):
+//! - 128 lists control points with the first index (along u) varying fastest:
+//!   point `(i, j)` is the file's `i + j (K1 + 1)`, swarf's row-major `i n_v + j`. A
+//!   periodic or unclamped knot vector is clamped at the ends of its domain
+//!   `[U_p, U_n]` by knot insertion ([`clamp`]), which leaves the surface unchanged.
+//! - A 142 gives a loop either in the surface's `(u, v)` (BPTR) or in model space
+//!   (CPTR). A `(u, v)` curve is sampled within `trim_chord / max(|S_u| + |S_v|)`,
+//!   since a `(u, v)` chord `d` moves the surface point by at most
+//!   `(|S_u| + |S_v|) |d|`; a model-space curve is sampled within `trim_chord` and
+//!   each sample projected on the surface, from the previous sample's `(u, v)`.
+//! - A 108 plane has no parametrisation in IGES: swarf makes it a bilinear patch over
+//!   the box of its boundary in an orthonormal frame of the plane (with a margin), so
+//!   `(u, v)` are mm in that frame.
+//! - Units: Global fields 13-15; lengths are multiplied by the unit's mm and divided by
+//!   the model-space scale.
+
+mod clamp;
+mod curve;
+mod face;
+mod params;
+mod records;
+mod surface;
+mod transform;
+#[cfg(test)]
+mod tests;
+
+use crate::cad::{CadOptions, CadPart, MAX_TRIM_CHORD, MIN_TRIM_CHORD, Unsupported};
+use crate::error::{At, IoError};
+use params::{Tok, number, tokenize};
+use records::{Entry, Records};
+use std::path::Path;
+use swarf_geom::{Face, Part};
+
+/// Deepest nesting of entities followed (composite curves in composite curves,
+/// transformation chains); deeper is refused as a likely cycle.
+const MAX_DEPTH: usize = 32;
+
+/// Reads an IGES file.
+///
+/// # Units
+/// The returned part is in mm whatever the file's unit; `trim_chord` in mm.
+///
+/// # Errors
+/// [`IoError::Io`] when the file cannot be read; otherwise as [`parse_iges`].
+pub fn read_iges(path: &Path, opts: &CadOptions) -> Result<CadPart, IoError> {
+    let bytes = crate::input::read_input(path)?;
+    let file = path.display().to_string();
+    let text = String::from_utf8_lossy(&bytes);
+    parse_iges(&text, &file, opts)
+}
+
+/// Parses the text of an IGES file; `source` names it in errors.
+///
+/// # Units
+/// The returned part is in mm whatever the file's unit; `trim_chord` in mm.
+///
+/// # Errors
+/// [`IoError::Format`] when the text is not fixed-form IGES (no section letter in
+/// column 73, sections out of order, counts that disagree with the terminate
+/// record); [`IoError::Field`] naming the entity (`DE n type T`) and the parameter
+/// for a bad value, a pointer out of range or in a cycle, a surface or curve that
+/// swarf's kernel rejects, an open or self-intersecting trimming loop, an unsupported
+/// entity when `opts.unsupported` is [`Unsupported::Refuse`], or a file without any
+/// face.
+pub fn parse_iges(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart, IoError> {
+    if !(opts.trim_chord >= MIN_TRIM_CHORD && opts.trim_chord <= MAX_TRIM_CHORD) {
+        return Err(IoError::field(
+            source,
+            At::File,
+            "trim_chord",
+            format!(
+                "{} mm: expected {MIN_TRIM_CHORD:e} to {MAX_TRIM_CHORD} mm",
+                opts.trim_chord
+            ),
+        ));
+    }
+    let rec = records::split(text, source)?;
+    let iges = Iges { file: source, rec, opts: *opts };
+    let mut warnings = Vec::new();
+    let mut patches = Vec::new();
+    let mut faces = Vec::new();
+    for (k, e) in iges.rec.entries.iter().enumerate() {
+        if !e.independent() {
+            continue;
+        }
+        let de = 2 * k + 1;
+        let got = match e.ty {
+            144 => iges.trimmed_surface(de),
+            128 => iges.bare_surface(de),
+            108 | 114 | 118 | 120 | 122 | 140 | 143 | 186 | 190..=199 | 502..=514 => {
+                Err(Problem::Unsupported { de, ty: e.ty, why: "not a supported face entity (faces are read from 144 and 128; write the file in faces mode)".into() })
+            }
+            _ => continue,
+        };
+        match got {
+            Ok((patch, face)) => {
+                patches.push(patch);
+                faces.push(face);
+            }
+            Err(Problem::Io(err)) => return Err(err),
+            Err(Problem::Unsupported { de, ty, why }) => {
+                let msg = format!("DE {de} type {ty}: {why}");
+                if opts.unsupported == Unsupported::Refuse {
+                    return Err(iges.err(de, format!("unsupported: {why}")));
+                }
+                warnings.push(msg);
+            }
+        }
+    }
+    if patches.is_empty() {
+        return Err(IoError::format(
+            source,
+            At::File,
+            format!(
+                "no faces: expected at least one supported entity 144 (trimmed surface) or 128 \
+                 (B-spline surface){}",
+                if warnings.is_empty() { String::new() } else { format!("; skipped: {}", warnings.join("; ")) }
+            ),
+        ));
+    }
+    let name = Path::new(source)
+        .file_stem()
+        .map_or_else(|| source.to_string(), |s| s.to_string_lossy().into_owned());
+    let mut part = Part::new(name, patches);
+    part.faces = faces;
+    Ok(CadPart { part, warnings, unit: iges.rec.unit.clone() })
+}
+
+/// Why a face could not be read.
+pub(crate) enum Problem {
+    /// An entity the reader does not support: skipped or refused per the options.
+    Unsupported {
+        /// Its DE pointer.
+        de: usize,
+        /// Its type.
+        ty: i64,
+        /// Why.
+        why: String,
+    },
+    /// The file is wrong.
+    Io(IoError),
+}
+
+impl From<IoError> for Problem {
+    fn from(e: IoError) -> Self {
+        Problem::Io(e)
+    }
+}
+
+/// The parsed file and the options.
+pub(crate) struct Iges<'a> {
+    file: &'a str,
+    rec: Records<'a>,
+    opts: CadOptions,
+}
+
+/// One entity's parameters.
+pub(crate) struct Params {
+    de: usize,
+    ty: i64,
+    toks: Vec<Tok>,
+}
+
+impl Iges<'_> {
+    /// The directory entry at DE pointer `de`.
+    ///
+    /// # Errors
+    /// When `de` is not an odd number within the directory (`who` says which
+    /// pointer).
+    fn entry(&self, de: usize, who: &str) -> Result<&Entry, IoError> {
+        if de % 2 == 1 {
+            if let Some(e) = self.rec.entries.get(de / 2) {
+                return Ok(e);
+            }
+        }
+        Err(IoError::format(
+            self.file,
+            At::File,
+            format!(
+                "{who}: DE pointer {de}: expected an odd number from 1 to {}",
+                2 * self.rec.entries.len()
+            ),
+        ))
+    }
+
+    /// An error about entity `de`, at its parameter record's line.
+    fn err(&self, de: usize, message: impl Into<String>) -> IoError {
+        let (ty, line) = match self.rec.entries.get(de / 2) {
+            Some(e) => {
+                let l = self.param_line(e);
+                (e.ty, if l > 0 { l } else { self.rec.entry_lines[de / 2] })
+            }
+            None => (0, 0),
+        };
+        let at = if line > 0 { At::Line(line) } else { At::File };
+        IoError::field(self.file, at, format!("DE {de} type {ty}"), message)
+    }
+
+    /// The file line of an entity's first parameter record (0 if out of range).
+    fn param_line(&self, e: &Entry) -> usize {
+        e.param
+            .checked_sub(1)
+            .and_then(|k| self.rec.params.get(k))
+            .map_or(0, |p| p.1)
+    }
+
+    /// The parameters of entity `de`, checked to start with its type.
+    fn params(&self, de: usize, who: &str) -> Result<Params, IoError> {
+        let e = self.entry(de, who)?;
+        let n = e.param_lines.max(1);
+        let lines = e
+            .param
+            .checked_sub(1)
+            .and_then(|k| self.rec.params.get(k..k + n))
+            .ok_or_else(|| {
+                self.err(de, format!(
+                    "parameter records {} to {}: expected within the {} P records",
+                    e.param, e.param + n - 1, self.rec.params.len()
+                ))
+            })?;
+        let text: String = lines.iter().map(|(l, _)| *l).collect();
+        let (pd, rd) = self.rec.delims;
+        let toks = tokenize(&text, pd, rd).map_err(|m| self.err(de, m))?;
+        let p = Params { de, ty: e.ty, toks };
+        let t = p.int(self, 0)?;
+        if t != e.ty {
+            return Err(self.err(de, format!("parameter data starts with type {t}; expected {}", e.ty)));
+        }
+        Ok(p)
+    }
+}
+
+impl Params {
+    /// Parameter `k` (1-based after the type) as a finite real.
+    fn real(&self, g: &Iges, k: usize) -> Result<f64, IoError> {
+        match self.toks.get(k) {
+            Some(Tok::Num(s)) => number(s).ok_or_else(|| {
+                g.err(self.de, format!("parameter {k}: expected a finite number, found {s:?}"))
+            }),
+            Some(Tok::Empty) => Ok(0.0),
+            Some(Tok::Str(s)) => Err(g.err(self.de, format!("parameter {k}: expected a number, found string {s:?}"))),
+            None => Err(g.err(self.de, format!(
+                "parameter {k}: missing; the entity has {} parameters",
+                self.toks.len().saturating_sub(1)
+            ))),
+        }
+    }
+
+    /// Parameter `k` as an integer (a real with no fraction is accepted).
+    fn int(&self, g: &Iges, k: usize) -> Result<i64, IoError> {
+        let x = self.real(g, k)?;
+        if x.fract() != 0.0 || x.abs() > 1e15 {
+            return Err(g.err(self.de, format!("parameter {k}: expected an integer, found {x}")));
+        }
+        Ok(x as i64)
+    }
+
+    /// Parameter `k` as a count in `0..=max`.
+    fn count(&self, g: &Iges, k: usize, max: usize) -> Result<usize, IoError> {
+        let n = self.int(g, k)?;
+        usize::try_from(n).ok().filter(|n| *n <= max).ok_or_else(|| {
+            g.err(self.de, format!("parameter {k}: expected a count from 0 to {max}, found {n}"))
+        })
+    }
+
+    /// Parameter `k` as a DE pointer (0 = none).
+    fn ptr(&self, g: &Iges, k: usize) -> Result<usize, IoError> {
+        let max = 2 * g.rec.entries.len();
+        let n = self.int(g, k)?;
+        usize::try_from(n).ok().filter(|n| *n == 0 || (*n % 2 == 1 && *n < max)).ok_or_else(|| {
+            g.err(self.de, format!("parameter {k}: expected a DE pointer (odd, 1 to {max}) or 0, found {n}"))
+        })
+    }
+
+    /// Parameters `k..k + n` as reals (checked to exist before allocating).
+    fn reals(&self, g: &Iges, k: usize, n: usize) -> Result<Vec<f64>, IoError> {
+        if k + n > self.toks.len() {
+            return Err(g.err(self.de, format!(
+                "expected {n} values from parameter {k}, the entity has {} parameters",
+                self.toks.len().saturating_sub(1)
+            )));
+        }
+        (k..k + n).map(|i| self.real(g, i)).collect()
+    }
+
+    /// An unsupported-entity problem about this entity.
+    fn unsupported(&self, why: impl Into<String>) -> Problem {
+        Problem::Unsupported { de: self.de, ty: self.ty, why: why.into() }
+    }
+}
+
+/// Face from entity: patch and face record.
+pub(crate) type FaceOut = (swarf_geom::Patch, Face);

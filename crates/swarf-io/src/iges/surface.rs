@@ -1,0 +1,128 @@
+//! Surfaces: entity 128 (rational B-spline surface, IGES 5.3 sec. 4.24) as a swarf
+//! [`Patch`] in mm, and the bilinear patch standing for a 108 plane (module doc of
+//! [`super`]).
+
+use super::clamp::clamp;
+use super::{Iges, Params, Problem};
+use swarf_geom::{Patch, Point3, Vec3};
+
+/// Margin around a plane's boundary box, as a fraction of its larger side.
+const PLANE_MARGIN: f64 = 0.01;
+
+impl Iges<'_> {
+    /// The 128 at `de` in mm, knots clamped, points in swarf's order.
+    ///
+    /// # Errors
+    /// Bad parameters, or a surface the kernel rejects (degree, knots, weights).
+    pub(crate) fn nurbs_surface(&self, de: usize) -> Result<Patch, Problem> {
+        let p = self.params(de, "surface")?;
+        if p.ty != 128 {
+            return Err(p.unsupported(format!("surface type {} (expected 128, or 108 in a 144)", p.ty)));
+        }
+        let size = p.toks.len();
+        let k = [p.count(self, 1, size)?, p.count(self, 2, size)?];
+        let deg = [p.count(self, 3, size)?, p.count(self, 4, size)?];
+        let n = [k[0] + 1, k[1] + 1];
+        let nk = [n[0] + deg[0] + 1, n[1] + deg[1] + 1];
+        let count = n[0] * n[1];
+        if 4 * count > size {
+            return Err(self.err(de, format!("{} x {} control points need more parameters than the entity's {size}", n[0], n[1])).into());
+        }
+        let mut at = 10;
+        let ku = p.reals(self, at, nk[0])?;
+        at += nk[0];
+        let kv = p.reals(self, at, nk[1])?;
+        at += nk[1];
+        let w = p.reals(self, at, count)?;
+        at += count;
+        let xyz = p.reals(self, at, 3 * count)?;
+        let rational = p.int(self, 7)? == 0;
+        let map = self.transform_of(de)?;
+        let s = self.rec.mm_per_unit;
+        // rows along u: row i holds (w x, w y, w z, w) of points (i, 0..n_v)
+        let mut rows: Vec<Vec<f64>> = (0..n[0])
+            .map(|i| {
+                (0..n[1])
+                    .flat_map(|j| {
+                        let f = i + j * n[0];
+                        let q = map.apply(&Point3::new(xyz[3 * f], xyz[3 * f + 1], xyz[3 * f + 2])) * s;
+                        let wf = if rational { w[f] } else { 1.0 };
+                        [wf * q.x, wf * q.y, wf * q.z, wf]
+                    })
+                    .collect()
+            })
+            .collect();
+        let bad = |e: &dyn std::fmt::Display| -> Problem {
+            self.err(de, format!("rational B-spline surface: {e}")).into()
+        };
+        let (mut ku, mut kv) = (ku, kv);
+        knots_ok(&ku, deg[0]).map_err(|m| bad(&format!("knots_u: {m}")))?;
+        knots_ok(&kv, deg[1]).map_err(|m| bad(&format!("knots_v: {m}")))?;
+        clamp(deg[0], &mut ku, &mut rows);
+        let nu = rows.len();
+        let mut cols: Vec<Vec<f64>> = (0..n[1])
+            .map(|j| (0..nu).flat_map(|i| rows[i][4 * j..4 * j + 4].to_vec()).collect())
+            .collect();
+        clamp(deg[1], &mut kv, &mut cols);
+        let nv = cols.len();
+        let mut points = Vec::with_capacity(nu * nv);
+        let mut weights = Vec::with_capacity(nu * nv);
+        for i in 0..nu {
+            for c in &cols {
+                let h = &c[4 * i..4 * i + 4];
+                points.push(Point3::new(h[0] / h[3], h[1] / h[3], h[2] / h[3]));
+                weights.push(h[3]);
+            }
+        }
+        if !(rational && weights.iter().all(|w| *w > 0.0)) && rational {
+            return Err(bad(&"weights: expected all > 0"));
+        }
+        Patch::new(deg, points, [Some(ku), Some(kv)], rational.then_some(weights)).map_err(|e| bad(&e))
+    }
+
+    /// A bilinear patch on the 108 plane at `p` covering `outline` (mm) with a margin;
+    /// `(u, v)` are mm along an orthonormal frame of the plane.
+    pub(crate) fn plane_patch(&self, p: &Params, outline: &[Point3]) -> Result<Patch, Problem> {
+        let v = p.reals(self, 1, 4)?;
+        let map = self.transform_of(p.de)?;
+        let n0 = Vec3::new(v[0], v[1], v[2]);
+        let len = n0.norm();
+        if !(len > 0.0) {
+            return Err(self.err(p.de, "plane: expected a non-zero normal (A, B, C)").into());
+        }
+        let origin = map.apply(&Point3::from(n0 * (v[3] / (len * len)))) * self.rec.mm_per_unit;
+        let tip = map.apply(&Point3::from(n0 * (v[3] / (len * len)) + n0 / len)) * self.rec.mm_per_unit;
+        let n = (tip - origin).normalize();
+        let e1 = if n.x.abs() < 0.9 { Vec3::x() } else { Vec3::y() };
+        let e1 = (e1 - n * n.dot(&e1)).normalize();
+        let e2 = n.cross(&e1);
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for q in outline {
+            let d = q - origin;
+            for (k, e) in [e1, e2].iter().enumerate() {
+                lo[k] = lo[k].min(d.dot(e));
+                hi[k] = hi[k].max(d.dot(e));
+            }
+        }
+        let pad = PLANE_MARGIN * (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        let (lo, hi) = (lo.map(|x| x - pad), hi.map(|x| x + pad));
+        let at = |a: f64, b: f64| origin + e1 * a + e2 * b;
+        let pts = vec![at(lo[0], lo[1]), at(lo[0], hi[1]), at(hi[0], lo[1]), at(hi[0], hi[1])];
+        let knots = |k: usize| Some(vec![lo[k], lo[k], hi[k], hi[k]]);
+        Patch::new([1, 1], pts, [knots(0), knots(1)], None)
+            .map_err(|e| self.err(p.de, format!("plane bounded by its trimming curves: {e}")).into())
+    }
+}
+
+/// Knots are finite, non-decreasing and leave a non-empty domain (checked before
+/// clamping, which relies on it).
+fn knots_ok(k: &[f64], p: usize) -> Result<(), String> {
+    if k.iter().any(|x| !x.is_finite()) || k.windows(2).any(|w| w[1] < w[0]) {
+        return Err("expected finite, non-decreasing knots".into());
+    }
+    let n = k.len() - p - 1;
+    if k[n] <= k[p] {
+        return Err(format!("empty domain [{}, {}]", k[p], k[n]));
+    }
+    Ok(())
+}
