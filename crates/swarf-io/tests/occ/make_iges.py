@@ -40,7 +40,8 @@ def bspline_face():
     for i in range(1, nu + 1):
         for j in range(1, nv + 1):
             x, y = 10.0 * (i - 1), 8.0 * (j - 1)
-            z = 3.0 * math.sin(0.1 * x) * math.cos(0.15 * y) + 0.05 * x
+            # three decimals: the IGES text (10 significant digits) holds it exactly
+            z = round(3.0 * math.sin(0.1 * x) * math.cos(0.15 * y) + 0.05 * x, 3)
             pts.SetValue(i, j, gp_Pnt(x, y, z))
             wts.SetValue(i, j, 1.0 + 0.3 * ((i + 2 * j) % 3))
     uk, um = Array1_double(1, 3), Array1_int(1, 3)
