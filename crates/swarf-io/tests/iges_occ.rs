@@ -49,7 +49,10 @@ fn samples(text: &str) -> Vec<(usize, f64, f64, [f64; 3], f64)> {
 fn area(part: &swarf_geom::Part, k: usize) -> f64 {
     let p = &part.patches[k];
     let [du, dv] = part.trim(k).map_or_else(|| p.domain(), |t| t.uv_box());
-    let (hu, hv) = ((du[1] - du[0]) / AREA_GRID as f64, (dv[1] - dv[0]) / AREA_GRID as f64);
+    let (hu, hv) = (
+        (du[1] - du[0]) / AREA_GRID as f64,
+        (dv[1] - dv[0]) / AREA_GRID as f64,
+    );
     let mut sum = 0.0;
     for a in 0..AREA_GRID {
         for b in 0..AREA_GRID {
@@ -71,8 +74,16 @@ fn occ_faces_match() {
     let dir = std::env::temp_dir().join(format!("swarf-iges-occ-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/occ/make_iges.py");
-    let out = Command::new("python3").arg(&script).arg(&dir).output().expect("run python3");
-    assert!(out.status.success(), "make_iges.py failed: {}", String::from_utf8_lossy(&out.stderr));
+    let out = Command::new("python3")
+        .arg(&script)
+        .arg(&dir)
+        .output()
+        .expect("run python3");
+    assert!(
+        out.status.success(),
+        "make_iges.py failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let cad = read_iges(&dir.join("occ.igs"), &CadOptions::default()).expect("read OCC's IGES");
     let csv = std::fs::read_to_string(dir.join("occ.csv")).expect("csv");
     let _ = std::fs::remove_dir_all(&dir);
@@ -86,19 +97,39 @@ fn occ_faces_match() {
         let q = swarf_geom::Point3::new(x[0], x[1], x[2]);
         let pr = part.patches[k].project(&q);
         max_proj = max_proj.max(pr.distance);
-        assert!(pr.distance < 1e-9, "face {k}: OCC point {q:?} is {:e} mm off", pr.distance);
-        assert!(part.face_contains(k, pr.u, pr.v), "face {k}: OCC point {q:?} outside the trim");
+        assert!(
+            pr.distance < 1e-9,
+            "face {k}: OCC point {q:?} is {:e} mm off",
+            pr.distance
+        );
+        assert!(
+            part.face_contains(k, pr.u, pr.v),
+            "face {k}: OCC point {q:?} outside the trim"
+        );
         if SAME_PARAMETRISATION.contains(&k) {
             let d = (part.patches[k].eval(u, v) - q).norm();
             max_eval = max_eval.max(d);
-            assert!(d < 1e-9, "face {k}: S({u}, {v}) is {d:e} mm from OCC's point");
+            assert!(
+                d < 1e-9,
+                "face {k}: S({u}, {v}) is {d:e} mm from OCC's point"
+            );
         }
     }
     for k in 0..3 {
-        let occ = rows.iter().find(|r| r.0 == k).expect("samples on every face").4;
+        let occ = rows
+            .iter()
+            .find(|r| r.0 == k)
+            .expect("samples on every face")
+            .4;
         let ours = area(part, k);
         eprintln!("face {k}: area {ours:.4} mm^2, OCC {occ:.4} mm^2");
-        assert!((ours - occ).abs() < 5e-3 * occ, "face {k}: area {ours} vs OCC {occ}");
+        assert!(
+            (ours - occ).abs() < 5e-3 * occ,
+            "face {k}: area {ours} vs OCC {occ}"
+        );
     }
-    eprintln!("IGES vs OCC: {} points, max projection {max_proj:.1e} mm, max eval {max_eval:.1e} mm", rows.len());
+    eprintln!(
+        "IGES vs OCC: {} points, max projection {max_proj:.1e} mm, max eval {max_eval:.1e} mm",
+        rows.len()
+    );
 }

@@ -26,9 +26,6 @@ impl Iges<'_> {
         gap: f64,
         depth: usize,
     ) -> Result<Vec<Point3>, Problem> {
-        if depth > MAX_DEPTH {
-            return Err(self.err(de, format!("curves nested deeper than {MAX_DEPTH}; expected no cycle")).into());
-        }
         let p = self.params(de, "curve")?;
         let pts = match p.ty {
             110 => {
@@ -37,11 +34,22 @@ impl Iges<'_> {
             }
             100 => {
                 let v = p.reals(self, 1, 7)?;
-                arc(v[0], [v[1], v[2]], [v[3], v[4]], [v[5], v[6]], tol)
-                    .ok_or_else(|| self.err(de, "expected a circular arc of finite, positive radius"))?
+                arc(v[0], [v[1], v[2]], [v[3], v[4]], [v[5], v[6]], tol).ok_or_else(|| {
+                    self.err(de, "expected a circular arc of finite, positive radius")
+                })?
             }
             126 => self.bspline_curve(&p, tol)?,
             102 => {
+                if depth >= MAX_DEPTH {
+                    return Err(self
+                        .err(
+                            de,
+                            format!(
+                                "composite curves nested deeper than {MAX_DEPTH}; expected no cycle"
+                            ),
+                        )
+                        .into());
+                }
                 let n = p.count(self, 1, p.toks.len())?;
                 let mut out: Vec<Point3> = Vec::new();
                 for k in 0..n {
@@ -61,7 +69,11 @@ impl Iges<'_> {
                 }
                 out
             }
-            t => return Err(p.unsupported(format!("curve type {t} in a trimming loop (expected 100, 102, 110 or 126)"))),
+            t => {
+                return Err(p.unsupported(format!(
+                    "curve type {t} in a trimming loop (expected 100, 102, 110 or 126)"
+                )));
+            }
         };
         let map = self.transform_of(de)?;
         Ok(pts.iter().map(|q| map.apply(q)).collect())
@@ -79,7 +91,10 @@ impl Iges<'_> {
         let w = p.reals(self, at + nk, n)?;
         let xyz = p.reals(self, at + nk + n, 3 * n)?;
         let t = p.reals(self, at + nk + 4 * n, 2)?;
-        let points = xyz.chunks(3).map(|c| Point3::new(c[0], c[1], c[2])).collect();
+        let points = xyz
+            .chunks(3)
+            .map(|c| Point3::new(c[0], c[1], c[2]))
+            .collect();
         let rational = p.int(self, 5)? == 0;
         let curve = NurbsCurve::new(m, knots, points, rational.then_some(w))
             .map_err(|e| self.err(p.de, format!("rational B-spline curve: {e}")))?;

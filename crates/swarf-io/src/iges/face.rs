@@ -19,7 +19,13 @@ impl Iges<'_> {
     /// An independent 128: its whole patch.
     pub(crate) fn bare_surface(&self, de: usize) -> Result<FaceOut, Problem> {
         let patch = self.nurbs_surface(de)?;
-        Ok((patch, Face { name: self.name(de, None), trim: None }))
+        Ok((
+            patch,
+            Face {
+                name: self.name(de, None),
+                trim: None,
+            },
+        ))
     }
 
     /// A 144: the patch of its surface and its trimming loops.
@@ -35,7 +41,9 @@ impl Iges<'_> {
         for k in 0..n2 {
             curves.push(p.ptr(self, 5 + k)?);
         }
-        let ty = self.entry(sptr, &format!("DE {de} parameter 1 (surface)"))?.ty;
+        let ty = self
+            .entry(sptr, &format!("DE {de} parameter 1 (surface)"))?
+            .ty;
         let (patch, mut loops) = match ty {
             128 => {
                 let patch = self.nurbs_surface(sptr)?;
@@ -60,25 +68,50 @@ impl Iges<'_> {
                 (patch, loops)
             }
             108 => return Err(p.unsupported("an unbounded plane (108) as the outer boundary")),
-            t => return Err(p.unsupported(format!("surface DE {sptr} of type {t} (expected 128 or a bounded 108)"))),
+            t => {
+                return Err(p.unsupported(format!(
+                    "surface DE {sptr} of type {t} (expected 128 or a bounded 108)"
+                )));
+            }
         };
         if n1 == 0 {
             if loops.is_empty() {
-                return Ok((patch, Face { name: self.name(de, Some(sptr)), trim: None }));
+                return Ok((
+                    patch,
+                    Face {
+                        name: self.name(de, Some(sptr)),
+                        trim: None,
+                    },
+                ));
             }
             let [u, v] = patch.domain();
-            loops.insert(0, vec![[u[0], v[0]], [u[1], v[0]], [u[1], v[1]], [u[0], v[1]]]);
+            loops.insert(
+                0,
+                vec![[u[0], v[0]], [u[1], v[0]], [u[1], v[1]], [u[0], v[1]]],
+            );
             curves.insert(0, 0);
         }
         let trim = Trim::new(loops).map_err(|e| {
             let which: Vec<String> = curves
                 .iter()
                 .enumerate()
-                .map(|(k, c)| if *c == 0 { format!("loop[{k}] = the surface's domain") } else { format!("loop[{k}] = DE {c}") })
+                .map(|(k, c)| {
+                    if *c == 0 {
+                        format!("loop[{k}] = the surface's domain")
+                    } else {
+                        format!("loop[{k}] = DE {c}")
+                    }
+                })
                 .collect();
             self.err(de, format!("trimming loops ({}): {e}", which.join(", ")))
         })?;
-        Ok((patch, Face { name: self.name(de, Some(sptr)), trim: Some(trim) }))
+        Ok((
+            patch,
+            Face {
+                name: self.name(de, Some(sptr)),
+                trim: Some(trim),
+            },
+        ))
     }
 
     /// The 142 at `c`, checked to lie on surface `sptr`: (BPTR, CPTR).
@@ -89,7 +122,14 @@ impl Iges<'_> {
         }
         let s = p.ptr(self, 2)?;
         if s != sptr {
-            return Err(self.err(c, format!("parameter 2: surface DE {s}; expected the trimmed surface's DE {sptr}")).into());
+            return Err(self
+                .err(
+                    c,
+                    format!(
+                        "parameter 2: surface DE {s}; expected the trimmed surface's DE {sptr}"
+                    ),
+                )
+                .into());
         }
         Ok((p.ptr(self, 3)?, p.ptr(self, 4)?))
     }
@@ -114,7 +154,12 @@ impl Iges<'_> {
     fn loop_model(&self, c: usize, sptr: usize) -> Result<Vec<Point3>, Problem> {
         let (_, m) = self.curve_on_surface(c, sptr)?;
         if m == 0 {
-            return Err(self.err(c, "parameter 4: no model-space curve, and no parameter-space curve swarf can use").into());
+            return Err(self
+                .err(
+                    c,
+                    "parameter 4: no model-space curve, and no parameter-space curve swarf can use",
+                )
+                .into());
         }
         let s = self.rec.mm_per_unit;
         let pts = self.sample_curve(m, self.opts.trim_chord / s, GAP_MM / s, 0)?;
@@ -122,7 +167,12 @@ impl Iges<'_> {
     }
 
     /// Model-space loop points (mm) projected on `patch`, each from the previous.
-    fn project_loop(&self, c: usize, model: &[Point3], patch: &Patch) -> Result<Vec<[f64; 2]>, Problem> {
+    fn project_loop(
+        &self,
+        c: usize,
+        model: &[Point3],
+        patch: &Patch,
+    ) -> Result<Vec<[f64; 2]>, Problem> {
         let mut uv: Vec<[f64; 2]> = Vec::with_capacity(model.len());
         for (k, q) in model.iter().enumerate() {
             let pr = match uv.last() {

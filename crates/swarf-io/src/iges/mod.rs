@@ -28,9 +28,9 @@ mod face;
 mod params;
 mod records;
 mod surface;
-mod transform;
 #[cfg(test)]
 mod tests;
+mod transform;
 
 use crate::cad::{CadOptions, CadPart, MAX_TRIM_CHORD, MIN_TRIM_CHORD, Unsupported};
 use crate::error::{At, IoError};
@@ -83,7 +83,11 @@ pub fn parse_iges(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart
         ));
     }
     let rec = records::split(text, source)?;
-    let iges = Iges { file: source, rec, opts: *opts };
+    let iges = Iges {
+        file: source,
+        rec,
+        opts: *opts,
+    };
     let mut warnings = Vec::new();
     let mut patches = Vec::new();
     let mut faces = Vec::new();
@@ -122,7 +126,11 @@ pub fn parse_iges(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart
             format!(
                 "no faces: expected at least one supported entity 144 (trimmed surface) or 128 \
                  (B-spline surface){}",
-                if warnings.is_empty() { String::new() } else { format!("; skipped: {}", warnings.join("; ")) }
+                if warnings.is_empty() {
+                    String::new()
+                } else {
+                    format!("; skipped: {}", warnings.join("; "))
+                }
             ),
         ));
     }
@@ -131,7 +139,11 @@ pub fn parse_iges(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart
         .map_or_else(|| source.to_string(), |s| s.to_string_lossy().into_owned());
     let mut part = Part::new(name, patches);
     part.faces = faces;
-    Ok(CadPart { part, warnings, unit: iges.rec.unit.clone() })
+    Ok(CadPart {
+        part,
+        warnings,
+        unit: iges.rec.unit.clone(),
+    })
 }
 
 /// Why a face could not be read.
@@ -196,7 +208,14 @@ impl Iges<'_> {
         let (ty, line) = match self.rec.entries.get(de / 2) {
             Some(e) => {
                 let l = self.param_line(e);
-                (e.ty, if l > 0 { l } else { self.rec.entry_lines[de / 2] })
+                (
+                    e.ty,
+                    if l > 0 {
+                        l
+                    } else {
+                        self.rec.entry_lines[de / 2]
+                    },
+                )
             }
             None => (0, 0),
         };
@@ -221,10 +240,15 @@ impl Iges<'_> {
             .checked_sub(1)
             .and_then(|k| self.rec.params.get(k..k + n))
             .ok_or_else(|| {
-                self.err(de, format!(
-                    "parameter records {} to {}: expected within the {} P records",
-                    e.param, e.param + n - 1, self.rec.params.len()
-                ))
+                self.err(
+                    de,
+                    format!(
+                        "parameter records {} to {}: expected within the {} P records",
+                        e.param,
+                        e.param + n - 1,
+                        self.rec.params.len()
+                    ),
+                )
             })?;
         let text: String = lines.iter().map(|(l, _)| *l).collect();
         let (pd, rd) = self.rec.delims;
@@ -232,7 +256,10 @@ impl Iges<'_> {
         let p = Params { de, ty: e.ty, toks };
         let t = p.int(self, 0)?;
         if t != e.ty {
-            return Err(self.err(de, format!("parameter data starts with type {t}; expected {}", e.ty)));
+            return Err(self.err(
+                de,
+                format!("parameter data starts with type {t}; expected {}", e.ty),
+            ));
         }
         Ok(p)
     }
@@ -243,14 +270,23 @@ impl Params {
     fn real(&self, g: &Iges, k: usize) -> Result<f64, IoError> {
         match self.toks.get(k) {
             Some(Tok::Num(s)) => number(s).ok_or_else(|| {
-                g.err(self.de, format!("parameter {k}: expected a finite number, found {s:?}"))
+                g.err(
+                    self.de,
+                    format!("parameter {k}: expected a finite number, found {s:?}"),
+                )
             }),
             Some(Tok::Empty) => Ok(0.0),
-            Some(Tok::Str(s)) => Err(g.err(self.de, format!("parameter {k}: expected a number, found string {s:?}"))),
-            None => Err(g.err(self.de, format!(
-                "parameter {k}: missing; the entity has {} parameters",
-                self.toks.len().saturating_sub(1)
-            ))),
+            Some(Tok::Str(s)) => Err(g.err(
+                self.de,
+                format!("parameter {k}: expected a number, found string {s:?}"),
+            )),
+            None => Err(g.err(
+                self.de,
+                format!(
+                    "parameter {k}: missing; the entity has {} parameters",
+                    self.toks.len().saturating_sub(1)
+                ),
+            )),
         }
     }
 
@@ -258,7 +294,10 @@ impl Params {
     fn int(&self, g: &Iges, k: usize) -> Result<i64, IoError> {
         let x = self.real(g, k)?;
         if x.fract() != 0.0 || x.abs() > 1e15 {
-            return Err(g.err(self.de, format!("parameter {k}: expected an integer, found {x}")));
+            return Err(g.err(
+                self.de,
+                format!("parameter {k}: expected an integer, found {x}"),
+            ));
         }
         Ok(x as i64)
     }
@@ -266,34 +305,55 @@ impl Params {
     /// Parameter `k` as a count in `0..=max`.
     fn count(&self, g: &Iges, k: usize, max: usize) -> Result<usize, IoError> {
         let n = self.int(g, k)?;
-        usize::try_from(n).ok().filter(|n| *n <= max).ok_or_else(|| {
-            g.err(self.de, format!("parameter {k}: expected a count from 0 to {max}, found {n}"))
-        })
+        usize::try_from(n)
+            .ok()
+            .filter(|n| *n <= max)
+            .ok_or_else(|| {
+                g.err(
+                    self.de,
+                    format!("parameter {k}: expected a count from 0 to {max}, found {n}"),
+                )
+            })
     }
 
     /// Parameter `k` as a DE pointer (0 = none).
     fn ptr(&self, g: &Iges, k: usize) -> Result<usize, IoError> {
         let max = 2 * g.rec.entries.len();
         let n = self.int(g, k)?;
-        usize::try_from(n).ok().filter(|n| *n == 0 || (*n % 2 == 1 && *n < max)).ok_or_else(|| {
-            g.err(self.de, format!("parameter {k}: expected a DE pointer (odd, 1 to {max}) or 0, found {n}"))
-        })
+        usize::try_from(n)
+            .ok()
+            .filter(|n| *n == 0 || (*n % 2 == 1 && *n < max))
+            .ok_or_else(|| {
+                g.err(
+                    self.de,
+                    format!(
+                        "parameter {k}: expected a DE pointer (odd, 1 to {max}) or 0, found {n}"
+                    ),
+                )
+            })
     }
 
     /// Parameters `k..k + n` as reals (checked to exist before allocating).
     fn reals(&self, g: &Iges, k: usize, n: usize) -> Result<Vec<f64>, IoError> {
         if k + n > self.toks.len() {
-            return Err(g.err(self.de, format!(
-                "expected {n} values from parameter {k}, the entity has {} parameters",
-                self.toks.len().saturating_sub(1)
-            )));
+            return Err(g.err(
+                self.de,
+                format!(
+                    "expected {n} values from parameter {k}, the entity has {} parameters",
+                    self.toks.len().saturating_sub(1)
+                ),
+            ));
         }
         (k..k + n).map(|i| self.real(g, i)).collect()
     }
 
     /// An unsupported-entity problem about this entity.
     fn unsupported(&self, why: impl Into<String>) -> Problem {
-        Problem::Unsupported { de: self.de, ty: self.ty, why: why.into() }
+        Problem::Unsupported {
+            de: self.de,
+            ty: self.ty,
+            why: why.into(),
+        }
     }
 }
 

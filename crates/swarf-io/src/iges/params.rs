@@ -54,7 +54,11 @@ pub(crate) fn tokenize(text: &str, pd: char, rd: char) -> Result<Vec<Tok>, Strin
                 k += 1;
             }
             let s: String = chars[start..k].iter().filter(|c| **c != ' ').collect();
-            if s.is_empty() { Tok::Empty } else { Tok::Num(s) }
+            if s.is_empty() {
+                Tok::Empty
+            } else {
+                Tok::Num(s)
+            }
         };
         out.push(tok);
         match chars.get(k) {
@@ -66,7 +70,11 @@ pub(crate) fn tokenize(text: &str, pd: char, rd: char) -> Result<Vec<Tok>, Strin
                     out.len()
                 ));
             }
-            None => return Err(format!("no record delimiter {rd:?} at the end of the entity")),
+            None => {
+                return Err(format!(
+                    "no record delimiter {rd:?} at the end of the entity"
+                ));
+            }
         }
     }
 }
@@ -106,7 +114,15 @@ mod tests {
         assert_eq!(number("1."), Some(1.0));
         assert_eq!(number("inf"), None);
         assert_eq!(number("1e400"), None);
-        assert!(tokenize("5Hab", ',', ';').unwrap_err().contains("Hollerith"));
-        assert!(tokenize("1,2", ',', ';').unwrap_err().contains("record delimiter"));
+        assert!(
+            tokenize("5Hab", ',', ';')
+                .unwrap_err()
+                .contains("Hollerith")
+        );
+        assert!(
+            tokenize("1,2", ',', ';')
+                .unwrap_err()
+                .contains("record delimiter")
+        );
     }
 }

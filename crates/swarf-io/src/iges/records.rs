@@ -28,7 +28,9 @@ pub(crate) struct Entry {
 impl Entry {
     /// Whether the entity stands alone (subordinate switch 00), not a part of another.
     pub fn independent(&self) -> bool {
-        self.status.get(2..4).is_none_or(|s| s.trim().is_empty() || s.trim() == "00")
+        self.status
+            .get(2..4)
+            .is_none_or(|s| s.trim().is_empty() || s.trim() == "00")
     }
 }
 
@@ -128,7 +130,10 @@ fn check_terminate(term: &[(&str, usize)], counts: [usize; 3], file: &str) -> Re
             return Err(IoError::format(
                 file,
                 At::Line(*line),
-                format!("terminate record: {name} count {:?}, but the file has {n} {name} records", field.trim()),
+                format!(
+                    "terminate record: {name} count {:?}, but the file has {n} {name} records",
+                    field.trim()
+                ),
             ));
         }
     }
@@ -140,22 +145,35 @@ fn global_section(
     lines: &[(&str, usize)],
     file: &str,
 ) -> Result<((char, char), f64, String), IoError> {
-    let text: String = lines.iter().map(|(l, _)| l.get(..72).unwrap_or(l)).collect();
+    let text: String = lines
+        .iter()
+        .map(|(l, _)| l.get(..72).unwrap_or(l))
+        .collect();
     let line = lines[0].1;
     let bad = |m: String| IoError::field(file, At::Line(line), "global section", m);
-    let (pd, rest) = delimiter(&text, ',', None).ok_or_else(|| bad("bad parameter delimiter (field 1)".into()))?;
-    let (rd, _) = delimiter(rest, ';', Some(pd)).ok_or_else(|| bad("bad record delimiter (field 2)".into()))?;
+    let (pd, rest) = delimiter(&text, ',', None)
+        .ok_or_else(|| bad("bad parameter delimiter (field 1)".into()))?;
+    let (rd, _) = delimiter(rest, ';', Some(pd))
+        .ok_or_else(|| bad("bad record delimiter (field 2)".into()))?;
     let toks = tokenize(&text, pd, rd).map_err(|m| bad(m))?;
     let real = |k: usize, default: f64| -> Result<f64, IoError> {
         match toks.get(k - 1) {
             None | Some(Tok::Empty) => Ok(default),
-            Some(Tok::Num(s)) => s.parse::<f64>().ok().filter(|x| x.is_finite()).ok_or_else(|| bad(format!("field {k}: expected a number, found {s:?}"))),
-            Some(Tok::Str(s)) => Err(bad(format!("field {k}: expected a number, found string {s:?}"))),
+            Some(Tok::Num(s)) => s
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| bad(format!("field {k}: expected a number, found {s:?}"))),
+            Some(Tok::Str(s)) => Err(bad(format!(
+                "field {k}: expected a number, found string {s:?}"
+            ))),
         }
     };
     let scale = real(13, 1.0)?;
     if scale <= 0.0 {
-        return Err(bad(format!("field 13 (model space scale): expected > 0, found {scale}")));
+        return Err(bad(format!(
+            "field 13 (model space scale): expected > 0, found {scale}"
+        )));
     }
     let flag = real(14, 1.0)?;
     let name = match toks.get(14) {
@@ -209,7 +227,9 @@ fn delimiter(s: &str, default: char, pd: Option<char>) -> Option<(char, &str)> {
         let after = it.as_str();
         let sep = pd.unwrap_or(c);
         let after = after.trim_start();
-        let after = after.strip_prefix(sep).or_else(|| (pd.is_some()).then_some(after))?;
+        let after = after
+            .strip_prefix(sep)
+            .or_else(|| (pd.is_some()).then_some(after))?;
         return Some((c, after));
     }
     if let Some(rest) = s.strip_prefix(sep) {
@@ -238,18 +258,38 @@ fn directory(lines: &[(&str, usize)], file: &str) -> Result<(Vec<Entry>, Vec<usi
                 return Ok(0);
             }
             f.parse::<i64>().map_err(|_| {
-                IoError::field(file, At::Line(line), format!("directory field {} ({name})", k + 1 + if line == lb { 9 } else { 0 }), format!("expected an integer, found {f:?}"))
+                IoError::field(
+                    file,
+                    At::Line(line),
+                    format!(
+                        "directory field {} ({name})",
+                        k + 1 + if line == lb { 9 } else { 0 }
+                    ),
+                    format!("expected an integer, found {f:?}"),
+                )
             })
         };
         let ptr = |v: i64| usize::try_from(v).unwrap_or(0);
         let ty = int(a, la, 0, "entity type")?;
         let ty2 = int(b, lb, 0, "entity type")?;
         if ty != ty2 {
-            return Err(IoError::format(file, At::Line(lb), format!("directory entry: entity type {ty2} on its second record, {ty} on its first")));
+            return Err(IoError::format(
+                file,
+                At::Line(lb),
+                format!(
+                    "directory entry: entity type {ty2} on its second record, {ty} on its first"
+                ),
+            ));
         }
         let label = field(b, 7);
         let sub = int(b, lb, 8, "entity subscript")?;
-        let label = (!label.is_empty()).then(|| if sub != 0 { format!("{label}({sub})") } else { label });
+        let label = (!label.is_empty()).then(|| {
+            if sub != 0 {
+                format!("{label}({sub})")
+            } else {
+                label
+            }
+        });
         out.push(Entry {
             ty,
             param: ptr(int(a, la, 1, "parameter data")?),

@@ -17,7 +17,10 @@ impl Iges<'_> {
     pub(crate) fn nurbs_surface(&self, de: usize) -> Result<Patch, Problem> {
         let p = self.params(de, "surface")?;
         if p.ty != 128 {
-            return Err(p.unsupported(format!("surface type {} (expected 128, or 108 in a 144)", p.ty)));
+            return Err(p.unsupported(format!(
+                "surface type {} (expected 128, or 108 in a 144)",
+                p.ty
+            )));
         }
         let size = p.toks.len();
         let k = [p.count(self, 1, size)?, p.count(self, 2, size)?];
@@ -26,7 +29,15 @@ impl Iges<'_> {
         let nk = [n[0] + deg[0] + 1, n[1] + deg[1] + 1];
         let count = n[0] * n[1];
         if 4 * count > size {
-            return Err(self.err(de, format!("{} x {} control points need more parameters than the entity's {size}", n[0], n[1])).into());
+            return Err(self
+                .err(
+                    de,
+                    format!(
+                        "{} x {} control points need more parameters than the entity's {size}",
+                        n[0], n[1]
+                    ),
+                )
+                .into());
         }
         let mut at = 10;
         let ku = p.reals(self, at, nk[0])?;
@@ -45,7 +56,8 @@ impl Iges<'_> {
                 (0..n[1])
                     .flat_map(|j| {
                         let f = i + j * n[0];
-                        let q = map.apply(&Point3::new(xyz[3 * f], xyz[3 * f + 1], xyz[3 * f + 2])) * s;
+                        let q =
+                            map.apply(&Point3::new(xyz[3 * f], xyz[3 * f + 1], xyz[3 * f + 2])) * s;
                         let wf = if rational { w[f] } else { 1.0 };
                         [wf * q.x, wf * q.y, wf * q.z, wf]
                     })
@@ -53,7 +65,8 @@ impl Iges<'_> {
             })
             .collect();
         let bad = |e: &dyn std::fmt::Display| -> Problem {
-            self.err(de, format!("rational B-spline surface: {e}")).into()
+            self.err(de, format!("rational B-spline surface: {e}"))
+                .into()
         };
         let (mut ku, mut kv) = (ku, kv);
         knots_ok(&ku, deg[0]).map_err(|m| bad(&format!("knots_u: {m}")))?;
@@ -61,7 +74,11 @@ impl Iges<'_> {
         clamp(deg[0], &mut ku, &mut rows);
         let nu = rows.len();
         let mut cols: Vec<Vec<f64>> = (0..n[1])
-            .map(|j| (0..nu).flat_map(|i| rows[i][4 * j..4 * j + 4].to_vec()).collect())
+            .map(|j| {
+                (0..nu)
+                    .flat_map(|i| rows[i][4 * j..4 * j + 4].to_vec())
+                    .collect()
+            })
             .collect();
         clamp(deg[1], &mut kv, &mut cols);
         let nv = cols.len();
@@ -77,7 +94,13 @@ impl Iges<'_> {
         if !(rational && weights.iter().all(|w| *w > 0.0)) && rational {
             return Err(bad(&"weights: expected all > 0"));
         }
-        Patch::new(deg, points, [Some(ku), Some(kv)], rational.then_some(weights)).map_err(|e| bad(&e))
+        Patch::new(
+            deg,
+            points,
+            [Some(ku), Some(kv)],
+            rational.then_some(weights),
+        )
+        .map_err(|e| bad(&e))
     }
 
     /// A bilinear patch on the 108 plane at `p` covering `outline` (mm) with a margin;
@@ -88,12 +111,19 @@ impl Iges<'_> {
         let n0 = Vec3::new(v[0], v[1], v[2]);
         let len = n0.norm();
         if !(len > 0.0) {
-            return Err(self.err(p.de, "plane: expected a non-zero normal (A, B, C)").into());
+            return Err(self
+                .err(p.de, "plane: expected a non-zero normal (A, B, C)")
+                .into());
         }
         let origin = map.apply(&Point3::from(n0 * (v[3] / (len * len)))) * self.rec.mm_per_unit;
-        let tip = map.apply(&Point3::from(n0 * (v[3] / (len * len)) + n0 / len)) * self.rec.mm_per_unit;
+        let tip =
+            map.apply(&Point3::from(n0 * (v[3] / (len * len)) + n0 / len)) * self.rec.mm_per_unit;
         let n = (tip - origin).normalize();
-        let e1 = if n.x.abs() < 0.9 { Vec3::x() } else { Vec3::y() };
+        let e1 = if n.x.abs() < 0.9 {
+            Vec3::x()
+        } else {
+            Vec3::y()
+        };
         let e1 = (e1 - n * n.dot(&e1)).normalize();
         let e2 = n.cross(&e1);
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
@@ -107,10 +137,17 @@ impl Iges<'_> {
         let pad = PLANE_MARGIN * (hi[0] - lo[0]).max(hi[1] - lo[1]);
         let (lo, hi) = (lo.map(|x| x - pad), hi.map(|x| x + pad));
         let at = |a: f64, b: f64| origin + e1 * a + e2 * b;
-        let pts = vec![at(lo[0], lo[1]), at(lo[0], hi[1]), at(hi[0], lo[1]), at(hi[0], hi[1])];
+        let pts = vec![
+            at(lo[0], lo[1]),
+            at(lo[0], hi[1]),
+            at(hi[0], lo[1]),
+            at(hi[0], hi[1]),
+        ];
         let knots = |k: usize| Some(vec![lo[k], lo[k], hi[k], hi[k]]);
-        Patch::new([1, 1], pts, [knots(0), knots(1)], None)
-            .map_err(|e| self.err(p.de, format!("plane bounded by its trimming curves: {e}")).into())
+        Patch::new([1, 1], pts, [knots(0), knots(1)], None).map_err(|e| {
+            self.err(p.de, format!("plane bounded by its trimming curves: {e}"))
+                .into()
+        })
     }
 }
 

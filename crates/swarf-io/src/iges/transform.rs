@@ -23,7 +23,8 @@ impl Affine {
     /// The image of `p`.
     pub fn apply(&self, p: &Point3) -> Point3 {
         let c = [p.x, p.y, p.z];
-        let row = |k: usize| self.r[k][0] * c[0] + self.r[k][1] * c[1] + self.r[k][2] * c[2] + self.t[k];
+        let row =
+            |k: usize| self.r[k][0] * c[0] + self.r[k][1] * c[1] + self.r[k][2] * c[2] + self.t[k];
         Point3::new(row(0), row(1), row(2))
     }
 
@@ -54,7 +55,12 @@ impl Iges<'_> {
         while at != 0 {
             depth += 1;
             if depth > MAX_DEPTH {
-                return Err(self.err(de, format!("transformation matrix chain deeper than {MAX_DEPTH}; expected no cycle")));
+                return Err(self.err(
+                    de,
+                    format!(
+                        "transformation matrix chain deeper than {MAX_DEPTH}; expected no cycle"
+                    ),
+                ));
             }
             let e = self.entry(at, &format!("DE {de} field 7 (transformation matrix)"))?;
             if e.ty != 124 {
