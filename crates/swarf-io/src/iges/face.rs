@@ -7,6 +7,9 @@ use super::{FaceOut, Iges, Problem};
 use swarf_geom::trim::Trim;
 use swarf_geom::{Face, Patch, Point3};
 
+/// A trimming loop in a patch's `(u, v)`.
+type Loop = Vec<[f64; 2]>;
+
 /// Largest gap closed between the pieces of a loop and between its ends, mm (IGES
 /// writers print 9 to 15 significant digits).
 const GAP_MM: f64 = 1e-3;
@@ -41,39 +44,7 @@ impl Iges<'_> {
         for k in 0..n2 {
             curves.push(p.ptr(self, 5 + k)?);
         }
-        let ty = self
-            .entry(sptr, &format!("DE {de} parameter 1 (surface)"))?
-            .ty;
-        let (patch, mut loops) = match ty {
-            128 => {
-                let patch = self.nurbs_surface(sptr)?;
-                let loops = curves
-                    .iter()
-                    .map(|c| self.loop_uv(*c, sptr, &patch))
-                    .collect::<Result<Vec<_>, _>>()?;
-                (patch, loops)
-            }
-            108 if n1 != 0 => {
-                let model = curves
-                    .iter()
-                    .map(|c| self.loop_model(*c, sptr))
-                    .collect::<Result<Vec<_>, _>>()?;
-                let plane = self.params(sptr, "plane")?;
-                let patch = self.plane_patch(&plane, &model[0])?;
-                let loops = curves
-                    .iter()
-                    .zip(&model)
-                    .map(|(c, m)| self.project_loop(*c, m, &patch))
-                    .collect::<Result<Vec<_>, _>>()?;
-                (patch, loops)
-            }
-            108 => return Err(p.unsupported("an unbounded plane (108) as the outer boundary")),
-            t => {
-                return Err(p.unsupported(format!(
-                    "surface DE {sptr} of type {t} (expected 128 or a bounded 108)"
-                )));
-            }
-        };
+        let (patch, mut loops) = self.surface_loops(&p, sptr, n1 != 0, &curves)?;
         if n1 == 0 {
             if loops.is_empty() {
                 return Ok((
@@ -112,6 +83,51 @@ impl Iges<'_> {
                 trim: Some(trim),
             },
         ))
+    }
+
+    /// The patch of surface `sptr` (a 128, or a 108 bounded by `curves[0]` when
+    /// `bounded`) and the 142 loops `curves` in its `(u, v)`.
+    fn surface_loops(
+        &self,
+        p: &super::Params,
+        sptr: usize,
+        bounded: bool,
+        curves: &[usize],
+    ) -> Result<(Patch, Vec<Loop>), Problem> {
+        let de = p.de;
+        let ty = self
+            .entry(sptr, &format!("DE {de} parameter 1 (surface)"))?
+            .ty;
+        Ok(match ty {
+            128 => {
+                let patch = self.nurbs_surface(sptr)?;
+                let loops = curves
+                    .iter()
+                    .map(|c| self.loop_uv(*c, sptr, &patch))
+                    .collect::<Result<Vec<_>, _>>()?;
+                (patch, loops)
+            }
+            108 if bounded => {
+                let model = curves
+                    .iter()
+                    .map(|c| self.loop_model(*c, sptr))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let plane = self.params(sptr, "plane")?;
+                let patch = self.plane_patch(&plane, &model[0])?;
+                let loops = curves
+                    .iter()
+                    .zip(&model)
+                    .map(|(c, m)| self.project_loop(*c, m, &patch))
+                    .collect::<Result<Vec<_>, _>>()?;
+                (patch, loops)
+            }
+            108 => return Err(p.unsupported("an unbounded plane (108) as the outer boundary")),
+            t => {
+                return Err(p.unsupported(format!(
+                    "surface DE {sptr} of type {t} (expected 128 or a bounded 108)"
+                )));
+            }
+        })
     }
 
     /// The 142 at `c`, checked to lie on surface `sptr`: (BPTR, CPTR).
@@ -179,7 +195,7 @@ impl Iges<'_> {
                 None => patch.project(q),
                 Some(&[u, v]) => patch.project_from(q, u, v),
             };
-            if !(pr.distance <= OFF_SURFACE_MM) {
+            if pr.distance.is_nan() || pr.distance > OFF_SURFACE_MM {
                 return Err(self.err(c, format!(
                     "model-space point {k} ({:.6}, {:.6}, {:.6}) mm lies {:.3e} mm from the surface; expected within {OFF_SURFACE_MM:e}",
                     q.x, q.y, q.z, pr.distance
@@ -197,7 +213,7 @@ impl Iges<'_> {
             return Err(self.err(c, "empty trimming loop").into());
         };
         let d = (a[0] - b[0]).hypot(a[1] - b[1]);
-        if !(d <= gap) || uv.len() < 3 {
+        if d.is_nan() || d > gap || uv.len() < 3 {
             return Err(self.err(c, format!(
                 "open trimming loop: its end is {d:.3e} (u, v) from its start; expected a closed loop (gap <= {gap:.1e})"
             )).into());

@@ -188,10 +188,10 @@ impl Iges<'_> {
     /// When `de` is not an odd number within the directory (`who` says which
     /// pointer).
     fn entry(&self, de: usize, who: &str) -> Result<&Entry, IoError> {
-        if de % 2 == 1 {
-            if let Some(e) = self.rec.entries.get(de / 2) {
-                return Ok(e);
-            }
+        if de % 2 == 1
+            && let Some(e) = self.rec.entries.get(de / 2)
+        {
+            return Ok(e);
         }
         Err(IoError::format(
             self.file,

@@ -155,7 +155,7 @@ fn global_section(
         .ok_or_else(|| bad("bad parameter delimiter (field 1)".into()))?;
     let (rd, _) = delimiter(rest, ';', Some(pd))
         .ok_or_else(|| bad("bad record delimiter (field 2)".into()))?;
-    let toks = tokenize(&text, pd, rd).map_err(|m| bad(m))?;
+    let toks = tokenize(&text, pd, rd).map_err(&bad)?;
     let real = |k: usize, default: f64| -> Result<f64, IoError> {
         match toks.get(k - 1) {
             None | Some(Tok::Empty) => Ok(default),
@@ -240,7 +240,7 @@ fn delimiter(s: &str, default: char, pd: Option<char>) -> Option<(char, &str)> {
 
 /// The directory entries (sec. 2.2.4.4).
 fn directory(lines: &[(&str, usize)], file: &str) -> Result<(Vec<Entry>, Vec<usize>), IoError> {
-    if lines.len() % 2 != 0 {
+    if !lines.len().is_multiple_of(2) {
         return Err(IoError::format(
             file,
             At::Line(lines[lines.len() - 1].1),

@@ -51,7 +51,7 @@ impl Iges<'_> {
         let map = self.transform_of(de)?;
         let s = self.rec.mm_per_unit;
         // rows along u: row i holds (w x, w y, w z, w) of points (i, 0..n_v)
-        let mut rows: Vec<Vec<f64>> = (0..n[0])
+        let rows: Vec<Vec<f64>> = (0..n[0])
             .map(|i| {
                 (0..n[1])
                     .flat_map(|j| {
@@ -68,32 +68,12 @@ impl Iges<'_> {
             self.err(de, format!("rational B-spline surface: {e}"))
                 .into()
         };
-        let (mut ku, mut kv) = (ku, kv);
         knots_ok(&ku, deg[0]).map_err(|m| bad(&format!("knots_u: {m}")))?;
         knots_ok(&kv, deg[1]).map_err(|m| bad(&format!("knots_v: {m}")))?;
-        clamp(deg[0], &mut ku, &mut rows);
-        let nu = rows.len();
-        let mut cols: Vec<Vec<f64>> = (0..n[1])
-            .map(|j| {
-                (0..nu)
-                    .flat_map(|i| rows[i][4 * j..4 * j + 4].to_vec())
-                    .collect()
-            })
-            .collect();
-        clamp(deg[1], &mut kv, &mut cols);
-        let nv = cols.len();
-        let mut points = Vec::with_capacity(nu * nv);
-        let mut weights = Vec::with_capacity(nu * nv);
-        for i in 0..nu {
-            for c in &cols {
-                let h = &c[4 * i..4 * i + 4];
-                points.push(Point3::new(h[0] / h[3], h[1] / h[3], h[2] / h[3]));
-                weights.push(h[3]);
-            }
+        if let Some(k) = w.iter().position(|x| rational && *x <= 0.0) {
+            return Err(bad(&format!("weights[{k}]: expected > 0, found {}", w[k])));
         }
-        if !(rational && weights.iter().all(|w| *w > 0.0)) && rational {
-            return Err(bad(&"weights: expected all > 0"));
-        }
+        let (points, weights, ku, kv) = clamped(deg, n[1], ku, kv, rows);
         Patch::new(
             deg,
             points,
@@ -110,7 +90,7 @@ impl Iges<'_> {
         let map = self.transform_of(p.de)?;
         let n0 = Vec3::new(v[0], v[1], v[2]);
         let len = n0.norm();
-        if !(len > 0.0) {
+        if len == 0.0 || !len.is_finite() {
             return Err(self
                 .err(p.de, "plane: expected a non-zero normal (A, B, C)")
                 .into());
@@ -149,6 +129,36 @@ impl Iges<'_> {
                 .into()
         })
     }
+}
+
+/// The net clamped in u then v: points (swarf's row-major order), weights, knots.
+fn clamped(
+    deg: [usize; 2],
+    n_v: usize,
+    mut ku: Vec<f64>,
+    mut kv: Vec<f64>,
+    mut rows: Vec<Vec<f64>>,
+) -> (Vec<Point3>, Vec<f64>, Vec<f64>, Vec<f64>) {
+    clamp(deg[0], &mut ku, &mut rows);
+    let nu = rows.len();
+    let mut cols: Vec<Vec<f64>> = (0..n_v)
+        .map(|j| {
+            (0..nu)
+                .flat_map(|i| rows[i][4 * j..4 * j + 4].to_vec())
+                .collect()
+        })
+        .collect();
+    clamp(deg[1], &mut kv, &mut cols);
+    let mut points = Vec::with_capacity(nu * cols.len());
+    let mut weights = Vec::with_capacity(nu * cols.len());
+    for i in 0..nu {
+        for c in &cols {
+            let h = &c[4 * i..4 * i + 4];
+            points.push(Point3::new(h[0] / h[3], h[1] / h[3], h[2] / h[3]));
+            weights.push(h[3]);
+        }
+    }
+    (points, weights, ku, kv)
 }
 
 /// Knots are finite, non-decreasing and leave a non-empty domain (checked before

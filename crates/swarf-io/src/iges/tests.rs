@@ -244,10 +244,12 @@ fn bad_values_and_pointers() {
         message(&only_line, &opts),
         "plate.igs: no faces: expected at least one supported entity 144 (trimmed surface) or 128 (B-spline surface)"
     );
-    let t = text
-        .replacen("T      1", "T      1", 1)
-        .replace("D     20P", "D     22P");
-    assert!(message(&t, &opts).contains("terminate record: D count"));
+    let t = text.replace("D     20P", "D     22P");
+    let m = message(&t, &opts);
+    assert!(
+        m.contains("terminate record: D count \"D     22\", but the file has 20 D records"),
+        "{m}"
+    );
 }
 
 /// Truncated and shuffled files never panic.
