@@ -5,12 +5,10 @@
 //! [`NurbsCurve::polyline`] on `[V0, V1]`) and 102 composite curve (its pieces in
 //! order, each end within `gap` of the next start). Each is mapped by its 124.
 
-use super::{Iges, MAX_DEPTH, Problem};
+use super::{Iges, MAX_DEPTH, Params, Problem, VISITS_PER_ENTRY};
 use std::f64::consts::TAU;
+use swarf_geom::curve::MAX_POLYLINE_POINTS;
 use swarf_geom::{NurbsCurve, Point3};
-
-/// Most points a circular arc is cut into.
-const MAX_ARC_STEPS: f64 = 1e6;
 
 impl Iges<'_> {
     /// Points along curve `de` within `tol` (in the curve's space: file units, or
@@ -18,14 +16,22 @@ impl Iges<'_> {
     ///
     /// # Errors
     /// An unsupported curve type, bad parameters, a composite whose pieces do not
-    /// join, or nesting deeper than [`MAX_DEPTH`].
+    /// join or that contains itself (`path`: the composites being sampled), nesting
+    /// deeper than [`MAX_DEPTH`], or far more curve visits than entities.
     pub(crate) fn sample_curve(
         &self,
         de: usize,
         tol: f64,
         gap: f64,
-        depth: usize,
+        path: &mut Vec<usize>,
     ) -> Result<Vec<Point3>, Problem> {
+        let visits = self.visits.get() + 1;
+        self.visits.set(visits);
+        if visits > VISITS_PER_ENTRY * (self.rec.entries.len() + 1) {
+            return Err(self
+                .err(de, "curves referenced far more often than the file has entities; expected each trimming curve used about once")
+                .into());
+        }
         let p = self.params(de, "curve")?;
         let pts = match p.ty {
             110 => {
@@ -34,41 +40,11 @@ impl Iges<'_> {
             }
             100 => {
                 let v = p.reals(self, 1, 7)?;
-                arc(v[0], [v[1], v[2]], [v[3], v[4]], [v[5], v[6]], tol).ok_or_else(|| {
-                    self.err(de, "expected a circular arc of finite, positive radius")
-                })?
+                arc(v[0], [v[1], v[2]], [v[3], v[4]], [v[5], v[6]], tol)
+                    .map_err(|m| self.err(de, m))?
             }
             126 => self.bspline_curve(&p, tol)?,
-            102 => {
-                if depth >= MAX_DEPTH {
-                    return Err(self
-                        .err(
-                            de,
-                            format!(
-                                "composite curves nested deeper than {MAX_DEPTH}; expected no cycle"
-                            ),
-                        )
-                        .into());
-                }
-                let n = p.count(self, 1, p.toks.len())?;
-                let mut out: Vec<Point3> = Vec::new();
-                for k in 0..n {
-                    let c = p.ptr(self, 2 + k)?;
-                    let piece = self.sample_curve(c, tol, gap, depth + 1)?;
-                    if let (Some(end), Some(start)) = (out.last(), piece.first()) {
-                        let d = (end - start).norm();
-                        if d > gap {
-                            return Err(self.err(de, format!(
-                                "piece {} (DE {c}) starts {d:.3e} from the end of piece {k}; expected a connected curve (gap <= {gap:.1e})",
-                                k + 1
-                            )).into());
-                        }
-                        out.pop();
-                    }
-                    out.extend(piece);
-                }
-                out
-            }
+            102 => self.composite(&p, tol, gap, path)?,
             t => {
                 return Err(p.unsupported(format!(
                     "curve type {t} in a trimming loop (expected 100, 102, 110 or 126)"
@@ -79,8 +55,58 @@ impl Iges<'_> {
         Ok(pts.iter().map(|q| map.apply(q)).collect())
     }
 
+    /// A 102: its pieces in order, each starting within `gap` of the previous end.
+    fn composite(
+        &self,
+        p: &Params,
+        tol: f64,
+        gap: f64,
+        path: &mut Vec<usize>,
+    ) -> Result<Vec<Point3>, Problem> {
+        let de = p.de;
+        if path.len() >= MAX_DEPTH {
+            return Err(self
+                .err(
+                    de,
+                    format!("composite curves nested deeper than {MAX_DEPTH}"),
+                )
+                .into());
+        }
+        let n = p.count(self, 1, p.toks.len())?;
+        let mut out: Vec<Point3> = Vec::new();
+        path.push(de);
+        for k in 0..n {
+            let c = p.ptr(self, 2 + k)?;
+            if path.contains(&c) {
+                return Err(self
+                    .err(
+                        de,
+                        format!(
+                            "piece {} is DE {c}, which contains it: expected no cycle",
+                            k + 1
+                        ),
+                    )
+                    .into());
+            }
+            let piece = self.sample_curve(c, tol, gap, path)?;
+            if let (Some(end), Some(start)) = (out.last(), piece.first()) {
+                let d = (end - start).norm();
+                if d > gap {
+                    return Err(self.err(de, format!(
+                        "piece {} (DE {c}) starts {d:.3e} from the end of piece {k}; expected a connected curve (gap <= {gap:.1e})",
+                        k + 1
+                    )).into());
+                }
+                out.pop();
+            }
+            out.extend(piece);
+        }
+        path.pop();
+        Ok(out)
+    }
+
     /// A 126 sampled on `[V0, V1]`.
-    fn bspline_curve(&self, p: &super::Params, tol: f64) -> Result<Vec<Point3>, Problem> {
+    fn bspline_curve(&self, p: &Params, tol: f64) -> Result<Vec<Point3>, Problem> {
         let size = p.toks.len();
         let k = p.count(self, 1, size)?;
         let m = p.count(self, 2, size)?;
@@ -107,10 +133,10 @@ impl Iges<'_> {
 
 /// An arc in the plane `z = zt` about `c` from `s` to `e`, counter-clockwise (a full
 /// circle when `s == e`), within sagitta `tol`.
-fn arc(zt: f64, c: [f64; 2], s: [f64; 2], e: [f64; 2], tol: f64) -> Option<Vec<Point3>> {
+fn arc(zt: f64, c: [f64; 2], s: [f64; 2], e: [f64; 2], tol: f64) -> Result<Vec<Point3>, String> {
     let r = (s[0] - c[0]).hypot(s[1] - c[1]);
     if !(r.is_finite() && r > 0.0) {
-        return None;
+        return Err(format!("circular arc: radius {r}; expected finite and > 0"));
     }
     let a0 = (s[1] - c[1]).atan2(s[0] - c[0]);
     let a1 = (e[1] - c[1]).atan2(e[0] - c[0]);
@@ -119,7 +145,13 @@ fn arc(zt: f64, c: [f64; 2], s: [f64; 2], e: [f64; 2], tol: f64) -> Option<Vec<P
         sweep = TAU;
     }
     let step = 2.0 * (1.0 - (tol / r).min(1.0)).acos();
-    let n = (sweep / step.max(1e-300)).ceil().clamp(2.0, MAX_ARC_STEPS) as usize;
+    let n = (sweep / step.max(1e-300)).ceil().max(2.0);
+    if n > MAX_POLYLINE_POINTS as f64 {
+        return Err(format!(
+            "circular arc of radius {r:.3e}: more than {MAX_POLYLINE_POINTS} points needed for a chord of {tol:.1e}"
+        ));
+    }
+    let n = n as usize;
     let mut out: Vec<Point3> = (0..=n)
         .map(|k| {
             let a = a0 + sweep * k as f64 / n as f64;
@@ -129,5 +161,5 @@ fn arc(zt: f64, c: [f64; 2], s: [f64; 2], e: [f64; 2], tol: f64) -> Option<Vec<P
     if let Some(last) = out.last_mut() {
         *last = Point3::new(e[0], e[1], zt);
     }
-    Some(out)
+    Ok(out)
 }

@@ -3,6 +3,7 @@
 //! the surface's `(u, v)` (module doc of [`super`] for the tolerances), and a bare
 //! independent 128 as a whole patch.
 
+use super::params::Tok;
 use super::{FaceOut, Iges, Problem};
 use swarf_geom::trim::Trim;
 use swarf_geom::{Face, Patch, Point3};
@@ -160,7 +161,7 @@ impl Iges<'_> {
         }
         let speed = speed_bound(patch);
         let tol = self.opts.trim_chord / speed;
-        let pts = self.sample_curve(b, tol, GAP_MM / speed, 0)?;
+        let pts = self.sample_curve(b, tol, GAP_MM / speed, &mut Vec::new())?;
         let _ = m;
         let uv: Vec<[f64; 2]> = pts.iter().map(|q| [q.x, q.y]).collect();
         self.closed(c, uv, GAP_MM / speed)
@@ -178,7 +179,7 @@ impl Iges<'_> {
                 .into());
         }
         let s = self.rec.mm_per_unit;
-        let pts = self.sample_curve(m, self.opts.trim_chord / s, GAP_MM / s, 0)?;
+        let pts = self.sample_curve(m, self.opts.trim_chord / s, GAP_MM / s, &mut Vec::new())?;
         Ok(pts.into_iter().map(|q| q * s).collect())
     }
 
@@ -222,10 +223,46 @@ impl Iges<'_> {
         Ok(uv)
     }
 
-    /// A face's name: the label of entity `de`, else of `other`.
+    /// A face's name: a 406 form 15 name property of entity `de`, else its label,
+    /// else the same of `other` (its surface).
     fn name(&self, de: usize, other: Option<usize>) -> Option<String> {
-        let label = |d: usize| self.rec.entries.get(d / 2).and_then(|e| e.label.clone());
-        label(de).or_else(|| other.and_then(label))
+        let of = |d: usize| {
+            let label = self.rec.entries.get(d / 2).and_then(|e| e.label.clone());
+            self.property_name(d).or(label)
+        };
+        of(de).or_else(|| other.and_then(of))
+    }
+
+    /// The name in a 406 form 15 among the property pointers that follow the
+    /// parameters of a 144 or 128 (sec. 2.2.4.5.2: a count of back pointers, them, a
+    /// count of property pointers, them). Names are optional: anything amiss gives
+    /// `None`.
+    fn property_name(&self, de: usize) -> Option<String> {
+        let p = self.params(de, "name").ok()?;
+        let len = p.toks.len();
+        let after = match p.ty {
+            144 => 5 + p.count(self, 3, len).ok()?,
+            128 => {
+                let c = |k| p.count(self, k, len).ok();
+                let (k1, k2, m1, m2) = (c(1)?, c(2)?, c(3)?, c(4)?);
+                14 + (k1 + m1 + 2) + (k2 + m2 + 2) + 4 * (k1 + 1) * (k2 + 1)
+            }
+            _ => return None,
+        };
+        let nb = p.count(self, after, len).ok()?;
+        let at = after + 1 + nb;
+        let np = p.count(self, at, len).ok()?;
+        (0..np).find_map(|k| {
+            let d = p.ptr(self, at + 1 + k).ok()?;
+            let e = self.rec.entries.get(d / 2)?;
+            if e.ty != 406 || e.form != 15 {
+                return None;
+            }
+            match self.params(d, "name").ok()?.toks.get(2)? {
+                Tok::Str(s) if !s.trim().is_empty() => Some(s.trim().to_string()),
+                _ => None,
+            }
+        })
     }
 }
 

@@ -10,7 +10,7 @@
 //! - 128 lists control points with the first index (along u) varying fastest:
 //!   point `(i, j)` is the file's `i + j (K1 + 1)`, swarf's row-major `i n_v + j`. A
 //!   periodic or unclamped knot vector is clamped at the ends of its domain
-//!   `[U_p, U_n]` by knot insertion ([`clamp`]), which leaves the surface unchanged.
+//!   `[U_p, U_n]` by knot insertion (`clamp.rs`), which leaves the surface unchanged.
 //! - A 142 gives a loop either in the surface's `(u, v)` (BPTR) or in model space
 //!   (CPTR). A `(u, v)` curve is sampled within `trim_chord / max(|S_u| + |S_v|)`,
 //!   since a `(u, v)` chord `d` moves the surface point by at most
@@ -42,6 +42,9 @@ use swarf_geom::{Face, Part};
 /// Deepest nesting of entities followed (composite curves in composite curves,
 /// transformation chains); deeper is refused as a likely cycle.
 const MAX_DEPTH: usize = 32;
+/// Curve entities sampled per directory entry, at most, over the whole file (a
+/// composite curve may list one sub-curve many times; this bounds the work).
+const VISITS_PER_ENTRY: usize = 8;
 
 /// Reads an IGES file.
 ///
@@ -87,6 +90,7 @@ pub fn parse_iges(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart
         file: source,
         rec,
         opts: *opts,
+        visits: std::cell::Cell::new(0),
     };
     let mut warnings = Vec::new();
     let mut patches = Vec::new();
@@ -172,6 +176,8 @@ pub(crate) struct Iges<'a> {
     file: &'a str,
     rec: Records<'a>,
     opts: CadOptions,
+    /// Curve entities sampled so far (bounded by [`VISITS_PER_ENTRY`]).
+    visits: std::cell::Cell<usize>,
 }
 
 /// One entity's parameters.

@@ -37,7 +37,7 @@ pub(crate) fn tokenize(text: &str, pd: char, rd: char) -> Result<Vec<Tok>, Strin
                 .collect::<String>()
                 .parse()
                 .map_err(|_| "bad Hollerith count".to_string())?;
-            if k + 1 + n > chars.len() {
+            if n >= chars.len() - k {
                 return Err(format!(
                     "field {}: Hollerith string of {n} characters runs past the end of the entity",
                     out.len() + 1

@@ -21,6 +21,8 @@ pub(crate) struct Entry {
     pub status: String,
     /// Parameter record count (field 14).
     pub param_lines: usize,
+    /// Form number (field 15).
+    pub form: i64,
     /// Entity label and subscript (fields 18, 19), when not blank.
     pub label: Option<String>,
 }
@@ -296,6 +298,7 @@ fn directory(lines: &[(&str, usize)], file: &str) -> Result<(Vec<Entry>, Vec<usi
             transform: ptr(int(a, la, 6, "transformation matrix")?),
             status: a.get(64..72).unwrap_or("").to_string(),
             param_lines: ptr(int(b, lb, 3, "parameter line count")?),
+            form: int(b, lb, 4, "form number")?,
             label,
         });
         at.push(la);

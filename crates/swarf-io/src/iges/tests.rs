@@ -37,6 +37,7 @@ fn iges(ents: &[Ent], unit: &str) -> String {
             .map(|c| String::from_utf8_lossy(c).into_owned())
             .collect();
         let status = format!("00{}0000", e.3);
+        let form = if e.0 == 406 { 15 } else { 0 };
         d += &format!(
             "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}\n",
             e.0, pline, 0, 0, 0, 0, e.2, 0, status, de
@@ -47,7 +48,7 @@ fn iges(ents: &[Ent], unit: &str) -> String {
             0,
             0,
             chunks.len(),
-            0,
+            form,
             "",
             "",
             e.4,
@@ -137,6 +138,14 @@ fn transform_and_bare_surface() {
     assert!(cad.part.trim(0).is_none());
 }
 
+#[test]
+fn names_from_406_properties() {
+    let text = plate(OUTER, &[Ent(406, "1,8HTop face;", 0, "01", "")])
+        .replace("144,1,1,1,5,17;       ", "144,1,1,1,5,17,0,1,21;");
+    let cad = read(&text, &CadOptions::default()).unwrap();
+    assert_eq!(cad.part.face_name(0), Some("Top face"));
+}
+
 fn message(text: &str, opts: &CadOptions) -> String {
     read(text, opts).unwrap_err().to_string()
 }
@@ -218,7 +227,7 @@ fn bad_values_and_pointers() {
     );
     let m = message(&text.replace("102,4,7,9,11,13;", "102,4,7,9,11,15;"), &opts);
     assert!(
-        m.contains("DE 15 type 102: composite curves nested deeper than 32"),
+        m.contains("DE 15 type 102: piece 4 is DE 15, which contains it: expected no cycle"),
         "{m}"
     );
     let m = message(
@@ -252,7 +261,8 @@ fn bad_values_and_pointers() {
     );
 }
 
-/// Truncated and shuffled files never panic.
+/// Truncated and mutated files (each byte on a stride replaced by characters that
+/// matter to the format) never panic.
 #[test]
 fn truncations_do_not_panic() {
     let text = plate(OUTER, &[]);
@@ -264,4 +274,12 @@ fn truncations_do_not_panic() {
         .map(|c| if c == '1' { '9' } else { c })
         .collect();
     let _ = read(&mangled, &CadOptions::default());
+    let bytes = text.as_bytes();
+    for at in (0..bytes.len()).step_by(5) {
+        for c in [b',', b';', b'H', b'9', b'-', b' ', b'D', b'.', b'0'] {
+            let mut b = bytes.to_vec();
+            b[at] = c;
+            let _ = read(&String::from_utf8_lossy(&b), &CadOptions::default());
+        }
+    }
 }
