@@ -1,7 +1,7 @@
 //! The IGES reader against OpenCASCADE: `occ/make_iges.py` builds a rational
 //! B-spline face, a plane plate with a circular hole (written as 108 with model-space
 //! trimming curves) and the same plate converted to NURBS (128 with parameter-space
-//! curves), writes them as IGES 144/142 faces, and records OCC's own sample points
+//! curves) and a rational surface periodic in u (unclamped knots, which swarf clamps), writes them as IGES 144/142 faces, and records OCC's own sample points
 //! inside each face and the face areas. Each sample must lie on the swarf face
 //! (projection within 1e-9 mm) and inside its trim; where swarf keeps OCC's
 //! parametrisation (the 128 faces) `S(u, v)` must equal OCC's point; the trimmed
@@ -16,7 +16,7 @@ use std::process::Command;
 use swarf_io::{CadOptions, read_iges};
 
 /// Faces whose IGES surface is OCC's surface (128), so `(u, v)` agree.
-const SAME_PARAMETRISATION: [usize; 2] = [0, 2];
+const SAME_PARAMETRISATION: [usize; 3] = [0, 2, 3];
 /// Cells per direction of the area's midpoint rule.
 const AREA_GRID: usize = 200;
 
@@ -90,7 +90,7 @@ fn occ_faces_match() {
     assert_eq!(cad.unit, "mm");
     assert!(cad.warnings.is_empty(), "{:?}", cad.warnings);
     let part = &cad.part;
-    assert_eq!(part.patches.len(), 3);
+    assert_eq!(part.patches.len(), 4);
     let rows = samples(&csv);
     let (mut max_proj, mut max_eval) = (0.0f64, 0.0f64);
     for &(k, u, v, x, _) in &rows {
@@ -115,7 +115,7 @@ fn occ_faces_match() {
             );
         }
     }
-    for k in 0..3 {
+    for k in 0..4 {
         let occ = rows
             .iter()
             .find(|r| r.0 == k)

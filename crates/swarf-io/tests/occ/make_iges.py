@@ -2,8 +2,10 @@
 
 Usage: python3 make_iges.py OUT_DIR
 
-Builds two faces: a bicubic B-spline face (untrimmed) and a plane plate with a
-circular hole (trimmed), writes them with IGESControl_Writer in BRep-faces mode
+Builds four faces: a rational B-spline face (untrimmed), a plane plate with a
+circular hole (trimmed; OCC writes a 108 plane with model-space curves), the same
+plate converted to NURBS (128 with parameter-space curves) and a rational surface
+periodic in u (unclamped knots), writes them with IGESControl_Writer in BRep-faces mode
 (mode 0: 144/142/128/126) in mm to OUT_DIR/occ.igs, and writes OUT_DIR/occ.csv with
 one line per sample: face index, OCC (u, v), the OCC 3D point S(u, v), and the face
 area (BRepGProp.SurfaceProperties_s). Samples lie inside each face (classified by
@@ -56,6 +58,30 @@ def bspline_face():
     return BRepBuilderAPI_MakeFace(surf, 1e-6).Face()
 
 
+def periodic_face():
+    """A rational surface periodic in u (a wavy tube): OCC writes its knots
+    unclamped, -3 to 9 for the domain [0, 6]."""
+    nu, nv = 6, 3
+    pts = Array2_gp_Pnt(1, nu, 1, nv)
+    wts = Array2_double(1, nu, 1, nv)
+    for i in range(nu):
+        for j in range(nv):
+            a = 2.0 * math.pi * i / nu
+            x, y = round(20.0 * math.cos(a), 3), round(20.0 * math.sin(a), 3)
+            pts.SetValue(i + 1, j + 1, gp_Pnt(x + 200.0, y, 10.0 * j + (i % 2)))
+            wts.SetValue(i + 1, j + 1, 1.0 + 0.5 * (i % 2))
+    uk, um = Array1_double(1, nu + 1), Array1_int(1, nu + 1)
+    for k in range(nu + 1):
+        uk.SetValue(k + 1, float(k))
+        um.SetValue(k + 1, 1)
+    vk, vm = Array1_double(1, 2), Array1_int(1, 2)
+    for k, t in enumerate([0.0, 1.0]):
+        vk.SetValue(k + 1, t)
+        vm.SetValue(k + 1, 3)
+    surf = Geom_BSplineSurface(pts, wts, uk, vk, um, vm, 3, 2, True, False)
+    return BRepBuilderAPI_MakeFace(surf, 1e-6).Face()
+
+
 def plate_with_hole():
     plate = BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(100, 0, 5), gp_Dir(0, 0, 1)), 0.0, 60.0, 0.0, 40.0).Face()
     cyl = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(125, 18, -10), gp_Dir(0, 0, 1)), 9.0, 40.0).Shape()
@@ -92,7 +118,7 @@ def samples(face, n=9):
 
 
 def main(out_dir):
-    faces = [bspline_face(), plate_with_hole(), nurbs_plate()]
+    faces = [bspline_face(), plate_with_hole(), nurbs_plate(), periodic_face()]
     Interface_Static.SetCVal_s("write.iges.unit", "MM")
     w = IGESControl_Writer("MM", 0)
     for f in faces:
