@@ -95,11 +95,12 @@ pub fn parse_iges(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart
     let mut warnings = Vec::new();
     let mut patches = Vec::new();
     let mut faces = Vec::new();
+    let trimmed = iges.trimmed_surfaces();
     for (k, e) in iges.rec.entries.iter().enumerate() {
-        if !e.independent() {
+        let de = 2 * k + 1;
+        if !e.independent() || trimmed.contains(&de) {
             continue;
         }
-        let de = 2 * k + 1;
         let got = match e.ty {
             144 => iges.trimmed_surface(de),
             128 => iges.bare_surface(de),
@@ -114,8 +115,13 @@ pub fn parse_iges(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart
                 faces.push(face);
             }
             Err(Problem::Io(err)) => return Err(err),
-            Err(Problem::Unsupported { de, ty, why }) => {
-                let msg = format!("DE {de} type {ty}: {why}");
+            Err(Problem::Unsupported { de: at, ty, why }) => {
+                let why = if at == de {
+                    why
+                } else {
+                    format!("{why}; face DE {de} skipped")
+                };
+                let (de, msg) = (at, format!("DE {at} type {ty}: {why}"));
                 if opts.unsupported == Unsupported::Refuse {
                     return Err(iges.err(de, format!("unsupported: {why}")));
                 }
@@ -188,6 +194,18 @@ pub(crate) struct Params {
 }
 
 impl Iges<'_> {
+    /// The surfaces that 144s trim (writers that mark every entity independent
+    /// would otherwise have them read twice, once whole), sorted.
+    fn trimmed_surfaces(&self) -> Vec<usize> {
+        let mut out: Vec<usize> = (0..self.rec.entries.len())
+            .filter(|k| self.rec.entries[*k].ty == 144)
+            .filter_map(|k| self.params(2 * k + 1, "trimmed surface").ok())
+            .filter_map(|p| p.ptr(self, 1).ok())
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
     /// The directory entry at DE pointer `de`.
     ///
     /// # Errors

@@ -138,6 +138,49 @@ fn transform_and_bare_surface() {
     assert!(cad.part.trim(0).is_none());
 }
 
+/// A writer that marks every entity independent: the trimmed 128 is not read
+/// again as a whole face. An unsupported surface under a 144 names both.
+#[test]
+fn all_independent_and_unsupported_surface() {
+    let text = plate(OUTER, &[]).replace("000010000D", "000000000D");
+    let cad = read(&text, &CadOptions::default()).unwrap();
+    assert_eq!(cad.part.patches.len(), 1);
+    let text = plate(
+        OUTER,
+        &[
+            Ent(120, "1,3,0.,6.28;", 0, "01", ""),
+            Ent(144, "21,0,0,0;", 0, "00", ""),
+        ],
+    );
+    let cad = read(&text, &CadOptions::default()).unwrap();
+    assert_eq!(cad.part.patches.len(), 1);
+    assert_eq!(
+        cad.warnings,
+        vec![
+            "DE 23 type 144: surface DE 21 of type 120 (expected 128 or a bounded 108)".to_string()
+        ]
+    );
+}
+
+/// An unsupported trimming curve skips its face, naming the curve and the face.
+#[test]
+fn unsupported_curve_skips_the_face() {
+    let text = plate(
+        OUTER,
+        &[Ent(104, "1,0,1,0,0,0,-1,0.,1.,0.,1.,0.;", 0, "01", "")],
+    )
+    .replace("142,0,1,15,0,1;", "142,0,1,21,0,1;");
+    let m = message(&text, &CadOptions::default());
+    assert!(
+        m.ends_with(
+            "no faces: expected at least one supported entity 144 (trimmed surface) or 128 \
+             (B-spline surface); skipped: DE 21 type 104: curve type 104 in a trimming loop \
+             (expected 100, 102, 110 or 126); face DE 19 skipped"
+        ),
+        "{m}"
+    );
+}
+
 #[test]
 fn names_from_406_properties() {
     let text = plate(OUTER, &[Ent(406, "1,8HTop face;", 0, "01", "")])
