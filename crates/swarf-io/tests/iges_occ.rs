@@ -6,7 +6,8 @@
 //! (projection within 1e-9 mm) and inside its trim; where swarf keeps OCC's
 //! parametrisation (the 128 faces) `S(u, v)` must equal OCC's point; the trimmed
 //! area (midpoint rule over the face's `(u, v)` box, `|S_u x S_v|` where the face
-//! contains the cell centre) must match OCC's within 0.5 %.
+//! contains the cell centre) must match OCC's within 0.5 %; the hole's trimming
+//! loops must stay within `trim_chord` of the exact circle.
 //!
 //! Skipped with a note when Python's OCP module is missing, unless
 //! `SWARF_REQUIRE_REFERENCES=1`.
@@ -64,6 +65,24 @@ fn area(part: &swarf_geom::Part, k: usize) -> f64 {
         }
     }
     sum
+}
+
+/// Largest distance from the hole's circle (centre (125, 18, 5), radius 9) of the
+/// surface points at the hole loops' vertices and edge midpoints, faces 1 and 2.
+fn hole_deviation(part: &swarf_geom::Part) -> f64 {
+    let c = swarf_geom::Point3::new(125.0, 18.0, 5.0);
+    let mut worst = 0.0f64;
+    for k in [1, 2] {
+        let hole = &part.trim(k).expect("trimmed").loops()[1];
+        for (a, b) in hole.iter().zip(hole.iter().cycle().skip(1)) {
+            for t in [0.0, 0.5] {
+                let (u, v) = (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
+                let p = part.patches[k].eval(u, v);
+                worst = worst.max(((p - c).norm() - 9.0).abs());
+            }
+        }
+    }
+    worst
 }
 
 #[test]
@@ -128,8 +147,14 @@ fn occ_faces_match() {
             "face {k}: area {ours} vs OCC {occ}"
         );
     }
+    let dev = hole_deviation(part);
+    assert!(
+        dev <= CadOptions::default().trim_chord * (1.0 + 1e-6),
+        "hole deviation {dev:e} mm"
+    );
     eprintln!(
-        "IGES vs OCC: {} points, max projection {max_proj:.1e} mm, max eval {max_eval:.1e} mm",
+        "IGES vs OCC: {} points, max projection {max_proj:.1e} mm, max eval {max_eval:.1e} mm, \
+         hole loops within {dev:.1e} mm of the circle",
         rows.len()
     );
 }

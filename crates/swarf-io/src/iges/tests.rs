@@ -124,6 +124,15 @@ fn inch_plate_with_hole() {
     assert_eq!(t.loops().len(), 2);
 }
 
+/// Delimiters from the Global section: `/` between parameters, `#` ending records.
+#[test]
+fn custom_delimiters() {
+    let text = plate(OUTER, &[]).replace(',', "/").replace(';', "#");
+    assert!(text.contains("1H//1H#/4Htest/"));
+    let cad = read(&text, &CadOptions::default()).unwrap();
+    assert!(cad.part.face_contains(0, 0.2, 0.2) && !cad.part.face_contains(0, 0.5, 0.5));
+}
+
 #[test]
 fn transform_and_bare_surface() {
     let ents = [
