@@ -11,11 +11,13 @@ use swarf_geom::{Face, Patch, Point3};
 /// A trimming loop in a patch's `(u, v)`.
 type Loop = Vec<[f64; 2]>;
 
-/// Largest gap closed between the pieces of a loop and between its ends, mm (IGES
-/// writers print 9 to 15 significant digits).
+/// Largest gap closed between the pieces of a loop and between its ends, and
+/// largest distance of a model-space trimming point from its surface, mm, unless the
+/// file's resolution (Global field 19) is coarser (IGES writers print 9 to 15
+/// significant digits).
 const GAP_MM: f64 = 1e-3;
-/// Largest distance of a model-space trimming point from its surface, mm.
-const OFF_SURFACE_MM: f64 = 1e-3;
+/// Largest gap closed whatever the file's resolution, mm.
+const MAX_GAP_MM: f64 = 0.1;
 /// Samples per direction of the grid bounding `|S_u| + |S_v|`.
 const SPEED_GRID: usize = 16;
 
@@ -161,10 +163,16 @@ impl Iges<'_> {
         }
         let speed = speed_bound(patch);
         let tol = self.opts.trim_chord / speed;
-        let pts = self.sample_curve(b, tol, GAP_MM / speed, &mut Vec::new())?;
-        let _ = m;
+        let gap = self.gap_mm() / speed;
+        let pts = match self.sample_curve(b, tol, gap, &mut Vec::new()) {
+            Err(Problem::Unsupported { .. }) if m != 0 => {
+                let model = self.loop_model(c, sptr)?;
+                return self.project_loop(c, &model, patch);
+            }
+            other => other?,
+        };
         let uv: Vec<[f64; 2]> = pts.iter().map(|q| [q.x, q.y]).collect();
-        self.closed(c, uv, GAP_MM / speed)
+        self.closed(c, uv, gap)
     }
 
     /// Loop `c`'s model-space curve in mm.
@@ -179,7 +187,12 @@ impl Iges<'_> {
                 .into());
         }
         let s = self.rec.mm_per_unit;
-        let pts = self.sample_curve(m, self.opts.trim_chord / s, GAP_MM / s, &mut Vec::new())?;
+        let pts = self.sample_curve(
+            m,
+            self.opts.trim_chord / s,
+            self.gap_mm() / s,
+            &mut Vec::new(),
+        )?;
         Ok(pts.into_iter().map(|q| q * s).collect())
     }
 
@@ -196,16 +209,17 @@ impl Iges<'_> {
                 None => patch.project(q),
                 Some(&[u, v]) => patch.project_from(q, u, v),
             };
-            if pr.distance.is_nan() || pr.distance > OFF_SURFACE_MM {
+            let off = self.gap_mm();
+            if pr.distance.is_nan() || pr.distance > off {
                 return Err(self.err(c, format!(
-                    "model-space point {k} ({:.6}, {:.6}, {:.6}) mm lies {:.3e} mm from the surface; expected within {OFF_SURFACE_MM:e}",
+                    "model-space point {k} ({:.6}, {:.6}, {:.6}) mm lies {:.3e} mm from the surface; expected within {off:.1e}",
                     q.x, q.y, q.z, pr.distance
                 )).into());
             }
             uv.push([pr.u, pr.v]);
         }
         let speed = speed_bound(patch);
-        self.closed(c, uv, GAP_MM / speed)
+        self.closed(c, uv, self.gap_mm() / speed)
     }
 
     /// `uv` as a closed loop (last point dropped when it meets the first within `gap`).
@@ -221,6 +235,12 @@ impl Iges<'_> {
         }
         uv.pop();
         Ok(uv)
+    }
+
+    /// The gap closed in loops and allowed off the surface, mm: [`GAP_MM`] or the
+    /// file's resolution, whichever is larger, at most [`MAX_GAP_MM`].
+    fn gap_mm(&self) -> f64 {
+        GAP_MM.max(self.rec.resolution_mm.min(MAX_GAP_MM))
     }
 
     /// A face's name: a 406 form 15 name property of entity `de`, else its label,

@@ -48,6 +48,8 @@ pub(crate) struct Records<'a> {
     pub mm_per_unit: f64,
     /// The unit as written (`mm`, `inch`...).
     pub unit: String,
+    /// The file's minimum intended resolution (Global field 19), mm.
+    pub resolution_mm: f64,
     /// Parameter and record delimiters.
     pub delims: (char, char),
 }
@@ -104,7 +106,7 @@ pub(crate) fn split<'a>(text: &'a str, file: &str) -> Result<Records<'a>, IoErro
         ));
     }
     check_terminate(&term, [global.len(), dir.len(), params.len()], file)?;
-    let (delims, mm_per_unit, unit) = global_section(&global, file)?;
+    let (delims, mm_per_unit, unit, resolution) = global_section(&global, file)?;
     let (entries, entry_lines) = directory(&dir, file)?;
     let params = params
         .iter()
@@ -116,6 +118,7 @@ pub(crate) fn split<'a>(text: &'a str, file: &str) -> Result<Records<'a>, IoErro
         entry_lines,
         mm_per_unit,
         unit,
+        resolution_mm: resolution * mm_per_unit,
         delims,
     })
 }
@@ -142,11 +145,12 @@ fn check_terminate(term: &[(&str, usize)], counts: [usize; 3], file: &str) -> Re
     Ok(())
 }
 
-/// Delimiters, mm per unit and unit name from the Global section (sec. 2.2.4.3).
+/// Delimiters, mm per unit, unit name and resolution (file units) from the Global
+/// section (sec. 2.2.4.3).
 fn global_section(
     lines: &[(&str, usize)],
     file: &str,
-) -> Result<((char, char), f64, String), IoError> {
+) -> Result<((char, char), f64, String, f64), IoError> {
     let text: String = lines
         .iter()
         .map(|(l, _)| l.get(..72).unwrap_or(l))
@@ -189,7 +193,8 @@ fn global_section(
              3 with a known name"
         ))
     })?;
-    Ok(((pd, rd), mm / scale, unit.to_string()))
+    let resolution = real(19, 0.0)?.abs();
+    Ok(((pd, rd), mm / scale, unit.to_string(), resolution))
 }
 
 /// mm per unit and its name for the Global unit flag (and name for flag 3).

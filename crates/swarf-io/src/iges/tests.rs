@@ -171,6 +171,33 @@ fn all_independent_and_unsupported_surface() {
     );
 }
 
+/// A hole whose parameter-space curve is unsupported (104 conic) but whose
+/// model-space curve (four 110 lines in inches along the bilinear patch's rulings)
+/// is given: the model-space curve is projected.
+#[test]
+fn model_space_fallback() {
+    let extra = [
+        Ent(104, "1,0,1,0,0,0,-1,0.,1.,0.,1.,0.;", 0, "01", ""),
+        Ent(102, "4,25,27,29,31;", 0, "01", ""),
+        Ent(110, "0.8,0.4,0.16,1.2,0.4,0.24;", 0, "01", ""),
+        Ent(110, "1.2,0.4,0.24,1.2,0.6,0.36;", 0, "01", ""),
+        Ent(110, "1.2,0.6,0.36,0.8,0.6,0.24;", 0, "01", ""),
+        Ent(110, "0.8,0.6,0.24,0.8,0.4,0.16;", 0, "01", ""),
+    ];
+    let text = plate(OUTER, &extra).replace("142,0,1,15,0,1; ", "142,0,1,21,23,1;");
+    let cad = read(&text, &CadOptions::default()).unwrap();
+    let part = &cad.part;
+    assert!(!part.face_contains(0, 0.5, 0.5) && !part.face_contains(0, 0.41, 0.59));
+    assert!(part.face_contains(0, 0.39, 0.5) && part.face_contains(0, 0.5, 0.61));
+    let hole = &part.trim(0).unwrap().loops()[1];
+    for p in hole {
+        let on_edge = [p[0] - 0.4, p[0] - 0.6, p[1] - 0.4, p[1] - 0.6]
+            .iter()
+            .any(|d| d.abs() < 1e-9);
+        assert!(on_edge, "{p:?}");
+    }
+}
+
 /// An unsupported trimming curve skips its face, naming the curve and the face.
 #[test]
 fn unsupported_curve_skips_the_face() {
