@@ -12,7 +12,8 @@
 //!   periodic or unclamped knot vector is clamped at the ends of its domain
 //!   `[U_p, U_n]` by knot insertion (`clamp.rs`), which leaves the surface unchanged.
 //! - A 142 gives a loop either in the surface's `(u, v)` (BPTR) or in model space
-//!   (CPTR). A `(u, v)` curve is sampled within `trim_chord / max(|S_u| + |S_v|)`,
+//!   (CPTR); the `(u, v)` curve is used when given and supported (PREF is not
+//!   consulted), else the model-space one. A `(u, v)` curve is sampled within `trim_chord / max(|S_u| + |S_v|)`,
 //!   since a `(u, v)` chord `d` moves the surface point by at most
 //!   `(|S_u| + |S_v|) |d|`; a model-space curve is sampled within `trim_chord` and
 //!   each sample projected on the surface, from the previous sample's `(u, v)`.
@@ -20,7 +21,16 @@
 //!   the box of its boundary in an orthonormal frame of the plane (with a margin), so
 //!   `(u, v)` are mm in that frame.
 //! - Units: Global fields 13-15; lengths are multiplied by the unit's mm and divided by
-//!   the model-space scale.
+//!   the model-space scale. Gaps between a loop's curves, and model-space points off
+//!   their surface, are accepted up to 1e-3 mm or the file's resolution (field 19).
+//!
+//! Names: a 406 form 15 property of the 144 (or bare 128), else its DE label and
+//! subscript, else those of its surface. Unsupported entities (a face type other
+//! than 144/128, a surface other than 128/108 under a 144, a trimming curve other
+//! than 100/102/110/126) skip their face with a warning `DE n type T: why` or refuse
+//! the file, as [`CadOptions::unsupported`] says. Work is bounded by the file: every
+//! count is checked against the parameters present before allocating, composite
+//! curves may not contain themselves, and curve visits are capped per entity.
 
 mod clamp;
 mod curve;
@@ -73,6 +83,12 @@ pub fn read_iges(path: &Path, opts: &CadOptions) -> Result<CadPart, IoError> {
 /// swarf's kernel rejects, an open or self-intersecting trimming loop, an unsupported
 /// entity when `opts.unsupported` is [`Unsupported::Refuse`], or a file without any
 /// face.
+///
+/// # Example
+/// ```
+/// let e = swarf_io::parse_iges("solid x\n", "x.igs", &Default::default()).unwrap_err();
+/// assert!(e.to_string().starts_with("x.igs: line 1: not an IGES file"));
+/// ```
 pub fn parse_iges(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart, IoError> {
     if !(opts.trim_chord >= MIN_TRIM_CHORD && opts.trim_chord <= MAX_TRIM_CHORD) {
         return Err(IoError::field(
