@@ -44,7 +44,7 @@ mod transform;
 
 use crate::cad::{CadOptions, CadPart, MAX_TRIM_CHORD, MIN_TRIM_CHORD, Unsupported};
 use crate::error::{At, IoError};
-use params::{Tok, number, tokenize};
+use params::{Params, tokenize};
 use records::{Entry, Records};
 use std::path::Path;
 use swarf_geom::{Face, Part};
@@ -202,13 +202,6 @@ pub(crate) struct Iges<'a> {
     visits: std::cell::Cell<usize>,
 }
 
-/// One entity's parameters.
-pub(crate) struct Params {
-    de: usize,
-    ty: i64,
-    toks: Vec<Tok>,
-}
-
 impl Iges<'_> {
     /// The surfaces that 144s trim (writers that mark every entity independent
     /// would otherwise have them read twice, once whole), sorted.
@@ -302,98 +295,6 @@ impl Iges<'_> {
             ));
         }
         Ok(p)
-    }
-}
-
-impl Params {
-    /// Parameter `k` (1-based after the type) as a finite real.
-    fn real(&self, g: &Iges, k: usize) -> Result<f64, IoError> {
-        match self.toks.get(k) {
-            Some(Tok::Num(s)) => number(s).ok_or_else(|| {
-                g.err(
-                    self.de,
-                    format!("parameter {k}: expected a finite number, found {s:?}"),
-                )
-            }),
-            Some(Tok::Empty) => Ok(0.0),
-            Some(Tok::Str(s)) => Err(g.err(
-                self.de,
-                format!("parameter {k}: expected a number, found string {s:?}"),
-            )),
-            None => Err(g.err(
-                self.de,
-                format!(
-                    "parameter {k}: missing; the entity has {} parameters",
-                    self.toks.len().saturating_sub(1)
-                ),
-            )),
-        }
-    }
-
-    /// Parameter `k` as an integer (a real with no fraction is accepted).
-    fn int(&self, g: &Iges, k: usize) -> Result<i64, IoError> {
-        let x = self.real(g, k)?;
-        if x.fract() != 0.0 || x.abs() > 1e15 {
-            return Err(g.err(
-                self.de,
-                format!("parameter {k}: expected an integer, found {x}"),
-            ));
-        }
-        Ok(x as i64)
-    }
-
-    /// Parameter `k` as a count in `0..=max`.
-    fn count(&self, g: &Iges, k: usize, max: usize) -> Result<usize, IoError> {
-        let n = self.int(g, k)?;
-        usize::try_from(n)
-            .ok()
-            .filter(|n| *n <= max)
-            .ok_or_else(|| {
-                g.err(
-                    self.de,
-                    format!("parameter {k}: expected a count from 0 to {max}, found {n}"),
-                )
-            })
-    }
-
-    /// Parameter `k` as a DE pointer (0 = none).
-    fn ptr(&self, g: &Iges, k: usize) -> Result<usize, IoError> {
-        let max = 2 * g.rec.entries.len();
-        let n = self.int(g, k)?;
-        usize::try_from(n)
-            .ok()
-            .filter(|n| *n == 0 || (*n % 2 == 1 && *n < max))
-            .ok_or_else(|| {
-                g.err(
-                    self.de,
-                    format!(
-                        "parameter {k}: expected a DE pointer (odd, 1 to {max}) or 0, found {n}"
-                    ),
-                )
-            })
-    }
-
-    /// Parameters `k..k + n` as reals (checked to exist before allocating).
-    fn reals(&self, g: &Iges, k: usize, n: usize) -> Result<Vec<f64>, IoError> {
-        if k + n > self.toks.len() {
-            return Err(g.err(
-                self.de,
-                format!(
-                    "expected {n} values from parameter {k}, the entity has {} parameters",
-                    self.toks.len().saturating_sub(1)
-                ),
-            ));
-        }
-        (k..k + n).map(|i| self.real(g, i)).collect()
-    }
-
-    /// An unsupported-entity problem about this entity.
-    fn unsupported(&self, why: impl Into<String>) -> Problem {
-        Problem::Unsupported {
-            de: self.de,
-            ty: self.ty,
-            why: why.into(),
-        }
     }
 }
 

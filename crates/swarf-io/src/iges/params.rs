@@ -1,7 +1,12 @@
 //! Free-format parameter data (IGES 5.3 sec. 2.2.3): fields separated by the
 //! parameter delimiter and ended by the record delimiter; a string is Hollerith,
 //! `nH` followed by exactly `n` characters (which may hold delimiters); reals may
-//! use a `D` exponent (`1.0D-3`); an empty field takes the default.
+//! use a `D` exponent (`1.0D-3`); an empty field takes the default. [`Params`]
+//! reads one entity's fields by index, each error naming the entity (`DE n type T`)
+//! and the parameter.
+
+use super::{Iges, Problem};
+use crate::error::IoError;
 
 /// One parameter field.
 #[derive(Debug, Clone, PartialEq)]
@@ -91,6 +96,105 @@ pub(crate) fn number(s: &str) -> Option<f64> {
         .parse::<f64>()
         .ok()
         .filter(|x| x.is_finite())
+}
+
+/// One entity's parameters.
+pub(crate) struct Params {
+    pub de: usize,
+    pub ty: i64,
+    pub toks: Vec<Tok>,
+}
+
+impl Params {
+    /// Parameter `k` (1-based after the type) as a finite real.
+    pub(crate) fn real(&self, g: &Iges, k: usize) -> Result<f64, IoError> {
+        match self.toks.get(k) {
+            Some(Tok::Num(s)) => number(s).ok_or_else(|| {
+                g.err(
+                    self.de,
+                    format!("parameter {k}: expected a finite number, found {s:?}"),
+                )
+            }),
+            Some(Tok::Empty) => Ok(0.0),
+            Some(Tok::Str(s)) => Err(g.err(
+                self.de,
+                format!("parameter {k}: expected a number, found string {s:?}"),
+            )),
+            None => Err(g.err(
+                self.de,
+                format!(
+                    "parameter {k}: missing; the entity has {} parameters",
+                    self.toks.len().saturating_sub(1)
+                ),
+            )),
+        }
+    }
+
+    /// Parameter `k` as an integer (a real with no fraction is accepted).
+    pub(crate) fn int(&self, g: &Iges, k: usize) -> Result<i64, IoError> {
+        let x = self.real(g, k)?;
+        if x.fract() != 0.0 || x.abs() > 1e15 {
+            return Err(g.err(
+                self.de,
+                format!("parameter {k}: expected an integer, found {x}"),
+            ));
+        }
+        Ok(x as i64)
+    }
+
+    /// Parameter `k` as a count in `0..=max`.
+    pub(crate) fn count(&self, g: &Iges, k: usize, max: usize) -> Result<usize, IoError> {
+        let n = self.int(g, k)?;
+        usize::try_from(n)
+            .ok()
+            .filter(|n| *n <= max)
+            .ok_or_else(|| {
+                g.err(
+                    self.de,
+                    format!("parameter {k}: expected a count from 0 to {max}, found {n}"),
+                )
+            })
+    }
+
+    /// Parameter `k` as a DE pointer (0 = none).
+    pub(crate) fn ptr(&self, g: &Iges, k: usize) -> Result<usize, IoError> {
+        let max = 2 * g.rec.entries.len();
+        let n = self.int(g, k)?;
+        usize::try_from(n)
+            .ok()
+            .filter(|n| *n == 0 || (*n % 2 == 1 && *n < max))
+            .ok_or_else(|| {
+                g.err(
+                    self.de,
+                    format!(
+                        "parameter {k}: expected a DE pointer (odd, 1 to {max}) or 0, found {n}"
+                    ),
+                )
+            })
+    }
+
+    /// Parameters `k..k + n` as reals (checked to exist before allocating).
+    pub(crate) fn reals(&self, g: &Iges, k: usize, n: usize) -> Result<Vec<f64>, IoError> {
+        if k + n > self.toks.len() {
+            return Err(g.err(
+                self.de,
+                format!(
+                    "expected {n} values from parameter {k}, the entity has {} parameters",
+                    self.toks.len().saturating_sub(1)
+                ),
+            ));
+        }
+        (k..k + n).map(|i| self.real(g, i)).collect()
+    }
+
+    /// An unsupported-entity problem about this entity.
+    pub(crate) fn unsupported(&self, why: impl Into<String>) -> Problem {
+        Problem::Unsupported {
+            de: self.de,
+            ty: self.ty,
+            why: why.into(),
+        }
+    }
 }
 
 #[cfg(test)]
