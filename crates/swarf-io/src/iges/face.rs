@@ -22,16 +22,18 @@ const MAX_GAP_MM: f64 = 0.1;
 const SPEED_GRID: usize = 16;
 
 impl Iges<'_> {
-    /// An independent 128: its whole patch.
+    /// An independent 128: its patch, trimmed to its declared `[U0, U1] x [V0, V1]`
+    /// when that is smaller than the knot domain.
     pub(crate) fn bare_surface(&self, de: usize) -> Result<FaceOut, Problem> {
         let patch = self.nurbs_surface(de)?;
-        Ok((
-            patch,
-            Face {
-                name: self.name(de, None),
-                trim: None,
-            },
-        ))
+        let trim = match self.declared_range(de, &patch) {
+            Some(r) => Some(
+                Trim::new(vec![r]).map_err(|e| self.err(de, format!("parameter range: {e}")))?,
+            ),
+            None => None,
+        };
+        let name = self.name(de, None);
+        Ok((patch, Face { name, trim }))
     }
 
     /// A 144: the patch of its surface and its trimming loops.
@@ -49,20 +51,16 @@ impl Iges<'_> {
         }
         let (patch, mut loops) = self.surface_loops(&p, sptr, n1 != 0, &curves)?;
         if n1 == 0 {
-            if loops.is_empty() {
-                return Ok((
-                    patch,
-                    Face {
-                        name: self.name(de, Some(sptr)),
-                        trim: None,
-                    },
-                ));
-            }
             let [u, v] = patch.domain();
-            loops.insert(
-                0,
-                vec![[u[0], v[0]], [u[1], v[0]], [u[1], v[1]], [u[0], v[1]]],
-            );
+            let whole = vec![[u[0], v[0]], [u[1], v[0]], [u[1], v[1]], [u[0], v[1]]];
+            let range = (self.entry(sptr, "surface")?.ty == 128)
+                .then(|| self.declared_range(sptr, &patch))
+                .flatten();
+            if loops.is_empty() && range.is_none() {
+                let name = self.name(de, Some(sptr));
+                return Ok((patch, Face { name, trim: None }));
+            }
+            loops.insert(0, range.unwrap_or(whole));
             curves.insert(0, 0);
         }
         let trim = Trim::new(loops).map_err(|e| {
@@ -71,7 +69,7 @@ impl Iges<'_> {
                 .enumerate()
                 .map(|(k, c)| {
                     if *c == 0 {
-                        format!("loop[{k}] = the surface's domain")
+                        format!("loop[{k}] = the surface's parameter range")
                     } else {
                         format!("loop[{k}] = DE {c}")
                     }

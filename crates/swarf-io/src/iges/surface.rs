@@ -6,6 +6,9 @@ use super::clamp::clamp;
 use super::{Iges, Params, Problem};
 use swarf_geom::{Patch, Point3, Vec3};
 
+/// A declared parameter range within this fraction of the knot domain is the
+/// whole domain.
+const RANGE_EPS: f64 = 1e-9;
 /// Margin around a plane's boundary box, as a fraction of its larger side.
 const PLANE_MARGIN: f64 = 0.01;
 
@@ -81,6 +84,40 @@ impl Iges<'_> {
             rational.then_some(weights),
         )
         .map_err(|e| bad(&e))
+    }
+
+    /// The rectangle `[U0, U1] x [V0, V1]` that the 128 at `de` declares as its
+    /// surface (its last four parameters), as a loop, when it is strictly inside the
+    /// patch's domain; `None` for the whole domain or values that do not make a
+    /// rectangle inside it.
+    pub(crate) fn declared_range(&self, de: usize, patch: &Patch) -> Option<Vec<[f64; 2]>> {
+        let p = self.params(de, "surface").ok()?;
+        let len = p.toks.len();
+        let c = |k| p.count(self, k, len).ok();
+        let (k1, k2, m1, m2) = (c(1)?, c(2)?, c(3)?, c(4)?);
+        let at = 10 + (k1 + m1 + 2) + (k2 + m2 + 2) + 4 * (k1 + 1) * (k2 + 1);
+        let r = p.reals(self, at, 4).ok()?;
+        let dom = patch.domain();
+        let mut lo = [0.0; 2];
+        let mut hi = [0.0; 2];
+        let mut inside = false;
+        for d in 0..2 {
+            let eps = RANGE_EPS * (dom[d][1] - dom[d][0]);
+            lo[d] = r[2 * d].max(dom[d][0]);
+            hi[d] = r[2 * d + 1].min(dom[d][1]);
+            if hi[d] - lo[d] <= eps {
+                return None;
+            }
+            inside |= lo[d] > dom[d][0] + eps || hi[d] < dom[d][1] - eps;
+        }
+        inside.then(|| {
+            vec![
+                [lo[0], lo[1]],
+                [hi[0], lo[1]],
+                [hi[0], hi[1]],
+                [lo[0], hi[1]],
+            ]
+        })
     }
 
     /// A bilinear patch on the 108 plane at `p` covering `outline` (mm) with a margin;

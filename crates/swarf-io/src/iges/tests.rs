@@ -124,6 +124,20 @@ fn inch_plate_with_hole() {
     assert_eq!(t.loops().len(), 2);
 }
 
+/// A bare 128 declaring a parameter range smaller than its knots is trimmed to it.
+#[test]
+fn declared_range_trims_a_bare_surface() {
+    let smaller = BILINEAR.replace("0.,1.,0.,1.;", "0.2,1.,0.,0.5;");
+    let cad = read(
+        &iges(&[Ent(128, &smaller, 0, "00", "")], "2"),
+        &CadOptions::default(),
+    )
+    .unwrap();
+    let part = &cad.part;
+    assert!(part.face_contains(0, 0.5, 0.3));
+    assert!(!part.face_contains(0, 0.1, 0.3) && !part.face_contains(0, 0.5, 0.7));
+}
+
 /// Delimiters from the Global section: `/` between parameters, `#` ending records.
 #[test]
 fn custom_delimiters() {
