@@ -71,7 +71,7 @@ pub(crate) fn split<'a>(text: &'a str, file: &str) -> Result<Records<'a>, IoErro
             "D" => 2,
             "P" => 3,
             "T" => 4,
-            _ if k == 0 => {
+            _ if sections.iter().all(Vec::is_empty) => {
                 return Err(IoError::format(
                     file,
                     at,

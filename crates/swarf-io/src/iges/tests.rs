@@ -245,10 +245,10 @@ fn message(text: &str, opts: &CadOptions) -> String {
 
 #[test]
 fn not_iges() {
-    let m = message("solid cube\nendsolid\n", &CadOptions::default());
+    let m = message("\nsolid cube\nendsolid\n", &CadOptions::default());
     assert_eq!(
         m,
-        "plate.igs: line 1: not an IGES file: expected 80-column records with S, G, D, P or T \
+        "plate.igs: line 2: not an IGES file: expected 80-column records with S, G, D, P or T \
          in column 73 (fixed ASCII form)"
     );
     let cut: String = plate(OUTER, &[])
