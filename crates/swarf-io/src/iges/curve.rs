@@ -22,7 +22,7 @@ impl Iges<'_> {
         &self,
         de: usize,
         tol: f64,
-        gap: f64,
+        join: Join<'_>,
         path: &mut Vec<usize>,
     ) -> Result<Vec<Point3>, Problem> {
         let visits = self.visits.get() + 1;
@@ -44,7 +44,7 @@ impl Iges<'_> {
                     .map_err(|m| self.err(de, m))?
             }
             126 => self.bspline_curve(&p, tol)?,
-            102 => self.composite(&p, tol, gap, path)?,
+            102 => self.composite(&p, tol, join, path)?,
             t => {
                 return Err(p.unsupported(format!(
                     "curve type {t} in a trimming loop (expected 100, 102, 110 or 126)"
@@ -55,12 +55,13 @@ impl Iges<'_> {
         Ok(pts.iter().map(|q| map.apply(q)).collect())
     }
 
-    /// A 102: its pieces in order, each starting within `gap` of the previous end.
+    /// A 102: its pieces in order, each starting within `join.gap` of the previous
+    /// end (after a shift by whole periods on a closed surface).
     fn composite(
         &self,
         p: &Params,
         tol: f64,
-        gap: f64,
+        join: Join<'_>,
         path: &mut Vec<usize>,
     ) -> Result<Vec<Point3>, Problem> {
         let de = p.de;
@@ -88,9 +89,18 @@ impl Iges<'_> {
                     )
                     .into());
             }
-            let piece = self.sample_curve(c, tol, gap, path)?;
-            if let (Some(end), Some(start)) = (out.last(), piece.first()) {
-                let d = (end - start).norm();
+            let mut piece = self.sample_curve(c, tol, join, path)?;
+            if let (Some(&end), Some(&start)) = (out.last(), piece.first()) {
+                let shift = join.shift(&end, &start);
+                for q in &mut piece {
+                    *q += shift;
+                }
+                let d = (end - (start + shift)).norm();
+                let gap = join.gap;
+                if d > gap && join.meet_on_surface(&end, &(start + shift)) {
+                    out.extend(piece);
+                    continue;
+                }
                 if d > gap {
                     return Err(self.err(de, format!(
                         "piece {} (DE {c}) starts {d:.3e} from the end of piece {k}; expected a connected curve (gap <= {gap:.1e})",
@@ -128,6 +138,48 @@ impl Iges<'_> {
             .polyline(t[0], t[1], tol)
             .map(|v| v.into_iter().map(|(_, q)| q).collect())
             .map_err(|e| self.err(p.de, format!("sampling: {e}")).into())
+    }
+}
+
+/// How the pieces of a composite curve must meet.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Join<'a> {
+    /// Largest gap between a piece's end and the next piece's start.
+    pub gap: f64,
+    /// For a curve in a surface's `(u, v)`: the surface and the largest gap in mm
+    /// between the surface points of a piece's end and the next start (a degenerate
+    /// edge, such as a sphere's pole, is often left out: its ends differ in `(u, v)`
+    /// but meet on the surface).
+    pub surface: Option<(&'a swarf_geom::Patch, f64)>,
+    /// The `(u, v)` periods of a closed surface (0: not closed; always 0 in model
+    /// space): writers may give a seam edge's parameter curve on the other side of
+    /// the seam, a whole period away.
+    pub period: [f64; 2],
+}
+
+impl Join<'_> {
+    /// Whether `a` and `b` (in `(u, v)`) are the same surface point within the
+    /// surface gap.
+    fn meet_on_surface(&self, a: &Point3, b: &Point3) -> bool {
+        self.surface
+            .is_some_and(|(p, gap)| (p.eval(a.x, a.y) - p.eval(b.x, b.y)).norm() <= gap)
+    }
+
+    /// The shift by whole periods (-1, 0 or 1 in each direction) that brings
+    /// `start` nearest `end`.
+    fn shift(&self, end: &Point3, start: &Point3) -> swarf_geom::Vec3 {
+        let mut best = swarf_geom::Vec3::zeros();
+        let mut best_d = (end - start).norm();
+        for a in [-1.0, 0.0, 1.0] {
+            for b in [-1.0, 0.0, 1.0] {
+                let s = swarf_geom::Vec3::new(a * self.period[0], b * self.period[1], 0.0);
+                let d = (end - (start + s)).norm();
+                if d < best_d - self.gap {
+                    (best, best_d) = (s, d);
+                }
+            }
+        }
+        best
     }
 }
 

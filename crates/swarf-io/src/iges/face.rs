@@ -3,6 +3,7 @@
 //! the surface's `(u, v)` (module doc of [`super`] for the tolerances), and a bare
 //! independent 128 as a whole patch.
 
+use super::curve::Join;
 use super::params::Tok;
 use super::{FaceOut, Iges, Problem};
 use swarf_geom::trim::Trim;
@@ -162,15 +163,41 @@ impl Iges<'_> {
         let speed = speed_bound(patch);
         let tol = self.opts.trim_chord / speed;
         let gap = self.gap_mm() / speed;
-        let pts = match self.sample_curve(b, tol, gap, &mut Vec::new()) {
-            Err(Problem::Unsupported { .. }) if m != 0 => {
-                let model = self.loop_model(c, sptr)?;
-                return self.project_loop(c, &model, patch);
+        // A closed surface: a seam edge's curve may lie a period away (shift the
+        // piece) or a degenerate edge may be left out (bridge the gap); try bridging
+        // first, then shifting, and keep the first loop that does not cross itself.
+        let period = periods(patch, self.gap_mm());
+        let mut first = None;
+        for period in [[0.0; 2], period] {
+            let join = Join {
+                gap,
+                period,
+                surface: Some((patch, self.gap_mm())),
+            };
+            let pts = match self.sample_curve(b, tol, join, &mut Vec::new()) {
+                Err(Problem::Unsupported { .. }) if m != 0 => {
+                    let model = self.loop_model(c, sptr)?;
+                    return self.project_loop(c, &model, patch);
+                }
+                other => other,
+            };
+            let uv = pts.and_then(|pts| {
+                let uv: Vec<[f64; 2]> = pts.iter().map(|q| [q.x, q.y]).collect();
+                self.closed(c, uv, gap, patch)
+            });
+            if period == [0.0; 2]
+                && uv
+                    .as_ref()
+                    .is_ok_and(|l| Trim::new(vec![l.clone()]).is_err())
+            {
+                first = Some(uv);
+                continue;
             }
-            other => other?,
-        };
-        let uv: Vec<[f64; 2]> = pts.iter().map(|q| [q.x, q.y]).collect();
-        self.closed(c, uv, gap)
+            if uv.is_ok() || first.is_none() {
+                return uv;
+            }
+        }
+        first.unwrap_or_else(|| Err(self.err(c, "no trimming loop").into()))
     }
 
     /// Loop `c`'s model-space curve in mm.
@@ -188,7 +215,11 @@ impl Iges<'_> {
         let pts = self.sample_curve(
             m,
             self.opts.trim_chord / s,
-            self.gap_mm() / s,
+            Join {
+                gap: self.gap_mm() / s,
+                period: [0.0; 2],
+                surface: None,
+            },
             &mut Vec::new(),
         )?;
         Ok(pts.into_iter().map(|q| q * s).collect())
@@ -217,15 +248,28 @@ impl Iges<'_> {
             uv.push([pr.u, pr.v]);
         }
         let speed = speed_bound(patch);
-        self.closed(c, uv, self.gap_mm() / speed)
+        self.closed(c, uv, self.gap_mm() / speed, patch)
     }
 
     /// `uv` as a closed loop (last point dropped when it meets the first within `gap`).
-    fn closed(&self, c: usize, mut uv: Vec<[f64; 2]>, gap: f64) -> Result<Vec<[f64; 2]>, Problem> {
-        let (Some(a), Some(b)) = (uv.first(), uv.last()) else {
+    /// When the ends differ in `(u, v)` but are the same point of `patch` (a
+    /// degenerate closing edge left out), the loop closes with the straight `(u, v)`
+    /// segment between them.
+    fn closed(
+        &self,
+        c: usize,
+        mut uv: Vec<[f64; 2]>,
+        gap: f64,
+        patch: &Patch,
+    ) -> Result<Vec<[f64; 2]>, Problem> {
+        let (Some(&a), Some(&b)) = (uv.first(), uv.last()) else {
             return Err(self.err(c, "empty trimming loop").into());
         };
         let d = (a[0] - b[0]).hypot(a[1] - b[1]);
+        let d3 = (patch.eval(a[0], a[1]) - patch.eval(b[0], b[1])).norm();
+        if d > gap && d3 <= self.gap_mm() && uv.len() >= 3 {
+            return Ok(uv);
+        }
         if d.is_nan() || d > gap || uv.len() < 3 {
             return Err(self.err(c, format!(
                 "open trimming loop: its end is {d:.3e} (u, v) from its start; expected a closed loop (gap <= {gap:.1e})"
@@ -282,6 +326,26 @@ impl Iges<'_> {
             }
         })
     }
+}
+
+/// The `(u, v)` periods of the patch: the domain's width in a direction where the
+/// patch is closed (opposite edges within `gap` mm at a few samples), else 0.
+fn periods(patch: &Patch, gap: f64) -> [f64; 2] {
+    let [u, v] = patch.domain();
+    let samples =
+        |f: &dyn Fn(f64) -> f64| (0..=SPEED_GRID).all(|k| f(k as f64 / SPEED_GRID as f64) <= gap);
+    let closed_u = samples(&|t| {
+        let vv = v[0] + t * (v[1] - v[0]);
+        (patch.eval(u[0], vv) - patch.eval(u[1], vv)).norm()
+    });
+    let closed_v = samples(&|t| {
+        let uu = u[0] + t * (u[1] - u[0]);
+        (patch.eval(uu, v[0]) - patch.eval(uu, v[1])).norm()
+    });
+    [
+        if closed_u { u[1] - u[0] } else { 0.0 },
+        if closed_v { v[1] - v[0] } else { 0.0 },
+    ]
 }
 
 /// An upper bound (sampled, times 2) of `|S_u| + |S_v|` over the patch, mm per

@@ -28,11 +28,10 @@ pub(crate) struct Entry {
 }
 
 impl Entry {
-    /// Whether the entity stands alone (subordinate switch 00), not a part of another.
+    /// Whether the entity stands alone or only belongs to a group (subordinate
+    /// switch 00 or 02), not physically part of another entity (01, 03).
     pub fn independent(&self) -> bool {
-        self.status
-            .get(2..4)
-            .is_none_or(|s| s.trim().is_empty() || s.trim() == "00")
+        !matches!(self.status.get(2..4).map(str::trim), Some("01" | "03"))
     }
 }
 

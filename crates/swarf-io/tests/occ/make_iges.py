@@ -2,12 +2,13 @@
 
 Usage: python3 make_iges.py OUT_DIR
 
-Builds four faces: a rational B-spline face (untrimmed), a plane plate with a
+Writes OUT_DIR/occ.igs (mm) from four faces: a rational B-spline face (untrimmed), a plane plate with a
 circular hole (trimmed; OCC writes a 108 plane with model-space curves), the same
 plate converted to NURBS (128 with parameter-space curves) and a rational surface
-periodic in u (unclamped knots), writes them with IGESControl_Writer in BRep-faces mode
-(mode 0: 144/142/128/126) in mm to OUT_DIR/occ.igs, and writes OUT_DIR/occ.csv with
-one line per sample: face index, OCC (u, v), the OCC 3D point S(u, v), and the face
+periodic in u (unclamped knots); and OUT_DIR/solid.igs (inch) from the faces of a
+solid (a box less a cylinder, fused with a sphere; converted to NURBS: seams and
+poles). Both with IGESControl_Writer in BRep-faces mode (mode 0: 144/142/128/126),
+each with a CSV (occ.csv, solid.csv, in mm) of one line per sample: face index, OCC (u, v), the OCC 3D point S(u, v), and the face
 area (BRepGProp.SurfaceProperties_s). Samples lie inside each face (classified by
 BRepClass_FaceClassifier).
 """
@@ -21,14 +22,14 @@ from OCP.BRepClass import BRepClass_FaceClassifier
 from OCP.BRepGProp import BRepGProp
 from OCP.GProp import GProp_GProps
 from OCP.Geom import Geom_BSplineSurface
-from OCP.IGESControl import IGESControl_Writer
+from OCP.IGESControl import IGESControl_Controller, IGESControl_Writer
 from OCP.Interface import Interface_Static
 from OCP.OCP.collections import Array1_double, Array1_int, Array2_double, Array2_gp_Pnt
 from OCP.TopAbs import TopAbs_IN
 from OCP.gp import gp_Ax2, gp_Circ, gp_Dir, gp_Pln, gp_Pnt, gp_Pnt2d
-from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
+from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
 from OCP.BRepBuilderAPI import BRepBuilderAPI_NurbsConvert
-from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
+from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder, BRepPrimAPI_MakeSphere
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopoDS import TopoDS
@@ -117,22 +118,44 @@ def samples(face, n=9):
     return out
 
 
-def main(out_dir):
-    faces = [bspline_face(), plate_with_hole(), nurbs_plate(), periodic_face()]
-    Interface_Static.SetCVal_s("write.iges.unit", "MM")
-    w = IGESControl_Writer("MM", 0)
+def solid_faces():
+    """The faces of a box less a cylinder, fused with a sphere at a corner, all
+    converted to NURBS: closed surfaces with seams (cylinder, sphere) and poles."""
+    box = BRepPrimAPI_MakeBox(40, 30, 20).Shape()
+    cyl = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(20, 15, -5), gp_Dir(0, 0, 1)), 6, 40).Shape()
+    sph = BRepPrimAPI_MakeSphere(gp_Pnt(40, 30, 20), 8).Shape()
+    shape = BRepAlgoAPI_Fuse(BRepAlgoAPI_Cut(box, cyl).Shape(), sph).Shape()
+    conv = BRepBuilderAPI_NurbsConvert(shape, True).Shape()
+    out = []
+    exp = TopExp_Explorer(conv, TopAbs_FACE)
+    while exp.More():
+        out.append(TopoDS.Face(exp.Current()))
+        exp.Next()
+    return out
+
+
+def write(faces, out_dir, name, unit):
+    """Writes OUT_DIR/NAME.igs in UNIT and OUT_DIR/NAME.csv (samples in mm)."""
+    IGESControl_Controller.Init_s()
+    Interface_Static.SetCVal_s("write.iges.unit", unit)
+    w = IGESControl_Writer(unit, 0)
     for f in faces:
         w.AddShape(f)
     w.ComputeModel()
-    if not w.Write(f"{out_dir}/occ.igs"):
+    if not w.Write(f"{out_dir}/{name}.igs"):
         sys.exit("IGES write failed")
-    with open(f"{out_dir}/occ.csv", "w") as csv:
+    with open(f"{out_dir}/{name}.csv", "w") as csv:
         csv.write("face,u,v,x,y,z,area\n")
         for k, f in enumerate(faces):
             props = GProp_GProps()
             BRepGProp.SurfaceProperties_s(f, props)
             for u, v, x, y, z in samples(f):
                 csv.write(f"{k},{u!r},{v!r},{x!r},{y!r},{z!r},{props.Mass()!r}\n")
+
+
+def main(out_dir):
+    write([bspline_face(), plate_with_hole(), nurbs_plate(), periodic_face()], out_dir, "occ", "MM")
+    write(solid_faces(), out_dir, "solid", "IN")
 
 
 if __name__ == "__main__":
