@@ -215,3 +215,43 @@ fn arc(zt: f64, c: [f64; 2], s: [f64; 2], e: [f64; 2], tol: f64) -> Result<Vec<P
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A seam piece a period away is shifted back; one a period plus a bit away
+    /// is not (nothing within the gap).
+    #[test]
+    fn seam_shift() {
+        let j = Join {
+            gap: 1e-6,
+            period: [TAU, 0.0],
+            surface: None,
+        };
+        let end = Point3::new(TAU, 0.5, 0.0);
+        assert_eq!(j.shift(&end, &Point3::new(0.0, 0.5, 0.0)).x, TAU);
+        assert_eq!(j.shift(&end, &Point3::new(TAU, 0.5, 0.0)).x, 0.0);
+        let none = Join {
+            period: [0.0; 2],
+            ..j
+        };
+        assert_eq!(none.shift(&end, &Point3::new(0.0, 0.5, 0.0)).x, 0.0);
+    }
+
+    /// Arcs keep their sagitta within the tolerance (closed form: the chord of an
+    /// arc of radius r over angle a deviates r (1 - cos(a / 2))).
+    #[test]
+    fn arc_sagitta() {
+        let pts = arc(1.0, [0.0, 0.0], [5.0, 0.0], [0.0, 5.0], 1e-3).unwrap();
+        assert_eq!(pts.last().unwrap(), &Point3::new(0.0, 5.0, 1.0));
+        for w in pts.windows(2) {
+            let m = (w[0].coords + w[1].coords) / 2.0;
+            let sag = 5.0 - m.x.hypot(m.y);
+            assert!(sag <= 1e-3 + 1e-12 && sag > 0.0, "{sag}");
+        }
+        let full = arc(0.0, [1.0, 1.0], [2.0, 1.0], [2.0, 1.0], 0.01).unwrap();
+        assert!(full.len() > 10 && (full[full.len() / 2].x - 0.0).abs() < 0.05);
+        assert!(arc(0.0, [0.0, 0.0], [0.0, 0.0], [0.0, 0.0], 0.01).is_err());
+    }
+}

@@ -17,6 +17,11 @@
 //!   since a `(u, v)` chord `d` moves the surface point by at most
 //!   `(|S_u| + |S_v|) |d|`; a model-space curve is sampled within `trim_chord` and
 //!   each sample projected on the surface, from the previous sample's `(u, v)`.
+//! - On a closed surface (opposite domain edges coincide) writers may give a seam
+//!   edge's `(u, v)` curve a period away, or leave out a degenerate edge (a sphere's
+//!   pole): pieces whose ends meet on the surface but not in `(u, v)` are either
+//!   joined by the straight `(u, v)` segment or shifted by a period, whichever gives
+//!   a loop that does not cross itself (bridging tried first).
 //! - A 108 plane has no parametrisation in IGES: swarf makes it a bilinear patch over
 //!   the box of its boundary in an orthonormal frame of the plane (with a margin), so
 //!   `(u, v)` are mm in that frame.
