@@ -168,7 +168,12 @@ impl Iges<'_> {
         // first, then shifting, and keep the first loop that does not cross itself.
         let period = periods(patch, self.gap_mm());
         let mut first = None;
-        for period in [[0.0; 2], period] {
+        let tries: &[[f64; 2]] = if period == [0.0; 2] {
+            &[[0.0; 2]]
+        } else {
+            &[[0.0; 2], period]
+        };
+        for &period in tries {
             let join = Join {
                 gap,
                 period,
@@ -185,17 +190,17 @@ impl Iges<'_> {
                 let uv: Vec<[f64; 2]> = pts.iter().map(|q| [q.x, q.y]).collect();
                 self.closed(c, uv, gap, patch)
             });
-            if period == [0.0; 2]
-                && uv
+            if tries.len() == 1
+                || uv
                     .as_ref()
-                    .is_ok_and(|l| Trim::new(vec![l.clone()]).is_err())
+                    .is_ok_and(|l| Trim::new(vec![l.clone()]).is_ok())
             {
-                first = Some(uv);
-                continue;
-            }
-            if uv.is_ok() || first.is_none() {
                 return uv;
             }
+            if let Some(bridged) = first {
+                return bridged;
+            }
+            first = Some(uv);
         }
         first.unwrap_or_else(|| Err(self.err(c, "no trimming loop").into()))
     }
