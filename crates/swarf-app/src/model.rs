@@ -122,8 +122,8 @@ pub fn builtin_names() -> Vec<&'static str> {
         .collect()
 }
 
-/// Loads `arg`: `builtin:NAME`, a `.toml` part file, an `.stl` / `.obj` mesh, or a
-/// bare built-in name. A bare name is a file first: when a regular file of that name
+/// Loads `arg`: `builtin:NAME`, a `.toml` part file, a STEP (`.step`, `.stp`) or
+/// IGES (`.igs`, `.iges`) part, an `.stl` / `.obj` mesh, or a bare built-in name. A bare name is a file first: when a regular file of that name
 /// exists it is read (and a note on standard error says how to name the built-in
 /// part instead); anything else of that name (a directory, nothing) leaves the
 /// built-in part.
@@ -200,6 +200,13 @@ fn read_model(arg: &str, cad: &CadOptions) -> Result<Model> {
                 .file_stem()
                 .map_or_else(|| arg.to_string(), |s| s.to_string_lossy().into_owned());
             Ok(Model::Mesh { name, mesh })
+        }
+        "step" | "stp" | "igs" | "iges" => {
+            let cad = swarf_io::read_cad(path, cad)?;
+            for w in &cad.warnings {
+                eprintln!("warning: {arg}: {w}");
+            }
+            Ok(Model::Patches(cad.part))
         }
         _ => Ok(Model::Patches(swarf_io::read_part(path)?)),
     }

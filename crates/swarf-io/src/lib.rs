@@ -5,6 +5,8 @@
 //! - [`stl`], [`obj`], [`mesh_file`]: triangle meshes;
 //! - [`rest_parts`]: built-in mesh parts for rest-material detection, built in code;
 //! - [`step`]: STEP (ISO 10303-21) B-rep parts as trimmed NURBS faces;
+//! - [`iges`]: IGES 5.3 trimmed NURBS faces ([`cad`] options and result, and
+//!   [`read_cad`], which picks the reader by the file's extension);
 //! - [`csv`]: numeric point lists; [`json`]: JSON whose numbers are all finite;
 //! - [`atomic`], [`output_set`]: writes that never leave a half-written file, or a
 //!   mix of two runs' files, behind.
@@ -17,6 +19,7 @@ pub mod builtin;
 pub mod cad;
 pub mod csv;
 pub mod error;
+pub mod iges;
 pub mod input;
 pub mod json;
 pub mod mesh_file;
@@ -29,9 +32,10 @@ pub mod stl;
 
 pub use atomic::{write_atomic, write_atomic_with};
 pub use builtin::{builtin_part, builtin_parts, project_parts};
-pub use cad::{CadOptions, CadPart, Unsupported};
+pub use cad::{CadOptions, CadPart, Unsupported, is_cad_file, read_cad};
 pub use csv::{parse_xy_points, read_xy_points};
 pub use error::{At, IoError};
+pub use iges::{parse_iges, read_iges};
 pub use input::{checked_open, max_input_bytes, read_input, read_input_text, track_inputs};
 pub use mesh_file::read_mesh;
 pub use obj::{parse_obj, read_obj};

@@ -316,9 +316,15 @@ fn faces_and_import_options_parse_and_are_checked() {
     assert_eq!(plain.cad, swarf_io::CadOptions::default());
     assert!(plain.faces.is_none());
     for (bad, field) in [
-        ("trim_chord = 0", "import.trim_chord: 0: expected a chordal tolerance"),
+        (
+            "trim_chord = 0",
+            "import.trim_chord: 0: expected a chordal tolerance",
+        ),
         ("trim_chord = 2", "import.trim_chord: 2: expected"),
-        ("unsupported = \"maybe\"", "line 6: unknown variant `maybe`, expected `warn` or `refuse`"),
+        (
+            "unsupported = \"maybe\"",
+            "line 6: unknown variant `maybe`, expected `warn` or `refuse`",
+        ),
         ("chord = 0.1", "chord"),
     ] {
         let t = text.replace("unsupported = \"refuse\"\ntrim_chord = 0.001", bad);

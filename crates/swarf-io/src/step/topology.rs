@@ -150,6 +150,7 @@ pub fn face(
     };
     let face = Face {
         name: (!name.is_empty()).then(|| name.to_string()),
+        surface: None,
         trim,
     };
     Ok(FaceResult::Read(patch, face))
