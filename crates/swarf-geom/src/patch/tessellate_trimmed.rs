@@ -73,9 +73,15 @@ impl Patch {
             let n = uv.len() - first;
             edges.extend((0..n).map(|k| [first + k, first + (k + 1) % n]));
         }
+        // Corners on the domain's edges are left to the loops: a loop along an edge
+        // (a seam of a closed surface, a face that reaches its patch's edge) carries
+        // that edge's points, and a corner between them would be a T-junction with
+        // the face across.
+        let [[u0, u1], [v0, v1]] = self.domain();
         uv.extend(
             keys.iter()
                 .map(|k| [spans.param(0, k[0]), spans.param(1, k[1])])
+                .filter(|p| p[0] > u0 && p[0] < u1 && p[1] > v0 && p[1] < v1)
                 .filter(|p| trim.contains(p[0], p[1])),
         );
         let scale = metric_scale(&spans, &leaves);
