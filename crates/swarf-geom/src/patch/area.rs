@@ -219,10 +219,7 @@ mod tests {
                 .sum::<f64>()
         };
         let errors = [1e-2, 1e-3, 1e-4].map(|tol| (exact - mesh_area(tol)).abs());
-        assert!(
-            errors[0] > errors[1] && errors[1] > errors[2],
-            "{errors:?}"
-        );
+        assert!(errors[0] > errors[1] && errors[1] > errors[2], "{errors:?}");
         assert!(errors[2] / exact < 5e-7, "{errors:?} of {exact}");
         let whole = w.area(None);
         let rect = Trim::new(vec![vec![

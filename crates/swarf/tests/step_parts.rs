@@ -1,0 +1,231 @@
+//! STEP parts end to end, against OpenCASCADE (`cadquery-ocp`) and OpenCAMLib:
+//! the reference parts of `swarf-io/tests/occ/make_step.py` read by swarf have OCC's
+//! face areas to 1e-6 (relative), tessellate without open edges, and a raster job on
+//! a multi-face part neither gouges nor leaves excess against OpenCAMLib's drop
+//! cutter on OCC's own mesh of the part; an iso-scallop job on one trimmed face stays
+//! on it. Skipped with a note when a reference is missing, unless
+//! `SWARF_REQUIRE_REFERENCES=1`.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use swarf_testkit::ocl::ocl_drop;
+use swarf_testkit::references::skip_reference;
+
+fn here() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// OCC's reference parts in a fresh folder, or `None` when OCP is missing.
+fn occ_parts(name: &str) -> Option<PathBuf> {
+    let dir = std::env::temp_dir().join(format!("swarf-step-parts-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = Command::new("python3")
+        .arg(here().join("../swarf-io/tests/occ/make_step.py"))
+        .arg(&dir)
+        .arg(here().join("../../parts/wave.toml"))
+        .output();
+    match out {
+        Ok(o) if o.status.success() => Some(dir),
+        Ok(o) => {
+            skip_reference(
+                "OpenCASCADE (cadquery-ocp)",
+                &String::from_utf8_lossy(&o.stderr),
+            );
+            None
+        }
+        Err(e) => {
+            skip_reference("python3", &e.to_string());
+            None
+        }
+    }
+}
+
+/// OCC's face areas of `step` (exact trimmed faces) and its mesh at `deflection`,
+/// written to `stl`.
+fn occ_read(step: &Path, stl: &Path, deflection: f64) -> Vec<f64> {
+    let out = Command::new("python3")
+        .arg(here().join("../../tools/occ/read_step.py"))
+        .arg(step)
+        .arg(stl)
+        .arg(deflection.to_string())
+        .output()
+        .expect("python3 runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter_map(|l| l.strip_prefix("area,"))
+        .map(|a| a.parse().unwrap())
+        .collect()
+}
+
+fn read(step: &Path, trim_chord: f64) -> swarf_geom::Part {
+    let opts = swarf_io::CadOptions {
+        trim_chord,
+        ..swarf_io::CadOptions::default()
+    };
+    let cad = swarf_io::read_step(step, &opts).unwrap();
+    assert!(cad.warnings.is_empty(), "{:?}", cad.warnings);
+    cad.part
+}
+
+/// Edges used by one triangle only, after welding vertices closer than `weld` mm.
+fn open_edges(mesh: &swarf_geom::TriMesh, weld: f64) -> usize {
+    let key = |p: &swarf_geom::Point3| [p.x, p.y, p.z].map(|c| (c / weld).round() as i64);
+    let mut ids = std::collections::HashMap::new();
+    let id: Vec<usize> = mesh
+        .vertices
+        .iter()
+        .map(|p| {
+            let n = ids.len();
+            *ids.entry(key(p)).or_insert(n)
+        })
+        .collect();
+    let mut edges = std::collections::HashMap::new();
+    for t in &mesh.triangles {
+        let v = t.map(|i| id[i as usize]);
+        for (a, b) in [(v[0], v[1]), (v[1], v[2]), (v[2], v[0])] {
+            if a != b {
+                *edges.entry((a.min(b), a.max(b))).or_insert(0usize) += 1;
+            }
+        }
+    }
+    edges.values().filter(|&&c| c == 1).count()
+}
+
+#[test]
+fn faces_have_occs_areas_and_meshes_close() {
+    let Some(dir) = occ_parts("areas") else {
+        return;
+    };
+    for name in ["plate_hole", "fillet", "cylinder", "torus"] {
+        let step = dir.join(format!("{name}.step"));
+        let mut want = occ_read(&step, &dir.join(format!("{name}.occ.stl")), 0.01);
+        let part = read(&step, 1e-6);
+        let mut got: Vec<f64> = (0..part.patches.len())
+            .map(|k| part.patches[k].area(part.trim(k)))
+            .collect();
+        assert_eq!(got.len(), want.len(), "{name}: face count");
+        got.sort_by(f64::total_cmp);
+        want.sort_by(f64::total_cmp);
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() <= 1e-6 * w, "{name}: area {g} vs OCC {w}");
+        }
+        // Closed solids: every edge of the mesh is shared by two faces' triangles.
+        let mesh = read(&step, 1e-4).tessellate(0.01).unwrap();
+        assert_eq!(open_edges(&mesh, 1e-6), 0, "{name}: open edges");
+    }
+}
+
+#[test]
+fn a_raster_on_a_multi_face_part_matches_opencamlib_on_occs_mesh() {
+    let Some(dir) = occ_parts("raster") else {
+        return;
+    };
+    let occ_stl = dir.join("fillet.occ.stl");
+    occ_read(&dir.join("fillet.step"), &occ_stl, 0.001);
+    let job = dir.join("raster.toml");
+    std::fs::write(
+        &job,
+        "part = \"fillet.step\"\ntool = \"ball:d=6\"\n[strategy]\nkind = \"raster\"\nstepover = 1.5\n\
+         tolerance = 0.005\n[linking]\nclearance = 30\n[output]\ncsv = \"raster.csv\"\n",
+    )
+    .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_swarf"))
+        .arg("plan")
+        .arg(&job)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let poses: Vec<[f64; 3]> = std::fs::read_to_string(dir.join("raster.csv"))
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with('x'))
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect();
+    assert!(poses.len() > 200, "{} poses", poses.len());
+    let xy: Vec<[f64; 2]> = poses.iter().map(|p| [p[0], p[1]]).collect();
+    let Some(ocl) = ocl_drop(&occ_stl, "ball:d=6", &xy) else {
+        return;
+    };
+    let (mut compared, mut worst) = (0, 0.0f64);
+    for (p, o) in poses.iter().zip(&ocl) {
+        let Some(o) = o else { continue };
+        // OCC's mesh is within 0.001 mm of the part, swarf's CL within its 0.005 mm
+        // tolerance: no gouge below, no excess above, beyond those.
+        let d = p[2] - o;
+        assert!(
+            d > -0.001 - 1e-6 && d < 0.005 + 0.001,
+            "at {p:?}: swarf {} vs OpenCAMLib {o}",
+            p[2]
+        );
+        worst = worst.max(d.abs());
+        compared += 1;
+    }
+    assert!(compared > 200, "{compared} poses compared");
+    eprintln!(
+        "raster on OCC's fillet: {compared} poses, largest |swarf - OpenCAMLib| {worst:.2e} mm"
+    );
+}
+
+#[test]
+fn an_iso_scallop_on_a_trimmed_face_stays_on_it() {
+    let Some(dir) = occ_parts("iso") else { return };
+    let part = read(&dir.join("plate_hole.step"), 1e-4);
+    // The drilled top face: the one with a hole.
+    let top = (0..part.patches.len())
+        .find(|&k| part.trim(k).is_some_and(|t| t.loops().len() == 2))
+        .expect("a face with a hole");
+    let job = dir.join("iso.toml");
+    std::fs::write(
+        &job,
+        format!(
+            "part = \"plate_hole.step\"\nfaces = [{top}]\ntool = \"ball:d=4\"\n[strategy]\n\
+             kind = \"iso-scallop\"\nscallop = 0.05\ntolerance = 0.005\n[linking]\nclearance = 30\n\
+             [output]\ncsv = \"iso.csv\"\n"
+        ),
+    )
+    .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_swarf"))
+        .arg("plan")
+        .arg(&job)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let face = part.select(&[top]).unwrap();
+    let (patch, trim) = (&face.patches[0], face.trim(0).unwrap());
+    let mut n = 0;
+    for l in std::fs::read_to_string(dir.join("iso.csv"))
+        .unwrap()
+        .lines()
+    {
+        if l.starts_with('#') || l.starts_with('x') {
+            continue;
+        }
+        let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+        // A ball on a plane: the CC point is the CL point lifted by nothing in xy.
+        let cc = swarf_geom::Point3::new(v[0], v[1], v[2]);
+        let pr = patch.project(&cc);
+        assert!(pr.distance < 1e-6, "{cc:?} off the plane");
+        assert!(
+            trim.contains(pr.u, pr.v) || pr.distance.is_nan(),
+            "CC {cc:?} outside the face"
+        );
+        n += 1;
+    }
+    assert!(n > 100, "{n} poses");
+}
