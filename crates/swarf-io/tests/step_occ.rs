@@ -128,6 +128,7 @@ fn occ_faces_read_back_within_1e_9_mm() {
     for name in [
         "bspline",
         "rational",
+        "periodic",
         "plate_hole",
         "fillet",
         "cylinder",

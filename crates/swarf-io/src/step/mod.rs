@@ -22,10 +22,10 @@
 //! **Limits.** At most [`MAX_ENTITIES`] instances, lists nested at most [`MAX_DEPTH`]
 //! deep; references are followed by type along the B-rep (shell -> face -> loop ->
 //! edge -> vertex -> point), never recursively, so cyclic references cannot hang or
-//! overflow the reader. Unsupported surface types (and periodic B-spline surfaces with
-//! unclamped knots) skip their face with a warning `#id NAME: why`, or refuse the file,
+//! overflow the reader. Unsupported surface and edge-curve types skip their face with a warning `#id NAME: why`, or refuse the file,
 //! as [`CadOptions::unsupported`] says.
 
+mod clamp;
 mod curves;
 mod graph;
 pub mod parser;

@@ -3,8 +3,10 @@
 //! .. RATIONAL_B_SPLINE_SURFACE(..) ..)` that OpenCASCADE writes) read as they are,
 //! and the elementary surfaces (ISO 10303-42 `plane`, `cylindrical_surface`,
 //! `conical_surface`, `spherical_surface`, `toroidal_surface`) kept as closed forms
+//! (unclamped B-spline knots are clamped, [`super::clamp`])
 //! until the face's edges size them ([`super::uv`]).
 
+use super::clamp::{Hom, clamp};
 use super::curves::{Geo, expand_knots, nested_nums};
 use super::graph::Ent;
 use crate::error::IoError;
@@ -44,7 +46,7 @@ impl From<IoError> for SurfFail {
 /// The surface `#id` of face `face`.
 ///
 /// # Errors
-/// [`SurfFail::Unsupported`] for other surface types and unclamped knots;
+/// [`SurfFail::Unsupported`] for other surface types;
 /// [`SurfFail::Bad`] for malformed entities.
 pub fn surface(geo: &Geo<'_>, id: u64, face: &Ent<'_>) -> Result<Surf, SurfFail> {
     let parts = geo.g.parts(id, Some(face))?;
@@ -124,32 +126,93 @@ fn spline(geo: &Geo<'_>, parts: &[Ent<'_>]) -> Result<Patch, SurfFail> {
             points.push(geo.point(*id, &s)?);
         }
     }
+    let weights = match by("RATIONAL_B_SPLINE_SURFACE") {
+        Some(r) => Some(nested_nums(&r, 0)?.concat()),
+        None => None,
+    };
+    let nv = nv.unwrap_or(0);
+    if weights.as_ref().is_some_and(|w| w.len() != points.len()) {
+        return Err(wk.err("expected one weight per control point").into());
+    }
+    // Homogeneous grid [i][j], i along u.
+    let w = |k: usize| weights.as_ref().map_or(1.0, |w| w[k]);
+    let mut grid: Vec<Vec<Hom>> = (0..rows.len())
+        .map(|i| {
+            (0..nv)
+                .map(|j| {
+                    let k = i * nv + j;
+                    let q = points[k];
+                    [q.x * w(k), q.y * w(k), q.z * w(k), w(k)]
+                })
+                .collect()
+        })
+        .collect();
     let mut knots = Vec::new();
     for d in 0..2 {
         let m = wk.nums(k0 + d)?;
         let v = wk.nums(k0 + 2 + d)?;
-        let k = expand_knots(&m, &v).ok_or_else(|| {
+        let mut k = expand_knots(&m, &v).ok_or_else(|| {
             wk.arg_err(
                 k0 + d,
                 "positive integer multiplicities, one per knot value",
             )
         })?;
         if !clamped(&k, degree[d]) {
-            return Err(SurfFail::Unsupported(wk.err(format!(
-                "unclamped (periodic) knots in {}: not supported",
-                ["u", "v"][d]
-            ))));
+            let (nk, ng) = clamp_grid(degree[d], &k, &grid, d).ok_or_else(|| {
+                wk.err(format!(
+                    "{} knots in {} for degree {} do not fit the control points",
+                    k.len(),
+                    ["u", "v"][d],
+                    degree[d]
+                ))
+            })?;
+            k = nk;
+            grid = ng;
         }
         knots.push(k);
     }
-    let weights = match by("RATIONAL_B_SPLINE_SURFACE") {
-        Some(r) => Some(nested_nums(&r, 0)?.concat()),
-        None => None,
-    };
+    let rational = weights.is_some();
+    let flat: Vec<Hom> = grid.concat();
+    let points = flat
+        .iter()
+        .map(|h| Point3::new(h[0] / h[3], h[1] / h[3], h[2] / h[3]))
+        .collect();
+    let weights = rational.then(|| flat.iter().map(|h| h[3]).collect());
     let kv = knots.pop();
     let ku = knots.pop();
     Patch::new(degree, points, [ku, kv], weights)
         .map_err(|e| SurfFail::Bad(wk.err(format!("invalid B-spline surface: {e}"))))
+}
+
+/// The grid with direction `d` (0 = along `i`, 1 = along `j`) clamped.
+fn clamp_grid(p: usize, k: &[f64], g: &[Vec<Hom>], d: usize) -> Option<(Vec<f64>, Vec<Vec<Hom>>)> {
+    let (ni, nj) = (g.len(), g.first().map_or(0, Vec::len));
+    if d == 0 {
+        let mut cols = Vec::new();
+        let mut nk = Vec::new();
+        for j in 0..nj {
+            let row: Vec<Hom> = (0..ni).map(|i| g[i][j]).collect();
+            let (kk, r) = clamp(p, k, &row)?;
+            nk = kk;
+            cols.push(r);
+        }
+        let n = cols.first().map_or(0, Vec::len);
+        Some((
+            nk,
+            (0..n)
+                .map(|i| cols.iter().map(|c| c[i]).collect())
+                .collect(),
+        ))
+    } else {
+        let mut nk = Vec::new();
+        let mut out = Vec::new();
+        for row in g {
+            let (kk, r) = clamp(p, k, row)?;
+            nk = kk;
+            out.push(r);
+        }
+        Some((nk, out))
+    }
 }
 
 /// The patch with its `u` direction reversed (the normal flipped), same surface.

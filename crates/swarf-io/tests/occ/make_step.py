@@ -8,7 +8,7 @@ OUT_DIR/NAME.csv with one row per sample point inside a face:
     face,kind,u,v,x,y,z
 where (u, v) are OCC's face parameters and (x, y, z) OCC's own evaluation of the face's
 surface there (BRepAdaptor_Surface, which applies the face's location), in mm.
-Cases: bspline, rational, plate_hole, fillet, cylinder, cone (with its apex),
+Cases: bspline, rational, periodic (unclamped knots in the file), plate_hole, fillet, cylinder, cone (with its apex),
 sphere (part, with a pole), torus, wave (from WAVE_TOML).
 With --bench N, writes only bench.step: N copies of the filleted, drilled plate.
 """
@@ -98,6 +98,28 @@ def bspline_case(rational):
     kv = [0.0] * 3 + [0.5] + [1.0] * 3
     w = [[1.0 + 0.3 * ((i + 2 * j) % 3) for j in range(4)] for i in range(5)] if rational else None
     return bspline_face(poles, ku, kv, (3, 2), w)
+
+
+def periodic_case():
+    """A B-spline surface periodic in u (OCC writes it with unclamped knots)."""
+    nu, nv = 6, 3
+    arr = Array2_gp_Pnt(1, nu, 1, nv)
+    for i in range(nu):
+        for j in range(nv):
+            a = 2 * math.pi * i / nu
+            r = 10 + 2 * math.sin(3 * a) + j
+            arr.SetValue(i + 1, j + 1, gp_Pnt(r * math.cos(a), r * math.sin(a), 8.0 * j))
+    ku, mu = Array1_double(1, 7), Array1_int(1, 7)
+    for i in range(7):
+        ku.SetValue(i + 1, float(i))
+        mu.SetValue(i + 1, 1)
+    kv, mv = Array1_double(1, 2), Array1_int(1, 2)
+    kv.SetValue(1, 0.0)
+    kv.SetValue(2, 1.0)
+    mv.SetValue(1, 3)
+    mv.SetValue(2, 3)
+    s = Geom_BSplineSurface(arr, ku, kv, mu, mv, 3, 2, True, False)
+    return BRepBuilderAPI_MakeFace(s, 1e-9).Face()
 
 
 def plate_hole():
@@ -191,6 +213,7 @@ def main():
     cases = {
         "bspline": bspline_case(False),
         "rational": bspline_case(True),
+        "periodic": periodic_case(),
         "plate_hole": plate_hole(),
         "fillet": fillet(),
         "cylinder": BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(1, 2, 3), gp_Dir(0.3, 0.4, 1.0)), 4.0, 9.0).Shape(),
