@@ -186,33 +186,26 @@ fn spline(geo: &Geo<'_>, parts: &[Ent<'_>]) -> Result<Patch, SurfFail> {
 
 /// The grid with direction `d` (0 = along `i`, 1 = along `j`) clamped.
 fn clamp_grid(p: usize, k: &[f64], g: &[Vec<Hom>], d: usize) -> Option<(Vec<f64>, Vec<Vec<Hom>>)> {
-    let (ni, nj) = (g.len(), g.first().map_or(0, Vec::len));
-    if d == 0 {
-        let mut cols = Vec::new();
-        let mut nk = Vec::new();
-        for j in 0..nj {
-            let row: Vec<Hom> = (0..ni).map(|i| g[i][j]).collect();
-            let (kk, r) = clamp(p, k, &row)?;
-            nk = kk;
-            cols.push(r);
-        }
-        let n = cols.first().map_or(0, Vec::len);
-        Some((
-            nk,
-            (0..n)
-                .map(|i| cols.iter().map(|c| c[i]).collect())
-                .collect(),
-        ))
+    let nj = g.first().map_or(0, Vec::len);
+    let rows: Vec<(Vec<f64>, Vec<Hom>)> = if d == 0 {
+        (0..nj)
+            .map(|j| clamp(p, k, &g.iter().map(|r| r[j]).collect::<Vec<_>>()))
+            .collect::<Option<_>>()?
     } else {
-        let mut nk = Vec::new();
-        let mut out = Vec::new();
-        for row in g {
-            let (kk, r) = clamp(p, k, row)?;
-            nk = kk;
-            out.push(r);
-        }
-        Some((nk, out))
+        g.iter().map(|r| clamp(p, k, r)).collect::<Option<_>>()?
+    };
+    let nk = rows.first()?.0.clone();
+    let rows: Vec<Vec<Hom>> = rows.into_iter().map(|r| r.1).collect();
+    if d == 1 {
+        return Some((nk, rows));
     }
+    let n = rows[0].len();
+    Some((
+        nk,
+        (0..n)
+            .map(|i| rows.iter().map(|c| c[i]).collect())
+            .collect(),
+    ))
 }
 
 /// The patch with its `u` direction reversed (the normal flipped), same surface.

@@ -237,7 +237,7 @@ fn seam_sides(l: &[Local], out: &mut [[f64; 2]], d: usize, w: [f64; 2]) {
             x.min(TAU - x) < 1e-9
         }
     };
-    let free = |i: usize| !on_seam(i) && !(l[i].1 && d == 0);
+    let free = |i: usize| !(on_seam(i) || (l[i].1 && d == 0));
     let Some(anchor) = (0..n).find(|i| free(*i)) else {
         return;
     };
