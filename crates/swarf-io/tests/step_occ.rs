@@ -158,6 +158,44 @@ fn occ_faces_read_back_within_1e_9_mm() {
             assert!(e <= TOL, "{name}: B-spline eval differs by {e:e} mm");
         }
     }
+    // Shared edges are shared samples: every trimming-loop point of a closed solid,
+    // evaluated on its patch, meets a loop point of a neighbour (watertight trims).
+    for name in ["plate_hole", "fillet"] {
+        let cad = read_step(&dir.join(format!("{name}.step")), &opts).unwrap();
+        let mut pts = Vec::new();
+        for (k, p) in cad.part.patches.iter().enumerate() {
+            for (l, lp) in cad
+                .part
+                .trim(k)
+                .map_or(&[][..], |t| t.loops())
+                .iter()
+                .enumerate()
+            {
+                pts.extend(
+                    lp.iter()
+                        .enumerate()
+                        .map(|(i, q)| ((k, l, i), p.eval(q[0], q[1]))),
+                );
+            }
+        }
+        let mut gap: f64 = 0.0;
+        for (id, a) in &pts {
+            let d = pts
+                .iter()
+                .filter(|(jd, _)| jd.0 != id.0)
+                .map(|(_, b)| (a - b).norm())
+                .fold(f64::INFINITY, f64::min);
+            gap = gap.max(d);
+        }
+        eprintln!(
+            "{name}: {} loop points, largest gap to a neighbour face {gap:.2e} mm",
+            pts.len()
+        );
+        assert!(
+            gap <= TOL,
+            "{name}: trimming loops of neighbour faces part by {gap:e} mm"
+        );
+    }
     // The hole of the plate is not part of any face.
     let cad = read_step(&dir.join("plate_hole.step"), &opts).unwrap();
     for z in [0.0, 5.0] {
