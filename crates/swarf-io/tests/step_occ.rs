@@ -158,10 +158,17 @@ fn occ_faces_read_back_within_1e_9_mm() {
             assert!(e <= TOL, "{name}: B-spline eval differs by {e:e} mm");
         }
     }
-    // Shared edges are shared samples: every trimming-loop point of a closed solid,
-    // evaluated on its patch, meets a loop point of a neighbour (watertight trims).
+    watertight_trims(&dir, &opts);
+    plate_hole_is_open(&dir, &opts);
+    wave_round_trip(&dir, &opts);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Shared edges are shared samples: every trimming-loop point of a closed solid,
+/// evaluated on its patch, meets a loop point of a neighbour (watertight trims).
+fn watertight_trims(dir: &Path, opts: &CadOptions) {
     for name in ["plate_hole", "fillet"] {
-        let cad = read_step(&dir.join(format!("{name}.step")), &opts).unwrap();
+        let cad = read_step(&dir.join(format!("{name}.step")), opts).unwrap();
         let mut pts = Vec::new();
         for (k, p) in cad.part.patches.iter().enumerate() {
             for (l, lp) in cad
@@ -196,8 +203,11 @@ fn occ_faces_read_back_within_1e_9_mm() {
             "{name}: trimming loops of neighbour faces part by {gap:e} mm"
         );
     }
-    // The hole of the plate is not part of any face.
-    let cad = read_step(&dir.join("plate_hole.step"), &opts).unwrap();
+}
+
+/// The hole of the plate is not part of any face.
+fn plate_hole_is_open(dir: &Path, opts: &CadOptions) {
+    let cad = read_step(&dir.join("plate_hole.step"), opts).unwrap();
     for z in [0.0, 5.0] {
         let c = Point3::new(15.0, 14.0, z);
         let inside = (0..cad.part.patches.len()).any(|k| {
@@ -206,8 +216,11 @@ fn occ_faces_read_back_within_1e_9_mm() {
         });
         assert!(!inside, "the hole's centre at z = {z} lies on a face");
     }
-    // The shared wave part round trip: same surface on a grid.
-    let cad = read_step(&dir.join("wave.step"), &opts).unwrap();
+}
+
+/// The shared wave part written by OCC reads back as the TOML part.
+fn wave_round_trip(dir: &Path, opts: &CadOptions) {
+    let cad = read_step(&dir.join("wave.step"), opts).unwrap();
     let wave = swarf_io::builtin_part("wave").unwrap();
     let (a, b) = (&cad.part.patches[0], &wave.patches[0]);
     assert_eq!(a.domain(), b.domain());
@@ -222,5 +235,4 @@ fn occ_faces_read_back_within_1e_9_mm() {
     }
     eprintln!("wave round trip: max |S_step - S_toml| = {worst:.2e} mm");
     assert!(worst <= TOL);
-    let _ = std::fs::remove_dir_all(&dir);
 }
