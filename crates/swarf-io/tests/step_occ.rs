@@ -1,7 +1,8 @@
 //! STEP files written by an independent kernel (OpenCASCADE through the
 //! `cadquery-ocp` wheel, `tests/occ/make_step.py`) read by swarf: every point OCC
 //! evaluates on a face lies on a swarf face, inside its trim, within 1e-9 mm; B-spline
-//! faces evaluate identically at OCC's own (u, v); the shared `wave` part written as
+//! faces evaluate identically at OCC's own (u, v); a plate written in inches (AP203)
+//! and a fillet written as AP242 read as the mm AP214 ones; the shared `wave` part written as
 //! STEP by OCC reads back as the TOML part.
 //!
 //! Skipped with a note when OCP is missing, unless `SWARF_REQUIRE_REFERENCES=1`.
@@ -136,11 +137,14 @@ fn occ_faces_read_back_within_1e_9_mm() {
         "sphere",
         "torus",
         "wave",
+        "plate_inch",
+        "fillet_ap242",
     ] {
         let cad = read_step(&dir.join(format!("{name}.step")), &opts)
             .unwrap_or_else(|e| panic!("{name}: {e}"));
         assert!(cad.warnings.is_empty(), "{name}: {:?}", cad.warnings);
-        assert_eq!(cad.unit, "mm");
+        let unit = if name == "plate_inch" { "inch" } else { "mm" };
+        assert_eq!(cad.unit, unit, "{name}");
         let s = samples(&dir.join(format!("{name}.csv")));
         assert!(s.len() > 50, "{name}: {} samples", s.len());
         let (worst, eval) = deviations(&cad, &s);

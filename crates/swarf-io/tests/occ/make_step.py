@@ -9,7 +9,8 @@ OUT_DIR/NAME.csv with one row per sample point inside a face:
 where (u, v) are OCC's face parameters and (x, y, z) OCC's own evaluation of the face's
 surface there (BRepAdaptor_Surface, which applies the face's location), in mm.
 Cases: bspline, rational, periodic (unclamped knots in the file), plate_hole, fillet, cylinder, cone (with its apex),
-sphere (part, with a pole), torus, wave (from WAVE_TOML).
+sphere (part, with a pole), torus, wave;
+plate_inch (AP203, inches) and fillet_ap242 (AP242) (from WAVE_TOML).
 With --bench N, writes only bench.step: N copies of the filleted, drilled plate.
 """
 
@@ -153,8 +154,9 @@ def wave(path):
     return bspline_face(poles, [float(k) for k in ku], [float(k) for k in kv], (du, dv), weights)
 
 
-def write_step(shape, path):
-    Interface_Static.SetCVal_s("write.step.schema", "AP214")
+def write_step(shape, path, schema="AP214", unit="MM"):
+    Interface_Static.SetCVal_s("write.step.schema", schema)
+    Interface_Static.SetCVal_s("write.step.unit", unit)
     w = STEPControl_Writer()
     w.Transfer(shape, STEPControl_AsIs)
     if w.Write(path) != IFSelect_RetDone:
@@ -226,6 +228,11 @@ def main():
     for name, shape in cases.items():
         write_step(shape, f"{out}/{name}.step")
         write_csv(shape, f"{out}/{name}.csv")
+    # The same shapes in inches (AP203) and as AP242: OCC's points stay in mm.
+    write_step(cases["plate_hole"], f"{out}/plate_inch.step", "AP203", "INCH")
+    write_csv(cases["plate_hole"], f"{out}/plate_inch.csv")
+    write_step(cases["fillet"], f"{out}/fillet_ap242.step", "AP242DIS")
+    write_csv(cases["fillet"], f"{out}/fillet_ap242.csv")
 
 
 if __name__ == "__main__":
