@@ -14,7 +14,16 @@ use swarf_io::{CadOptions, CadPart, read_step};
 
 const TOL: f64 = 1e-9;
 
-fn occ_dir() -> Option<PathBuf> {
+/// A scratch directory removed when dropped (also when a check fails).
+struct Scratch(PathBuf);
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn occ_dir() -> Option<Scratch> {
     let have = Command::new("python3")
         .args(["-c", "import OCP"])
         .output()
@@ -29,6 +38,7 @@ fn occ_dir() -> Option<PathBuf> {
     }
     let dir = std::env::temp_dir().join(format!("swarf-step-occ-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
+    let scratch = Scratch(dir.clone());
     let here = Path::new(env!("CARGO_MANIFEST_DIR"));
     let wave = here.join("../../parts/wave.toml");
     let out = Command::new("python3")
@@ -42,7 +52,7 @@ fn occ_dir() -> Option<PathBuf> {
         "make_step.py failed: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    Some(dir)
+    Some(scratch)
 }
 
 struct Sample {
@@ -124,7 +134,8 @@ fn deviations(cad: &CadPart, s: &[Sample]) -> (f64, Option<f64>) {
 
 #[test]
 fn occ_faces_read_back_within_1e_9_mm() {
-    let Some(dir) = occ_dir() else { return };
+    let Some(scratch) = occ_dir() else { return };
+    let dir = scratch.0.clone();
     let opts = CadOptions::default();
     for name in [
         "bspline",
@@ -165,7 +176,6 @@ fn occ_faces_read_back_within_1e_9_mm() {
     watertight_trims(&dir, &opts);
     plate_hole_is_open(&dir, &opts);
     wave_round_trip(&dir, &opts);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Shared edges are shared samples: every trimming-loop point of a closed solid,
