@@ -8,7 +8,7 @@
 //! edges), their trimming loops (edge curves `LINE`, `CIRCLE`, `ELLIPSE`,
 //! `B_SPLINE_CURVE_WITH_KNOTS`, `TRIMMED_CURVE`, `SURFACE_CURVE`, `SEAM_CURVE`,
 //! sampled in 3D within [`CadOptions::trim_chord`] once per edge and mapped into the
-//! patch's `(u, v)`, see [`uv`]), face names, and the length and angle units
+//! patch's `(u, v)`, see the `uv` module), face names, and the length and angle units
 //! (mm, inch, m...; radians or degrees). P-curves are not used: the 3D edges decide.
 //!
 //! **Why our own reader.** Measured against truck-stepio 0.3.0: it parses
@@ -32,7 +32,7 @@ pub mod parser;
 mod surfaces;
 mod topology;
 mod units;
-pub mod uv;
+mod uv;
 
 use crate::cad::{CadOptions, CadPart, MAX_TRIM_CHORD, MIN_TRIM_CHORD, Unsupported};
 use crate::error::{At, IoError};
