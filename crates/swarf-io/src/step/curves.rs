@@ -119,11 +119,17 @@ impl Geo<'_> {
                 "LINE" => return Ok(Curve::Line),
                 "CIRCLE" => {
                     let r = e.num(2)? * self.mm;
+                    if r <= 0.0 {
+                        return Err(e.arg_err(2, "a positive radius").into());
+                    }
                     let frame = self.frame(e.refr(1)?, &e)?;
                     return Ok(Curve::Conic { frame, a: r, b: r });
                 }
                 "ELLIPSE" => {
                     let (a, b) = (e.num(2)? * self.mm, e.num(3)? * self.mm);
+                    if !(a > 0.0 && b > 0.0) {
+                        return Err(e.arg_err(3, "positive semi-axes").into());
+                    }
                     let frame = self.frame(e.refr(1)?, &e)?;
                     return Ok(Curve::Conic { frame, a, b });
                 }

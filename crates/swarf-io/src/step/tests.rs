@@ -208,3 +208,13 @@ fn a_crossing_loop_and_a_bad_chord_are_refused() {
         .to_string();
     assert!(m.contains("trim_chord"), "{m}");
 }
+
+#[test]
+fn a_circle_of_zero_radius_is_named() {
+    let s = square(MM).replace("#40 = LINE('',#50,#41);", "#40 = CIRCLE('',#31,0.);");
+    let m = read(&s).unwrap_err().to_string();
+    assert!(
+        m.contains("#40 CIRCLE: argument 3: expected a positive radius, found 0"),
+        "{m}"
+    );
+}
