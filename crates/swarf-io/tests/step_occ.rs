@@ -141,6 +141,7 @@ fn occ_faces_read_back_within_1e_9_mm() {
         "bspline",
         "rational",
         "periodic",
+        "extrusion",
         "plate_hole",
         "fillet",
         "cylinder",

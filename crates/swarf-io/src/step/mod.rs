@@ -5,7 +5,7 @@
 //! (`B_SPLINE_SURFACE_WITH_KNOTS`, rational or not; `PLANE`, `CYLINDRICAL_SURFACE`,
 //! `CONICAL_SURFACE`, `SPHERICAL_SURFACE`, `TOROIDAL_SURFACE` converted exactly to
 //! NURBS by [`swarf_geom::Patch::plane`] and its siblings, sized from the face's
-//! edges), their trimming loops (edge curves `LINE`, `CIRCLE`, `ELLIPSE`,
+//! edges; `SURFACE_OF_LINEAR_EXTRUSION` of a B-spline curve), their trimming loops (edge curves `LINE`, `CIRCLE`, `ELLIPSE`,
 //! `B_SPLINE_CURVE_WITH_KNOTS`, `TRIMMED_CURVE`, `SURFACE_CURVE`, `SEAM_CURVE`,
 //! sampled in 3D within [`CadOptions::trim_chord`] once per edge and mapped into the
 //! patch's `(u, v)`, see the `uv` module), face names, and the length and angle units

@@ -1,7 +1,8 @@
 //! Face surfaces: `B_SPLINE_SURFACE_WITH_KNOTS` (simple, or the rational complex
 //! instance `(BOUNDED_SURFACE() B_SPLINE_SURFACE(..) B_SPLINE_SURFACE_WITH_KNOTS(..)
 //! .. RATIONAL_B_SPLINE_SURFACE(..) ..)` that OpenCASCADE writes) read as they are,
-//! and the elementary surfaces (ISO 10303-42 `plane`, `cylindrical_surface`,
+//! `SURFACE_OF_LINEAR_EXTRUSION` of a B-spline curve (exact: degree 1 along the
+//! vector), and the elementary surfaces (ISO 10303-42 `plane`, `cylindrical_surface`,
 //! `conical_surface`, `spherical_surface`, `toroidal_surface`) kept as closed forms
 //! (unclamped B-spline knots are clamped, [`super::clamp`])
 //! until the face's edges size them ([`super::uv`]).
@@ -27,6 +28,18 @@ pub enum Surf {
     Torus(Frame, f64, f64),
     /// A B-spline or NURBS surface.
     Spline(Patch),
+    /// `SURFACE_OF_LINEAR_EXTRUSION` of a B-spline curve: `S(u, v) = C(u) + v dir`,
+    /// `dir` a unit vector, `v` in mm; the curve clamped, homogeneous points.
+    Extrusion {
+        /// Degree of the curve.
+        degree: usize,
+        /// Its clamped knots.
+        knots: Vec<f64>,
+        /// Its homogeneous control points.
+        points: Vec<Hom>,
+        /// Unit extrusion direction.
+        dir: swarf_geom::Vec3,
+    },
 }
 
 /// Why a surface was not read.
@@ -81,12 +94,59 @@ pub fn surface(geo: &Geo<'_>, id: u64, face: &Ent<'_>) -> Result<Surf, SurfFail>
         }
         "SPHERICAL_SURFACE" => Surf::Sphere(frame(&e)?, len(2)?),
         "TOROIDAL_SURFACE" => Surf::Torus(frame(&e)?, len(2)?, len(3)?),
+        "SURFACE_OF_LINEAR_EXTRUSION" => extrusion(geo, &e)?,
         other => {
             return Err(SurfFail::Unsupported(e.err(format!(
                 "unsupported surface type {other} (supported: B_SPLINE_SURFACE_WITH_KNOTS, PLANE, \
-                 CYLINDRICAL_SURFACE, CONICAL_SURFACE, SPHERICAL_SURFACE, TOROIDAL_SURFACE)"
+                 CYLINDRICAL_SURFACE, CONICAL_SURFACE, SPHERICAL_SURFACE, TOROIDAL_SURFACE, \
+                 SURFACE_OF_LINEAR_EXTRUSION)"
             ))));
         }
+    })
+}
+
+/// `SURFACE_OF_LINEAR_EXTRUSION(name, swept_curve, VECTOR)` of a B-spline curve.
+fn extrusion(geo: &Geo<'_>, e: &Ent<'_>) -> Result<Surf, SurfFail> {
+    let vec = geo.g.get(e.refr(2)?, &["VECTOR"], e)?;
+    let dir = geo.direction(vec.refr(1)?, &vec)?;
+    let parts = geo.g.parts(e.refr(1)?, Some(e))?;
+    if !parts.iter().any(|p| p.name == "B_SPLINE_CURVE_WITH_KNOTS") {
+        return Err(SurfFail::Unsupported(e.err(format!(
+            "swept curve #{} {}: only B-spline swept curves are supported",
+            parts[0].id, parts[0].name
+        ))));
+    }
+    let (degree, knots, pts, weights, wk) = geo.bspline_raw(&parts)?;
+    let hom: Vec<Hom> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, q)| {
+            let w = weights
+                .as_ref()
+                .and_then(|w| w.get(i))
+                .copied()
+                .unwrap_or(1.0);
+            [q.x * w, q.y * w, q.z * w, w]
+        })
+        .collect();
+    let bad =
+        || wk.err("expected a valid B-spline curve (knots = points + degree + 1, weights > 0)");
+    if weights
+        .as_ref()
+        .is_some_and(|w| w.len() != pts.len() || w.iter().any(|x| *x <= 0.0))
+    {
+        return Err(bad().into());
+    }
+    let (knots, points) = if clamped(&knots, degree) {
+        (knots, hom)
+    } else {
+        clamp(degree, &knots, &hom).ok_or_else(bad)?
+    };
+    Ok(Surf::Extrusion {
+        degree,
+        knots,
+        points,
+        dir,
     })
 }
 

@@ -123,6 +123,16 @@ pub fn face(
             let l = uv::project_loops(p, &loops3).map_err(|m| fe.err(m))?;
             (p.clone(), l)
         }
+        Surf::Extrusion {
+            degree,
+            knots,
+            points,
+            dir,
+        } => {
+            let p = uv::extrusion(*degree, knots, points, dir, &loops3).map_err(|m| fe.err(m))?;
+            let l = uv::project_loops(&p, &loops3).map_err(|m| fe.err(m))?;
+            (p, l)
+        }
         s => uv::elementary(s, &loops3, &seams).map_err(|m| fe.err(m))?,
     };
     // The outer loop first: the file's FACE_OUTER_BOUND, else the widest in (u, v).

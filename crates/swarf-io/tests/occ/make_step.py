@@ -8,7 +8,7 @@ OUT_DIR/NAME.csv with one row per sample point inside a face:
     face,kind,u,v,x,y,z
 where (u, v) are OCC's face parameters and (x, y, z) OCC's own evaluation of the face's
 surface there (BRepAdaptor_Surface, which applies the face's location), in mm.
-Cases: bspline, rational, periodic (unclamped knots in the file), plate_hole, fillet, cylinder, cone (with its apex),
+Cases: bspline, rational, periodic (unclamped knots in the file), extrusion, plate_hole, fillet, cylinder, cone (with its apex),
 sphere (part, with a pole), torus, wave;
 plate_inch (AP203, inches) and fillet_ap242 (AP242) (from WAVE_TOML).
 With --bench N, writes only bench.step: N copies of the filleted, drilled plate.
@@ -51,6 +51,7 @@ KINDS = {
     GeomAbs_SurfaceType.GeomAbs_Torus: "torus",
     GeomAbs_SurfaceType.GeomAbs_BSplineSurface: "bspline",
     GeomAbs_SurfaceType.GeomAbs_BezierSurface: "bezier",
+    GeomAbs_SurfaceType.GeomAbs_SurfaceOfExtrusion: "extrusion",
 }
 
 
@@ -121,6 +122,25 @@ def periodic_case():
     mv.SetValue(2, 3)
     s = Geom_BSplineSurface(arr, ku, kv, mu, mv, 3, 2, True, False)
     return BRepBuilderAPI_MakeFace(s, 1e-9).Face()
+
+
+def extrusion_case():
+    """A B-spline curve swept along a vector (SURFACE_OF_LINEAR_EXTRUSION)."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
+    from OCP.Geom import Geom_BSplineCurve
+    from OCP.OCP.collections import Array1_gp_Pnt
+
+    poles = [(0, 0, 0), (5, 8, 1), (12, -3, 0), (18, 4, 2), (25, 0, 0)]
+    arr = Array1_gp_Pnt(1, len(poles))
+    for i, p in enumerate(poles):
+        arr.SetValue(i + 1, gp_Pnt(*p))
+    k, m = Array1_double(1, 3), Array1_int(1, 3)
+    for i, (kk, mm) in enumerate([(0.0, 4), (0.5, 1), (1.0, 4)]):
+        k.SetValue(i + 1, kk)
+        m.SetValue(i + 1, mm)
+    edge = BRepBuilderAPI_MakeEdge(Geom_BSplineCurve(arr, k, m, 3)).Edge()
+    return BRepPrimAPI_MakePrism(edge, gp_Vec(1.0, 2.0, 10.0)).Shape()
 
 
 def plate_hole():
@@ -216,6 +236,7 @@ def main():
         "bspline": bspline_case(False),
         "rational": bspline_case(True),
         "periodic": periodic_case(),
+        "extrusion": extrusion_case(),
         "plate_hole": plate_hole(),
         "fillet": fillet(),
         "cylinder": BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(1, 2, 3), gp_Dir(0.3, 0.4, 1.0)), 4.0, 9.0).Shape(),
