@@ -118,23 +118,7 @@ pub fn face(
         .collect();
     let all_seam = count.values().all(|c| *c > 1);
     let loops3: Vec<Vec<Point3>> = bounds.iter().map(|b| b.points.clone()).collect();
-    let (patch, mut loops) = match &surf {
-        Surf::Spline(p) => {
-            let l = uv::project_loops(p, &loops3).map_err(|m| fe.err(m))?;
-            (p.clone(), l)
-        }
-        Surf::Extrusion {
-            degree,
-            knots,
-            points,
-            dir,
-        } => {
-            let p = uv::extrusion(*degree, knots, points, dir, &loops3).map_err(|m| fe.err(m))?;
-            let l = uv::project_loops(&p, &loops3).map_err(|m| fe.err(m))?;
-            (p, l)
-        }
-        s => uv::elementary(s, &loops3, &seams).map_err(|m| fe.err(m))?,
-    };
+    let (patch, mut loops) = patch_and_loops(&fe, &surf, &loops3, &seams)?;
     // The outer loop first: the file's FACE_OUTER_BOUND, else the widest in (u, v).
     let outer = bounds
         .iter()
@@ -163,6 +147,32 @@ pub fn face(
         trim,
     };
     Ok(FaceResult::Read(patch, face))
+}
+
+/// The face's patch and its loops in `(u, v)`.
+fn patch_and_loops(
+    fe: &Ent<'_>,
+    surf: &Surf,
+    loops3: &[Vec<Point3>],
+    seams: &[Vec<Point3>],
+) -> Result<(Patch, uv::UvLoops), IoError> {
+    Ok(match surf {
+        Surf::Spline(p) => {
+            let l = uv::project_loops(p, loops3).map_err(|m| fe.err(m))?;
+            (p.clone(), l)
+        }
+        Surf::Extrusion {
+            degree,
+            knots,
+            points,
+            dir,
+        } => {
+            let p = uv::extrusion(*degree, knots, points, dir, loops3).map_err(|m| fe.err(m))?;
+            let l = uv::project_loops(&p, loops3).map_err(|m| fe.err(m))?;
+            (p, l)
+        }
+        s => uv::elementary(s, loops3, seams).map_err(|m| fe.err(m))?,
+    })
 }
 
 /// Index of the loop with the largest `(u, v)` box.
