@@ -39,10 +39,8 @@ fn generate(copies: usize) -> PathBuf {
 
 fn main() {
     let arg = std::env::args().nth(1).unwrap_or_else(|| "150".into());
-    let path = match arg.parse::<usize>() {
-        Ok(n) => generate(n),
-        Err(_) => PathBuf::from(arg),
-    };
+    let generated = arg.parse::<usize>().ok().map(generate);
+    let path = generated.clone().unwrap_or_else(|| PathBuf::from(&arg));
     let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
     let t = Instant::now();
     let cad = match read_step(&path, &CadOptions::default()) {
@@ -73,5 +71,8 @@ fn main() {
             peak_mib().unwrap_or(f64::NAN)
         ),
         Err(e) => println!("tessellate failed: {e}"),
+    }
+    if let Some(dir) = generated.as_deref().and_then(Path::parent) {
+        let _ = std::fs::remove_dir_all(dir);
     }
 }

@@ -1,7 +1,8 @@
 //! STEP files written by an independent kernel (OpenCASCADE through the
 //! `cadquery-ocp` wheel, `tests/occ/make_step.py`) read by swarf: every point OCC
 //! evaluates on a face lies on a swarf face, inside its trim, within 1e-9 mm; B-spline
-//! faces evaluate identically at OCC's own (u, v); the shared `wave` part written as
+//! faces evaluate identically at OCC's own (u, v); a plate written in inches (AP203)
+//! and a fillet written as AP242 read as the mm AP214 ones; the shared `wave` part written as
 //! STEP by OCC reads back as the TOML part.
 //!
 //! Skipped with a note when OCP is missing, unless `SWARF_REQUIRE_REFERENCES=1`.
@@ -13,7 +14,16 @@ use swarf_io::{CadOptions, CadPart, read_step};
 
 const TOL: f64 = 1e-9;
 
-fn occ_dir() -> Option<PathBuf> {
+/// A scratch directory removed when dropped (also when a check fails).
+struct Scratch(PathBuf);
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn occ_dir() -> Option<Scratch> {
     let have = Command::new("python3")
         .args(["-c", "import OCP"])
         .output()
@@ -28,6 +38,7 @@ fn occ_dir() -> Option<PathBuf> {
     }
     let dir = std::env::temp_dir().join(format!("swarf-step-occ-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
+    let scratch = Scratch(dir.clone());
     let here = Path::new(env!("CARGO_MANIFEST_DIR"));
     let wave = here.join("../../parts/wave.toml");
     let out = Command::new("python3")
@@ -41,7 +52,7 @@ fn occ_dir() -> Option<PathBuf> {
         "make_step.py failed: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    Some(dir)
+    Some(scratch)
 }
 
 struct Sample {
@@ -123,11 +134,14 @@ fn deviations(cad: &CadPart, s: &[Sample]) -> (f64, Option<f64>) {
 
 #[test]
 fn occ_faces_read_back_within_1e_9_mm() {
-    let Some(dir) = occ_dir() else { return };
+    let Some(scratch) = occ_dir() else { return };
+    let dir = scratch.0.clone();
     let opts = CadOptions::default();
     for name in [
         "bspline",
         "rational",
+        "periodic",
+        "extrusion",
         "plate_hole",
         "fillet",
         "cylinder",
@@ -135,11 +149,14 @@ fn occ_faces_read_back_within_1e_9_mm() {
         "sphere",
         "torus",
         "wave",
+        "plate_inch",
+        "fillet_ap242",
     ] {
         let cad = read_step(&dir.join(format!("{name}.step")), &opts)
             .unwrap_or_else(|e| panic!("{name}: {e}"));
         assert!(cad.warnings.is_empty(), "{name}: {:?}", cad.warnings);
-        assert_eq!(cad.unit, "mm");
+        let unit = if name == "plate_inch" { "inch" } else { "mm" };
+        assert_eq!(cad.unit, unit, "{name}");
         let s = samples(&dir.join(format!("{name}.csv")));
         assert!(s.len() > 50, "{name}: {} samples", s.len());
         let (worst, eval) = deviations(&cad, &s);
@@ -157,8 +174,55 @@ fn occ_faces_read_back_within_1e_9_mm() {
             assert!(e <= TOL, "{name}: B-spline eval differs by {e:e} mm");
         }
     }
-    // The hole of the plate is not part of any face.
-    let cad = read_step(&dir.join("plate_hole.step"), &opts).unwrap();
+    watertight_trims(&dir, &opts);
+    plate_hole_is_open(&dir, &opts);
+    wave_round_trip(&dir, &opts);
+}
+
+/// Shared edges are shared samples: every trimming-loop point of a closed solid,
+/// evaluated on its patch, meets a loop point of a neighbour (watertight trims).
+fn watertight_trims(dir: &Path, opts: &CadOptions) {
+    for name in ["plate_hole", "fillet"] {
+        let cad = read_step(&dir.join(format!("{name}.step")), opts).unwrap();
+        let mut pts = Vec::new();
+        for (k, p) in cad.part.patches.iter().enumerate() {
+            for (l, lp) in cad
+                .part
+                .trim(k)
+                .map_or(&[][..], |t| t.loops())
+                .iter()
+                .enumerate()
+            {
+                pts.extend(
+                    lp.iter()
+                        .enumerate()
+                        .map(|(i, q)| ((k, l, i), p.eval(q[0], q[1]))),
+                );
+            }
+        }
+        let mut gap: f64 = 0.0;
+        for (id, a) in &pts {
+            let d = pts
+                .iter()
+                .filter(|(jd, _)| jd.0 != id.0)
+                .map(|(_, b)| (a - b).norm())
+                .fold(f64::INFINITY, f64::min);
+            gap = gap.max(d);
+        }
+        eprintln!(
+            "{name}: {} loop points, largest gap to a neighbour face {gap:.2e} mm",
+            pts.len()
+        );
+        assert!(
+            gap <= TOL,
+            "{name}: trimming loops of neighbour faces part by {gap:e} mm"
+        );
+    }
+}
+
+/// The hole of the plate is not part of any face.
+fn plate_hole_is_open(dir: &Path, opts: &CadOptions) {
+    let cad = read_step(&dir.join("plate_hole.step"), opts).unwrap();
     for z in [0.0, 5.0] {
         let c = Point3::new(15.0, 14.0, z);
         let inside = (0..cad.part.patches.len()).any(|k| {
@@ -167,8 +231,11 @@ fn occ_faces_read_back_within_1e_9_mm() {
         });
         assert!(!inside, "the hole's centre at z = {z} lies on a face");
     }
-    // The shared wave part round trip: same surface on a grid.
-    let cad = read_step(&dir.join("wave.step"), &opts).unwrap();
+}
+
+/// The shared wave part written by OCC reads back as the TOML part.
+fn wave_round_trip(dir: &Path, opts: &CadOptions) {
+    let cad = read_step(&dir.join("wave.step"), opts).unwrap();
     let wave = swarf_io::builtin_part("wave").unwrap();
     let (a, b) = (&cad.part.patches[0], &wave.patches[0]);
     assert_eq!(a.domain(), b.domain());
@@ -183,5 +250,4 @@ fn occ_faces_read_back_within_1e_9_mm() {
     }
     eprintln!("wave round trip: max |S_step - S_toml| = {worst:.2e} mm");
     assert!(worst <= TOL);
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -119,11 +119,17 @@ impl Geo<'_> {
                 "LINE" => return Ok(Curve::Line),
                 "CIRCLE" => {
                     let r = e.num(2)? * self.mm;
+                    if r <= 0.0 {
+                        return Err(e.arg_err(2, "a positive radius").into());
+                    }
                     let frame = self.frame(e.refr(1)?, &e)?;
                     return Ok(Curve::Conic { frame, a: r, b: r });
                 }
                 "ELLIPSE" => {
                     let (a, b) = (e.num(2)? * self.mm, e.num(3)? * self.mm);
+                    if !(a > 0.0 && b > 0.0) {
+                        return Err(e.arg_err(3, "positive semi-axes").into());
+                    }
                     let frame = self.frame(e.refr(1)?, &e)?;
                     return Ok(Curve::Conic { frame, a, b });
                 }
@@ -143,6 +149,14 @@ impl Geo<'_> {
     }
 
     fn bspline(&self, parts: &[Ent<'_>]) -> Result<NurbsCurve, IoError> {
+        let (degree, flat, points, weights, wk) = self.bspline_raw(parts)?;
+        NurbsCurve::new(degree, flat, points, weights)
+            .map_err(|e| wk.err(format!("invalid B-spline curve: {e}")))
+    }
+
+    /// A B-spline curve's degree, knots, points and weights as written (for surfaces
+    /// built on a curve), and its `B_SPLINE_CURVE_WITH_KNOTS` record for messages.
+    pub fn bspline_raw<'e>(&self, parts: &[Ent<'e>]) -> Result<RawCurve<'e>, IoError> {
         let by = |n: &str| parts.iter().find(|p| p.name == n).copied();
         let wk = by("B_SPLINE_CURVE_WITH_KNOTS").ok_or_else(|| parts[0].err("no knots"))?;
         // Simple: (name, degree, points, form, closed, self_int, mults, knots, spec).
@@ -166,10 +180,12 @@ impl Geo<'_> {
             Some(r) => Some(r.nums(0)?),
             None => None,
         };
-        NurbsCurve::new(degree, flat, points, weights)
-            .map_err(|e| wk.err(format!("invalid B-spline curve: {e}")))
+        Ok((degree, flat, points, weights, wk))
     }
 }
+
+/// Degree, knots, points, weights and the knots' record of a B-spline curve.
+pub type RawCurve<'e> = (usize, Vec<f64>, Vec<Point3>, Option<Vec<f64>>, Ent<'e>);
 
 /// Knot values repeated by their multiplicities.
 pub fn expand_knots(mults: &[f64], vals: &[f64]) -> Option<Vec<f64>> {

@@ -5,10 +5,10 @@
 //! (`B_SPLINE_SURFACE_WITH_KNOTS`, rational or not; `PLANE`, `CYLINDRICAL_SURFACE`,
 //! `CONICAL_SURFACE`, `SPHERICAL_SURFACE`, `TOROIDAL_SURFACE` converted exactly to
 //! NURBS by [`swarf_geom::Patch::plane`] and its siblings, sized from the face's
-//! edges), their trimming loops (edge curves `LINE`, `CIRCLE`, `ELLIPSE`,
+//! edges; `SURFACE_OF_LINEAR_EXTRUSION` of a B-spline curve), their trimming loops (edge curves `LINE`, `CIRCLE`, `ELLIPSE`,
 //! `B_SPLINE_CURVE_WITH_KNOTS`, `TRIMMED_CURVE`, `SURFACE_CURVE`, `SEAM_CURVE`,
 //! sampled in 3D within [`CadOptions::trim_chord`] once per edge and mapped into the
-//! patch's `(u, v)`, see [`uv`]), face names, and the length and angle units
+//! patch's `(u, v)`, see the `uv` module), face names, and the length and angle units
 //! (mm, inch, m...; radians or degrees). P-curves are not used: the 3D edges decide.
 //!
 //! **Why our own reader.** Measured against truck-stepio 0.3.0: it parses
@@ -22,17 +22,17 @@
 //! **Limits.** At most [`MAX_ENTITIES`] instances, lists nested at most [`MAX_DEPTH`]
 //! deep; references are followed by type along the B-rep (shell -> face -> loop ->
 //! edge -> vertex -> point), never recursively, so cyclic references cannot hang or
-//! overflow the reader. Unsupported surface types (and periodic B-spline surfaces with
-//! unclamped knots) skip their face with a warning `#id NAME: why`, or refuse the file,
+//! overflow the reader. Unsupported surface and edge-curve types skip their face with a warning `#id NAME: why`, or refuse the file,
 //! as [`CadOptions::unsupported`] says.
 
+mod clamp;
 mod curves;
 mod graph;
 pub mod parser;
 mod surfaces;
 mod topology;
 mod units;
-pub mod uv;
+mod uv;
 
 use crate::cad::{CadOptions, CadPart, MAX_TRIM_CHORD, MIN_TRIM_CHORD, Unsupported};
 use crate::error::{At, IoError};

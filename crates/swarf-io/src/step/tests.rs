@@ -186,3 +186,35 @@ proptest::proptest! {
         let _ = read(&t);
     }
 }
+
+#[test]
+fn a_crossing_loop_and_a_bad_chord_are_refused() {
+    // Swapping two corners makes the square's loop a bow tie.
+    let s = square(MM)
+        .replace("(10.,10.,0.)", "(9.,9.,9.)")
+        .replace("(0.,10.,0.)", "(10.,10.,0.)")
+        .replace("(9.,9.,9.)", "(0.,10.,0.)");
+    let m = read(&s).unwrap_err().to_string();
+    assert!(
+        m.starts_with("t.step: line 7: #2 ADVANCED_FACE: trimming loops") && m.contains("cross"),
+        "{m}"
+    );
+    let bad = CadOptions {
+        trim_chord: 0.0,
+        ..CadOptions::default()
+    };
+    let m = parse_step(&square(MM), "t.step", &bad)
+        .unwrap_err()
+        .to_string();
+    assert!(m.contains("trim_chord"), "{m}");
+}
+
+#[test]
+fn a_circle_of_zero_radius_is_named() {
+    let s = square(MM).replace("#40 = LINE('',#50,#41);", "#40 = CIRCLE('',#31,0.);");
+    let m = read(&s).unwrap_err().to_string();
+    assert!(
+        m.contains("#40 CIRCLE: argument 3: expected a positive radius, found 0"),
+        "{m}"
+    );
+}

@@ -15,9 +15,9 @@ use swarf_geom::{Face, Patch, Point3, Trim};
 /// Two consecutive edges of a loop must meet within this, mm.
 pub const LOOP_GAP: f64 = 1e-4;
 
-/// The faces to read: those of the shells in file order, or every face when the file
-/// has no shell.
-pub fn face_ids(geo: &Geo<'_>) -> Result<Vec<u64>, IoError> {
+/// The faces to read, with whether an `ORIENTED_FACE` reverses them: those of the
+/// shells in file order, or every face when the file has no shell.
+pub fn face_ids(geo: &Geo<'_>) -> Result<Vec<(u64, bool)>, IoError> {
     let g = geo.g;
     let mut seen = HashSet::new();
     let mut out = Vec::new();
@@ -26,13 +26,13 @@ pub fn face_ids(geo: &Geo<'_>) -> Result<Vec<u64>, IoError> {
         if e.name == "CLOSED_SHELL" || e.name == "OPEN_SHELL" {
             for f in e.refs(1)? {
                 let fe = g.get(f, &["ADVANCED_FACE", "FACE_SURFACE", "ORIENTED_FACE"], &e)?;
-                let f = if fe.name == "ORIENTED_FACE" {
-                    fe.refr(1)?
+                let (f, flip) = if fe.name == "ORIENTED_FACE" {
+                    (fe.refr(2)?, !fe.boolean(3)?)
                 } else {
-                    f
+                    (f, false)
                 };
                 if seen.insert(f) {
-                    out.push(f);
+                    out.push((f, flip));
                 }
             }
         }
@@ -41,7 +41,7 @@ pub fn face_ids(geo: &Geo<'_>) -> Result<Vec<u64>, IoError> {
         for id in &g.ex.order {
             let e = g.parts(*id, None)?[0];
             if e.name == "ADVANCED_FACE" || e.name == "FACE_SURFACE" {
-                out.push(*id);
+                out.push((*id, false));
             }
         }
     }
@@ -65,20 +65,20 @@ struct Bound {
     edges: Vec<u64>,
 }
 
-/// Reads face `#id`.
+/// Reads face `#id`, reversed when `flip` (an `ORIENTED_FACE` said so).
 ///
 /// # Errors
 /// Malformed topology or geometry, open or crossing loops: naming the entity.
 pub fn face(
     geo: &Geo<'_>,
-    id: u64,
+    (id, flip): (u64, bool),
     cache: &mut EdgeCache,
     chord: f64,
 ) -> Result<FaceResult, IoError> {
     let g = geo.g;
     let fe = g.parts(id, None)?[0];
     let name = fe.string(0)?;
-    let same_sense = fe.boolean(3)?;
+    let same_sense = fe.boolean(3)? != flip;
     let surf = match surface(geo, fe.refr(2)?, &fe) {
         Ok(s) => s,
         Err(SurfFail::Unsupported(e)) => return Ok(FaceResult::Skipped(e)),
@@ -118,13 +118,7 @@ pub fn face(
         .collect();
     let all_seam = count.values().all(|c| *c > 1);
     let loops3: Vec<Vec<Point3>> = bounds.iter().map(|b| b.points.clone()).collect();
-    let (patch, mut loops) = match &surf {
-        Surf::Spline(p) => {
-            let l = uv::project_loops(p, &loops3).map_err(|m| fe.err(m))?;
-            (p.clone(), l)
-        }
-        s => uv::elementary(s, &loops3, &seams).map_err(|m| fe.err(m))?,
-    };
+    let (patch, mut loops) = patch_and_loops(&fe, &surf, &loops3, &seams)?;
     // The outer loop first: the file's FACE_OUTER_BOUND, else the widest in (u, v).
     let outer = bounds
         .iter()
@@ -154,6 +148,32 @@ pub fn face(
         trim,
     };
     Ok(FaceResult::Read(patch, face))
+}
+
+/// The face's patch and its loops in `(u, v)`.
+fn patch_and_loops(
+    fe: &Ent<'_>,
+    surf: &Surf,
+    loops3: &[Vec<Point3>],
+    seams: &[Vec<Point3>],
+) -> Result<(Patch, uv::UvLoops), IoError> {
+    Ok(match surf {
+        Surf::Spline(p) => {
+            let l = uv::project_loops(p, loops3).map_err(|m| fe.err(m))?;
+            (p.clone(), l)
+        }
+        Surf::Extrusion {
+            degree,
+            knots,
+            points,
+            dir,
+        } => {
+            let p = uv::extrusion(*degree, knots, points, dir, loops3).map_err(|m| fe.err(m))?;
+            let l = uv::project_loops(&p, loops3).map_err(|m| fe.err(m))?;
+            (p, l)
+        }
+        s => uv::elementary(s, loops3, seams).map_err(|m| fe.err(m))?,
+    })
 }
 
 /// Index of the loop with the largest `(u, v)` box.

@@ -21,10 +21,11 @@
 //! A face whose loops are its whole domain (only seam edges, or one loop around the
 //! patch boundary) gets no trim.
 
+use super::clamp::Hom;
 use super::surfaces::Surf;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use swarf_geom::patch::arc_parameter;
-use swarf_geom::{Patch, Point3};
+use swarf_geom::{Patch, Point3, Vec3};
 
 /// Margin around the loops' extent for unbounded directions, relative to the extent.
 const MARGIN_REL: f64 = 0.02;
@@ -51,7 +52,7 @@ fn locals(s: &Surf, p: &Point3) -> Local {
         }
         Surf::Cylinder(f, r) | Surf::Cone(f, r, _) | Surf::Sphere(f, r) => (f, *r),
         Surf::Torus(f, big, _) => (f, *big),
-        Surf::Spline(_) => return ([0.0, 0.0], false),
+        Surf::Spline(_) | Surf::Extrusion { .. } => return ([0.0, 0.0], false),
     };
     let l = f.to_local(p);
     let rho = l[0].hypot(l[1]);
@@ -68,7 +69,7 @@ fn locals(s: &Surf, p: &Point3) -> Local {
 /// Which directions are angles (periodic).
 fn periodic(s: &Surf) -> [bool; 2] {
     match s {
-        Surf::Plane(_) | Surf::Spline(_) => [false, false],
+        Surf::Plane(_) | Surf::Spline(_) | Surf::Extrusion { .. } => [false, false],
         Surf::Torus(..) => [true, true],
         _ => [true, false],
     }
@@ -173,6 +174,10 @@ fn build(s: &Surf, w: [[f64; 2]; 2]) -> Result<Patch, swarf_geom::GeomError> {
         Surf::Sphere(f, r) => Patch::sphere(f, *r, w[0], w[1]),
         Surf::Torus(f, big, small) => Patch::torus(f, *big, *small, w[0], w[1]),
         Surf::Spline(p) => Ok(p.clone()),
+        Surf::Extrusion { .. } => Err(swarf_geom::GeomError::patch(
+            "surface",
+            "an extrusion is sized by uv::extrusion",
+        )),
     }
 }
 
@@ -237,7 +242,7 @@ fn seam_sides(l: &[Local], out: &mut [[f64; 2]], d: usize, w: [f64; 2]) {
             x.min(TAU - x) < 1e-9
         }
     };
-    let free = |i: usize| !on_seam(i) && !(l[i].1 && d == 0);
+    let free = |i: usize| !(on_seam(i) || (l[i].1 && d == 0));
     let Some(anchor) = (0..n).find(|i| free(*i)) else {
         return;
     };
@@ -268,6 +273,49 @@ fn seam_sides(l: &[Local], out: &mut [[f64; 2]], d: usize, w: [f64; 2]) {
             }
         }
     }
+}
+
+/// The patch of an extrusion `C(u) + v dir` over a `v` window holding every loop
+/// point: `v = (P - C(u)) . dir` lies within `P . dir` minus the range of the control
+/// points' `. dir` (convex hull), plus a margin.
+///
+/// # Errors
+/// A message when the patch cannot be built.
+pub fn extrusion(
+    degree: usize,
+    knots: &[f64],
+    pts: &[Hom],
+    dir: &Vec3,
+    loops: &[Vec<Point3>],
+) -> Result<Patch, String> {
+    let along = |h: &Hom| (h[0] * dir.x + h[1] * dir.y + h[2] * dir.z) / h[3];
+    let (cmin, cmax) = pts
+        .iter()
+        .map(along)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, x| {
+            (a.0.min(x), a.1.max(x))
+        });
+    let l: Vec<f64> = loops.iter().flatten().map(|p| p.coords.dot(dir)).collect();
+    let w = linear_window(&[
+        l.iter().copied().fold(f64::INFINITY, f64::min) - cmax,
+        l.iter().copied().fold(f64::NEG_INFINITY, f64::max) - cmin,
+    ]);
+    let mut points = Vec::with_capacity(2 * pts.len());
+    let mut weights = Vec::with_capacity(2 * pts.len());
+    for h in pts {
+        let c = Point3::new(h[0] / h[3], h[1] / h[3], h[2] / h[3]);
+        for v in w {
+            points.push(c + dir * v);
+            weights.push(h[3]);
+        }
+    }
+    Patch::new(
+        [degree, 1],
+        points,
+        [Some(knots.to_vec()), Some(vec![w[0], w[0], w[1], w[1]])],
+        Some(weights),
+    )
+    .map_err(|e| e.to_string())
 }
 
 /// Loops of a B-spline patch in `(u, v)` by projection with continuation.

@@ -8,8 +8,9 @@ OUT_DIR/NAME.csv with one row per sample point inside a face:
     face,kind,u,v,x,y,z
 where (u, v) are OCC's face parameters and (x, y, z) OCC's own evaluation of the face's
 surface there (BRepAdaptor_Surface, which applies the face's location), in mm.
-Cases: bspline, rational, plate_hole, fillet, cylinder, cone (with its apex),
-sphere (part, with a pole), torus, wave (from WAVE_TOML).
+Cases: bspline, rational, periodic (unclamped knots in the file), extrusion, plate_hole, fillet, cylinder, cone (with its apex),
+sphere (part, with a pole), torus, wave;
+plate_inch (AP203, inches) and fillet_ap242 (AP242) (from WAVE_TOML).
 With --bench N, writes only bench.step: N copies of the filleted, drilled plate.
 """
 
@@ -50,6 +51,7 @@ KINDS = {
     GeomAbs_SurfaceType.GeomAbs_Torus: "torus",
     GeomAbs_SurfaceType.GeomAbs_BSplineSurface: "bspline",
     GeomAbs_SurfaceType.GeomAbs_BezierSurface: "bezier",
+    GeomAbs_SurfaceType.GeomAbs_SurfaceOfExtrusion: "extrusion",
 }
 
 
@@ -100,6 +102,47 @@ def bspline_case(rational):
     return bspline_face(poles, ku, kv, (3, 2), w)
 
 
+def periodic_case():
+    """A B-spline surface periodic in u (OCC writes it with unclamped knots)."""
+    nu, nv = 6, 3
+    arr = Array2_gp_Pnt(1, nu, 1, nv)
+    for i in range(nu):
+        for j in range(nv):
+            a = 2 * math.pi * i / nu
+            r = 10 + 2 * math.sin(3 * a) + j
+            arr.SetValue(i + 1, j + 1, gp_Pnt(r * math.cos(a), r * math.sin(a), 8.0 * j))
+    ku, mu = Array1_double(1, 7), Array1_int(1, 7)
+    for i in range(7):
+        ku.SetValue(i + 1, float(i))
+        mu.SetValue(i + 1, 1)
+    kv, mv = Array1_double(1, 2), Array1_int(1, 2)
+    kv.SetValue(1, 0.0)
+    kv.SetValue(2, 1.0)
+    mv.SetValue(1, 3)
+    mv.SetValue(2, 3)
+    s = Geom_BSplineSurface(arr, ku, kv, mu, mv, 3, 2, True, False)
+    return BRepBuilderAPI_MakeFace(s, 1e-9).Face()
+
+
+def extrusion_case():
+    """A B-spline curve swept along a vector (SURFACE_OF_LINEAR_EXTRUSION)."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
+    from OCP.Geom import Geom_BSplineCurve
+    from OCP.OCP.collections import Array1_gp_Pnt
+
+    poles = [(0, 0, 0), (5, 8, 1), (12, -3, 0), (18, 4, 2), (25, 0, 0)]
+    arr = Array1_gp_Pnt(1, len(poles))
+    for i, p in enumerate(poles):
+        arr.SetValue(i + 1, gp_Pnt(*p))
+    k, m = Array1_double(1, 3), Array1_int(1, 3)
+    for i, (kk, mm) in enumerate([(0.0, 4), (0.5, 1), (1.0, 4)]):
+        k.SetValue(i + 1, kk)
+        m.SetValue(i + 1, mm)
+    edge = BRepBuilderAPI_MakeEdge(Geom_BSplineCurve(arr, k, m, 3)).Edge()
+    return BRepPrimAPI_MakePrism(edge, gp_Vec(1.0, 2.0, 10.0)).Shape()
+
+
 def plate_hole():
     box = BRepPrimAPI_MakeBox(40.0, 30.0, 5.0).Shape()
     cyl = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(15.0, 14.0, -1.0), gp_Dir(0, 0, 1)), 6.0, 7.0).Shape()
@@ -131,8 +174,9 @@ def wave(path):
     return bspline_face(poles, [float(k) for k in ku], [float(k) for k in kv], (du, dv), weights)
 
 
-def write_step(shape, path):
-    Interface_Static.SetCVal_s("write.step.schema", "AP214")
+def write_step(shape, path, schema="AP214", unit="MM"):
+    Interface_Static.SetCVal_s("write.step.schema", schema)
+    Interface_Static.SetCVal_s("write.step.unit", unit)
     w = STEPControl_Writer()
     w.Transfer(shape, STEPControl_AsIs)
     if w.Write(path) != IFSelect_RetDone:
@@ -191,6 +235,8 @@ def main():
     cases = {
         "bspline": bspline_case(False),
         "rational": bspline_case(True),
+        "periodic": periodic_case(),
+        "extrusion": extrusion_case(),
         "plate_hole": plate_hole(),
         "fillet": fillet(),
         "cylinder": BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(1, 2, 3), gp_Dir(0.3, 0.4, 1.0)), 4.0, 9.0).Shape(),
@@ -203,6 +249,11 @@ def main():
     for name, shape in cases.items():
         write_step(shape, f"{out}/{name}.step")
         write_csv(shape, f"{out}/{name}.csv")
+    # The same shapes in inches (AP203) and as AP242: OCC's points stay in mm.
+    write_step(cases["plate_hole"], f"{out}/plate_inch.step", "AP203", "INCH")
+    write_csv(cases["plate_hole"], f"{out}/plate_inch.csv")
+    write_step(cases["fillet"], f"{out}/fillet_ap242.step", "AP242DIS")
+    write_csv(cases["fillet"], f"{out}/fillet_ap242.csv")
 
 
 if __name__ == "__main__":
