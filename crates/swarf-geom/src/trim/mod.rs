@@ -17,10 +17,12 @@
 //! (a plane sweep over the edges' `u` extents), and every hole inside the outer loop.
 
 mod bands;
+mod project;
 mod validate;
 
 use crate::error::GeomError;
 use bands::Bands;
+pub use project::FacePoint;
 use serde::{Deserialize, Serialize};
 
 /// A point in a patch's parameter plane, `[u, v]`.

@@ -1,4 +1,5 @@
-//! `swarf eval PART --patch N --uv U,V`: exact evaluation of one patch as JSON.
+//! `swarf eval PART --patch N --uv U,V`: exact evaluation of one patch as JSON, and
+//! whether the point is on the face (inside its trimming loops, for a CAD part).
 
 use anyhow::{Context, Result, bail};
 use swarf_app::load_part;
@@ -6,7 +7,7 @@ use swarf_app::load_part;
 /// Arguments of `swarf eval`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Part file (.toml) or built-in part name.
+    /// Part file (.toml, .step, .stp, .igs, .iges) or built-in part name.
     part: String,
     /// Patch index (0-based, in file order).
     #[arg(long, default_value_t = 0)]
@@ -55,6 +56,7 @@ pub fn run(args: &Args) -> Result<()> {
         "k2": c.map(|c| c.k2),
         "dir1": c.map(|c| arr(c.dir1)),
         "dir2": c.map(|c| arr(c.dir2)),
+        "on_face": part.face_contains(args.patch, u, v),
     });
     println!("{}", serde_json::to_string(&out)?);
     Ok(())

@@ -7,7 +7,8 @@ use swarf_app::load_part;
 /// Arguments of `swarf tessellate`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Part file (.toml) or built-in part name.
+    /// Part file (.toml, .step, .stp, .igs, .iges) or built-in part name; trimmed
+    /// faces are meshed inside their loops.
     part: String,
     /// Chordal tolerance, mm: every point of the mesh is within this of the surface.
     #[arg(long, default_value_t = 0.01)]
