@@ -169,6 +169,10 @@ fn occ_faces_match() {
     let _ = std::fs::remove_dir_all(&dir);
     assert_eq!(faces.unit, "mm");
     assert_eq!(solid.unit, "inch");
+    assert_eq!(
+        faces.part.faces[1].surface.as_deref(),
+        Some("DE 7 type 108 (plane)")
+    );
     check(
         &faces.part,
         &faces_csv,

@@ -38,7 +38,7 @@ impl Iges<'_> {
             patch,
             Face {
                 name,
-                surface: Some(format!("DE {de} type 128")),
+                surface: self.origin(de),
                 trim,
             },
         ))
@@ -70,7 +70,7 @@ impl Iges<'_> {
                     patch,
                     Face {
                         name,
-                        surface: Some(format!("DE {sptr} type 128")),
+                        surface: self.origin(sptr),
                         trim: None,
                     },
                 ));
@@ -96,7 +96,7 @@ impl Iges<'_> {
             patch,
             Face {
                 name: self.name(de, Some(sptr)),
-                surface: Some(format!("DE {sptr} type 128")),
+                surface: self.origin(sptr),
                 trim: Some(trim),
             },
         ))
@@ -303,6 +303,18 @@ impl Iges<'_> {
     /// file's resolution, whichever is larger, at most [`MAX_GAP_MM`].
     fn gap_mm(&self) -> f64 {
         GAP_MM.max(self.rec.resolution_mm.min(MAX_GAP_MM))
+    }
+
+    /// Where a face's surface comes from: `DE 5 type 128 (rational B-spline
+    /// surface)`.
+    fn origin(&self, de: usize) -> Option<String> {
+        let ty = self.rec.entries.get(de / 2)?.ty;
+        let what = match ty {
+            128 => "rational B-spline surface",
+            108 => "plane",
+            _ => "surface",
+        };
+        Some(format!("DE {de} type {ty} ({what})"))
     }
 
     /// A face's name: a 406 form 15 name property of entity `de`, else its label,

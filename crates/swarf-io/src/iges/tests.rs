@@ -110,6 +110,10 @@ fn inch_plate_with_hole() {
     let part = &cad.part;
     assert_eq!(part.patches.len(), 1);
     assert_eq!(part.face_name(0), Some("TOPFACE"));
+    assert_eq!(
+        part.faces[0].surface.as_deref(),
+        Some("DE 1 type 128 (rational B-spline surface)")
+    );
     for (u, v) in [(0.3, 0.7), (0.0, 0.0), (1.0, 0.25), (0.55, 0.95)] {
         let want = Point3::new(2.0 * u, v, u * v) * 25.4;
         assert!(
