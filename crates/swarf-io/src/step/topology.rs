@@ -79,6 +79,7 @@ pub fn face(
     let fe = g.parts(id, None)?[0];
     let name = fe.string(0)?;
     let same_sense = fe.boolean(3)? != flip;
+    let surface_label = surface_label(g, fe.refr(2)?)?;
     let surf = match surface(geo, fe.refr(2)?, &fe) {
         Ok(s) => s,
         Err(SurfFail::Unsupported(e)) => return Ok(FaceResult::Skipped(e)),
@@ -144,7 +145,7 @@ pub fn face(
     };
     let face = Face {
         name: (!name.is_empty()).then(|| name.to_string()),
-        surface: None,
+        surface: Some(surface_label),
         trim,
     };
     Ok(FaceResult::Read(patch, face))
@@ -174,6 +175,24 @@ fn patch_and_loops(
         }
         s => uv::elementary(s, loops3, seams).map_err(|m| fe.err(m))?,
     })
+}
+
+/// `#id NAME` of a surface entity, for reports: a complex entity by its B-spline
+/// part, with `(rational)` when it has weights.
+fn surface_label(g: &super::graph::Graph<'_>, id: u64) -> Result<String, IoError> {
+    let parts = g.parts(id, None)?;
+    let has = |n: &str| parts.iter().any(|p| p.name == n);
+    let name = if has("B_SPLINE_SURFACE_WITH_KNOTS") {
+        "B_SPLINE_SURFACE_WITH_KNOTS"
+    } else {
+        parts.first().map_or("?", |p| p.name)
+    };
+    let rational = if has("RATIONAL_B_SPLINE_SURFACE") {
+        " (rational)"
+    } else {
+        ""
+    };
+    Ok(format!("#{id} {name}{rational}"))
 }
 
 /// Index of the loop with the largest `(u, v)` box.
