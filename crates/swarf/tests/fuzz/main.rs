@@ -1,7 +1,7 @@
 //! Hostile input (issue 15): a structure-aware fuzz suite that runs on stable Rust.
 //!
 //! Every input swarf reads has a proptest strategy that mutates real seeds: part
-//! files, job files, tool specs, G-code (swarf's own three- and five-axis programs,
+//! files (TOML, STEP and IGES), job files, tool specs, G-code (swarf's own three- and five-axis programs,
 //! hand-written RS274 with parameters, O-words and canned cycles, Fanuc macro B, and
 //! the LinuxCNC reference corpus), APT CL, pose CSV, binary and ASCII STL, OBJ,
 //! machine files, drop points CSV, LinuxCNC tool tables and parameter files, and

@@ -66,12 +66,14 @@ pub const OWN: &str = "crates/swarf/tests/fuzz/seeds";
 pub const CORPUS: &str = "crates/swarf-nc/tests/corpus";
 
 /// Part files: the project's parts (byte-identical copies of ../shared/parts plus
-/// its own) and B-spline and NURBS patches.
+/// its own), B-spline and NURBS patches, and the STEP and IGES parts of `parts/cad`.
 pub fn parts() -> Vec<Seed> {
     let mut s = dir_seeds("parts", ".toml");
     s.push(text_seed("bspline.toml", BSPLINE));
     s.push(text_seed("nurbs.toml", NURBS));
     s.push(text_seed("plate.toml", PLATE));
+    s.extend(dir_seeds("parts/cad", ".step"));
+    s.extend(dir_seeds("parts/cad", ".igs"));
     s
 }
 
