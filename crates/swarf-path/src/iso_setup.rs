@@ -1,6 +1,6 @@
 //! What the three iso strategies share: validated parameters, the side-step model,
 //! the forward-step options, the side geometry at a CC point, and the end of planning
-//! (boundary passes where the rows leave too much on an edge, whole-part gouge check,
+//! (clipping to trimmed faces, boundary passes where the rows leave too much on an edge, whole-part gouge check,
 //! joining and ordering rows, the report).
 //!
 //! A fixed `strategy.stepover` (iso-planar) replaces the scallop limit: the side-step
@@ -25,6 +25,7 @@ use crate::ordering::{Joining, Row, order_rows};
 use crate::params::{IsoParams, StrategyKind};
 use crate::plan::{Plan, PlanReport};
 use crate::side_step::SideStep;
+use crate::trim_clip::clip_rows;
 use crate::uncovered::{Marked, regions};
 use swarf_geom::{Part, Point3, SurfaceDerivs, Vec3};
 use swarf_tool::drop::DropScratch;
@@ -196,7 +197,8 @@ impl<'a> IsoSetup<'a> {
     /// # Errors
     /// [`PathError::NoPath`] when there is no pass, or when every CL point had to be
     /// lifted (the tool is too large for any valid position on this part).
-    pub fn finish(&self, mut rows: Vec<Row>, mut report: PlanReport) -> Result<Plan, PathError> {
+    pub fn finish(&self, rows: Vec<Row>, mut report: PlanReport) -> Result<Plan, PathError> {
+        let mut rows = clip_rows(self, rows);
         let total: usize = rows.iter().flatten().map(|p| p.points.len()).sum();
         if total == 0 {
             return Err(PathError::NoPath(format!(
