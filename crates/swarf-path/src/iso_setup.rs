@@ -25,7 +25,7 @@ use crate::ordering::{Joining, Row, order_rows};
 use crate::params::{IsoParams, StrategyKind};
 use crate::plan::{Plan, PlanReport};
 use crate::side_step::SideStep;
-use crate::trim_clip::clip_rows;
+use crate::trim_clip::{clip_rows, inside};
 use crate::uncovered::{Marked, regions};
 use swarf_geom::{Part, Point3, SurfaceDerivs, Vec3};
 use swarf_tool::drop::DropScratch;
@@ -165,7 +165,7 @@ impl<'a> IsoSetup<'a> {
     }
 
     /// True when the tools of `current` leave at most `h` at every CC point of `last`
-    /// (so the boundary row `last` need not be cut): each tool is taken as the ball of
+    /// inside its face (so the boundary row `last` need not be cut): each tool is taken as the ball of
     /// the least effective radius touching its CC point, and the material at a point
     /// is where the ray along its normal first enters one of them.
     pub fn covers(&self, current: &Row, last: &Row) -> bool {
@@ -179,6 +179,7 @@ impl<'a> IsoSetup<'a> {
         let targets: Vec<_> = last
             .iter()
             .flat_map(|p| &p.points)
+            .filter(|p| inside(self.part, p))
             .filter_map(|p| p.contact)
             .collect();
         !centres.is_empty()

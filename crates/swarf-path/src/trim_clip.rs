@@ -4,7 +4,7 @@
 //! The iso strategies plan on a face's whole patch rectangle; a trimmed face keeps
 //! only the part of each pass whose CC points lie inside its trimming loops. A pass
 //! is walked in order; where consecutive CC points change side (in or out of
-//! [`Part::face_contains`]), the crossing is found by bisection on the straight uv
+//! [`swarf_geom::trim::Trim::contains`]), the crossing is found by bisection on the straight uv
 //! segment between them ([`CROSSING_STEPS`] halvings, so within `2^-40` of the
 //! segment's uv length) and the pass is ended (or started) at the CL point of the
 //! inside end of the bracket. Pieces whose CC polyline is shorter than the tolerance
@@ -20,10 +20,13 @@ use swarf_toolpath::{Pass, PathPoint};
 /// Halvings locating where a pass crosses a trimming loop.
 const CROSSING_STEPS: usize = 40;
 
-/// Whether the contact of `p` lies inside its face (points without a contact are kept).
+/// Whether the contact of `p` lies inside its face's trimming loops (points without
+/// a contact, and on faces without a trim, count as inside).
 pub fn inside(part: &Part, p: &PathPoint) -> bool {
-    p.contact
-        .is_none_or(|c| part.face_contains(c.face, c.uv[0], c.uv[1]))
+    p.contact.is_none_or(|c| {
+        part.trim(c.face)
+            .is_none_or(|t| t.contains(c.uv[0], c.uv[1]))
+    })
 }
 
 /// `rows` with every pass clipped to its face (module doc).
@@ -102,7 +105,7 @@ fn crossing(setup: &IsoSetup<'_>, a: &PathPoint, b: &PathPoint) -> Option<PathPo
     for _ in 0..CROSSING_STEPS {
         let mid = 0.5 * (lo + hi);
         let [u, v] = at(mid);
-        if setup.part.face_contains(ca.face, u, v) {
+        if setup.part.trim(ca.face).is_none_or(|t| t.contains(u, v)) {
             lo = mid;
         } else {
             hi = mid;
