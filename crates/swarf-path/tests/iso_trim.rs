@@ -9,7 +9,8 @@
 
 mod iso_support;
 
-use iso_support::{dense_points, max_penetration, max_residual};
+use iso_support::swept::{Swept, residuals};
+use iso_support::{dense_face_frames, dense_points, max_penetration, max_residual};
 use swarf_app::{Job, PlanInput};
 use swarf_geom::part::Face;
 use swarf_geom::trim::Trim;
@@ -99,14 +100,22 @@ fn iso_paths_stay_on_the_trimmed_face_and_meet_h_without_gouging() {
         let plan = swarf_app::plan(&job, PlanInput::Part(&part)).unwrap();
         let mut near_hole = 0;
         for pass in &plan.toolpath.passes {
-            let cc: Vec<[f64; 2]> = pass.points.iter().filter_map(|p| p.contact).map(|c| c.uv).collect();
+            let cc: Vec<[f64; 2]> = pass
+                .points
+                .iter()
+                .filter_map(|p| p.contact)
+                .map(|c| c.uv)
+                .collect();
             for uv in &cc {
                 // On the face, or on a trimming loop (boundary passes run along them).
                 assert!(
                     part.face_contains(0, uv[0], uv[1]) || loop_distance(&part, *uv) < 1e-9,
                     "{kind}: CC {uv:?} off the face"
                 );
-                assert!(hole_distance(*uv) >= inscribed - 1e-9, "{kind}: CC {uv:?} in the hole");
+                assert!(
+                    hole_distance(*uv) >= inscribed - 1e-9,
+                    "{kind}: CC {uv:?} in the hole"
+                );
                 if hole_distance(*uv) < HOLE_R + 0.005 {
                     near_hole += 1;
                 }
@@ -114,10 +123,16 @@ fn iso_paths_stay_on_the_trimmed_face_and_meet_h_without_gouging() {
             // No step of a pass crosses the hole: passes meeting it are split.
             for w in cc.windows(2) {
                 let mid = [0.5 * (w[0][0] + w[1][0]), 0.5 * (w[0][1] + w[1][1])];
-                assert!(hole_distance(mid) > HOLE_R - 0.01, "{kind}: step {w:?} over the hole");
+                assert!(
+                    hole_distance(mid) > HOLE_R - 0.01,
+                    "{kind}: step {w:?} over the hole"
+                );
             }
         }
-        assert!(near_hole > 10, "{kind}: only {near_hole} CC points at the hole's edge");
+        assert!(
+            near_hole > 10,
+            "{kind}: only {near_hole} CC points at the hole's edge"
+        );
         let (left, at) = max_residual(&plan, &part, 4.0, 0.5);
         let depth = max_penetration(&plan, &job.tool, &points);
         println!(
@@ -126,6 +141,38 @@ fn iso_paths_stay_on_the_trimmed_face_and_meet_h_without_gouging() {
         );
         assert!(left <= SLACK * H, "{kind}: {left} left at {at:?}");
         assert!(depth <= TOL, "{kind}: enters by {depth} mm");
+    }
+}
+
+/// Iso-scallop with a bull end mill: the true scallop of the swept tools
+/// (`iso_support::swept`) on the face's points, and no gouge.
+#[test]
+fn iso_scallop_with_a_bull_meets_h_on_the_trimmed_face() {
+    let part = trimmed();
+    let job = job("iso-scallop", "bull:d=10,r=2");
+    let plan = swarf_app::plan(&job, PlanInput::Part(&part)).unwrap();
+    let swept = Swept::new(&plan, &job.tool);
+    let frames = dense_face_frames(&part, 0.6);
+    let left = residuals(&swept, &frames).into_iter().fold(0.0, f64::max);
+    let points = dense_points(&part, 0.3);
+    let depth = max_penetration(&plan, &job.tool, &points);
+    println!(
+        "iso-scallop bull d=10 r=2: max scallop {left:.4} mm (h {H}), max gouge {depth:.5} mm"
+    );
+    assert!(left <= SLACK * H, "bull: {left} left");
+    assert!(depth <= TOL, "bull: enters by {depth} mm");
+    for c in plan
+        .toolpath
+        .passes
+        .iter()
+        .flat_map(|p| &p.points)
+        .filter_map(|p| p.contact)
+    {
+        let uv = c.uv;
+        assert!(
+            hole_distance(uv) > HOLE_R - 1e-3,
+            "bull: CC {uv:?} in the hole"
+        );
     }
 }
 

@@ -388,6 +388,13 @@ fn grid_size(patch: &Patch, spacing: f64) -> (usize, usize) {
     (nu, nv)
 }
 
+/// Points and unit normals of every face on the grids of [`dense_points`].
+pub fn dense_face_frames(part: &Part, spacing: f64) -> Vec<(Point3, Vec3)> {
+    (0..part.patches.len())
+        .flat_map(|k| dense_frames(part, k, spacing))
+        .collect()
+}
+
 /// `(n + 1)^2`-ish surface points of every patch on a uniform parameter grid whose
 /// neighbours are at most `spacing` apart (a fine structured tessellation's vertices),
 /// inside the faces' trimming loops.
