@@ -20,6 +20,7 @@ use swarf_path::Plan;
 use swarf_tool::Cutter;
 use swarf_toolpath::Pass;
 
+#[allow(unused_imports)]
 pub use swarf_testkit::parts::wave;
 
 /// A job on wave for `kind` with scallop `h` and tolerance `tol`, ball d = 8.
