@@ -54,15 +54,15 @@ pub fn clip_pass(setup: &IsoSetup<'_>, pass: Pass) -> Vec<Pass> {
     let mut prev: Option<(PathPoint, bool)> = None;
     for p in pass.points {
         let now = inside(part, &p);
-        if let Some((q, was)) = prev {
-            if was != now {
-                let (a, b) = if was { (&q, &p) } else { (&p, &q) };
-                if let Some(x) = crossing(setup, a, b) {
-                    piece.push(x);
-                }
-                if was {
-                    push_piece(&mut out, std::mem::take(&mut piece), pass.skim, min_length);
-                }
+        if let Some((q, was)) = prev
+            && was != now
+        {
+            let (a, b) = if was { (&q, &p) } else { (&p, &q) };
+            if let Some(x) = crossing(setup, a, b) {
+                piece.push(x);
+            }
+            if was {
+                push_piece(&mut out, std::mem::take(&mut piece), pass.skim, min_length);
             }
         }
         if now {
