@@ -14,8 +14,10 @@
 //! Stretches of an edge above `h` (by more than the schedules' own modelling error of
 //! a fraction of a percent, `COVERED_SLACK`), widened by one coverage radius each
 //! way, become passes along the edge, cut last. Points under another patch are
-//! skipped.
+//! skipped. On a trimmed face the edges are its trimming loops instead of the patch
+//! rectangle's sides ([`crate::boundary_edges`]).
 
+use crate::boundary_edges::face_edges;
 use crate::forward_step::sample_curve;
 use crate::iso_setup::IsoSetup;
 use crate::ordering::Row;
@@ -51,37 +53,34 @@ pub fn boundary_passes(setup: &IsoSetup<'_>, rows: &[Row]) -> Vec<Pass> {
     let mut out = Vec::new();
     for (face, patch) in setup.part.patches.iter().enumerate() {
         let map = setup.cl_map(face);
-        let dom = patch.domain();
-        for (dir, bounds) in dom.iter().enumerate() {
-            for &fixed in bounds {
-                let free = dom[1 - dir];
-                let uv = |t: f64| if dir == 0 { (fixed, t) } else { (t, fixed) };
-                let length = edge_length(patch, &uv, free);
-                let n = ((length * SAMPLES_PER_RADIUS / reach.max(1e-9)).ceil() as usize)
-                    .clamp(2, MAX_EDGE_SAMPLES);
-                let ts: Vec<f64> = (0..=n)
-                    .map(|k| free[0] + (free[1] - free[0]) * k as f64 / n as f64)
-                    .collect();
-                let material = |t: f64| {
+        for edge in face_edges(setup.part, face) {
+            let uv = |t: f64| edge.uv(t);
+            let free = edge.range();
+            let length = edge_length(patch, &uv, free);
+            let n = ((length * SAMPLES_PER_RADIUS / reach.max(1e-9)).ceil() as usize)
+                .clamp(2, MAX_EDGE_SAMPLES);
+            let ts: Vec<f64> = (0..=n)
+                .map(|k| free[0] + (free[1] - free[0]) * k as f64 / n as f64)
+                .collect();
+            let material = |t: f64| {
+                let (u, v) = uv(t);
+                setup
+                    .reachable(&map, u, v)
+                    .and_then(|p| p.contact)
+                    .map_or(0.0, |c| capsules.material(&c.point, &c.normal))
+            };
+            let bare = bare_samples(&ts, &material, COVERED_SLACK * h);
+            let widen = ((n as f64) * reach / length.max(1e-9)).ceil() as usize;
+            for (a, b) in stretches(&bare, widen) {
+                let f = |t: f64| {
                     let (u, v) = uv(t);
-                    setup
-                        .reachable(&map, u, v)
-                        .and_then(|p| p.contact)
-                        .map_or(0.0, |c| capsules.material(&c.point, &c.normal))
+                    setup.reachable(&map, u, v)
                 };
-                let bare = bare_samples(&ts, &material, COVERED_SLACK * h);
-                let widen = ((n as f64) * reach / length.max(1e-9)).ceil() as usize;
-                for (a, b) in stretches(&bare, widen) {
-                    let f = |t: f64| {
-                        let (u, v) = uv(t);
-                        setup.reachable(&map, u, v)
-                    };
-                    for run in sample_curve(&f, ts[a], ts[b], &setup.step) {
-                        out.push(Pass {
-                            points: run.into_iter().map(|s| s.point).collect(),
-                            ..Pass::default()
-                        });
-                    }
+                for run in sample_curve(&f, ts[a], ts[b], &setup.step) {
+                    out.push(Pass {
+                        points: run.into_iter().map(|s| s.point).collect(),
+                        ..Pass::default()
+                    });
                 }
             }
         }

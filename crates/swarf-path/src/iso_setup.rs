@@ -1,6 +1,6 @@
 //! What the three iso strategies share: validated parameters, the side-step model,
 //! the forward-step options, the side geometry at a CC point, and the end of planning
-//! (boundary passes where the rows leave too much on an edge, whole-part gouge check,
+//! (clipping to trimmed faces, boundary passes where the rows leave too much on an edge, whole-part gouge check,
 //! joining and ordering rows, the report).
 //!
 //! A fixed `strategy.stepover` (iso-planar) replaces the scallop limit: the side-step
@@ -25,6 +25,7 @@ use crate::ordering::{Joining, Row, order_rows};
 use crate::params::{IsoParams, StrategyKind};
 use crate::plan::{Plan, PlanReport};
 use crate::side_step::SideStep;
+use crate::trim_clip::{clip_rows, inside};
 use crate::uncovered::{Marked, regions};
 use swarf_geom::{Part, Point3, SurfaceDerivs, Vec3};
 use swarf_tool::drop::DropScratch;
@@ -164,7 +165,7 @@ impl<'a> IsoSetup<'a> {
     }
 
     /// True when the tools of `current` leave at most `h` at every CC point of `last`
-    /// (so the boundary row `last` need not be cut): each tool is taken as the ball of
+    /// inside its face (so the boundary row `last` need not be cut): each tool is taken as the ball of
     /// the least effective radius touching its CC point, and the material at a point
     /// is where the ray along its normal first enters one of them.
     pub fn covers(&self, current: &Row, last: &Row) -> bool {
@@ -178,6 +179,7 @@ impl<'a> IsoSetup<'a> {
         let targets: Vec<_> = last
             .iter()
             .flat_map(|p| &p.points)
+            .filter(|p| inside(self.part, p))
             .filter_map(|p| p.contact)
             .collect();
         !centres.is_empty()
@@ -196,7 +198,8 @@ impl<'a> IsoSetup<'a> {
     /// # Errors
     /// [`PathError::NoPath`] when there is no pass, or when every CL point had to be
     /// lifted (the tool is too large for any valid position on this part).
-    pub fn finish(&self, mut rows: Vec<Row>, mut report: PlanReport) -> Result<Plan, PathError> {
+    pub fn finish(&self, rows: Vec<Row>, mut report: PlanReport) -> Result<Plan, PathError> {
+        let mut rows = clip_rows(self, rows);
         let total: usize = rows.iter().flatten().map(|p| p.points.len()).sum();
         if total == 0 {
             return Err(PathError::NoPath(format!(

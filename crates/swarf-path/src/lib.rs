@@ -2,6 +2,7 @@
 //! they produce is swarf-toolpath's).
 
 mod boundary;
+mod boundary_edges;
 pub mod cl_curve;
 pub mod classify;
 pub mod envelope;
@@ -30,6 +31,7 @@ pub mod side_step;
 pub mod slope_step;
 pub mod steep_shallow;
 pub mod track;
+mod trim_clip;
 mod uncovered;
 pub mod waterline;
 

@@ -20,6 +20,7 @@ use swarf_path::Plan;
 use swarf_tool::Cutter;
 use swarf_toolpath::Pass;
 
+#[allow(unused_imports)]
 pub use swarf_testkit::parts::wave;
 
 /// A job on wave for `kind` with scallop `h` and tolerance `tol`, ball d = 8.
@@ -329,13 +330,13 @@ pub fn max_penetration(plan: &Plan, cutter: &Cutter, surface: &[Point3]) -> f64 
 }
 
 /// Largest material height left anywhere on `part` (a dense parameter grid with
-/// neighbours about `spacing` apart, boundaries included) by the ball passes of
-/// `plan`, and where.
+/// neighbours about `spacing` apart, boundaries included, points outside a face's
+/// trimming loops skipped) by the ball passes of `plan`, and where.
 pub fn max_residual(plan: &Plan, part: &Part, r: f64, spacing: f64) -> (f64, Point3) {
     let env = Envelope::new(plan, r);
     let mut worst = (0.0, Point3::origin());
-    for patch in &part.patches {
-        for (p, n) in dense_frames(patch, spacing) {
+    for k in 0..part.patches.len() {
+        for (p, n) in dense_frames(part, k, spacing) {
             let h = env.residual(&p, &n);
             if h > worst.0 {
                 worst = (h, p);
@@ -345,17 +346,24 @@ pub fn max_residual(plan: &Plan, part: &Part, r: f64, spacing: f64) -> (f64, Poi
     worst
 }
 
-/// Points and unit normals (toward +z) on a parameter grid of `patch`.
-fn dense_frames(patch: &Patch, spacing: f64) -> Vec<(Point3, Vec3)> {
+/// Points and unit normals (toward +z) on a parameter grid of patch `k` of `part`,
+/// inside its face's trimming loops if it has any.
+fn dense_frames(part: &Part, k: usize, spacing: f64) -> Vec<(Point3, Vec3)> {
+    let patch = &part.patches[k];
+    let trim = part.trim(k);
     let [[u0, u1], [v0, v1]] = patch.domain();
     let (nu, nv) = grid_size(patch, spacing);
     let mut out = Vec::with_capacity((nu + 1) * (nv + 1));
     for i in 0..=nu {
         for j in 0..=nv {
-            let d = patch.derivs(
+            let (u, v) = (
                 u0 + (u1 - u0) * i as f64 / nu as f64,
                 v0 + (v1 - v0) * j as f64 / nv as f64,
             );
+            if trim.is_some_and(|t| !t.contains(u, v)) {
+                continue;
+            }
+            let d = patch.derivs(u, v);
             let n = d.du.cross(&d.dv).normalize();
             out.push((d.point, if n.z < 0.0 { -n } else { n }));
         }
@@ -381,11 +389,18 @@ fn grid_size(patch: &Patch, spacing: f64) -> (usize, usize) {
     (nu, nv)
 }
 
+/// Points and unit normals of every face on the grids of [`dense_points`].
+pub fn dense_face_frames(part: &Part, spacing: f64) -> Vec<(Point3, Vec3)> {
+    (0..part.patches.len())
+        .flat_map(|k| dense_frames(part, k, spacing))
+        .collect()
+}
+
 /// `(n + 1)^2`-ish surface points of every patch on a uniform parameter grid whose
-/// neighbours are at most `spacing` apart (a fine structured tessellation's vertices).
+/// neighbours are at most `spacing` apart (a fine structured tessellation's vertices),
+/// inside the faces' trimming loops.
 pub fn dense_points(part: &Part, spacing: f64) -> Vec<Point3> {
-    part.patches
-        .iter()
-        .flat_map(|patch| dense_frames(patch, spacing).into_iter().map(|(p, _)| p))
+    (0..part.patches.len())
+        .flat_map(|k| dense_frames(part, k, spacing).into_iter().map(|(p, _)| p))
         .collect()
 }
