@@ -181,51 +181,55 @@ fn a_raster_on_a_multi_face_part_matches_opencamlib_on_occs_mesh() {
 #[test]
 fn an_iso_scallop_on_a_trimmed_face_stays_on_it() {
     let Some(dir) = occ_parts("iso") else { return };
-    let part = read(&dir.join("plate_hole.step"), 1e-4);
+    let step = dir.join("plate_hole.step");
+    let part = read(&step, 1e-4);
     // The drilled top face: the one with a hole.
     let top = (0..part.patches.len())
         .find(|&k| part.trim(k).is_some_and(|t| t.loops().len() == 2))
         .expect("a face with a hole");
-    let job = dir.join("iso.toml");
-    std::fs::write(
-        &job,
-        format!(
-            "part = \"plate_hole.step\"\nfaces = [{top}]\ntool = \"ball:d=4\"\n[strategy]\n\
-             kind = \"iso-scallop\"\nscallop = 0.05\ntolerance = 0.005\n[linking]\nclearance = 30\n\
-             [output]\ncsv = \"iso.csv\"\n"
-        ),
-    )
-    .unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_swarf"))
-        .arg("plan")
-        .arg(&job)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let text = format!(
+        "part = {:?}\nfaces = [{top}]\ntool = \"ball:d=4\"\n[strategy]\n\
+         kind = \"iso-scallop\"\nscallop = 0.05\ntolerance = 0.005\n[linking]\nclearance = 30\n",
+        step.display().to_string()
     );
-    let face = part.select(&[top]).unwrap();
-    let (patch, trim) = (&face.patches[0], face.trim(0).unwrap());
+    let job = swarf_app::Job::parse(&text, "iso.toml").unwrap();
+    let model = swarf_app::load_model_with(&job.part, &job.load_options()).unwrap();
+    let swarf_app::Model::Patches(face) = &model else {
+        panic!("a part")
+    };
+    let plan = swarf_app::plan(&job, swarf_app::PlanInput::Part(face)).unwrap();
+    let trim = face.trim(0).unwrap();
     let mut n = 0;
-    for l in std::fs::read_to_string(dir.join("iso.csv"))
-        .unwrap()
-        .lines()
-    {
-        if l.starts_with('#') || l.starts_with('x') {
-            continue;
-        }
-        let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
-        // A ball on a plane: the CC point is the CL point lifted by nothing in xy.
-        let cc = swarf_geom::Point3::new(v[0], v[1], v[2]);
-        let pr = patch.project(&cc);
-        assert!(pr.distance < 1e-6, "{cc:?} off the plane");
+    for p in plan.toolpath.passes.iter().flat_map(|p| &p.points) {
+        // Points without a contact are links between pieces of a pass.
+        let Some(c) = p.contact else { continue };
+        let uv = c.uv;
+        // Inside, or on a loop (where boundary passes and clipped ends run).
+        let on_loop = trim
+            .loops()
+            .iter()
+            .any(|l| (0..l.len()).any(|k| segment_distance(uv, l[k], l[(k + 1) % l.len()]) < 1e-6));
         assert!(
-            trim.contains(pr.u, pr.v) || pr.distance.is_nan(),
-            "CC {cc:?} outside the face"
+            trim.contains(uv[0], uv[1]) || on_loop,
+            "CC {:?} outside the face",
+            c.point
         );
+        // The hole (radius 6 about (15, 14)) is not on the face.
+        let r = ((c.point.x - 15.0).powi(2) + (c.point.y - 14.0).powi(2)).sqrt();
+        assert!(r > 6.0 - 1e-4, "CC {:?} over the hole", c.point);
         n += 1;
     }
-    assert!(n > 100, "{n} poses");
+    assert!(n > 100, "{n} contacts");
+}
+
+/// Distance from `p` to the segment `a`-`b` in the plane.
+fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let len2 = d[0] * d[0] + d[1] * d[1];
+    let t = if len2 > 0.0 {
+        (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    ((p[0] - a[0] - t * d[0]).powi(2) + (p[1] - a[1] - t * d[1]).powi(2)).sqrt()
 }
