@@ -5,10 +5,10 @@
 //!
 //! - the area inside its trimming loops, [`swarf_geom::Patch::area`] (Green's theorem,
 //!   Gauss-Legendre: exact to rounding for the loops as read);
-//! - the box is [`Patch::surface_box`] to [`BOX_TOL`]: each face touches the surface
+//! - the box is [`swarf_geom::Patch::surface_box`] to [`BOX_TOL`]: each face touches the surface
 //!   (it is spanned by surface points) and the surface reaches at most [`BOX_TOL`]
 //!   beyond it, found by Bezier subdivision;
-//! - the principal curvature ranges are [`Patch::curvature_range`] on a
+//! - the principal curvature ranges are [`swarf_geom::Patch::curvature_range`] on a
 //!   [`CURVATURE_SAMPLES`]-squared uniform parameter grid, corners and edges included:
 //!   every reported extreme is attained at a grid point (the true range holds the
 //!   reported one; an extreme between grid points is not caught).

@@ -58,6 +58,7 @@ fn trimmed() -> Part {
     let mut part = Part::new("trimmed bump", vec![bump()]);
     part.faces = vec![Face {
         name: Some("bump".into()),
+        surface: None,
         trim: Some(Trim::new(vec![outer, hole]).unwrap()),
     }];
     part
