@@ -48,6 +48,46 @@ pub struct CadPart {
     pub unit: String,
 }
 
+impl CadPart {
+    /// The part a reader has read from `source`: named after the file's stem, its
+    /// `patches` with their `faces`.
+    ///
+    /// # Errors
+    /// [`IoError::Format`](crate::IoError) when no face was read, saying what the
+    /// reader `expected` and which entities it skipped.
+    pub fn assemble(
+        source: &str,
+        patches: Vec<swarf_geom::Patch>,
+        faces: Vec<swarf_geom::Face>,
+        warnings: Vec<String>,
+        unit: String,
+        expected: &str,
+    ) -> Result<CadPart, crate::IoError> {
+        if patches.is_empty() {
+            let skipped = if warnings.is_empty() {
+                String::new()
+            } else {
+                format!("; skipped: {}", warnings.join("; "))
+            };
+            return Err(crate::IoError::format(
+                source,
+                crate::At::File,
+                format!("no faces: expected {expected}{skipped}"),
+            ));
+        }
+        let name = std::path::Path::new(source)
+            .file_stem()
+            .map_or_else(|| source.to_string(), |s| s.to_string_lossy().into_owned());
+        let mut part = Part::new(name, patches);
+        part.faces = faces;
+        Ok(CadPart {
+            part,
+            warnings,
+            unit,
+        })
+    }
+}
+
 /// Whether `path` names a CAD file by its extension (`.step`, `.stp`, `.igs`,
 /// `.iges`, any case).
 pub fn is_cad_file(path: &std::path::Path) -> bool {

@@ -52,7 +52,7 @@ use crate::error::{At, IoError};
 use params::{Params, tokenize};
 use records::{Entry, Records};
 use std::path::Path;
-use swarf_geom::{Face, Part};
+use swarf_geom::Face;
 
 /// Deepest nesting of entities followed (composite curves in composite curves,
 /// transformation chains); deeper is refused as a likely cycle.
@@ -150,31 +150,14 @@ pub fn parse_iges(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart
             }
         }
     }
-    if patches.is_empty() {
-        return Err(IoError::format(
-            source,
-            At::File,
-            format!(
-                "no faces: expected at least one supported entity 144 (trimmed surface) or 128 \
-                 (B-spline surface){}",
-                if warnings.is_empty() {
-                    String::new()
-                } else {
-                    format!("; skipped: {}", warnings.join("; "))
-                }
-            ),
-        ));
-    }
-    let name = Path::new(source)
-        .file_stem()
-        .map_or_else(|| source.to_string(), |s| s.to_string_lossy().into_owned());
-    let mut part = Part::new(name, patches);
-    part.faces = faces;
-    Ok(CadPart {
-        part,
+    CadPart::assemble(
+        source,
+        patches,
+        faces,
         warnings,
-        unit: iges.rec.unit.clone(),
-    })
+        iges.rec.unit.clone(),
+        "at least one supported entity 144 (trimmed surface) or 128 (B-spline surface)",
+    )
 }
 
 /// Why a face could not be read.

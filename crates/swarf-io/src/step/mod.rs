@@ -37,7 +37,6 @@ mod uv;
 use crate::cad::{CadOptions, CadPart, MAX_TRIM_CHORD, MIN_TRIM_CHORD, Unsupported};
 use crate::error::{At, IoError};
 use std::path::Path;
-use swarf_geom::Part;
 
 /// Most entity instances in one file.
 pub const MAX_ENTITIES: usize = 20_000_000;
@@ -116,30 +115,14 @@ pub fn parse_step(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart
             },
         }
     }
-    if patches.is_empty() {
-        return Err(IoError::format(
-            source,
-            At::File,
-            format!(
-                "no faces read (expected ADVANCED_FACEs with supported surfaces){}",
-                if warnings.is_empty() {
-                    String::new()
-                } else {
-                    format!(": {}", warnings.join("; "))
-                }
-            ),
-        ));
-    }
-    let name = Path::new(source)
-        .file_stem()
-        .map_or_else(|| source.to_string(), |s| s.to_string_lossy().into_owned());
-    let mut part = Part::new(name, patches);
-    part.faces = faces;
-    Ok(CadPart {
-        part,
+    CadPart::assemble(
+        source,
+        patches,
+        faces,
         warnings,
-        unit: u.name,
-    })
+        u.name,
+        "ADVANCED_FACEs with supported surfaces",
+    )
 }
 
 #[cfg(test)]
