@@ -11,7 +11,7 @@
 //! happens to lie on the chord is still followed.
 
 use crate::error::GeomError;
-use crate::math::Point3;
+use crate::math::{Point3, point_segment_distance};
 use crate::patch::MAX_DEGREE;
 use crate::patch::basis::{basis_funs, find_span};
 
@@ -186,7 +186,7 @@ impl NurbsCurve {
             let (ps, pe) = (self.eval(s), self.eval(e));
             let flat = [0.25, 0.5, 0.75].iter().all(|f| {
                 let q = self.eval(s + (e - s) * f);
-                chord_distance(&ps, &pe, &q) <= tol
+                point_segment_distance(&q, &ps, &pe) <= tol
             });
             if flat || (e - s).abs() <= f64::EPSILON * (s.abs() + e.abs()) {
                 out.push((e, pe));
@@ -207,18 +207,6 @@ impl NurbsCurve {
         }
         Ok(())
     }
-}
-
-/// Distance from `q` to the segment `a`-`b`.
-fn chord_distance(a: &Point3, b: &Point3, q: &Point3) -> f64 {
-    let d = b - a;
-    let len2 = d.norm_squared();
-    let t = if len2 > 0.0 {
-        ((q - a).dot(&d) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (q - (a + d * t)).norm()
 }
 
 #[cfg(test)]
