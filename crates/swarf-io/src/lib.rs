@@ -17,6 +17,7 @@
 pub mod atomic;
 pub mod builtin;
 pub mod cad;
+mod clamp;
 pub mod csv;
 pub mod error;
 pub mod iges;

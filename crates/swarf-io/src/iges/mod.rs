@@ -37,7 +37,6 @@
 //! count is checked against the parameters present before allocating, composite
 //! curves may not contain themselves, and curve visits are capped per entity.
 
-mod clamp;
 mod curve;
 mod face;
 mod params;

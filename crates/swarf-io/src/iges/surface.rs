@@ -2,8 +2,8 @@
 //! [`Patch`] in mm, and the bilinear patch standing for a 108 plane (module doc of
 //! [`super`]).
 
-use super::clamp::clamp;
 use super::{Iges, Params, Problem};
+use crate::clamp::clamp;
 use swarf_geom::{Patch, Point3, Vec3};
 
 /// A declared parameter range within this fraction of the knot domain is the

@@ -1,6 +1,7 @@
 //! Clamping a B-spline direction at the ends of its domain `[U_p, U_n]` (`n` control
 //! points, degree `p`) by knot insertion, the surface unchanged (The NURBS Book sec.
-//! 5.2, eq. 5.15; periodic and unclamped knots as IGES 126/128 may write them).
+//! 5.2, eq. 5.15; periodic and unclamped knots as STEP and IGES write them). The one
+//! clamp of both CAD readers.
 //!
 //! Inserting `a = U_p` until its multiplicity is `p` makes the curve pass through
 //! the control point just before the run of `a`s, `P_{f-1}` (`f` its first index);
@@ -11,8 +12,13 @@
 //! other direction), so one pass clamps every iso-curve at once.
 
 /// Clamps `knots` (`rows.len() + p + 1` of them) and the `rows` of homogeneous
-/// coordinates in place. Knots already clamped are left as they are.
-pub(crate) fn clamp(p: usize, knots: &mut Vec<f64>, rows: &mut Vec<Vec<f64>>) {
+/// coordinates in place. Knots already clamped are left as they are. `None` (and
+/// nothing changed) when the counts do not fit: degree 0, no more rows than `p`, or
+/// a knot count other than `rows.len() + p + 1`.
+pub(crate) fn clamp(p: usize, knots: &mut Vec<f64>, rows: &mut Vec<Vec<f64>>) -> Option<()> {
+    if p == 0 || rows.len() <= p || knots.len() != rows.len() + p + 1 {
+        return None;
+    }
     let all_eq = |s: &[f64]| s.iter().all(|x| *x == s[0]);
     if !all_eq(&knots[..=p]) {
         let a = knots[p];
@@ -43,6 +49,7 @@ pub(crate) fn clamp(p: usize, knots: &mut Vec<f64>, rows: &mut Vec<Vec<f64>>) {
             rows.truncate(l - p + 1);
         }
     }
+    Some(())
 }
 
 /// Inserts `t` until its multiplicity is at least `p`.
