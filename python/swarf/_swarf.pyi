@@ -129,11 +129,11 @@ class Dropper:
         """Tool tip heights (mm) at each row ``(x, y)`` of an ``(N, 2)`` float64 array:
         ``(N,)``, NaN off the mesh; a ``DropContacts`` with ``contacts=True``. Runs on
         ``threads`` workers (default: every core) with the GIL released."""
-    def _time_rust(
-        self, points: npt.ArrayLike, *, threads: Optional[int] = None, repeats: int = 1
-    ) -> List[Tuple[float, float]]:
-        """Benchmark support: ``(wall, cpu)`` seconds of each run of the same drops
-        through the Rust API alone (CPU: the process's, as ``time.process_time``)."""
+    def _drop_timed(
+        self, points: npt.ArrayLike, *, threads: Optional[int] = None
+    ) -> Tuple[FloatArray, Tuple[float, float]]:
+        """Benchmark support: ``drop(points, threads=threads)`` and the ``(wall, cpu)``
+        seconds of its drops alone (CPU: the process's, as ``time.process_time``)."""
 
 def drop(
     mesh: ModelLike,

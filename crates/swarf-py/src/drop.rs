@@ -61,26 +61,38 @@ fn threads_arg(threads: Option<usize>) -> PyResult<Option<usize>> {
     Ok(threads)
 }
 
+/// `(wall, cpu)` seconds.
+type Seconds = (f64, f64);
+
 impl Dropper {
-    /// [`Dropper::drop`] on checked points.
+    /// [`Dropper::drop`] on checked points. With `clock` (Python's
+    /// `time.process_time`), also the `(wall, cpu)` seconds of the drops alone.
     fn drop_rows(
         &self,
         py: Python<'_>,
         pts: Vec<[f64; 2]>,
         contacts: bool,
         threads: Option<usize>,
-    ) -> PyResult<Py<PyAny>> {
+        clock: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<(Py<PyAny>, Option<Seconds>)> {
         let threads = threads_arg(threads)?;
         let dropper = self.dropper.clone();
+        let cpu = clock.map(|c| c.call0()?.extract::<f64>()).transpose()?;
+        let t = Instant::now();
         let results = detached(py, || Ok(drop_points_threads(&dropper, &pts, threads).0))?;
+        let wall = t.elapsed().as_secs_f64();
+        let inner = match (clock, cpu) {
+            (Some(c), Some(cpu)) => Some((wall, c.call0()?.extract::<f64>()? - cpu)),
+            _ => None,
+        };
         if contacts {
-            return Ok(Py::new(py, DropContacts::new(&results))?.into_any());
+            return Ok((Py::new(py, DropContacts::new(&results))?.into_any(), inner));
         }
         let z: Vec<f64> = results
             .iter()
             .map(|r| r.map_or(f64::NAN, |r| r.z))
             .collect();
-        Ok(vec_out(py, z).into_any().unbind())
+        Ok((vec_out(py, z).into_any().unbind(), inner))
     }
 }
 
@@ -135,38 +147,25 @@ impl Dropper {
         threads: Option<usize>,
     ) -> PyResult<Py<PyAny>> {
         let pts = coordinate_rows::<2>("points", points)?;
-        self.drop_rows(py, pts, contacts, threads)
+        Ok(self.drop_rows(py, pts, contacts, threads, None)?.0)
     }
 
-    /// Benchmark support: the same work as `drop(points, threads=threads)` through
-    /// the Rust API alone (`drop_points_threads` on the points as Rust holds them),
-    /// `repeats` times; returns `(wall, cpu)` seconds of each run (the process's CPU
-    /// time, all threads, from Python's `time.process_time`). Timing `drop` in
-    /// Python the same way gives the cost of the Python boundary.
-    #[pyo3(signature = (points, *, threads = None, repeats = 1))]
-    fn _time_rust(
+    /// Benchmark support: `drop(points, threads=threads)`, the same path, and the
+    /// `(wall, cpu)` seconds of its drops alone (CPU: the process's, all threads, by
+    /// Python's `time.process_time`). Timing this call from Python and taking away
+    /// the drops gives the cost of the Python boundary within one call, free of the
+    /// run-to-run spread of the drops themselves.
+    #[pyo3(signature = (points, *, threads = None))]
+    fn _drop_timed(
         &self,
         py: Python<'_>,
         points: &Bound<'_, PyAny>,
         threads: Option<usize>,
-        repeats: usize,
-    ) -> PyResult<Vec<(f64, f64)>> {
+    ) -> PyResult<(Py<PyAny>, Seconds)> {
         let pts = coordinate_rows::<2>("points", points)?;
-        let threads = threads_arg(threads)?;
         let clock = py.import("time")?.getattr("process_time")?;
-        let mut out = Vec::with_capacity(repeats);
-        for _ in 0..repeats {
-            let cpu: f64 = clock.call0()?.extract()?;
-            let t = Instant::now();
-            detached(py, || {
-                std::hint::black_box(drop_points_threads(&self.dropper, &pts, threads));
-                Ok(())
-            })?;
-            let wall = t.elapsed().as_secs_f64();
-            let cpu = clock.call0()?.extract::<f64>()? - cpu;
-            out.push((wall, cpu));
-        }
-        Ok(out)
+        let (z, inner) = self.drop_rows(py, pts, false, threads, Some(&clock))?;
+        Ok((z, inner.unwrap_or_default()))
     }
 
     fn __repr__(&self) -> String {
@@ -188,7 +187,9 @@ pub fn drop(
 ) -> PyResult<Py<PyAny>> {
     let pts = coordinate_rows::<2>("points", points)?;
     threads_arg(threads)?;
-    Dropper::new(py, mesh, tool)?.drop_rows(py, pts, contacts, threads)
+    Ok(Dropper::new(py, mesh, tool)?
+        .drop_rows(py, pts, contacts, threads, None)?
+        .0)
 }
 
 /// Drop heights with their contacts (`swarf drop --contact`): arrays over the points.
