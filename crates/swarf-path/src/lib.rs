@@ -19,6 +19,7 @@ pub mod params;
 pub mod pass_bound;
 pub mod plan;
 pub mod ramp;
+pub mod roughing;
 pub mod raster;
 mod raster_double;
 mod raster_frame;

@@ -15,6 +15,8 @@
 //! - [`mow`]: deviation along the design normals ("mow the grass").
 //! - [`simulate`](mod@simulate): a program over a stock, in parallel row bands,
 //!   deterministically.
+//! - [`engagement`]: the cutter's radial engagement measured on the stock, motion
+//!   by motion.
 //! - [`stage`]: several programs in sequence on one stock, each with its own cutter.
 //! - [`verify`](mod@verify): all of it for a program (or several), a tool and a design.
 //! - [`report`] (JSON, CSV, text); the pictures of a verification are drawn by
@@ -25,6 +27,7 @@
 pub mod design;
 pub mod deviation;
 pub mod dexel;
+pub mod engagement;
 pub mod error;
 pub mod grid;
 pub mod mow;

