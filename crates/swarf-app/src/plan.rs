@@ -25,7 +25,8 @@ fn bound_for(job: &Job, part: &Part) -> Vec<PassBound> {
         | StrategyKind::Cleanup
         | StrategyKind::Waterline
         | StrategyKind::SteepShallow
-        | StrategyKind::DropSpin => return Vec::new(),
+        | StrategyKind::DropSpin
+        | StrategyKind::Roughing => return Vec::new(),
         StrategyKind::IsoParametric | StrategyKind::IsoScallop => Feed::Param(job.param_dir()),
         StrategyKind::IsoPlanar => Feed::Plane(job.angle_rad()),
     };
@@ -33,6 +34,28 @@ fn bound_for(job: &Job, part: &Part) -> Vec<PassBound> {
         Some(Ok(side)) => pass_bound(part, &side, feed),
         _ => Vec::new(),
     }
+}
+
+/// Z-level roughing of `mesh` from a box over its XY extent, its top at the job's
+/// `stock_top` (default 1 mm above the part).
+fn roughing(job: &Job, mesh: &TriMesh) -> Result<Plan, PathError> {
+    let b = mesh.aabb();
+    let top = job.strategy.stock_top.unwrap_or(b.max.z + 1.0);
+    let (min, max) = ([b.min.x, b.min.y], [b.max.x, b.max.y]);
+    let material = move |x: f64, y: f64| {
+        if x >= min[0] && x <= max[0] && y >= min[1] && y <= max[1] {
+            top
+        } else {
+            f64::NEG_INFINITY
+        }
+    };
+    let stock = swarf_path::roughing::RoughingStock {
+        min,
+        max,
+        top,
+        material: &material,
+    };
+    Ok(swarf_path::roughing::plan(mesh, &stock, &job.roughing_params())?.0)
 }
 
 /// Plans `job` on `input`.
@@ -63,6 +86,10 @@ pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
         (StrategyKind::SteepShallow, PlanInput::Part(part)) => {
             let mesh = part.tessellate(job.strategy.tolerance * 0.1)?;
             swarf_path::steep_shallow::plan(&mesh, &job.steep_shallow_params())?
+        }
+        (StrategyKind::Roughing, PlanInput::Mesh(mesh)) => roughing(job, mesh)?,
+        (StrategyKind::Roughing, PlanInput::Part(part)) => {
+            roughing(job, &part.tessellate(job.strategy.tolerance * 0.1)?)?
         }
         (StrategyKind::Cleanup, _) => {
             return Err(PathError::NoPath(

@@ -29,6 +29,9 @@ pub enum StrategyKind {
     /// Five-axis multipoint passes along the common edge of two faces, by drop and
     /// spin (paper 003; planned by `swarf_fiveaxis::dsm`).
     DropSpin,
+    /// Z-level roughing from a box stock down to the part plus an allowance
+    /// ([`crate::roughing`]).
+    Roughing,
 }
 
 /// Which parameter a pass follows (iso-parametric) or which boundary the first pass

@@ -4,7 +4,7 @@
 //! where the tool reaches, and its engagement, measured on the stock, stays at the
 //! stated largest on straight stretches.
 
-use swarf_geom::{Point3, Vec3};
+use swarf_geom::Point3;
 use swarf_nc::read::{Motion, MotionKind};
 use swarf_path::Finish;
 use swarf_path::roughing::{RoughingParams, RoughingStock, plan};
@@ -57,14 +57,46 @@ fn motions(moves: &[swarf_toolpath::Move]) -> Vec<Motion> {
         .collect()
 }
 
+/// What one roughing run gave.
+struct Run {
+    /// Estimated machining time, s.
+    time_s: f64,
+    /// Engagement of each clearing motion (entries left out), degrees.
+    clearing: Vec<f64>,
+}
+
+impl Run {
+    fn share_over(&self, deg: f64) -> f64 {
+        self.clearing.iter().filter(|a| **a > deg).count() as f64 / self.clearing.len() as f64
+    }
+}
+
 #[test]
-fn fillet_pocket_from_a_box() {
+fn fillet_pocket_from_a_box_adaptive_against_plain_offset() {
+    let adaptive = rough(true);
+    let plain = rough(false);
+    let (a, p) = (adaptive.share_over(65.0), plain.share_over(65.0));
+    eprintln!(
+        "60 degrees stated: clearing motions over 65 degrees: adaptive {:.2} %, plain offset \
+         {:.2} %; machining time adaptive {:.0} s, plain {:.0} s ({:.2}x)",
+        100.0 * a,
+        100.0 * p,
+        adaptive.time_s,
+        plain.time_s,
+        adaptive.time_s / plain.time_s
+    );
+    assert!(a < 0.02, "adaptive: {:.2} % over", 100.0 * a);
+    assert!(p > 5.0 * a, "plain offset should overload far more often");
+}
+
+fn rough(adaptive: bool) -> Run {
     let mesh = swarf_io::builtin_mesh("fillet-pocket").unwrap();
     let tool = Cutter::flat(10.0, None).unwrap();
     let mut params = RoughingParams::new(Finish::new(tool));
     params.step_down = 4.0;
     params.allowance = 0.5;
     params.max_engagement = 60f64.to_radians();
+    params.adaptive = adaptive;
     let box_top = |x: f64, y: f64| {
         if (0.0..=100.0).contains(&x) && (0.0..=80.0).contains(&y) {
             STOCK_TOP
@@ -81,14 +113,6 @@ fn fillet_pocket_from_a_box() {
     let (plan, report) = plan(&mesh, &stock, &params).unwrap();
     let moves = plan.toolpath.moves();
     let motions = motions(&moves);
-    eprintln!(
-        "levels {:?}, rings {}, entries {}, moves {}",
-        report.levels,
-        report.rings,
-        report.entries.len(),
-        moves.len()
-    );
-
     let grid = Grid::covering([0.0, 0.0], [100.0, 80.0], 0.2, 1 << 30).unwrap();
     let mut dexel = Dexel::new(grid, StockInit::Box { top: STOCK_TOP }).unwrap();
     let sim_tool = SimTool::new(&tool).unwrap();
@@ -98,7 +122,8 @@ fn fillet_pocket_from_a_box() {
     };
     let eng = measure_engagement(&mut dexel, &sim_tool, &motions, 0, &opts, &Quiet);
 
-    // No gouge: every cell at least the design plus the allowance.
+    // No gouge: every cell at least the design plus the allowance; on the floor,
+    // away from the walls, nothing more.
     let (mut gouge, mut left) = (0.0f64, 0.0f64);
     for j in 0..grid.ny {
         for i in 0..grid.nx {
@@ -106,11 +131,7 @@ fn fillet_pocket_from_a_box() {
             let h = dexel.height(i, j);
             let z = design(x, y);
             gouge = gouge.max(z + params.allowance - h);
-            // Inside the pocket core, away from walls: nothing above the bottom level
-            // plus what the level step leaves.
-            let dx = (25.0 - x).max(x - 75.0);
-            let dy = (25.0 - y).max(y - 55.0);
-            if dx < -1.0 && dy < -1.0 {
+            if (25.0 - x).max(x - 75.0) < -1.0 && (25.0 - y).max(y - 55.0) < -1.0 {
                 left = left.max(h - z);
             }
         }
@@ -132,25 +153,25 @@ fn fillet_pocket_from_a_box() {
         .filter(|(_, e)| !**e)
         .filter_map(|(a, _)| *a)
         .filter(|a| *a > 0.0)
+        .map(f64::to_degrees)
         .collect();
     let mut hist = vec![0usize; 19];
     for a in &clearing {
-        hist[(a.to_degrees() / 10.0) as usize] += 1;
+        hist[(a / 10.0) as usize] += 1;
     }
-    for (k, a) in eng.per_motion.iter().enumerate() {
-        if let Some(a) = a
-            && !entry[k]
-            && a.to_degrees() > 100.0
-        {
-            eprintln!("  motion {k}: {:.1} deg at {:?} pass {:?}", a.to_degrees(), moves[k].to.cl, moves[k].pass);
-        }
-    }
+    let time_s = swarf_toolpath::motion_stats(&moves, 5000.0).time_s;
     eprintln!(
-        "gouge {gouge:.2e} mm, left on floor {left:.4} mm, max engagement {:.1} deg, histogram \
-         (10 deg bins) {hist:?}",
-        eng.max().to_degrees()
+        "{}: {} levels, {} rings, {} entries, {} motions, {time_s:.0} s; gouge {gouge:.1e} \
+         mm, floor left {left:.4} mm; engagement of {} clearing motions in 10 degree bins \
+         {hist:?}",
+        if adaptive { "adaptive" } else { "plain offset" },
+        report.levels.len(),
+        report.rings,
+        report.entries.len(),
+        moves.len(),
+        clearing.len()
     );
     assert!(gouge < 1e-6, "gouge {gouge}");
     assert!(left <= params.allowance + 1e-6, "left {left}");
-    let _ = Vec3::z();
+    Run { time_s, clearing }
 }

@@ -94,7 +94,14 @@ pub fn measure_engagement(
             known_start: opts.known_start || k > 0,
             ..*opts
         };
-        simulate_from(dexel, tool, std::slice::from_ref(m), first + k, &opts, &Quietly);
+        simulate_from(
+            dexel,
+            tool,
+            std::slice::from_ref(m),
+            first + k,
+            &opts,
+            &Quietly,
+        );
         progress.advance(1);
     }
     progress.end();

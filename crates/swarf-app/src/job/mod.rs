@@ -70,6 +70,7 @@ use swarf_fiveaxis::post::FeedMode;
 use swarf_io::error::toml_message;
 use swarf_nc::{Dialect, Units};
 use swarf_path::params::{Finish, IsoParams, ParamDir, RasterParams, StartSide, StrategyKind};
+use swarf_path::roughing::RoughingParams;
 use swarf_path::steep_shallow::SteepShallowParams;
 use swarf_path::waterline::{Milling, WaterlineParams};
 use swarf_rest::{Pattern, RegionParams};
@@ -298,6 +299,23 @@ pub struct StrategyParams {
     /// Drop-spin: the faces dropped on (the bands of the valley).
     #[serde(default)]
     pub bands: BandChoice,
+    /// Roughing: material left on the part, mm (default 0.5).
+    #[serde(default)]
+    pub allowance: Option<f64>,
+    /// Roughing: largest depth of one level, mm (default 2).
+    #[serde(default)]
+    pub step_down: Option<f64>,
+    /// Roughing: largest radial engagement on straight stretches, degrees (default
+    /// 60); sets the stepover.
+    #[serde(default)]
+    pub max_engagement: Option<f64>,
+    /// Roughing: ramp angle of the entries, degrees (default 3).
+    #[serde(default)]
+    pub ramp_angle: Option<f64>,
+    /// Roughing: top of the box stock, mm (default 1 mm above the part); the box
+    /// covers the part's XY extent.
+    #[serde(default)]
+    pub stock_top: Option<f64>,
 }
 
 /// The bands of drop-spin passes: which faces the tool is dropped on.
@@ -525,6 +543,22 @@ impl Job {
             direction: self.milling(),
             top: None,
             bottom: None,
+        }
+    }
+
+    /// The parameters of Z-level roughing (module doc of [`swarf_path::roughing`]).
+    pub fn roughing_params(&self) -> RoughingParams {
+        let s = &self.strategy;
+        let base = RoughingParams::new(self.finish());
+        RoughingParams {
+            allowance: s.allowance.unwrap_or(base.allowance),
+            step_down: s.step_down.unwrap_or(base.step_down),
+            max_engagement: s
+                .max_engagement
+                .map_or(base.max_engagement, f64::to_radians),
+            ramp_angle: s.ramp_angle.map_or(base.ramp_angle, f64::to_radians),
+            sampling: s.sampling,
+            ..base
         }
     }
 

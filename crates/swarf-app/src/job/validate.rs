@@ -82,7 +82,8 @@ impl Job {
         in_domain("strategy.sampling", s.sampling, SAMPLE)?;
         let waterline = s.kind == StrategyKind::Waterline && s.level_step.is_some();
         let drop_spin = s.kind == StrategyKind::DropSpin;
-        if s.scallop.is_none() && s.stepover.is_none() && !waterline && !drop_spin {
+        let roughing = s.kind == StrategyKind::Roughing;
+        if s.scallop.is_none() && s.stepover.is_none() && !waterline && !drop_spin && !roughing {
             return Err(
                 "strategy: expected `scallop` (scallop height limit, mm) or `stepover` (mm)".into(),
             );
@@ -92,7 +93,8 @@ impl Job {
                 StrategyKind::Raster
                 | StrategyKind::Cleanup
                 | StrategyKind::SteepShallow
-                | StrategyKind::DropSpin,
+                | StrategyKind::DropSpin
+                | StrategyKind::Roughing,
                 _,
                 _,
             )

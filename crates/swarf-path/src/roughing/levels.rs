@@ -74,7 +74,10 @@ mod tests {
         let z = levels(&mesh, 10.0, 0.5, 2.0).unwrap();
         let want = [8.0, 6.0, 4.0, 3.8, 2.0, 0.5];
         assert_eq!(z.len(), want.len(), "{z:?}");
-        assert!(z.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-12), "{z:?}");
+        assert!(
+            z.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-12),
+            "{z:?}"
+        );
         assert!(levels(&mesh, 1e9, 0.5, 1e-3).is_err());
         assert!(levels(&mesh, 0.2, 0.5, 1.0).unwrap().is_empty());
     }

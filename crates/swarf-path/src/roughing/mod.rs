@@ -3,14 +3,12 @@
 //!
 //! At a level `z` the tool tip may stand where the cutter's drop height onto the part
 //! is at most `z - allowance` (thesis 002 §6.2.2, the Z-slice of the tool offset
-//! surface; the waterline contour of [`crate::waterline`]). The cutter widened by `d`
-//! (a flat or bull end `d` wider in radius; a ball end becomes a bull with the ball's
-//! corner) is the cutter swept over a horizontal disc of radius `d`, so its contour
-//! is the allowed region's boundary offset inwards by `d`, exactly: ring `k` is that
-//! contour for `d = k s`. The rings are cut from the innermost outwards
-//! ([`regions`]), so each removes a band one stepover `s` wide: on a straight stretch
-//! the cutter's engagement angle is `acos(1 - s / R)` (R the cutter radius), and the
-//! stepover is chosen from the stated largest engagement that way. The tool enters a
+//! surface; the waterline contour of [`crate::waterline`], exact to its tolerance).
+//! Ring `k` is the boundary of that region offset inwards by `k s` (polygon buffers;
+//! the offset of the tool-centre region by `d` is the region of the cutter widened
+//! by `d`). The rings are cut from the innermost outwards ([`regions`]), so each
+//! removes a band one stepover `s` wide: on a straight stretch the cutter's
+//! engagement angle is `acos(1 - s / R)` (R the cutter radius). The tool enters a
 //! level at each innermost ring by ramping down along that ring's own loop at the
 //! ramp angle (a helix when the ring is round), from the level above, which was
 //! cleared (the allowed region only shrinks downwards).
@@ -24,10 +22,13 @@
 //! on every flat of the part (its height plus the allowance), so no floor keeps more
 //! than the allowance.
 //!
-//! Inside corners of rings are sharp (the offset of a pocket's corner), and a tool
-//! pivoting round one meets more material than on a straight stretch: the engagement
-//! measured on the simulated stock (swarf-sim's engagement) reports it.
+//! Rings of plain offset roughing have sharp corners where the pocket has (the
+//! offset of a corner is a corner), and a tool turning one meets far more material
+//! than on a straight stretch. Adaptive roughing rounds them and steps over less, so
+//! that the engagement holds in right-angled corners too ([`corners`]); the
+//! engagement measured on the simulated stock (swarf-sim's `engagement`) checks it.
 
+mod corners;
 mod levels;
 mod regions;
 
@@ -35,7 +36,7 @@ use crate::error::PathError;
 use crate::params::Finish;
 use crate::plan::{Plan, PlanReport};
 use crate::waterline::{Milling, Waterline, WaterlineParams};
-use regions::{Region, Ring, cutting_order, link_parents, regions_of};
+use regions::{Region, Ring, cutting_order, link_parents};
 use swarf_geom::{Point3, TriMesh};
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Pass, PathPoint};
@@ -44,6 +45,8 @@ use swarf_toolpath::{Pass, PathPoint};
 pub const MAX_RINGS: usize = 2_000;
 /// Gap between the stock's side and the skirt that bounds the tool, mm.
 pub const SKIRT_GAP: f64 = 1.0;
+/// Points closer than this are one, mm.
+const SAME_POINT: f64 = 1e-9;
 /// How far ahead (in tool radii) the step to the next ring lands.
 pub const LINK_LEAD: f64 = 2.0;
 /// Material higher than the level by less than this is not cut, mm.
@@ -65,6 +68,13 @@ pub struct RoughingParams {
     pub ramp_angle: f64,
     /// Drop-field grid step, mm (default: a quarter of the tool radius).
     pub sampling: Option<f64>,
+    /// Round the inner rings' corners and step over so that the engagement holds
+    /// in right-angled corners too ([`corners`]); false: plain offset rings, sharp
+    /// corners, the straight-stretch stepover.
+    pub adaptive: bool,
+    /// Radius the inner rings' corners are rounded to, mm (default: the tool
+    /// radius).
+    pub corner_radius: Option<f64>,
 }
 
 impl RoughingParams {
@@ -77,12 +87,25 @@ impl RoughingParams {
             max_engagement: 60f64.to_radians(),
             ramp_angle: 3f64.to_radians(),
             sampling: None,
+            adaptive: true,
+            corner_radius: None,
         }
     }
 
-    /// The stepover from the largest engagement, mm.
+    /// The radius the inner rings' corners are rounded to, mm.
+    pub fn rho(&self) -> f64 {
+        self.corner_radius.unwrap_or(self.finish.tool.radius())
+    }
+
+    /// The stepover from the largest engagement, mm: on straight stretches for
+    /// plain offset rings, in right-angled rounded corners for adaptive ones.
     pub fn stepover(&self) -> f64 {
-        self.finish.tool.radius() * (1.0 - self.max_engagement.cos())
+        let r = self.finish.tool.radius();
+        if self.adaptive {
+            corners::stepover(self.rho(), r, self.max_engagement)
+        } else {
+            r * (1.0 - self.max_engagement.cos())
+        }
     }
 }
 
@@ -131,7 +154,7 @@ pub fn plan(
     let skirted = skirted(mesh, stock, params.finish.tool.radius());
     let levels = levels::levels(mesh, stock.top, params.allowance, params.step_down)?;
     let s = params.stepover();
-    let mut rings = RingFields::new(&skirted, params, s);
+    let rings = Rings::new(&skirted, params, s)?;
     let mut report = RoughingReport {
         levels: levels.clone(),
         stepover: s,
@@ -140,7 +163,7 @@ pub fn plan(
     let mut passes: Vec<Pass> = Vec::new();
     let mut above = stock.top;
     for &z in &levels {
-        let regions = rings.level(z, params.allowance)?;
+        let regions = rings.level(z)?;
         cut_level(&regions, z, above, stock, params, &mut passes, &mut report);
         above = z;
     }
@@ -187,7 +210,10 @@ fn check(params: &RoughingParams, stock: &RoughingStock<'_>) -> Result<(), PathE
     if !(params.step_down.is_finite() && params.step_down > 0.0 && params.step_down <= 1000.0) {
         return Err(bad(
             "strategy.step_down",
-            format!("{} mm: expected more than 0, at most 1000 mm", params.step_down),
+            format!(
+                "{} mm: expected more than 0, at most 1000 mm",
+                params.step_down
+            ),
         ));
     }
     let deg = crate::params::degrees;
@@ -196,13 +222,32 @@ fn check(params: &RoughingParams, stock: &RoughingStock<'_>) -> Result<(), PathE
     {
         return Err(bad(
             "strategy.max_engagement",
-            format!("{} degrees: expected 1 to 90 degrees", deg(params.max_engagement)),
+            format!(
+                "{} degrees: expected 1 to 90 degrees",
+                deg(params.max_engagement)
+            ),
+        ));
+    }
+    let r = params.finish.tool.radius();
+    if let Some(rho) = params.corner_radius
+        && !(rho >= 0.05 * r && rho <= 100.0 * r)
+    {
+        return Err(bad(
+            "strategy.corner_radius",
+            format!(
+                "{rho} mm: expected 0.05 to 100 tool radii ({} to {} mm)",
+                0.05 * r,
+                100.0 * r
+            ),
         ));
     }
     if !(params.ramp_angle >= 0.1f64.to_radians() && params.ramp_angle <= 45f64.to_radians()) {
         return Err(bad(
             "strategy.ramp_angle",
-            format!("{} degrees: expected 0.1 to 45 degrees", deg(params.ramp_angle)),
+            format!(
+                "{} degrees: expected 0.1 to 45 degrees",
+                deg(params.ramp_angle)
+            ),
         ));
     }
     let ok = stock.min.iter().chain(&stock.max).all(|v| v.is_finite())
@@ -243,41 +288,40 @@ fn skirted(mesh: &TriMesh, stock: &RoughingStock<'_>, radius: f64) -> TriMesh {
     out
 }
 
-/// The cutter widened by `d` in radius (module doc).
-fn widened(tool: &Cutter, d: f64) -> Result<Cutter, PathError> {
-    let r = tool.radius() + d;
-    let c = match *tool {
-        Cutter::Flat { .. } => Cutter::flat(2.0 * r, None),
-        Cutter::Ball { .. } => Cutter::bull(2.0 * r, tool.radius(), None),
-        Cutter::Bull { corner, .. } => Cutter::bull(2.0 * r, corner, None),
-        _ => Cutter::flat(2.0 * r, None),
-    };
-    c.map_err(|e| PathError::InvalidParameter {
-        field: "tool".into(),
-        message: e.to_string(),
-    })
-}
-
-/// The waterline fields of the widened cutters, made as levels need them.
-struct RingFields<'a> {
-    mesh: &'a TriMesh,
+/// The level contours of the cutter over the skirted part, and the rings in them.
+struct Rings<'a> {
     params: &'a RoughingParams,
     stepover: f64,
-    fields: Vec<Waterline<'a>>,
+    waterline: Waterline<'a>,
 }
 
-impl<'a> RingFields<'a> {
-    fn new(mesh: &'a TriMesh, params: &'a RoughingParams, stepover: f64) -> RingFields<'a> {
-        RingFields {
-            mesh,
+impl<'a> Rings<'a> {
+    fn new(
+        mesh: &'a TriMesh,
+        params: &'a RoughingParams,
+        stepover: f64,
+    ) -> Result<Rings<'a>, PathError> {
+        let mut wp = WaterlineParams::new(params.finish.clone(), 0.1);
+        wp.sampling = params.sampling;
+        Ok(Rings {
             params,
             stepover,
-            fields: Vec::new(),
-        }
+            waterline: Waterline::new(mesh, &wp)?,
+        })
     }
 
     /// Every ring's regions at tip height `z`, parents linked.
-    fn level(&mut self, z: f64, allowance: f64) -> Result<Vec<Region>, PathError> {
+    fn level(&self, z: f64) -> Result<Vec<Region>, PathError> {
+        let loops = self
+            .waterline
+            .level(z - self.params.allowance, Milling::Climb)
+            .loops;
+        let loops: Vec<Ring> = loops
+            .iter()
+            .map(|lp| lp.iter().map(|p| [p.pose.cl.x, p.pose.cl.y]).collect())
+            .collect();
+        let a0 = regions::allowed(loops);
+        let rho = self.params.adaptive.then(|| self.params.rho());
         let mut all: Vec<Region> = Vec::new();
         let mut first_of = Vec::new();
         for k in 0..=MAX_RINGS {
@@ -291,13 +335,8 @@ impl<'a> RingFields<'a> {
                     ),
                 });
             }
-            let loops = self.ring(k)?.level(z - allowance, Milling::Climb).loops;
-            let loops: Vec<Ring> = loops
-                .iter()
-                .map(|lp| lp.iter().map(|p| [p.pose.cl.x, p.pose.cl.y]).collect())
-                .collect();
             first_of.push(all.len());
-            let found = regions_of(k, loops);
+            let found = regions::ring_regions(&a0, k, self.stepover * k as f64, rho);
             if found.is_empty() {
                 break;
             }
@@ -306,22 +345,6 @@ impl<'a> RingFields<'a> {
         first_of.push(all.len());
         link_parents(&mut all, &first_of);
         Ok(all)
-    }
-
-    fn ring(&mut self, k: usize) -> Result<&Waterline<'a>, PathError> {
-        while self.fields.len() <= k {
-            let d = self.stepover * self.fields.len() as f64;
-            let mut finish = self.params.finish.clone();
-            finish.tool = widened(&self.params.finish.tool, d)?;
-            let mut wp = WaterlineParams::new(finish, 0.1);
-            wp.sampling = Some(
-                self.params
-                    .sampling
-                    .unwrap_or(0.25 * self.params.finish.tool.radius()),
-            );
-            self.fields.push(Waterline::new(self.mesh, &wp)?);
-        }
-        Ok(&self.fields[k])
     }
 }
 
@@ -393,7 +416,10 @@ fn link_aim(pts: &[[f64; 3]], radius: f64) -> [f64; 2] {
     };
     let len = (last[0] - b[0]).hypot(last[1] - b[1]);
     let k = LINK_LEAD * radius / len;
-    [last[0] + k * (last[0] - b[0]), last[1] + k * (last[1] - b[1])]
+    [
+        last[0] + k * (last[0] - b[0]),
+        last[1] + k * (last[1] - b[1]),
+    ]
 }
 
 /// Whether material stands above `z` within the tool's reach of some point of `lp`
@@ -417,10 +443,18 @@ fn ramp_entry(lp: &Ring, above: f64, z: f64, angle: f64, pts: &mut Vec<[f64; 3]>
     let slope = angle.tan();
     let n = lp.len();
     let mut h = above.max(z);
-    pts.push([lp[0][0], lp[0][1], h]);
+    let push = |p: [f64; 3], pts: &mut Vec<[f64; 3]>| {
+        let same = pts.last().is_some_and(|q: &[f64; 3]| {
+            (q[0] - p[0]).hypot(q[1] - p[1]).hypot(q[2] - p[2]) < SAME_POINT
+        });
+        if !same {
+            pts.push(p);
+        }
+    };
+    push([lp[0][0], lp[0][1], h], pts);
     let length: f64 = (0..n).map(|i| dist(lp[i], lp[(i + 1) % n])).sum();
     if length < 1e-6 {
-        pts.push([lp[0][0], lp[0][1], z]);
+        push([lp[0][0], lp[0][1], z], pts);
         return;
     }
     let mut i = 0;
@@ -429,16 +463,16 @@ fn ramp_entry(lp: &Ring, above: f64, z: f64, angle: f64, pts: &mut Vec<[f64; 3]>
         let drop = dist(a, b) * slope;
         if h - drop <= z {
             let t = (h - z) / drop;
-            pts.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), z]);
+            push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), z], pts);
             // Finish the round at the level, back to the loop's start.
             for p in &lp[i % n + 1..] {
-                pts.push([p[0], p[1], z]);
+                push([p[0], p[1], z], pts);
             }
-            pts.push([lp[0][0], lp[0][1], z]);
+            push([lp[0][0], lp[0][1], z], pts);
             return;
         }
         h -= drop;
-        pts.push([b[0], b[1], h]);
+        push([b[0], b[1], h], pts);
         i += 1;
     }
 }
@@ -460,11 +494,13 @@ fn pass_of(pts: &[[f64; 3]]) -> Pass {
     let mut points: Vec<PathPoint> = Vec::with_capacity(pts.len());
     for p in pts {
         if let Some(last) = points.last()
-            && (last.pose.cl - Point3::new(p[0], p[1], p[2])).norm() < 1e-9
+            && (last.pose.cl - Point3::new(p[0], p[1], p[2])).norm() < SAME_POINT
         {
             continue;
         }
-        points.push(PathPoint::new(Pose::vertical(Point3::new(p[0], p[1], p[2]))));
+        points.push(PathPoint::new(Pose::vertical(Point3::new(
+            p[0], p[1], p[2],
+        ))));
     }
     Pass {
         points,

@@ -2,22 +2,23 @@
 //!
 //! Ring `k` of a level is the boundary of `A_k = {D >= k s}`, where `D` is the
 //! distance from the boundary of the tool centre's allowed region `A_0` and `s` the
-//! stepover: the waterline loops of the cutter widened by `k s` ([`super::widened`]).
-//! Each connected part of `A_k` is a [`Region`]: one outer loop (allowed inside,
-//! counter-clockwise, positive area) and the hole loops around the islands in it
-//! (clockwise). A region of ring `k + 1` lies in exactly one region of ring `k`, its
-//! parent, which makes a forest. Regions are cut children first (post-order): a leaf
-//! is where the tool enters the level (the innermost ring of a pocket, entered by a
-//! ramp along its own loop), and every parent is cut right after its last child, a
-//! stepover outside it, so the cut grows outwards ring by ring and every ring removes
-//! a band of one stepover. The tool stays at the level from a child to its parent;
-//! it leaves the level only to reach another leaf.
+//! stepover: `A_0` from the waterline contour of the level, `A_k` its inward offset
+//! by `k s` (geo's buffers). Each connected part of `A_k` is a [`Region`]: an outer
+//! loop (allowed inside, counter-clockwise) and the hole loops round the islands in
+//! it (clockwise). A region of ring `k + 1` lies in exactly one region of ring `k`,
+//! its parent, which makes a forest. Regions are cut children first (post-order): a
+//! leaf is where the tool enters the level (the innermost ring of a pocket, entered
+//! by a ramp along its own loop), and every parent is cut right after its last
+//! child, a stepover outside it, so the cut grows outwards ring by ring and every
+//! ring removes a band of one stepover. The tool stays at the level from a child to
+//! its parent; it leaves the level only to reach another leaf.
 //!
 //! Every point of `A_0` is within one stepover of some ring (the distance falls at
 //! unit rate towards the boundary), so with a stepover below the tool radius the
 //! rings clear the whole level.
 
-use geo::{Area, Contains, Coord, LineString, Polygon};
+use super::corners::{loops_of, offset, opened};
+use geo::{Area, Contains, Coord, LineString, MultiPolygon, Polygon};
 
 /// A closed loop of tool-centre positions (first point not repeated).
 pub(crate) type Ring = Vec<[f64; 2]>;
@@ -27,72 +28,89 @@ pub(crate) type Ring = Vec<[f64; 2]>;
 pub(crate) struct Region {
     /// The ring index `k`.
     pub ring: usize,
-    /// Outer loop first, then holes, each in cutting direction (climb).
+    /// The loops to cut: outer first, then holes, each in cutting direction (climb);
+    /// rounded when the rings are.
     pub loops: Vec<Ring>,
+    /// The part of `A_k` itself (not rounded).
+    pub outline: Polygon,
     /// Index of the parent region (ring `k - 1`), if any.
     pub parent: Option<usize>,
 }
 
-/// The regions of one ring from its loops (waterline orientation: allowed region on
-/// the left of travel). Holes belong to the smallest outer loop containing them.
-pub(crate) fn regions_of(ring: usize, loops: Vec<Ring>) -> Vec<Region> {
+/// `A_0` as polygons from the level's contour loops (waterline orientation: the
+/// allowed region on the left of travel). Holes belong to the smallest outer loop
+/// containing them.
+pub(crate) fn allowed(loops: Vec<Ring>) -> Vec<Polygon> {
     let (mut outer, mut holes) = (Vec::new(), Vec::new());
     for lp in loops.into_iter().filter(|l| l.len() > 2) {
-        let poly = polygon(&lp);
-        let area = poly.signed_area();
+        let ls = line(&lp);
+        let area = Polygon::new(ls.clone(), Vec::new()).signed_area();
         if area > 0.0 {
-            outer.push((poly, area, lp));
+            outer.push((ls, area, Vec::new()));
         } else {
-            holes.push(lp);
+            holes.push(ls);
         }
     }
-    let mut regions: Vec<Region> = outer
-        .iter()
-        .map(|(_, _, lp)| Region {
-            ring,
-            loops: vec![lp.clone()],
-            parent: None,
-        })
-        .collect();
     for hole in holes {
-        let p = Coord {
-            x: hole[0][0],
-            y: hole[0][1],
-        };
+        let p = hole.0[0];
         let owner = outer
             .iter()
             .enumerate()
-            .filter(|(_, (poly, _, _))| poly.contains(&p))
+            .filter(|(_, (ls, _, _))| Polygon::new(ls.clone(), Vec::new()).contains(&p))
             .min_by(|a, b| a.1.1.total_cmp(&b.1.1).then(a.0.cmp(&b.0)))
             .map(|(k, _)| k);
         if let Some(k) = owner {
-            regions[k].loops.push(hole);
+            outer[k].2.push(hole);
         }
     }
-    regions
+    outer
+        .into_iter()
+        .map(|(ls, _, holes)| Polygon::new(ls, holes))
+        .collect()
 }
 
-/// Sets each region's parent: the region of the ring before whose outer loop holds
-/// the first point of its outer loop (`all` holds every ring's regions in ring order;
+/// The regions of ring `k`: `A_0` offset inwards by `d` (`k s`), each part opened by
+/// `rho` when given ([`super::corners`]).
+pub(crate) fn ring_regions(a0: &[Polygon], k: usize, d: f64, rho: Option<f64>) -> Vec<Region> {
+    let parts: Vec<Polygon> = if k == 0 {
+        a0.to_vec()
+    } else {
+        a0.iter().flat_map(|p| offset(p, -d)).collect()
+    };
+    parts
+        .into_iter()
+        .filter(|p| p.unsigned_area() > 0.0)
+        .map(|outline| {
+            let cut: MultiPolygon = rho
+                .and_then(|r| opened(&outline, r))
+                .unwrap_or_else(|| MultiPolygon::new(vec![outline.clone()]));
+            Region {
+                ring: k,
+                loops: cut.iter().flat_map(loops_of).collect(),
+                outline,
+                parent: None,
+            }
+        })
+        .collect()
+}
+
+/// Sets each region's parent: the region of the ring before whose outline holds the
+/// first point of its own (`all` holds every ring's regions in ring order;
 /// `first_of[k]` is the index of ring `k`'s first region).
 pub(crate) fn link_parents(all: &mut [Region], first_of: &[usize]) {
-    let outers: Vec<Polygon> = all.iter().map(|r| polygon(&r.loops[0])).collect();
     for i in 0..all.len() {
         let k = all[i].ring;
         if k == 0 {
             continue;
         }
-        let p = Coord {
-            x: all[i].loops[0][0][0],
-            y: all[i].loops[0][0][1],
-        };
+        let p = all[i].outline.exterior().0[0];
         let (lo, hi) = (first_of[k - 1], first_of[k]);
-        all[i].parent = (lo..hi).find(|&j| outers[j].contains(&p));
+        all[i].parent = (lo..hi).find(|&j| all[j].outline.contains(&p));
     }
 }
 
-/// Regions in cutting order (post-order over the forest), each with whether the
-/// tool must enter anew (it does not come from a child cut just before).
+/// Regions in cutting order (post-order over the forest), each with whether it is
+/// a leaf (the tool enters there).
 pub(crate) fn cutting_order(all: &[Region]) -> Vec<(usize, bool)> {
     let mut children: Vec<Vec<usize>> = vec![Vec::new(); all.len()];
     let mut roots = Vec::new();
@@ -112,21 +130,18 @@ pub(crate) fn cutting_order(all: &[Region]) -> Vec<(usize, bool)> {
                 stack.push((c, 0));
             } else {
                 stack.pop();
-                let fresh = children[node].is_empty();
-                order.push((node, fresh));
+                order.push((node, children[node].is_empty()));
             }
         }
     }
     order
 }
 
-/// A loop as a closed geo polygon.
-pub(crate) fn polygon(lp: &[[f64; 2]]) -> Polygon {
+/// A loop as a closed line string.
+fn line(lp: &[[f64; 2]]) -> LineString {
     let mut coords: Vec<Coord> = lp.iter().map(|p| Coord { x: p[0], y: p[1] }).collect();
-    if let Some(&first) = coords.first() {
-        coords.push(first);
-    }
-    Polygon::new(LineString::new(coords), Vec::new())
+    coords.push(coords[0]);
+    LineString::new(coords)
 }
 
 #[cfg(test)]
@@ -147,23 +162,39 @@ mod tests {
     }
 
     #[test]
-    fn holes_go_to_the_smallest_outer_loop_and_children_come_first() {
-        // Ring 0: a big square with an island; ring 1: two squares inside it.
-        let r0 = regions_of(
-            0,
-            vec![square([0.0, 0.0], 10.0, true), square([0.0, 0.0], 1.0, false)],
-        );
-        assert_eq!(r0.len(), 1);
-        assert_eq!(r0[0].loops.len(), 2);
-        let r1 = regions_of(
-            1,
-            vec![square([-5.0, 0.0], 2.0, true), square([5.0, 0.0], 2.0, true)],
-        );
-        let mut all: Vec<Region> = r0.into_iter().chain(r1).collect();
-        link_parents(&mut all, &[0, 1, 3]);
-        assert_eq!(all[1].parent, Some(0));
-        assert_eq!(all[2].parent, Some(0));
+    fn a_dumbbell_splits_and_its_lobes_are_cut_first() {
+        // Two 20 x 20 squares joined by a 4 wide neck, an island in the left one.
+        let shape = vec![
+            [0.0, 0.0],
+            [20.0, 0.0],
+            [20.0, 8.0],
+            [30.0, 8.0],
+            [30.0, 0.0],
+            [50.0, 0.0],
+            [50.0, 20.0],
+            [30.0, 20.0],
+            [30.0, 12.0],
+            [20.0, 12.0],
+            [20.0, 20.0],
+            [0.0, 20.0],
+        ];
+        let a0 = allowed(vec![shape, square([10.0, 10.0], 1.0, false)]);
+        assert_eq!(a0.len(), 1);
+        assert_eq!(a0[0].interiors().len(), 1);
+        let mut all = ring_regions(&a0, 0, 0.0, None);
+        let mut first_of = vec![0];
+        for k in 1..4 {
+            first_of.push(all.len());
+            all.extend(ring_regions(&a0, k, 3.0 * k as f64, None));
+        }
+        first_of.push(all.len());
+        // Ring 1 (3 in) keeps the 4 wide neck? No: it closes at 2 in, so two lobes.
+        assert_eq!(first_of[2] - first_of[1], 2);
+        link_parents(&mut all, &first_of);
+        assert!(all[1..].iter().all(|r| r.parent.is_some()));
         let order = cutting_order(&all);
-        assert_eq!(order, vec![(1, true), (2, true), (0, false)]);
+        assert_eq!(order.last(), Some(&(0, false)));
+        let leaves = order.iter().filter(|o| o.1).count();
+        assert_eq!(leaves, 2, "one entry per lobe: {order:?}");
     }
 }
