@@ -24,6 +24,7 @@ pub mod plan_job;
 pub mod programs;
 pub mod report;
 pub mod rest;
+pub mod sequence;
 pub mod verify;
 pub mod view;
 

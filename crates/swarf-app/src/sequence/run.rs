@@ -1,0 +1,322 @@
+//! A sequence run: each operation planned on the in-process stock, posted, read
+//! back, simulated on the stock and reported (module doc of [`super`]).
+
+use super::{Operation, Sequence, Stock, StockKind};
+use crate::cleanup::part_mesh;
+use crate::error::{AppError, Result};
+use crate::model::{Model, load_model_with};
+use crate::outputs::Outputs;
+use crate::plan::{PlanInput, plan};
+use crate::plan_job::part_arg;
+use serde::Serialize;
+use std::path::Path;
+use swarf_geom::TriMesh;
+use swarf_nc::read::{GcodeReadOptions, Motion, parse_gcode};
+use swarf_path::roughing::{RoughingStock, plan as plan_roughing};
+use swarf_path::{Plan, PlanReport, StrategyKind};
+use swarf_rest::{CleanupParams, RestKind, Source, detect, plan_cleanup};
+use swarf_sim::engagement::measure_engagement;
+use swarf_sim::grid::DEFAULT_MAX_BYTES;
+use swarf_sim::{Design, DesignSurface, Dexel, Grid, Quiet, SimOptions, SimTool, StockInit};
+use swarf_sim::simulate_from;
+use swarf_toolpath::{Move, motion_stats};
+
+/// Engagement of a roughing operation, measured on the stock.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EngagementSummary {
+    /// The stated largest engagement, degrees.
+    pub limit_deg: f64,
+    /// The largest measured on a clearing motion, degrees.
+    pub max_deg: f64,
+    /// Share of the cutting motions above the limit plus 5 degrees.
+    pub over_limit: f64,
+    /// Cutting motions by engagement in 10 degree bins from 0.
+    pub histogram_10deg: Vec<usize>,
+}
+
+/// What one operation did.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OperationReport {
+    /// Name.
+    pub name: String,
+    /// T number.
+    pub number: u32,
+    /// Cutter spec.
+    pub tool: String,
+    /// Strategy.
+    pub strategy: String,
+    /// Motions of its program.
+    pub motions: usize,
+    /// Cutting length, mm.
+    pub cutting_length_mm: f64,
+    /// Estimated machining time, s.
+    pub time_s: f64,
+    /// Roughing: engagement measured on the stock.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub engagement: Option<EngagementSummary>,
+    /// Cells below the design by more than the tolerance after it.
+    pub gouge_cells: usize,
+    /// Deepest of them, mm (0 for none).
+    pub worst_gouge_mm: f64,
+    /// Cells more than `rest_limit_mm` above the design after it.
+    pub rest_cells: usize,
+    /// The material the operation was to leave plus the tolerance, mm.
+    pub rest_limit_mm: f64,
+    /// Highest material above the design, mm.
+    pub max_rest_mm: f64,
+    /// Planning time, s (not part of deterministic outputs).
+    #[serde(skip)]
+    pub plan_s: f64,
+}
+
+/// What a sequence did.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SequenceReport {
+    /// Name.
+    pub name: Option<String>,
+    /// The stock's grid: cells across, along, cell size (mm).
+    pub grid: (usize, usize, f64),
+    /// Each operation.
+    pub operations: Vec<OperationReport>,
+    /// Machining time of the whole program, s.
+    pub time_s: f64,
+    /// The operations' programs (G-code), in order.
+    #[serde(skip)]
+    pub programs: Vec<String>,
+}
+
+/// Plans, posts and simulates every operation of `seq` in order on one stock
+/// (module doc of [`super`]).
+///
+/// # Errors
+/// The part or stock cannot be read; an operation cannot be planned (the error
+/// names it); an operation's program does not read back.
+pub fn plan_sequence(seq: &Sequence, job_dir: &Path, _out: &mut Outputs) -> Result<SequenceReport> {
+    let first = &seq.operations[0].job;
+    let model = load_model_with(&part_arg(first, job_dir), &first.load_options())?;
+    let mesh = part_mesh(&model, seq.stock.tol.min(first.strategy.tolerance))?;
+    let b = mesh.aabb();
+    let m = seq.stock.margin;
+    let grid = Grid::covering(
+        [b.min.x - m, b.min.y - m],
+        [b.max.x + m, b.max.y + m],
+        seq.stock.cell,
+        DEFAULT_MAX_BYTES,
+    )?;
+    let design = DesignSurface::new(Design::Mesh(&mesh))?
+        .heights(&grid, false, &Quiet)
+        .heights;
+    let mut dexel = initial_stock(&seq.stock, grid, &design, b.max.z, job_dir)?;
+    let mut report = SequenceReport {
+        name: seq.name.clone(),
+        grid: (grid.nx, grid.ny, grid.cell),
+        operations: Vec::new(),
+        time_s: 0.0,
+        programs: Vec::new(),
+    };
+    let mut motions_before = 0;
+    for (k, op) in seq.operations.iter().enumerate() {
+        let named = |e: AppError| AppError::Message(format!("operation[{k}] ({}): {e}", op.name));
+        let reference = k.checked_sub(1).map(|p| seq.operations[p].job.tool);
+        let start = std::time::Instant::now();
+        let planned = plan_operation(op, &model, &mesh, &dexel, &design, reference, seq.stock.tol)
+            .map_err(named)?;
+        let plan_s = start.elapsed().as_secs_f64();
+        let moves = planned.toolpath.moves();
+        let text = swarf_nc::write_gcode(&moves, &op.job.feeds, &gcode_options(op))
+            .map_err(|e| named(e.into()))?;
+        let program = parse_gcode(&text, &op.name, &GcodeReadOptions::default())
+            .map_err(|e| named(e.into()))?;
+        let mut r = simulate_operation(op, &mut dexel, &program.motions, motions_before, &moves)?;
+        motions_before += program.motions.len();
+        r.plan_s = plan_s;
+        deviation(&dexel, &design, op, seq.stock.tol, &mut r);
+        report.time_s += r.time_s;
+        report.operations.push(r);
+        report.programs.push(text);
+    }
+    Ok(report)
+}
+
+/// The stock before the first operation.
+fn initial_stock(
+    stock: &Stock,
+    grid: Grid,
+    design: &[f64],
+    part_top: f64,
+    job_dir: &Path,
+) -> Result<Dexel> {
+    Ok(match stock.kind {
+        StockKind::Box => Dexel::new(
+            grid,
+            StockInit::Box {
+                top: stock.top.unwrap_or(part_top + 1.0),
+            },
+        )?,
+        StockKind::Offset => Dexel::new(
+            grid,
+            StockInit::Offset {
+                design,
+                allowance: stock.allowance,
+            },
+        )?,
+        StockKind::Mesh => {
+            let file = stock.file.as_deref().unwrap_or_default();
+            let path = job_dir.join(file);
+            let mesh = swarf_io::read_mesh(&path)
+                .map_err(|e| AppError::Message(format!("stock.file: {e}")))?;
+            let heights = DesignSurface::new(Design::Mesh(&mesh))?
+                .heights(&grid, false, &Quiet)
+                .heights;
+            Dexel::new(grid, StockInit::Heights(&heights))?
+        }
+    })
+}
+
+/// The operation's plan on the stock as it stands.
+fn plan_operation(
+    op: &Operation,
+    model: &Model,
+    mesh: &TriMesh,
+    dexel: &Dexel,
+    design: &[f64],
+    reference: Option<swarf_tool::Cutter>,
+    tol: f64,
+) -> Result<Plan> {
+    let job = &op.job;
+    match job.strategy.kind {
+        StrategyKind::Roughing => {
+            let grid = *dexel.grid();
+            let material = |x: f64, y: f64| {
+                grid.cell_of(x, y)
+                    .map_or(f64::NEG_INFINITY, |(i, j)| dexel.height(i, j))
+            };
+            let top = dexel.heights().iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let stock = RoughingStock {
+                min: grid.origin,
+                max: grid.max(),
+                top,
+                material: &material,
+            };
+            Ok(plan_roughing(mesh, &stock, &job.roughing_params())?.0)
+        }
+        StrategyKind::Cleanup => {
+            let reference = reference.ok_or_else(|| {
+                AppError::Message("a cleanup cannot be the first operation: it cleans up after the one before".into())
+            })?;
+            let excess: Vec<f64> = dexel
+                .heights()
+                .iter()
+                .zip(design)
+                .map(|(h, d)| if d.is_finite() { h - d } else { f64::NAN })
+                .collect();
+            let source = Source::Stock {
+                grid: dexel.grid(),
+                excess: &excess,
+                design,
+            };
+            let mut detection = detect(mesh, &reference, source, tol, &job.region_params())?;
+            detection.regions.retain(|r| r.kinds.contains(&RestKind::Stock) || !r.kinds.is_empty());
+            let params = CleanupParams {
+                finish: job.finish(),
+                pattern: job.strategy.pattern,
+                passes: job.strategy.passes,
+                scallop: job.strategy.scallop.unwrap_or(job.strategy.tolerance),
+            };
+            let toolpath = plan_cleanup(mesh, &detection.regions, &reference, &params)?;
+            Ok(Plan {
+                toolpath,
+                report: PlanReport::default(),
+                double_contacts: Vec::new(),
+            })
+        }
+        _ => Ok(match model {
+            Model::Patches(part) if !matches!(job.strategy.kind, StrategyKind::Raster) => {
+                plan(job, PlanInput::Part(part))?
+            }
+            _ => plan(job, PlanInput::Mesh(mesh))?,
+        }),
+    }
+}
+
+/// The operation's G-code options: its T number and a comment naming it.
+fn gcode_options(op: &Operation) -> swarf_nc::GcodeOptions {
+    swarf_nc::GcodeOptions {
+        tool_number: op.number,
+        comments: vec![format!("operation {}: {}", op.name, op.job.tool)],
+        ..swarf_nc::GcodeOptions::default()
+    }
+}
+
+/// Simulates the operation's motions on the stock (measuring the engagement of a
+/// roughing), its motions numbered from `first`.
+fn simulate_operation(
+    op: &Operation,
+    dexel: &mut Dexel,
+    motions: &[Motion],
+    first: usize,
+    moves: &[Move],
+) -> Result<OperationReport> {
+    let job = &op.job;
+    let tool = SimTool::new(&job.tool)?;
+    let opts = SimOptions {
+        sample_tol: 0.25 * job.strategy.tolerance,
+        known_start: false,
+    };
+    let engagement = if job.strategy.kind == StrategyKind::Roughing {
+        let eng = measure_engagement(dexel, &tool, motions, first, &opts, &Quiet);
+        let limit = job.roughing_params().max_engagement.to_degrees();
+        let cutting: Vec<f64> = eng.cutting().into_iter().map(f64::to_degrees).collect();
+        let over = cutting.iter().filter(|a| **a > limit + 5.0).count();
+        Some(EngagementSummary {
+            limit_deg: limit,
+            max_deg: cutting.iter().copied().fold(0.0, f64::max),
+            over_limit: over as f64 / cutting.len().max(1) as f64,
+            histogram_10deg: eng.histogram(10.0),
+        })
+    } else {
+        simulate_from(dexel, &tool, motions, first, &opts, &Quiet);
+        None
+    };
+    let stats = motion_stats(moves, job.feeds.rapid);
+    Ok(OperationReport {
+        name: op.name.clone(),
+        number: op.number,
+        tool: job.tool.to_string(),
+        strategy: format!("{:?}", job.strategy.kind).to_lowercase(),
+        motions: motions.len(),
+        cutting_length_mm: stats.cutting_length,
+        time_s: stats.time_s,
+        engagement,
+        gouge_cells: 0,
+        worst_gouge_mm: 0.0,
+        rest_cells: 0,
+        rest_limit_mm: 0.0,
+        max_rest_mm: 0.0,
+        plan_s: 0.0,
+    })
+}
+
+/// Gouge and rest on the stock after an operation.
+fn deviation(dexel: &Dexel, design: &[f64], op: &Operation, tol: f64, r: &mut OperationReport) {
+    let s = &op.job.strategy;
+    let leave = match s.kind {
+        StrategyKind::Roughing => op.job.roughing_params().allowance,
+        _ => s.scallop.unwrap_or(0.0),
+    };
+    r.rest_limit_mm = leave + tol;
+    for (h, d) in dexel.heights().iter().zip(design) {
+        if !d.is_finite() || !h.is_finite() {
+            continue;
+        }
+        let e = h - d;
+        if e < -tol {
+            r.gouge_cells += 1;
+            r.worst_gouge_mm = r.worst_gouge_mm.max(-e);
+        }
+        if e > r.rest_limit_mm {
+            r.rest_cells += 1;
+        }
+        r.max_rest_mm = r.max_rest_mm.max(e);
+    }
+}
