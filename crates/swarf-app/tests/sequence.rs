@@ -1,20 +1,96 @@
 //! The fillet pocket from a box in one sequence job (jobs/fillet-pocket-sequence.toml):
-//! roughing, finishing and cleanup on one in-process stock.
+//! adaptive roughing, raster finishing and cleanup on one in-process stock. No
+//! operation gouges; the roughing's engagement, measured on the stock, holds; the
+//! ball d=4 cleanup reaches every fillet (radius 3) and corner (radius 5), so no rest
+//! is left; with a ball d=8 instead, rest is left only where that ball cannot reach
+//! (the fillets and corners, by the pocket's closed form).
 
-use std::path::Path;
-use swarf_app::sequence::{Sequence, plan_sequence};
+use std::path::{Path, PathBuf};
+use swarf_app::sequence::{Sequence, SequenceReport, plan_sequence};
+
+fn jobs() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs")
+}
+
+fn run(text: &str, tag: &str) -> SequenceReport {
+    let seq = Sequence::parse(text, "fillet-pocket-sequence.toml").unwrap();
+    let dir = std::env::temp_dir().join(format!("swarf-sequence-test-{tag}"));
+    let mut out = swarf_app::Outputs::new(&dir);
+    plan_sequence(&seq, &jobs(), &mut out).unwrap()
+}
+
+fn shipped() -> String {
+    std::fs::read_to_string(jobs().join("fillet-pocket-sequence.toml")).unwrap()
+}
 
 #[test]
 fn fillet_pocket_from_a_box_in_one_job() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs");
-    let file = root.join("fillet-pocket-sequence.toml");
-    let text = std::fs::read_to_string(&file).unwrap();
+    let text = shipped();
     assert!(Sequence::is_sequence(&text));
-    let seq = Sequence::parse(&text, "fillet-pocket-sequence.toml").unwrap();
-    let dir = std::env::temp_dir().join("swarf-sequence-test");
-    let mut out = swarf_app::Outputs::new(&dir);
-    let t = std::time::Instant::now();
-    let report = plan_sequence(&seq, &root, &mut out).unwrap();
-    eprintln!("{:.1} s", t.elapsed().as_secs_f64());
-    eprintln!("{}", serde_json::to_string_pretty(&report).unwrap());
+    let report = run(&text, "d4");
+    for op in &report.operations {
+        eprintln!(
+            "T{} {}: {} motions, {:.0} s; gouge cells {}, rest cells {} over {:.3} mm, max {:.3} mm",
+            op.number,
+            op.name,
+            op.motions,
+            op.time_s,
+            op.gouge_cells,
+            op.rest_cells,
+            op.rest_limit_mm,
+            op.max_rest_mm
+        );
+        assert_eq!(op.gouge_cells, 0, "{} gouges", op.name);
+    }
+    let rough = report.operations[0].engagement.as_ref().unwrap();
+    eprintln!("roughing engagement: {rough:?}");
+    assert!(rough.over_limit < 0.02, "{rough:?}");
+    let last = report.operations.last().unwrap();
+    assert_eq!(
+        last.rest_cells, 0,
+        "the ball d=4 reaches every fillet and corner"
+    );
+}
+
+/// Distance from the pocket's core rectangle [25, 75] x [25, 55] (parts/README.md).
+fn core_distance(x: f64, y: f64) -> f64 {
+    let dx = (25.0 - x).max(x - 75.0).max(0.0);
+    let dy = (25.0 - y).max(y - 55.0).max(0.0);
+    dx.hypot(dy)
+}
+
+#[test]
+fn a_cleanup_tool_too_large_for_the_fillets_leaves_rest_only_there() {
+    let text = shipped().replace("tool = \"ball:d=4\"", "tool = \"ball:d=8\"");
+    let report = run(&text, "d8");
+    let cells = &report.rest;
+    let last = report.operations.last().unwrap();
+    assert!(
+        last.rest_cells > 0,
+        "a ball of radius 4 leaves rest in radius 3 fillets"
+    );
+    // A ball of radius 4 touching wall (d = 5) and floor leaves rest only where the
+    // fillet curves, d in (2, 5) from the core along the sides; in the corners, where
+    // the fillet is a torus curved both ways, the ball stands further off and its
+    // rest reaches into the floor a little (d < 2 there).
+    let stray: Vec<_> = cells
+        .iter()
+        .filter(|c| {
+            let (x, y) = (c[0], c[1]);
+            let d = core_distance(x, y);
+            let corner = !(25.0..=75.0).contains(&x) && !(25.0..=55.0).contains(&y);
+            let band = d < 5.0 + 0.5 && (d > 2.0 - 0.5 || corner);
+            !band
+        })
+        .collect();
+    eprintln!(
+        "{} rest cells, {} outside the fillet band",
+        cells.len(),
+        stray.len()
+    );
+    assert!(
+        stray.is_empty(),
+        "rest outside the fillets: {:?}",
+        &stray[..stray.len().min(5)]
+    );
 }

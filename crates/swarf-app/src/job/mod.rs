@@ -613,6 +613,7 @@ impl Job {
 
 mod validate;
 pub use validate::MAX_DROP_SPIN_PASSES;
+pub(crate) use validate::output_file;
 
 #[cfg(test)]
 mod tests;

@@ -318,7 +318,7 @@ fn in_domain(name: &str, v: Option<f64>, domain: Domain) -> Result<(), String> {
 
 /// An output named `name` is a file name inside the output folder: not empty, not a
 /// folder (`.`, `..`, a trailing `/`), not absolute and not climbing out with `..`.
-fn output_file(name: &str, file: &str) -> Result<(), String> {
+pub(crate) fn output_file(name: &str, file: &str) -> Result<(), String> {
     let path = std::path::Path::new(file);
     let climbs = path
         .components()

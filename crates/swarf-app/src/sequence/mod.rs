@@ -175,6 +175,14 @@ impl Sequence {
         };
         let repr: SequenceRepr = toml::from_str(text).map_err(|e| err(toml_message(text, &e)))?;
         check_stock(&repr.stock).map_err(err)?;
+        for (name, file) in [
+            ("output.gcode", &repr.output.gcode),
+            ("output.summary", &repr.output.summary),
+        ] {
+            if let Some(f) = file {
+                crate::job::output_file(name, f).map_err(err)?;
+            }
+        }
         if repr.operation.is_empty() || repr.operation.len() > MAX_OPERATIONS {
             return Err(err(format!(
                 "operation: expected 1 to {MAX_OPERATIONS} [[operation]] tables, found {}",
@@ -206,7 +214,11 @@ fn operation(repr: &SequenceRepr, k: usize, table: &toml::Table) -> Result<Opera
     };
     let number = match t.remove("number") {
         Some(toml::Value::Integer(n)) if (1..=99_999).contains(&n) => n as u32,
-        Some(v) => return Err(format!("number: expected a tool number from 1 to 99999, found {v}")),
+        Some(v) => {
+            return Err(format!(
+                "number: expected a tool number from 1 to 99999, found {v}"
+            ));
+        }
         None => k as u32 + 1,
     };
     for key in ["part", "faces", "import", "output", "parent", "positioning"] {
@@ -254,18 +266,29 @@ fn check_stock(s: &Stock) -> Result<(), String> {
         return Err(format!("stock.cell: {} mm: expected 0.01 to 10 mm", s.cell));
     }
     if !(s.tol.is_finite() && s.tol > 0.0 && s.tol <= 10.0) {
-        return Err(format!("stock.tol: {} mm: expected more than 0, at most 10 mm", s.tol));
+        return Err(format!(
+            "stock.tol: {} mm: expected more than 0, at most 10 mm",
+            s.tol
+        ));
     }
     if !(s.margin.is_finite() && (0.0..=1000.0).contains(&s.margin)) {
-        return Err(format!("stock.margin: {} mm: expected 0 to 1000 mm", s.margin));
+        return Err(format!(
+            "stock.margin: {} mm: expected 0 to 1000 mm",
+            s.margin
+        ));
     }
     if !(s.allowance.is_finite() && (0.0..=1000.0).contains(&s.allowance)) {
-        return Err(format!("stock.allowance: {} mm: expected 0 to 1000 mm", s.allowance));
+        return Err(format!(
+            "stock.allowance: {} mm: expected 0 to 1000 mm",
+            s.allowance
+        ));
     }
     if let Some(top) = s.top
         && !(top.is_finite() && top.abs() <= 1e6)
     {
-        return Err(format!("stock.top: {top} mm: expected a height within 1e6 mm"));
+        return Err(format!(
+            "stock.top: {top} mm: expected a height within 1e6 mm"
+        ));
     }
     if s.kind == StockKind::Mesh && s.file.is_none() {
         return Err("stock.file: a mesh stock needs its file (STL or OBJ)".into());

@@ -17,8 +17,8 @@ use swarf_path::{Plan, PlanReport, StrategyKind};
 use swarf_rest::{CleanupParams, RestKind, Source, detect, plan_cleanup};
 use swarf_sim::engagement::measure_engagement;
 use swarf_sim::grid::DEFAULT_MAX_BYTES;
-use swarf_sim::{Design, DesignSurface, Dexel, Grid, Quiet, SimOptions, SimTool, StockInit};
 use swarf_sim::simulate_from;
+use swarf_sim::{Design, DesignSurface, Dexel, Grid, Quiet, SimOptions, SimTool, StockInit};
 use swarf_toolpath::{Move, motion_stats};
 
 /// Engagement of a roughing operation, measured on the stock.
@@ -67,6 +67,10 @@ pub struct OperationReport {
     /// Planning time, s (not part of deterministic outputs).
     #[serde(skip)]
     pub plan_s: f64,
+    /// Posting, reading back, simulating and measuring time, s (not part of
+    /// deterministic outputs).
+    #[serde(skip)]
+    pub verify_s: f64,
 }
 
 /// What a sequence did.
@@ -83,6 +87,10 @@ pub struct SequenceReport {
     /// The operations' programs (G-code), in order.
     #[serde(skip)]
     pub programs: Vec<String>,
+    /// Cells left more than the last operation's limit above the design: centre x,
+    /// y and the material above the design, mm.
+    #[serde(skip)]
+    pub rest: Vec<[f64; 3]>,
 }
 
 /// Plans, posts and simulates every operation of `seq` in order on one stock
@@ -91,7 +99,7 @@ pub struct SequenceReport {
 /// # Errors
 /// The part or stock cannot be read; an operation cannot be planned (the error
 /// names it); an operation's program does not read back.
-pub fn plan_sequence(seq: &Sequence, job_dir: &Path, _out: &mut Outputs) -> Result<SequenceReport> {
+pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Result<SequenceReport> {
     let first = &seq.operations[0].job;
     let model = load_model_with(&part_arg(first, job_dir), &first.load_options())?;
     let mesh = part_mesh(&model, seq.stock.tol.min(first.strategy.tolerance))?;
@@ -113,6 +121,7 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, _out: &mut Outputs) -> Resu
         operations: Vec::new(),
         time_s: 0.0,
         programs: Vec::new(),
+        rest: Vec::new(),
     };
     let mut motions_before = 0;
     for (k, op) in seq.operations.iter().enumerate() {
@@ -122,6 +131,7 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, _out: &mut Outputs) -> Resu
         let planned = plan_operation(op, &model, &mesh, &dexel, &design, reference, seq.stock.tol)
             .map_err(named)?;
         let plan_s = start.elapsed().as_secs_f64();
+        let start = std::time::Instant::now();
         let moves = planned.toolpath.moves();
         let text = swarf_nc::write_gcode(&moves, &op.job.feeds, &gcode_options(op))
             .map_err(|e| named(e.into()))?;
@@ -131,9 +141,16 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, _out: &mut Outputs) -> Resu
         motions_before += program.motions.len();
         r.plan_s = plan_s;
         deviation(&dexel, &design, op, seq.stock.tol, &mut r);
+        r.verify_s = start.elapsed().as_secs_f64();
         report.time_s += r.time_s;
         report.operations.push(r);
         report.programs.push(text);
+    }
+    if let Some(limit) = report.operations.last().map(|o| o.rest_limit_mm) {
+        report.rest = rest_cells(&dexel, &design, limit);
+    }
+    if let Some(file) = &seq.output.summary {
+        out.write_json(file, &report)?;
     }
     Ok(report)
 }
@@ -191,7 +208,11 @@ fn plan_operation(
                 grid.cell_of(x, y)
                     .map_or(f64::NEG_INFINITY, |(i, j)| dexel.height(i, j))
             };
-            let top = dexel.heights().iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let top = dexel
+                .heights()
+                .iter()
+                .copied()
+                .fold(f64::NEG_INFINITY, f64::max);
             let stock = RoughingStock {
                 min: grid.origin,
                 max: grid.max(),
@@ -202,7 +223,10 @@ fn plan_operation(
         }
         StrategyKind::Cleanup => {
             let reference = reference.ok_or_else(|| {
-                AppError::Message("a cleanup cannot be the first operation: it cleans up after the one before".into())
+                AppError::Message(
+                    "a cleanup cannot be the first operation: it cleans up after the one before"
+                        .into(),
+                )
             })?;
             let excess: Vec<f64> = dexel
                 .heights()
@@ -216,7 +240,9 @@ fn plan_operation(
                 design,
             };
             let mut detection = detect(mesh, &reference, source, tol, &job.region_params())?;
-            detection.regions.retain(|r| r.kinds.contains(&RestKind::Stock) || !r.kinds.is_empty());
+            detection
+                .regions
+                .retain(|r| r.kinds.contains(&RestKind::Stock) || !r.kinds.is_empty());
             let params = CleanupParams {
                 finish: job.finish(),
                 pattern: job.strategy.pattern,
@@ -294,6 +320,7 @@ fn simulate_operation(
         rest_limit_mm: 0.0,
         max_rest_mm: 0.0,
         plan_s: 0.0,
+        verify_s: 0.0,
     })
 }
 
@@ -319,4 +346,21 @@ fn deviation(dexel: &Dexel, design: &[f64], op: &Operation, tol: f64, r: &mut Op
         }
         r.max_rest_mm = r.max_rest_mm.max(e);
     }
+}
+
+/// The cells more than `limit` above the design: centre and excess.
+fn rest_cells(dexel: &Dexel, design: &[f64], limit: f64) -> Vec<[f64; 3]> {
+    let grid = dexel.grid();
+    let mut out = Vec::new();
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
+            let d = design[j * grid.nx + i];
+            let e = dexel.height(i, j) - d;
+            if d.is_finite() && e.is_finite() && e > limit {
+                let [x, y] = grid.centre(i, j);
+                out.push([x, y, e]);
+            }
+        }
+    }
+    out
 }
