@@ -8,7 +8,7 @@
 //!
 //! [strategy]
 //! kind = "iso-scallop"           # iso-parametric | iso-planar | iso-scallop | raster |
-//!                                # waterline | steep-shallow | cleanup | drop-spin
+//!                                # waterline | steep-shallow | cleanup | drop-spin | roughing
 //! scallop = 0.15                 # scallop height limit h, mm
 //! tolerance = 0.01               # chordal tolerance along passes, mm
 //!
