@@ -155,6 +155,28 @@ fn rough(adaptive: bool) -> Run {
         .filter(|a| *a > 0.0)
         .map(f64::to_degrees)
         .collect();
+    if std::env::var("SWARF_DEBUG_ENGAGEMENT").is_ok() {
+        let mut idx = std::collections::BTreeMap::new();
+        for (k, m) in moves.iter().enumerate() {
+            let i = m.pass.map(|p| {
+                let i = idx.entry(p).or_insert(0usize);
+                *i += 1;
+                *i
+            });
+            if let Some(a) = eng.per_motion[k]
+                && a.to_degrees() > 100.0
+                && !entry[k]
+            {
+                eprintln!(
+                    "{k}: {:.0} pass {:?} point {i:?} at {:?}",
+                    a.to_degrees(),
+                    m.pass,
+                    m.to.cl
+                );
+            }
+        }
+        eprintln!("entries {:?}", report.entries);
+    }
     let mut hist = vec![0usize; 19];
     for a in &clearing {
         hist[(a / 10.0) as usize] += 1;

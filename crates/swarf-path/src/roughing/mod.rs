@@ -373,7 +373,8 @@ fn cut_level(
         }
         let from_child = last_cut.is_some_and(|c| regions[c].parent == Some(i));
         last_cut = Some(i);
-        if fresh || !from_child || current.is_none() {
+        let fresh_entry = fresh || !from_child || current.is_none();
+        if fresh_entry {
             if let Some(pts) = current.take() {
                 passes.push(pass_of(&pts));
             }
@@ -382,8 +383,9 @@ fn cut_level(
             report.entries.push((passes.len(), pts.len()));
             current = Some(pts);
         }
+        let entered = fresh_entry;
         let pts = current.get_or_insert_with(Vec::new);
-        for lp in live {
+        for lp in live.into_iter().skip(usize::from(entered)) {
             let start = nearest(lp, link_aim(pts, radius));
             pts.extend(
                 lp[start..]
@@ -438,7 +440,8 @@ fn touches_material(lp: &Ring, z: f64, radius: f64, stock: &RoughingStock<'_>) -
 }
 
 /// The ramp into a level along `lp`: from `above` down to `z` at `angle` from the
-/// horizontal, going round the loop as often as it takes; ends at the loop's start.
+/// horizontal, going round the loop as often as it takes, then once more round it
+/// at the level.
 fn ramp_entry(lp: &Ring, above: f64, z: f64, angle: f64, pts: &mut Vec<[f64; 3]>) {
     let slope = angle.tan();
     let n = lp.len();
@@ -463,12 +466,15 @@ fn ramp_entry(lp: &Ring, above: f64, z: f64, angle: f64, pts: &mut Vec<[f64; 3]>
         let drop = dist(a, b) * slope;
         if h - drop <= z {
             let t = (h - z) / drop;
-            push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), z], pts);
-            // Finish the round at the level, back to the loop's start.
-            for p in &lp[i % n + 1..] {
+            let reach = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), z];
+            push(reach, pts);
+            // One whole round at the level, back to where the ramp reached it: the
+            // last round of the ramp left a wedge above the level all the way.
+            let j = i % n;
+            for p in lp[j + 1..].iter().chain(&lp[..=j]) {
                 push([p[0], p[1], z], pts);
             }
-            push([lp[0][0], lp[0][1], z], pts);
+            push(reach, pts);
             return;
         }
         h -= drop;
