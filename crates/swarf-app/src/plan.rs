@@ -58,6 +58,34 @@ fn roughing(job: &Job, mesh: &TriMesh) -> Result<Plan, PathError> {
     Ok(swarf_path::roughing::plan(mesh, &stock, &job.roughing_params())?.0)
 }
 
+/// The job's lead arcs and ramps ([`swarf_path::leads`]) on every pass of a
+/// finishing plan, gouge-checked by drops on the part (tessellated for a
+/// parametric part); roughing enters by its own ramps.
+fn add_job_leads(job: &Job, input: PlanInput<'_>, plan: &mut Plan) -> Result<(), PathError> {
+    let l = &job.linking;
+    let leads = swarf_path::leads::Leads {
+        arc_radius: l.lead_radius,
+        ramp_angle: l.ramp_angle.map(f64::to_radians),
+        ramp_height: l.approach,
+    };
+    if !leads.any() || job.strategy.kind == StrategyKind::Roughing {
+        return leads.check();
+    }
+    let tessellated;
+    let mesh = match input {
+        PlanInput::Mesh(mesh) => mesh,
+        PlanInput::Part(part) => {
+            tessellated = part.tessellate(job.strategy.tolerance * 0.1)?;
+            &tessellated
+        }
+    };
+    let dropper = swarf_tool::drop::MeshDropper::new(mesh, &job.tool);
+    swarf_path::leads::add_leads(&mut plan.toolpath.passes, &dropper, &leads)?;
+    let top = swarf_toolpath::top_z(&plan.toolpath.passes);
+    plan.toolpath.linking = job.linking.for_top(top);
+    Ok(())
+}
+
 /// Plans `job` on `input`.
 ///
 /// # Errors
@@ -117,6 +145,7 @@ pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
             swarf_path::iso_scallop::plan(part, &job.iso_params())?
         }
     };
+    add_job_leads(job, input, &mut plan)?;
     plan.report.lifted_points = plan.toolpath.lifted_count();
     if let PlanInput::Part(part) = input {
         plan.report.pass_bound = bound_for(job, part);

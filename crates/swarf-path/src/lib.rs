@@ -14,6 +14,7 @@ pub mod iso_parametric;
 pub mod iso_planar;
 pub mod iso_scallop;
 mod iso_setup;
+pub mod leads;
 mod ordering;
 pub mod params;
 pub mod pass_bound;

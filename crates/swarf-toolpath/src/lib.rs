@@ -136,6 +136,11 @@ pub struct LinkingSpec {
     pub clearance: Option<f64>,
     /// Distance above a pass start where the plunge feed begins, mm.
     pub approach: f64,
+    /// Radius of arc leads into and out of each pass, mm (none: no arcs).
+    pub lead_radius: Option<f64>,
+    /// Ramp angle of the leads, degrees (none: level leads; with no arc, a straight
+    /// ramp climbing the approach height).
+    pub ramp_angle: Option<f64>,
 }
 
 impl Default for LinkingSpec {
@@ -143,6 +148,8 @@ impl Default for LinkingSpec {
         LinkingSpec {
             clearance: None,
             approach: Linking::default().approach,
+            lead_radius: None,
+            ramp_angle: None,
         }
     }
 }
