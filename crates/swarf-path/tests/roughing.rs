@@ -137,15 +137,7 @@ fn rough(adaptive: bool) -> Run {
         }
     }
     // Entry motions (the ramps and their round at the level) are slots by design.
-    let mut entry = vec![false; moves.len()];
-    let mut seen = std::collections::BTreeMap::new();
-    for (k, m) in moves.iter().enumerate() {
-        if let Some(p) = m.pass {
-            let i = seen.entry(p).or_insert(0usize);
-            *i += 1;
-            entry[k] = report.entries.iter().any(|&(q, n)| q == p && *i < n);
-        }
-    }
+    let entry = swarf_path::roughing::entry_moves(&moves, &report);
     let clearing: Vec<f64> = eng
         .per_motion
         .iter()

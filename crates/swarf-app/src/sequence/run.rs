@@ -11,15 +11,16 @@ use crate::plan_job::part_arg;
 use serde::Serialize;
 use std::path::Path;
 use swarf_geom::TriMesh;
-use swarf_nc::read::{GcodeReadOptions, Motion, parse_gcode};
-use swarf_path::roughing::{RoughingStock, plan as plan_roughing};
+use swarf_nc::read::{GcodeReadOptions, Motion, MotionKind, Program, parse_gcode};
+use swarf_path::roughing::{RoughingReport, RoughingStock, entry_moves, plan as plan_roughing};
 use swarf_path::{Plan, PlanReport, StrategyKind};
 use swarf_rest::{CleanupParams, RestKind, Source, detect, plan_cleanup};
 use swarf_sim::engagement::measure_engagement;
 use swarf_sim::grid::DEFAULT_MAX_BYTES;
 use swarf_sim::simulate_from;
+use swarf_sim::verify::program_stats;
 use swarf_sim::{Design, DesignSurface, Dexel, Grid, Quiet, SimOptions, SimTool, StockInit};
-use swarf_toolpath::{Move, motion_stats};
+use swarf_toolpath::{Move, MoveKind, motion_stats};
 
 /// Engagement of a roughing operation, measured on the stock.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -32,6 +33,8 @@ pub struct EngagementSummary {
     pub over_limit: f64,
     /// Cutting motions by engagement in 10 degree bins from 0.
     pub histogram_10deg: Vec<usize>,
+    /// Entries (ramps into a level and their round at it), left out of the figures.
+    pub entries: usize,
 }
 
 /// What one operation did.
@@ -128,8 +131,9 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
         let named = |e: AppError| AppError::Message(format!("operation[{k}] ({}): {e}", op.name));
         let reference = k.checked_sub(1).map(|p| seq.operations[p].job.tool);
         let start = std::time::Instant::now();
-        let planned = plan_operation(op, &model, &mesh, &dexel, &design, reference, seq.stock.tol)
-            .map_err(named)?;
+        let (planned, roughing) =
+            plan_operation(op, &model, &mesh, &dexel, &design, reference, seq.stock.tol)
+                .map_err(named)?;
         let plan_s = start.elapsed().as_secs_f64();
         let start = std::time::Instant::now();
         let moves = planned.toolpath.moves();
@@ -137,7 +141,11 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
             .map_err(|e| named(e.into()))?;
         let program = parse_gcode(&text, &op.name, &GcodeReadOptions::default())
             .map_err(|e| named(e.into()))?;
-        let mut r = simulate_operation(op, &mut dexel, &program.motions, motions_before, &moves)?;
+        let mut r = match &roughing {
+            Some(rough) => measure_roughing(op, &mut dexel, &moves, rough, motions_before)?,
+            None => simulate_operation(op, &mut dexel, &program, motions_before)?,
+        };
+        r.motions = program.motions.len();
         motions_before += program.motions.len();
         r.plan_s = plan_s;
         deviation(&dexel, &design, op, seq.stock.tol, &mut r);
@@ -190,7 +198,7 @@ fn initial_stock(
     })
 }
 
-/// The operation's plan on the stock as it stands.
+/// The operation's plan on the stock as it stands (and a roughing's report).
 fn plan_operation(
     op: &Operation,
     model: &Model,
@@ -199,9 +207,9 @@ fn plan_operation(
     design: &[f64],
     reference: Option<swarf_tool::Cutter>,
     tol: f64,
-) -> Result<Plan> {
+) -> Result<(Plan, Option<RoughingReport>)> {
     let job = &op.job;
-    match job.strategy.kind {
+    let plan = match job.strategy.kind {
         StrategyKind::Roughing => {
             let grid = *dexel.grid();
             let material = |x: f64, y: f64| {
@@ -219,7 +227,8 @@ fn plan_operation(
                 top,
                 material: &material,
             };
-            Ok(plan_roughing(mesh, &stock, &job.roughing_params())?.0)
+            let (plan, report) = plan_roughing(mesh, &stock, &job.roughing_params())?;
+            return Ok((plan, Some(report)));
         }
         StrategyKind::Cleanup => {
             let reference = reference.ok_or_else(|| {
@@ -250,19 +259,20 @@ fn plan_operation(
                 scallop: job.strategy.scallop.unwrap_or(job.strategy.tolerance),
             };
             let toolpath = plan_cleanup(mesh, &detection.regions, &reference, &params)?;
-            Ok(Plan {
+            Plan {
                 toolpath,
                 report: PlanReport::default(),
                 double_contacts: Vec::new(),
-            })
+            }
         }
-        _ => Ok(match model {
+        _ => match model {
             Model::Patches(part) if !matches!(job.strategy.kind, StrategyKind::Raster) => {
                 plan(job, PlanInput::Part(part))?
             }
             _ => plan(job, PlanInput::Mesh(mesh))?,
-        }),
-    }
+        },
+    };
+    Ok((plan, None))
 }
 
 /// The operation's G-code options: its T number and a comment naming it.
@@ -274,45 +284,121 @@ fn gcode_options(op: &Operation) -> swarf_nc::GcodeOptions {
     }
 }
 
-/// Simulates the operation's motions on the stock (measuring the engagement of a
-/// roughing), its motions numbered from `first`.
+/// Simulates the operation's program on the stock, its motions numbered from
+/// `first`.
 fn simulate_operation(
     op: &Operation,
     dexel: &mut Dexel,
-    motions: &[Motion],
+    program: &Program,
     first: usize,
-    moves: &[Move],
 ) -> Result<OperationReport> {
     let job = &op.job;
     let tool = SimTool::new(&job.tool)?;
-    let opts = SimOptions {
-        sample_tol: 0.25 * job.strategy.tolerance,
-        known_start: false,
-    };
-    let engagement = if job.strategy.kind == StrategyKind::Roughing {
-        let eng = measure_engagement(dexel, &tool, motions, first, &opts, &Quiet);
-        let limit = job.roughing_params().max_engagement.to_degrees();
-        let cutting: Vec<f64> = eng.cutting().into_iter().map(f64::to_degrees).collect();
-        let over = cutting.iter().filter(|a| **a > limit + 5.0).count();
-        Some(EngagementSummary {
-            limit_deg: limit,
-            max_deg: cutting.iter().copied().fold(0.0, f64::max),
-            over_limit: over as f64 / cutting.len().max(1) as f64,
-            histogram_10deg: eng.histogram(10.0),
+    simulate_from(
+        dexel,
+        &tool,
+        &program.motions,
+        first,
+        &sim_options(op),
+        &Quiet,
+    );
+    let stats = program_stats(program, job.feeds.rapid);
+    Ok(op_report(op, (stats.cutting_length_mm, stats.time_s), None))
+}
+
+/// Simulates a roughing's planned moves on the stock, measuring the engagement of
+/// every clearing move (its entries, slots by design, left out) before it cuts.
+/// The moves are the program's before rounding to its words (1e-4 mm).
+fn measure_roughing(
+    op: &Operation,
+    dexel: &mut Dexel,
+    moves: &[Move],
+    rough: &RoughingReport,
+    first: usize,
+) -> Result<OperationReport> {
+    let job = &op.job;
+    let tool = SimTool::new(&job.tool)?;
+    let mut at = moves.first().map_or_else(
+        || swarf_tool::Pose::vertical(swarf_geom::Point3::origin()),
+        |m| m.to,
+    );
+    let motions: Vec<Motion> = moves
+        .iter()
+        .enumerate()
+        .map(|(k, m)| {
+            let motion = Motion {
+                kind: match m.kind {
+                    MoveKind::Rapid => MotionKind::Rapid,
+                    MoveKind::Feed => MotionKind::Linear,
+                },
+                start: at,
+                end: m.to,
+                feed: m.feed,
+                line: k + 1,
+            };
+            at = m.to;
+            motion
         })
-    } else {
-        simulate_from(dexel, &tool, motions, first, &opts, &Quiet);
-        None
+        .collect();
+    let eng = measure_engagement(dexel, &tool, &motions, first, &sim_options(op), &Quiet);
+    let entry = entry_moves(moves, rough);
+    let limit = job.roughing_params().max_engagement.to_degrees();
+    let cutting: Vec<f64> = eng
+        .per_motion
+        .iter()
+        .zip(&entry)
+        .filter(|(_, e)| !**e)
+        .filter_map(|(a, _)| *a)
+        .filter(|a| *a > 0.0)
+        .map(f64::to_degrees)
+        .collect();
+    let mut histogram = Vec::new();
+    for a in &cutting {
+        let k = (a / 10.0) as usize;
+        if histogram.len() <= k {
+            histogram.resize(k + 1, 0);
+        }
+        histogram[k] += 1;
+    }
+    let over = cutting.iter().filter(|a| **a > limit + 5.0).count();
+    let summary = EngagementSummary {
+        limit_deg: limit,
+        max_deg: cutting.iter().copied().fold(0.0, f64::max),
+        over_limit: over as f64 / cutting.len().max(1) as f64,
+        histogram_10deg: histogram,
+        entries: rough.entries.len(),
     };
     let stats = motion_stats(moves, job.feeds.rapid);
-    Ok(OperationReport {
+    Ok(op_report(
+        op,
+        (stats.cutting_length, stats.time_s),
+        Some(summary),
+    ))
+}
+
+fn sim_options(op: &Operation) -> SimOptions {
+    SimOptions {
+        sample_tol: 0.25 * op.job.strategy.tolerance,
+        known_start: false,
+    }
+}
+
+/// The report of an operation of `(cutting length mm, time s)`, before the stock
+/// is looked at.
+fn op_report(
+    op: &Operation,
+    (cutting_length_mm, time_s): (f64, f64),
+    engagement: Option<EngagementSummary>,
+) -> OperationReport {
+    let job = &op.job;
+    OperationReport {
         name: op.name.clone(),
         number: op.number,
         tool: job.tool.to_string(),
         strategy: format!("{:?}", job.strategy.kind).to_lowercase(),
-        motions: motions.len(),
-        cutting_length_mm: stats.cutting_length,
-        time_s: stats.time_s,
+        motions: 0,
+        cutting_length_mm,
+        time_s,
         engagement,
         gouge_cells: 0,
         worst_gouge_mm: 0.0,
@@ -321,7 +407,7 @@ fn simulate_operation(
         max_rest_mm: 0.0,
         plan_s: 0.0,
         verify_s: 0.0,
-    })
+    }
 }
 
 /// Gouge and rest on the stock after an operation.

@@ -184,6 +184,23 @@ pub fn plan(
     ))
 }
 
+/// Which of `moves` (a roughing plan's [`swarf_toolpath::Toolpath::moves`]) belong
+/// to the entries of `report`: the ramps and their round at the level, slots by
+/// design, whose engagement is not the clearing's.
+pub fn entry_moves(moves: &[swarf_toolpath::Move], report: &RoughingReport) -> Vec<bool> {
+    let mut seen = std::collections::BTreeMap::new();
+    moves
+        .iter()
+        .map(|m| {
+            m.pass.is_some_and(|p| {
+                let i = seen.entry(p).or_insert(0usize);
+                *i += 1;
+                report.entries.iter().any(|&(q, n)| q == p && *i < n)
+            })
+        })
+        .collect()
+}
+
 fn check(params: &RoughingParams, stock: &RoughingStock<'_>) -> Result<(), PathError> {
     let bad = |field: &str, message: String| PathError::InvalidParameter {
         field: field.into(),
