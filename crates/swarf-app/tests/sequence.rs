@@ -94,3 +94,66 @@ fn a_cleanup_tool_too_large_for_the_fillets_leaves_rest_only_there() {
         &stray[..stray.len().min(5)]
     );
 }
+
+#[test]
+fn bad_sequences_are_refused_naming_the_operation_and_field() {
+    let base = shipped();
+    let cases: Vec<(String, &str)> = vec![
+        (
+            base.replace("tool = \"flat:d=6\"", "tool = \"flat:d=-6\""),
+            "operation[1]",
+        ),
+        (
+            base.replace("name = \"finish\"", "name = \"finish\"\nspeed = 3"),
+            "operation[2]: unknown field `speed`",
+        ),
+        (base.replace("cell = 0.25", "cell = 0"), "stock.cell"),
+        (
+            base.replace(
+                "scallop = 0.01, tolerance = 0.01, angle = 0",
+                "scallop = -1, angle = 0",
+            ),
+            "operation[2]: strategy.scallop",
+        ),
+        (
+            base.replace(
+                "[[operation]]\nname = \"rough\"",
+                "[[operation]]\nname = \"rough\"\npart = \"x.stl\"",
+            ),
+            "operation[0]: part: not an operation's key",
+        ),
+        (
+            base.replace("gcode = \"fillet-pocket-sequence.ngc\"", "gcode = \"\""),
+            "output.gcode",
+        ),
+    ];
+    for (text, want) in cases {
+        let err = Sequence::parse(&text, "seq.toml")
+            .map(|_| ())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains(want) && err.contains("seq.toml"),
+            "{want}: {err}"
+        );
+    }
+    // A cleanup first has nothing to clean up after; a box below the part is refused.
+    let first_cleanup = base.replacen("kind = \"roughing\", allowance = 0.5, step_down = 4, max_engagement = 60, ramp_angle = 3, tolerance = 0.01", "kind = \"cleanup\", scallop = 0.01", 1);
+    let err = Sequence::parse(&first_cleanup, "seq.toml")
+        .map(|_| ())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("operation[0]: strategy.kind") && err.contains("first operation"),
+        "{err}"
+    );
+    let mut out = swarf_app::Outputs::new(&std::env::temp_dir().join("swarf-sequence-bad"));
+    let low = Sequence::parse(&base.replace("top = 21", "top = 15"), "seq.toml").unwrap();
+    let err = plan_sequence(&low, &jobs(), &mut out)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("stock.top: 15 mm is below the part's top"),
+        "{err}"
+    );
+}

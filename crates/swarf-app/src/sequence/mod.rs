@@ -240,6 +240,13 @@ fn operation(repr: &SequenceRepr, k: usize, table: &toml::Table) -> Result<Opera
         .and_then(|s| s.get("kind"))
         .and_then(toml::Value::as_str)
         == Some("cleanup");
+    if is_cleanup && k == 0 {
+        return Err(
+            "strategy.kind: a cleanup cannot be the first operation: it cleans up \
+                    after the operation before it"
+                .into(),
+        );
+    }
     if is_cleanup && let Some(tool) = prev_tool {
         let mut parent = toml::Table::new();
         parent.insert("tool".into(), tool);
@@ -253,11 +260,24 @@ fn operation(repr: &SequenceRepr, k: usize, table: &toml::Table) -> Result<Opera
         t.insert("import".into(), toml::Value::Table(import.clone()));
     }
     let text = toml::to_string(&t).map_err(|e| e.to_string())?;
+    // The table was written out again: a line number in a message would be of that
+    // text, not of the file, so it is dropped.
     let job = Job::parse(&text, "").map_err(|e| match e {
-        AppError::Job { message, .. } => message,
+        AppError::Job { message, .. } => without_line(&message).to_string(),
         other => other.to_string(),
     })?;
     Ok(Operation { name, number, job })
+}
+
+/// `message` without a leading `line N: `.
+fn without_line(message: &str) -> &str {
+    message
+        .strip_prefix("line ")
+        .and_then(|rest| {
+            let (n, tail) = rest.split_once(": ")?;
+            n.chars().all(|c| c.is_ascii_digit()).then_some(tail)
+        })
+        .unwrap_or(message)
 }
 
 fn check_stock(s: &Stock) -> Result<(), String> {

@@ -117,6 +117,15 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
     let design = DesignSurface::new(Design::Mesh(&mesh))?
         .heights(&grid, false, &Quiet)
         .heights;
+    if seq.stock.kind == StockKind::Box
+        && let Some(top) = seq.stock.top
+        && top < b.max.z
+    {
+        return Err(AppError::Message(format!(
+            "stock.top: {top} mm is below the part's top ({:.3} mm): expected a box that holds the part",
+            b.max.z
+        )));
+    }
     let mut dexel = initial_stock(&seq.stock, grid, &design, b.max.z, job_dir)?;
     let mut report = SequenceReport {
         name: seq.name.clone(),
