@@ -315,7 +315,7 @@ mod tests {
         let end = p.motions[2].end.cl;
         assert!((end.x - 50.8).abs() < 1e-9 && (end.z + 2.54).abs() < 1e-9);
         assert!((p.motions[2].feed - 254.0).abs() < 1e-9);
-        assert_eq!(p.motions[2].line, 6);
+        assert_eq!(p.motions[2].line, 7);
     }
 
     #[test]
