@@ -23,8 +23,8 @@ use swarf_fiveaxis::cc_paths::{cc_paths, linking};
 use swarf_fiveaxis::machine::{Machine, MachineKind};
 use swarf_fiveaxis::positioning::{PositioningReport, position_with_progress};
 use swarf_fiveaxis::post::{Post5x, PostOptions, post_5x};
-use swarf_nc::Post;
 use swarf_geom::Part;
+use swarf_nc::Post;
 use swarf_path::Plan;
 use swarf_toolpath::{Contact, Toolpath};
 

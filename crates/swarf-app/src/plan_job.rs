@@ -86,9 +86,8 @@ pub fn plan_model_toolpath(
         })
         .transpose()?;
     let spec = job.output.post_spec();
-    let post = Post::load(spec, job_dir).map_err(|e| {
-        AppError::Message(format!("output.post = {:?}: {e}", excerpt(spec, 80)))
-    })?;
+    let post = Post::load(spec, job_dir)
+        .map_err(|e| AppError::Message(format!("output.post = {:?}: {e}", excerpt(spec, 80))))?;
     let post = &post;
     if job.strategy.kind == StrategyKind::Cleanup {
         return cleanup_outputs(job, model, job_dir, (machine.as_ref(), post), out);

@@ -80,9 +80,12 @@ fn five_axis_posts_read_back_to_the_poses() {
         };
         let p = parse_gcode(&program, "p.nc", &read).unwrap();
         let what = post.name();
+        if std::env::var_os("SWARF_SHOW_POSTS").is_some() {
+            eprintln!("{what}:\n{program}");
+        }
         assert!(p.stopped.is_none(), "{what}: {:?}\n{program}", p.stopped);
         let ends: Vec<Pose> = p.motions.iter().map(|m| m.end).collect();
-        let mut at = 0;
+        let mut at: usize = 0;
         for (i, mv) in moves.iter().enumerate() {
             let from = at.saturating_sub(1);
             let Some(found) = (from..ends.len()).find(|&j| close(&ends[j], &mv.to)) else {
@@ -100,7 +103,11 @@ fn posts_without_rotary_axes_or_inverse_time_are_refused() {
     let m = Machine::parse(text, name).unwrap();
     let tp = toolpath();
     let cases = [
-        ("grbl", FeedMode::UnitsPerMinute, "post grbl: rotary_axes: five-axis program"),
+        (
+            "grbl",
+            FeedMode::UnitsPerMinute,
+            "post grbl: rotary_axes: five-axis program",
+        ),
         (
             "heidenhain",
             FeedMode::InverseTime,

@@ -172,7 +172,10 @@ impl<'p> BlockWriter<'p> {
         };
         let text = render(
             &modal.line,
-            &[("{units}", self.post.units_word(self.units)), ("{feed_mode}", feed)],
+            &[
+                ("{units}", self.post.units_word(self.units)),
+                ("{feed_mode}", feed),
+            ],
         );
         self.block(&text);
     }
@@ -241,7 +244,11 @@ impl<'p> BlockWriter<'p> {
         }
     }
 
-    fn check_position(index: usize, position: &[f64], axes: &[(char, WordKind, Option<String>)]) -> Result<(), NcError> {
+    fn check_position(
+        index: usize,
+        position: &[f64],
+        axes: &[(char, WordKind, Option<String>)],
+    ) -> Result<(), NcError> {
         for (&v, a) in position.iter().zip(axes) {
             match a.1 {
                 WordKind::Length => {
@@ -435,9 +442,12 @@ mod tests {
         w.spindle_on(5000.0).unwrap();
         let none = || Ok(None);
         let feed = || Ok(Some(Feed::PerMinute(300.0)));
-        w.motion(0, MotionCode::Rapid, &[1.0, -2.0, 0.0], none).unwrap();
-        w.motion(1, MotionCode::Linear, &[1.0, -2.0, -0.25], feed).unwrap();
-        w.motion(2, MotionCode::Linear, &[4.0, -2.0, -0.25], feed).unwrap();
+        w.motion(0, MotionCode::Rapid, &[1.0, -2.0, 0.0], none)
+            .unwrap();
+        w.motion(1, MotionCode::Linear, &[1.0, -2.0, -0.25], feed)
+            .unwrap();
+        w.motion(2, MotionCode::Linear, &[4.0, -2.0, -0.25], feed)
+            .unwrap();
         assert_eq!(
             w.finish(),
             "0 BEGIN PGM 7 MM\n1 ; a  b \n2 TOOL CALL 3 Z S5000\n3 M3\n\

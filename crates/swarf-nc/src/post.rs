@@ -218,7 +218,10 @@ impl Post {
             return Err(NcError::Post {
                 file: name.to_string(),
                 field: "post".into(),
-                message: format!("no built-in post of that name (built in: {})", names.join(", ")),
+                message: format!(
+                    "no built-in post of that name (built in: {})",
+                    names.join(", ")
+                ),
             });
         };
         Post::parse(text, &format!("{name}.toml (built in)"))
@@ -290,7 +293,10 @@ impl Post {
             message: format!("{operation}: {what}"),
         };
         if rotary && !self.rotary_axes {
-            return Err(unsupported("rotary_axes", "the control has no rotary axes (A/B/C)"));
+            return Err(unsupported(
+                "rotary_axes",
+                "the control has no rotary axes (A/B/C)",
+            ));
         }
         if feed_mode == FeedMode::InverseTime && !self.inverse_time {
             return Err(unsupported(
@@ -431,11 +437,18 @@ mod tests {
     fn bad_posts_name_the_field() {
         let text = BUILTIN_POSTS[0].1.replace("T{tool} M6", "T{tol} M6");
         let e = Post::parse(&text, "my.toml").unwrap_err().to_string();
-        assert!(e.starts_with("my.toml: tool.change[0]: unknown placeholder {tol}"), "{e}");
-        let text = BUILTIN_POSTS[0].1.replace("mm_decimals = 4", "mm_decimals = 40");
+        assert!(
+            e.starts_with("my.toml: tool.change[0]: unknown placeholder {tol}"),
+            "{e}"
+        );
+        let text = BUILTIN_POSTS[0]
+            .1
+            .replace("mm_decimals = 4", "mm_decimals = 40");
         let e = Post::parse(&text, "my.toml").unwrap_err().to_string();
         assert!(e.starts_with("my.toml: words.mm_decimals"), "{e}");
-        let text = BUILTIN_POSTS[0].1.replace("[motion]", "[motion]\nspeed = 3");
+        let text = BUILTIN_POSTS[0]
+            .1
+            .replace("[motion]", "[motion]\nspeed = 3");
         let e = Post::parse(&text, "my.toml").unwrap_err().to_string();
         assert!(e.contains("line ") && e.contains("speed"), "{e}");
         assert!(check_template("G{x", &["{x}"]).is_err());

@@ -127,8 +127,14 @@ fn every_post_reads_back_to_its_precision() {
 fn each_post_writes_its_own_conventions() {
     let tp = toolpath();
     let expect: [(&str, &[&str]); 5] = [
-        ("linuxcnc", &["%\n(part wave  test )\nG17 G21 G40 G49 G80 G90 G94\nT3 M6\nS"]),
-        ("fanuc", &["%\nO1000\n(PART WAVE  TEST )\n", "T3 M06\nG43 H3\nS"]),
+        (
+            "linuxcnc",
+            &["%\n(part wave  test )\nG17 G21 G40 G49 G80 G90 G94\nT3 M6\nS"],
+        ),
+        (
+            "fanuc",
+            &["%\nO1000\n(PART WAVE  TEST )\n", "T3 M06\nG43 H3\nS"],
+        ),
         ("mach3", &["(part wave  test )\n", "T3 M6\nG43 H3\nS"]),
         (
             "grbl",
@@ -148,7 +154,11 @@ fn each_post_writes_its_own_conventions() {
         for part in parts {
             assert!(text.contains(part), "{name}: {part:?} not in\n{text}");
         }
-        assert_eq!(text.contains('%'), !matches!(name, "grbl" | "heidenhain"), "{name}");
+        assert_eq!(
+            text.contains('%'),
+            !matches!(name, "grbl" | "heidenhain"),
+            "{name}"
+        );
     }
 }
 
@@ -163,7 +173,10 @@ fn gcode_posts_are_accepted_by_rs274() {
                 return;
             };
             let all = out.text("");
-            assert!(out.success, "{name} {units:?}: rs274 refused:\n{all}\n{text}");
+            assert!(
+                out.success,
+                "{name} {units:?}: rs274 refused:\n{all}\n{text}"
+            );
             let feeds = all.matches("STRAIGHT_FEED").count();
             let read = read(&post, &text);
             let want = read
@@ -183,15 +196,28 @@ fn a_user_post_file_is_read_from_its_folder() {
     let text = swarf_nc::post::BUILTIN_POSTS[0]
         .1
         .replace("name = \"linuxcnc\"", "name = \"shop\"")
-        .replace("[words]", "[numbers]\nprefix = \"N\"\nstart = 10\nstep = 10\n\n[words]");
+        .replace(
+            "[words]",
+            "[numbers]\nprefix = \"N\"\nstart = 10\nstep = 10\n\n[words]",
+        );
     std::fs::write(dir.join("shop.toml"), text).unwrap();
     let post = Post::load("shop.toml", &dir).unwrap();
     let program = write(&post, Units::Mm, &toolpath());
-    assert!(program.starts_with("%\nN10 (part wave  test )\nN20 G17"), "{program}");
+    assert!(
+        program.starts_with("%\nN10 (part wave  test )\nN20 G17"),
+        "{program}"
+    );
     let p = read(&post, &program);
-    assert!(p.stopped.is_none() && !p.motions.is_empty(), "{:?}", p.stopped);
+    assert!(
+        p.stopped.is_none() && !p.motions.is_empty(),
+        "{:?}",
+        p.stopped
+    );
     let e = Post::load("missing.toml", &dir).unwrap_err().to_string();
-    assert!(e.contains("missing.toml: post: cannot read the post file"), "{e}");
+    assert!(
+        e.contains("missing.toml: post: cannot read the post file"),
+        "{e}"
+    );
     std::fs::write(dir.join("bad.toml"), "name = 3\n").unwrap();
     let e = Post::load("bad.toml", &dir).unwrap_err().to_string();
     assert!(e.contains("bad.toml: toml: line 1"), "{e}");
@@ -208,20 +234,34 @@ fn refusals_name_the_post_and_the_field() {
         ..GcodeOptions::default()
     };
     let e = write_gcode(&tp.moves(), &tp.feeds, &opts).unwrap_err();
-    assert!(matches!(e, NcError::InvalidOption { field: "program_number", .. }));
-    assert!(e.to_string().contains("post fanuc: expected 1..=9999"), "{e}");
+    assert!(matches!(
+        e,
+        NcError::InvalidOption {
+            field: "program_number",
+            ..
+        }
+    ));
+    assert!(
+        e.to_string().contains("post fanuc: expected 1..=9999"),
+        "{e}"
+    );
     let grbl = Post::builtin("grbl").unwrap();
     let per_minute = swarf_nc::FeedMode::UnitsPerMinute;
-    let e = grbl.check("five-axis program", 1, per_minute, true).unwrap_err();
+    let e = grbl
+        .check("five-axis program", 1, per_minute, true)
+        .unwrap_err();
     assert_eq!(
         e.to_string(),
         "post grbl: rotary_axes: five-axis program: the control has no rotary axes (A/B/C)"
     );
     let heidenhain = Post::builtin("heidenhain").unwrap();
     let inverse = swarf_nc::FeedMode::InverseTime;
-    let e = heidenhain.check("five-axis program", 1, inverse, true).unwrap_err();
+    let e = heidenhain
+        .check("five-axis program", 1, inverse, true)
+        .unwrap_err();
     assert!(
-        e.to_string().starts_with("post heidenhain: inverse_time: five-axis program"),
+        e.to_string()
+            .starts_with("post heidenhain: inverse_time: five-axis program"),
         "{e}"
     );
 }

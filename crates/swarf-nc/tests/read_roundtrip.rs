@@ -7,7 +7,7 @@ use swarf_geom::{Point3, Vec3};
 use swarf_nc::read::{
     GcodeReadOptions, MotionKind, Program, parse_cl, parse_gcode, parse_pose_csv, read_program,
 };
-use swarf_nc::{GcodeOptions, Post, NcError, Units, write_cl, write_gcode, write_pose_csv};
+use swarf_nc::{GcodeOptions, NcError, Post, Units, write_cl, write_gcode, write_pose_csv};
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Feeds, Linking, Move, MoveKind, Pass, PathPoint, Toolpath};
 

@@ -113,7 +113,10 @@ fn words(raw: &str) -> Vec<(usize, &str)> {
     if let Some((col, s)) = start {
         out.push((col + 1, &code[s..]));
     }
-    if out.first().is_some_and(|(_, w)| w.bytes().all(|b| b.is_ascii_digit())) {
+    if out
+        .first()
+        .is_some_and(|(_, w)| w.bytes().all(|b| b.is_ascii_digit()))
+    {
         out.remove(0);
     }
     out
@@ -197,7 +200,9 @@ fn program(w: &[(usize, &str)], line: usize, state: &mut State) -> Result<String
 fn tool_call(w: &[(usize, &str)], line: usize) -> Result<String, Diagnostic> {
     let at = |col: usize, m: String| Diagnostic::new(line, col, m);
     let (col, _) = w[0];
-    if w.get(1).is_none_or(|(_, s)| !s.eq_ignore_ascii_case("CALL")) {
+    if w.get(1)
+        .is_none_or(|(_, s)| !s.eq_ignore_ascii_case("CALL"))
+    {
         return Err(at(col, "expected TOOL CALL".into()));
     }
     let Some(&(tcol, tool)) = w.get(2) else {
@@ -219,7 +224,10 @@ fn tool_call(w: &[(usize, &str)], line: usize) -> Result<String, Diagnostic> {
             } else {
                 v
             };
-            push(&mut block, &format!("S{}", number(v).map_err(|m| at(col, m))?));
+            push(
+                &mut block,
+                &format!("S{}", number(v).map_err(|m| at(col, m))?),
+            );
             continue;
         }
         let what = if matches!(upper.as_str(), "X" | "Y") {
@@ -242,14 +250,23 @@ fn straight(w: &[(usize, &str)], line: usize) -> Result<String, Diagnostic> {
         let (letter, value) = upper.split_at(1.min(upper.len()));
         match letter {
             "X" | "Y" | "Z" | "A" | "B" | "C" => {
-                push(&mut axes, &format!("{letter}{}", number(value).map_err(|e| at(col, e))?));
+                push(
+                    &mut axes,
+                    &format!("{letter}{}", number(value).map_err(|e| at(col, e))?),
+                );
             }
             "F" if value == "MAX" => rapid = true,
-            "F" => push(&mut feed, &format!("F{}", number(value).map_err(|e| at(col, e))?)),
+            "F" => push(
+                &mut feed,
+                &format!("F{}", number(value).map_err(|e| at(col, e))?),
+            ),
             "M" => push(&mut m, &m_word(word).map_err(|e| at(col, e))?),
             "R" if value == "0" => {}
             "R" => {
-                return Err(at(col, format!("L: radius compensation {word} is not read (R0 only)")));
+                return Err(at(
+                    col,
+                    format!("L: radius compensation {word} is not read (R0 only)"),
+                ));
             }
             "I" => return Err(at(col, format!("L: incremental {word} is not read"))),
             _ => return Err(at(col, format!("L: {word} is not read"))),
@@ -322,8 +339,18 @@ mod tests {
     fn what_is_not_read_stops_at_its_line_and_column() {
         let cases = [
             ("0 BEGIN PGM 1 MM\n1 CC X+0 Y+0\n", 2, 3, "CC is not read"),
-            ("0 BEGIN PGM 1 MM\n1 L X+1 RL F100\n", 2, 9, "radius compensation RL"),
-            ("0 BEGIN PGM 1 MM\n1 L IX+1 F100\n", 2, 5, "incremental IX+1"),
+            (
+                "0 BEGIN PGM 1 MM\n1 L X+1 RL F100\n",
+                2,
+                9,
+                "radius compensation RL",
+            ),
+            (
+                "0 BEGIN PGM 1 MM\n1 L IX+1 F100\n",
+                2,
+                5,
+                "incremental IX+1",
+            ),
             ("0 BEGIN PGM 1 MM\n1 L X+1a F100\n", 2, 5, "is not a number"),
             ("0 BEGIN PGM 1 MM\n1 TOOL CALL 1 X\n", 2, 15, "tool axis X"),
             ("1 L X+1 FMAX\n", 1, 3, "expected BEGIN PGM first"),
@@ -336,7 +363,9 @@ mod tests {
             assert!(d.message.contains(what), "{text}: {}", d.message);
         }
         // A feed move before any feed: the G-code reader's error, at its line.
-        let d = read("0 BEGIN PGM 1 MM\n1 L X+1\n2 END PGM 1 MM\n").stopped.unwrap();
+        let d = read("0 BEGIN PGM 1 MM\n1 L X+1\n2 END PGM 1 MM\n")
+            .stopped
+            .unwrap();
         assert_eq!(d.line, 2);
     }
 }
