@@ -24,6 +24,7 @@ use swarf_fiveaxis::machine::{Machine, MachineKind};
 use swarf_fiveaxis::positioning::{PositioningReport, position_with_progress};
 use swarf_fiveaxis::post::{Post5x, PostOptions, post_5x};
 use swarf_geom::Part;
+use swarf_nc::Post;
 use swarf_path::Plan;
 use swarf_toolpath::{Contact, Toolpath};
 
@@ -104,7 +105,6 @@ pub fn post_options(
         }
     };
     Ok(PostOptions {
-        dialect: job.output.dialect,
         units: job.output.units,
         comments,
         feed_mode: job.output.feed_mode,
@@ -123,10 +123,14 @@ pub fn post_options(
 pub fn write_job_gcode(
     job: &Job,
     machine: &Machine,
+    post: &Post,
     toolpath: &Toolpath,
     comments: Vec<String>,
 ) -> Result<Post5x, FiveAxisError> {
-    let opts = post_options(job, machine, comments)?;
+    let opts = PostOptions {
+        post: post.clone(),
+        ..post_options(job, machine, comments)?
+    };
     post_5x(machine, toolpath, &opts)
 }
 

@@ -17,7 +17,7 @@ use std::path::Path;
 use swarf_fiveaxis::machine::{Machine, load_machine};
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport};
 use swarf_geom::domain::excerpt;
-use swarf_nc::GcodeOptions;
+use swarf_nc::{GcodeOptions, Post};
 use swarf_path::{Plan, StrategyKind};
 use swarf_toolpath::{Toolpath, motion_stats};
 
@@ -85,11 +85,15 @@ pub fn plan_model_toolpath(
             })
         })
         .transpose()?;
+    let spec = job.output.post_spec();
+    let post = Post::load(spec, job_dir)
+        .map_err(|e| AppError::Message(format!("output.post = {:?}: {e}", excerpt(spec, 80))))?;
+    let post = &post;
     if job.strategy.kind == StrategyKind::Cleanup {
-        return cleanup_outputs(job, model, job_dir, machine.as_ref(), out);
+        return cleanup_outputs(job, model, job_dir, (machine.as_ref(), post), out);
     }
     if job.strategy.kind == StrategyKind::DropSpin {
-        return drop_spin_outputs(job, model, machine.as_ref(), out);
+        return drop_spin_outputs(job, model, (machine.as_ref(), post), out);
     }
     let (name, mut plan) = match model {
         Model::Patches(part) => (part.name.clone(), plan(job, PlanInput::Part(part))?),
@@ -114,6 +118,7 @@ pub fn plan_model_toolpath(
     let written = Written {
         part_name: &name,
         machine: machine.as_ref(),
+        post,
         positioning: positioning.as_ref(),
         notes: &[],
     };
@@ -128,6 +133,8 @@ pub fn plan_model_toolpath(
 struct Written<'a> {
     part_name: &'a str,
     machine: Option<&'a Machine>,
+    /// The post of the G-code.
+    post: &'a Post,
     positioning: Option<&'a PositioningReport>,
     /// Extra header comments of the program.
     notes: &'a [String],
@@ -138,7 +145,7 @@ struct Written<'a> {
 fn drop_spin_outputs(
     job: &Job,
     model: &Model,
-    machine: Option<&Machine>,
+    (machine, post): (Option<&Machine>, &Post),
     out: &mut Outputs,
 ) -> Result<Planned> {
     let Model::Patches(part) = model else {
@@ -156,6 +163,7 @@ fn drop_spin_outputs(
     let written = Written {
         part_name: &part.name,
         machine,
+        post,
         positioning: None,
         notes: &[],
     };
@@ -180,7 +188,7 @@ fn cleanup_outputs(
     job: &Job,
     model: &Model,
     job_dir: &Path,
-    machine: Option<&Machine>,
+    (machine, post): (Option<&Machine>, &Post),
     out: &mut Outputs,
 ) -> Result<Planned> {
     let mut stages = plan_cleanup_job(job, model, job_dir, Some(out))?;
@@ -203,6 +211,7 @@ fn cleanup_outputs(
         let written = Written {
             part_name: &name,
             machine,
+            post,
             positioning: None,
             notes: &stage.notes,
         };
@@ -255,6 +264,7 @@ fn write_outputs(
     let Written {
         part_name,
         machine,
+        post,
         positioning,
         notes,
     } = *written;
@@ -266,7 +276,7 @@ fn write_outputs(
     let mut rotary = None;
     match (&job.output.gcode, machine) {
         (Some(rel), Some(m)) => {
-            let post = write_job_gcode(job, m, &plan.toolpath, comments).map_err(|e| {
+            let post = write_job_gcode(job, m, post, &plan.toolpath, comments).map_err(|e| {
                 let spec = job.output.machine.as_deref().unwrap_or_default();
                 AppError::Message(format!("output.machine = {spec:?} ({}): {e}", m.name))
             })?;
@@ -275,7 +285,7 @@ fn write_outputs(
         }
         (Some(rel), None) => {
             let opts = GcodeOptions {
-                dialect: job.output.dialect,
+                post: post.clone(),
                 units: job.output.units,
                 comments,
                 ..GcodeOptions::default()

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use swarf_fiveaxis::machine::reader::MachineKinematics;
 use swarf_fiveaxis::machine::{Machine, MachineKind, load_machine};
 use swarf_geom::domain::excerpt;
-use swarf_nc::Dialect;
+use swarf_nc::Language;
 use swarf_nc::read::{
     GcodeReadOptions, Program, ProgramFormat, ToolTable, parse_var_file, read_program_with,
 };
@@ -23,8 +23,8 @@ use swarf_tool::Cutter;
 /// `--tool-table`, `--params`, `--sub-path`).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct GcodeSetup {
-    /// LinuxCNC's RS274/NGC or Fanuc macro B.
-    pub dialect: Dialect,
+    /// LinuxCNC's RS274/NGC, Fanuc macro B or Heidenhain conversational.
+    pub dialect: Language,
     /// Tool table and parameter values are in inches.
     pub machine_inch: bool,
     /// The tool table (LinuxCNC's format), if given.
@@ -36,8 +36,8 @@ pub struct GcodeSetup {
 }
 
 impl GcodeSetup {
-    /// Reads the tool table and parameter file named, if any; `dialect` is `linuxcnc`
-    /// or `fanuc`, `machine_units` `mm` or `inch`.
+    /// Reads the tool table and parameter file named, if any; `dialect` is `linuxcnc`,
+    /// `fanuc` or `heidenhain`, `machine_units` `mm` or `inch`.
     ///
     /// # Errors
     /// A file that cannot be read or parsed (naming it, with line and column); a
@@ -49,10 +49,8 @@ impl GcodeSetup {
         params: Option<&Path>,
         sub_path: &[PathBuf],
     ) -> Result<Self> {
-        let dialect = match dialect {
-            "linuxcnc" => Dialect::Linuxcnc,
-            "fanuc" => Dialect::Fanuc,
-            other => bail!("--dialect {other}: expected linuxcnc or fanuc"),
+        let Some(dialect) = Language::named(dialect) else {
+            bail!("--dialect {dialect}: expected linuxcnc, fanuc or heidenhain");
         };
         let machine_inch = match machine_units {
             "mm" => false,
@@ -88,7 +86,7 @@ impl GcodeSetup {
     /// The G-code reader's options for this setup.
     pub fn options(&self) -> GcodeReadOptions<'_> {
         GcodeReadOptions {
-            dialect: self.dialect,
+            language: self.dialect,
             tool_table: self.tool_table.as_ref(),
             machine_inch: self.machine_inch,
             parameters: &self.parameters,

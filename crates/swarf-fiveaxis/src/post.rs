@@ -1,6 +1,8 @@
-//! Five-axis RS274/NGC G-code: a tool path's moves as machine axis positions `X Y Z`
-//! and two rotary words (`A C`, `B C`, ...), through a [`Machine`]'s inverse
-//! kinematics.
+//! Five-axis programs: a tool path's moves as machine axis positions `X Y Z` and two
+//! rotary words (`A C`, `B C`, ...), through a [`Machine`]'s inverse kinematics, for
+//! any post description with rotary axes ([`swarf_nc::Post`]: LinuxCNC, Fanuc,
+//! Mach3, Heidenhain; grbl has none and is refused, and so is inverse time on a post
+//! without it).
 //!
 //! The program holds joint positions, as a control without tool-centre-point
 //! management (LinuxCNC with trivkins, which `rs274` emulates) moves them: each block
@@ -31,8 +33,8 @@
 //! machines with head axes program the head's reference point, the tool length being
 //! part of the kinematics (`tool_length`), so no length compensation is active (`G49`).
 //! Layout otherwise as the 3-axis post of swarf-nc, through the same block writer
-//! ([`swarf_nc::BlockWriter`]): `%`, comments, modal line, tool change, spindle, moves
-//! with only changed words, `M5`, `M30`, `%`.
+//! ([`swarf_nc::BlockWriter`]): the post's header, comments, modal line, tool change,
+//! spindle, moves with only changed words, the post's end and footer.
 
 pub mod subdivide;
 
@@ -45,20 +47,20 @@ pub use subdivide::{PostReport, Stray};
 pub use swarf_nc::block::FeedMode;
 use swarf_nc::block::{BlockWriter, Feed, MotionCode, WordKind};
 use swarf_nc::number::Units;
-use swarf_nc::{Dialect, NcError};
+use swarf_nc::{NcError, Post};
 use swarf_tool::Pose;
 use swarf_toolpath::{Move, MoveKind, Toolpath};
 
 /// What the five-axis post writes besides the moves.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PostOptions {
-    /// Control family.
-    pub dialect: Dialect,
+    /// The post: how the control wants its program written.
+    pub post: Post,
     /// Output units.
     pub units: Units,
-    /// Tool number for `T` (and `H`).
+    /// Tool number for the tool change (and the length offset).
     pub tool_number: u32,
-    /// Fanuc program number (`O`), 1..=9999.
+    /// Program number (Fanuc `O`, Heidenhain program name), within the post's range.
     pub program_number: u32,
     /// Comment lines for the header.
     pub comments: Vec<String>,
@@ -87,7 +89,7 @@ pub const DEFAULT_PATH_ANGLE_TOL: f64 = 0.05 * std::f64::consts::PI / 180.0;
 impl Default for PostOptions {
     fn default() -> Self {
         PostOptions {
-            dialect: Dialect::Linuxcnc,
+            post: Post::linuxcnc(),
             units: Units::Mm,
             tool_number: 1,
             program_number: 1000,
@@ -217,7 +219,9 @@ pub fn write_gcode_5x(
 /// # Errors
 /// [`FiveAxisError::Unreachable`] for poses the machine cannot reach (those of the
 /// tool path, or between two of them);
-/// [`FiveAxisError::Nc`] for non-finite values or a bad program number;
+/// [`FiveAxisError::Nc`] for non-finite values, a bad program number, or a post that
+/// cannot express the program ([`NcError::Unsupported`]: no rotary axes, no inverse
+/// time);
 /// [`FiveAxisError::InvalidParameter`] for a non-positive rotary feed or path
 /// tolerance, or a tool length that is not finite.
 pub fn post_5x(
@@ -237,7 +241,7 @@ pub fn post_5x(
         (names[0], WordKind::Angle),
         (names[1], WordKind::Angle),
     ];
-    let mut w = BlockWriter::new(opts.dialect, opts.units, &axes, blocks.len());
+    let mut w = BlockWriter::new(&opts.post, opts.units, &axes, blocks.len());
     header(&mut w, m, toolpath, opts)?;
     let mut prev: Option<&Joints> = None;
     for (index, b) in blocks.iter().enumerate() {
@@ -352,7 +356,8 @@ fn feed(
 }
 
 fn check_options(o: &PostOptions) -> Result<(), FiveAxisError> {
-    BlockWriter::check_program_number(o.dialect, o.program_number)?;
+    o.post
+        .check("five-axis program", o.program_number, o.feed_mode, true)?;
     if !(o.rotary_feed.is_finite() && o.rotary_feed > 0.0) {
         return Err(FiveAxisError::parameter(
             "rotary_feed",
@@ -394,7 +399,7 @@ fn header(
     }
     w.comment(&format!("machine {}", m.name));
     w.safe_modal(opts.feed_mode);
-    w.tool_change(opts.tool_number);
+    w.tool_change(opts.tool_number, toolpath.feeds.spindle)?;
     if m.kind == MachineKind::TableTable {
         w.length_offset(opts.tool_number);
     } else {

@@ -1,42 +1,25 @@
-//! The one block writer of every G-code post: the 3-axis post ([`crate::gcode_writer`])
-//! and the five-axis post of swarf-fiveaxis both emit their programs through it.
+//! The one block writer of every post: the 3-axis post ([`crate::gcode_writer`]) and
+//! the five-axis post of swarf-fiveaxis both emit their programs through it, for any
+//! post description ([`crate::post::Post`]: LinuxCNC, Fanuc, Mach3, grbl, Heidenhain,
+//! or a user's file).
 //!
-//! What it owns: the program frame (`%`, the Fanuc `O` number, `M5 M30 %`), comments
-//! safe for both dialects, the safe modal line `G17 G21|G20 G40 G49 G80 G90 G93|G94`,
-//! tool change and spindle words, and motion blocks with modal suppression. A motion
-//! block writes `G0`/`G1` only when the motion changes, each axis word only when its
-//! written text changes (so two positions that round to the same word count as
-//! unchanged), and no block at all when no axis word changed. Lengths are converted
-//! from mm to the output units and angles from radians to degrees here; every value
-//! carries a decimal point ([`crate::number::format_decimal`]). Every value is checked
-//! before it is written: lengths within the coordinate domain, feeds within the rate
-//! domain, angles finite ([`crate::number::writable_length`]), so no program holds
-//! `inf` or a 300-digit word.
+//! What it owns: the program frame (the post's header, begin, end and footer lines),
+//! comments (parentheses and non-ASCII replaced, so one comment style fits every
+//! control), block numbers, the safe modal line, tool change and spindle blocks, and
+//! motion blocks with modal suppression. A motion block writes the motion word when
+//! the motion changes (on every block for posts whose motion word is not modal, as
+//! Heidenhain's `L`), each axis word only when its written text changes (so two
+//! positions that round to the same word count as unchanged), and no block at all when
+//! no axis word changed. Lengths are converted from mm to the output units and angles
+//! from radians to degrees here, with the post's decimals and signs
+//! ([`crate::number::format_decimal`]). Every value is checked before it is written:
+//! lengths within the coordinate domain, feeds within the rate domain, angles finite
+//! ([`crate::number::writable_length`]), so no program holds `inf` or a 300-digit word.
 
 use crate::error::NcError;
 use crate::number::{Units, format_decimal, writable_length, writable_rate, writable_spindle};
+use crate::post::{Post, render};
 use serde::{Deserialize, Serialize};
-use std::fmt::Write as _;
-
-/// Decimal places of rotary words, degrees.
-pub const ANGLE_DECIMALS: usize = 4;
-
-/// Decimal places of inverse-time feed words (`F` in 1/min under G93).
-pub const INVERSE_TIME_DECIMALS: usize = 4;
-
-/// Most decimal places of a feed rate word (mm/min or in/min).
-const FEED_DECIMALS: usize = 3;
-
-/// Control family the program is written for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Dialect {
-    /// LinuxCNC (RS274/NGC as its interpreter reads it).
-    #[default]
-    Linuxcnc,
-    /// Fanuc-style: `O` program number, upper-case comments, `M06`.
-    Fanuc,
-}
 
 /// How feeds are written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -61,9 +44,9 @@ pub enum WordKind {
 /// The motion word of a block.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MotionCode {
-    /// `G0`.
+    /// Rapid (`G0`, Heidenhain `L ... FMAX`).
     Rapid,
-    /// `G1`.
+    /// Straight feed (`G1`, Heidenhain `L ... F`).
     Linear,
 }
 
@@ -76,57 +59,87 @@ pub enum Feed {
     InverseTime(f64),
 }
 
-/// Writes a G-code program block by block (module doc).
+/// Writes a program block by block for a post (module doc).
 #[derive(Debug, Clone)]
-pub struct BlockWriter {
-    dialect: Dialect,
+pub struct BlockWriter<'p> {
+    post: &'p Post,
     units: Units,
     /// Axis letters, what they hold, and the text last written for each.
     axes: Vec<(char, WordKind, Option<String>)>,
     motion: Option<MotionCode>,
     feed: Option<String>,
+    /// The next block number, when the post numbers blocks.
+    block_number: Option<u64>,
+    /// The program number given to [`BlockWriter::start`].
+    program_number: u32,
     out: String,
 }
 
-impl BlockWriter {
-    /// A writer for axes `axes` (letter and kind, in block order), with room for
-    /// about `blocks` blocks.
-    pub fn new(dialect: Dialect, units: Units, axes: &[(char, WordKind)], blocks: usize) -> Self {
+impl<'p> BlockWriter<'p> {
+    /// A writer for `post` in `units`, for axes `axes` (letter and kind, in block
+    /// order), with room for about `blocks` blocks.
+    pub fn new(post: &'p Post, units: Units, axes: &[(char, WordKind)], blocks: usize) -> Self {
         BlockWriter {
-            dialect,
+            post,
             units,
             axes: axes.iter().map(|&(c, k)| (c, k, None)).collect(),
             motion: None,
             feed: None,
+            block_number: post.numbers.as_ref().map(|n| n.start),
+            program_number: 0,
             out: String::with_capacity(blocks * (12 * axes.len() + 12) + 512),
         }
     }
 
-    /// Checks a Fanuc program number (1..=9999; any number for LinuxCNC, which writes
-    /// none).
-    ///
-    /// # Errors
-    /// [`NcError::InvalidOption`] for a Fanuc program number out of range.
-    pub fn check_program_number(dialect: Dialect, number: u32) -> Result<(), NcError> {
-        if dialect == Dialect::Fanuc && !(1..=9999).contains(&number) {
-            return Err(NcError::InvalidOption {
-                field: "program_number",
-                message: format!("expected 1..=9999, found {number}"),
-            });
-        }
-        Ok(())
+    /// A line without a block number (`%`, `O1000`).
+    fn line(&mut self, text: &str) {
+        self.out.push_str(text);
+        self.out.push('\n');
     }
 
-    /// Opens the program: `%`, and on Fanuc the `O` program number.
+    /// A block: the line with its block number when the post numbers blocks.
+    fn block(&mut self, text: &str) {
+        if let (Some(n), Some(numbers)) = (self.block_number, &self.post.numbers) {
+            self.out.push_str(&numbers.prefix);
+            self.out.push_str(&n.to_string());
+            self.out.push(' ');
+            self.block_number = Some(n.saturating_add(numbers.step));
+        }
+        self.line(text);
+    }
+
+    fn frame_values(&self, number: u32) -> [(&'static str, String); 2] {
+        let digits = self.post.program.number_digits;
+        [
+            ("{number}", format!("{number:0digits$}")),
+            ("{units}", self.post.units_word(self.units).to_string()),
+        ]
+    }
+
+    fn frame_lines(&mut self, lines: &[String], number: u32, numbered: bool) {
+        let values = self.frame_values(number);
+        let values: Vec<_> = values.iter().map(|(k, v)| (*k, v.as_str())).collect();
+        for l in lines {
+            let text = render(l, &values);
+            if numbered {
+                self.block(&text);
+            } else {
+                self.line(&text);
+            }
+        }
+    }
+
+    /// Opens the program: the post's header lines (`%`, `O0012`) and begin blocks
+    /// (`BEGIN PGM 12 MM`), with `program_number` for `{number}`.
     pub fn start(&mut self, program_number: u32) {
-        self.out.push_str("%\n");
-        if self.dialect == Dialect::Fanuc {
-            let _ = writeln!(self.out, "O{program_number:04}");
-        }
+        let post = self.post;
+        self.frame_lines(&post.program.header, program_number, false);
+        self.frame_lines(&post.program.begin, program_number, true);
+        self.program_number = program_number;
     }
 
-    /// A comment line safe for both dialects: no parentheses, printable ASCII; upper
-    /// case on Fanuc.
+    /// A comment block in the post's style: parentheses replaced by spaces and
+    /// anything but printable ASCII by `?`; upper case where the post says so.
     pub fn comment(&mut self, text: &str) {
         let clean: String = text
             .chars()
@@ -136,77 +149,107 @@ impl BlockWriter {
                 _ => '?',
             })
             .collect();
-        match self.dialect {
-            Dialect::Linuxcnc => {
-                let _ = writeln!(self.out, "({clean})");
-            }
-            Dialect::Fanuc => {
-                let _ = writeln!(self.out, "({})", clean.to_ascii_uppercase());
-            }
-        }
+        let c = &self.post.comment;
+        let clean = if c.upper_case {
+            clean.to_ascii_uppercase()
+        } else {
+            clean
+        };
+        let block = format!("{}{clean}{}", c.open, c.close);
+        self.block(&block);
     }
 
-    /// The safe modal line: XY plane, units, no compensation, no length offset, no
-    /// canned cycle, absolute, and the feed mode.
+    /// The post's safe modal line (none when the post has none), with the units and
+    /// the feed mode.
     pub fn safe_modal(&mut self, feed_mode: FeedMode) {
-        let units = match self.units {
-            Units::Mm => "G21",
-            Units::Inch => "G20",
-        };
+        let modal = &self.post.modal;
+        if modal.line.is_empty() {
+            return;
+        }
         let feed = match feed_mode {
-            FeedMode::InverseTime => "G93",
-            FeedMode::UnitsPerMinute => "G94",
+            FeedMode::InverseTime => &modal.inverse_time,
+            FeedMode::UnitsPerMinute => &modal.per_minute,
         };
-        let _ = writeln!(self.out, "G17 {units} G40 G49 G80 G90 {feed}");
+        let text = render(
+            &modal.line,
+            &[
+                ("{units}", self.post.units_word(self.units)),
+                ("{feed_mode}", feed),
+            ],
+        );
+        self.block(&text);
     }
 
-    /// Tool change: `T t M6` (Fanuc `M06`).
-    pub fn tool_change(&mut self, tool: u32) {
-        let six = match self.dialect {
-            Dialect::Linuxcnc => "M6",
-            Dialect::Fanuc => "M06",
-        };
-        let _ = writeln!(self.out, "T{tool} {six}");
+    fn tool_blocks(&mut self, lines: &[String], tool: u32, rpm: f64) -> Result<(), NcError> {
+        let speed = (writable_spindle(rpm)?.round() as u64).to_string();
+        let tool = tool.to_string();
+        for l in lines {
+            let text = render(l, &[("{tool}", &tool), ("{speed}", &speed)]);
+            self.block(&text);
+        }
+        Ok(())
     }
 
-    /// Tool length compensation from the tool table: `G43 H t`.
+    /// The post's tool change blocks for tool `tool` at `rpm` (`T1 M6`, `TOOL CALL 1
+    /// Z S5000`).
+    ///
+    /// # Errors
+    /// [`NcError::InvalidOption`] when `rpm` is not a finite speed from 0 to 1e6 rpm.
+    pub fn tool_change(&mut self, tool: u32, rpm: f64) -> Result<(), NcError> {
+        let post = self.post;
+        self.tool_blocks(&post.tool.change, tool, rpm)
+    }
+
+    /// Whether the post writes the tool length offset in 3-axis programs too.
+    pub fn length_offset_3_axis(&self) -> bool {
+        self.post.tool.length_offset_3_axis
+    }
+
+    /// The post's tool length offset blocks (`G43 H t`; none on controls without).
     pub fn length_offset(&mut self, tool: u32) {
-        let _ = writeln!(self.out, "G43 H{tool}");
+        let post = self.post;
+        let _ = self.tool_blocks(&post.tool.length_offset, tool, 0.0);
     }
 
-    /// Spindle on, clockwise, at `rpm` rounded to a whole number.
+    /// The post's spindle-on blocks, clockwise at `rpm` rounded to a whole number.
     ///
     /// # Errors
     /// [`NcError::InvalidOption`] when `rpm` is not a finite speed from 0 to 1e6 rpm.
     pub fn spindle_on(&mut self, rpm: f64) -> Result<(), NcError> {
-        let _ = writeln!(self.out, "S{} M3", writable_spindle(rpm)?.round() as u64);
-        Ok(())
+        let post = self.post;
+        self.tool_blocks(&post.tool.spindle_on, 0, rpm)
     }
 
-    /// The words of `position` (one value per axis, mm or radians) as written.
+    /// `value` with `decimals` in the post's number style (sign, decimal point).
+    fn number(&self, value: f64, decimals: usize) -> String {
+        let mut s = format_decimal(value, decimals);
+        let w = &self.post.words;
+        if !w.trailing_point && s.ends_with('.') {
+            s.pop();
+        }
+        if w.plus_sign && !s.starts_with('-') {
+            s.insert(0, '+');
+        }
+        s
+    }
+
+    /// The word of axis `k` at `value` (mm or radians) as written.
     fn word(&self, k: usize, value: f64) -> String {
         match self.axes[k].1 {
-            WordKind::Length => format_decimal(self.units.from_mm(value), self.units.decimals()),
-            WordKind::Angle => format_decimal(value.to_degrees(), ANGLE_DECIMALS),
+            WordKind::Length => self.number(
+                self.units.from_mm(value),
+                self.post.length_decimals(self.units),
+            ),
+            WordKind::Angle => self.number(value.to_degrees(), self.post.words.angle_decimals),
         }
     }
 
-    /// A motion block to `position` (one value per axis, mm or radians): the motion
-    /// word when it changed, the axis words that changed, and the feed word that
-    /// `feed` gives (asked only when the block is written). Returns whether a block was
-    /// written: none is when no axis word changed.
-    ///
-    /// # Errors
-    /// [`NcError::NonFinite`] (move `index`) when a converted position is not finite;
-    /// the error of `feed`.
-    pub fn motion(
-        &mut self,
+    fn check_position(
         index: usize,
-        code: MotionCode,
         position: &[f64],
-        feed: impl FnOnce() -> Result<Option<Feed>, NcError>,
-    ) -> Result<bool, NcError> {
-        for (&v, a) in position.iter().zip(&self.axes) {
+        axes: &[(char, WordKind, Option<String>)],
+    ) -> Result<(), NcError> {
+        for (&v, a) in position.iter().zip(axes) {
             match a.1 {
                 WordKind::Length => {
                     writable_length(index, "machine position", v)?;
@@ -220,6 +263,63 @@ impl BlockWriter {
                 WordKind::Angle => {}
             }
         }
+        Ok(())
+    }
+
+    /// The `F` word of `feed`, if one is written.
+    fn feed_word(&mut self, index: usize, feed: Option<Feed>) -> Result<Option<String>, NcError> {
+        match feed {
+            Some(Feed::PerMinute(mm_per_min)) => {
+                writable_rate(index, "feed", mm_per_min)?;
+                let decimals = self
+                    .post
+                    .length_decimals(self.units)
+                    .min(self.post.words.feed_decimals);
+                let f = self.unsigned(self.units.from_mm(mm_per_min), decimals);
+                if self.feed.as_deref() == Some(f.as_str()) {
+                    return Ok(None);
+                }
+                self.feed = Some(f.clone());
+                Ok(Some(f))
+            }
+            Some(Feed::InverseTime(per_min)) => {
+                if !(per_min.is_finite() && per_min > 0.0) {
+                    return Err(NcError::NonFinite {
+                        index,
+                        what: "inverse-time feed",
+                    });
+                }
+                let f = self.unsigned(per_min, self.post.words.inverse_time_decimals);
+                self.feed = Some(f.clone());
+                Ok(Some(f))
+            }
+            None => Ok(None),
+        }
+    }
+
+    /// A positive value (a feed) in the post's style, without a plus sign.
+    fn unsigned(&self, value: f64, decimals: usize) -> String {
+        let s = self.number(value, decimals);
+        s.strip_prefix('+').map_or(s.clone(), str::to_string)
+    }
+
+    /// A motion block to `position` (one value per axis, mm or radians): the motion
+    /// word when it changed (or always, for posts whose motion word is not modal),
+    /// the axis words that changed, the rapid suffix, and the feed word that `feed`
+    /// gives (asked only when the block is written). Returns whether a block was
+    /// written: none is when no axis word changed.
+    ///
+    /// # Errors
+    /// [`NcError::NonFinite`] (move `index`) when a converted position is not finite;
+    /// the error of `feed`.
+    pub fn motion(
+        &mut self,
+        index: usize,
+        code: MotionCode,
+        position: &[f64],
+        feed: impl FnOnce() -> Result<Option<Feed>, NcError>,
+    ) -> Result<bool, NcError> {
+        Self::check_position(index, position, &self.axes)?;
         let mut words = String::new();
         for (k, &value) in position.iter().enumerate().take(self.axes.len()) {
             let w = self.word(k, value);
@@ -231,44 +331,35 @@ impl BlockWriter {
         if words.is_empty() {
             return Ok(false);
         }
-        if self.motion != Some(code) {
-            self.out.push_str(match code {
-                MotionCode::Rapid => "G0 ",
-                MotionCode::Linear => "G1 ",
+        let m = &self.post.motion;
+        let mut block = String::new();
+        if self.motion != Some(code) || !m.modal {
+            block.push_str(match code {
+                MotionCode::Rapid => &m.rapid,
+                MotionCode::Linear => &m.linear,
             });
+            block.push(' ');
             self.motion = Some(code);
         }
-        self.out.push_str(&words);
-        match feed()? {
-            Some(Feed::PerMinute(mm_per_min)) => {
-                writable_rate(index, "feed", mm_per_min)?;
-                let decimals = self.units.decimals().min(FEED_DECIMALS);
-                let f = format_decimal(self.units.from_mm(mm_per_min), decimals);
-                if self.feed.as_deref() != Some(f.as_str()) {
-                    push_word(&mut self.out, 'F', &f);
-                    self.feed = Some(f);
-                }
-            }
-            Some(Feed::InverseTime(per_min)) => {
-                if !(per_min.is_finite() && per_min > 0.0) {
-                    return Err(NcError::NonFinite {
-                        index,
-                        what: "inverse-time feed",
-                    });
-                }
-                let f = format_decimal(per_min, INVERSE_TIME_DECIMALS);
-                push_word(&mut self.out, 'F', &f);
-                self.feed = Some(f);
-            }
-            None => {}
+        block.push_str(&words);
+        if code == MotionCode::Rapid && !m.rapid_suffix.is_empty() {
+            block.push(' ');
+            block.push_str(&m.rapid_suffix);
         }
-        self.out.push('\n');
+        if let Some(f) = self.feed_word(index, feed()?)? {
+            push_word(&mut block, 'F', &f);
+        }
+        self.block(&block);
         Ok(true)
     }
 
-    /// Closes the program (spindle off, `M30`, `%`) and returns its text.
+    /// Closes the program (the post's end blocks and footer lines) and returns its
+    /// text.
     pub fn finish(mut self) -> String {
-        self.out.push_str("M5\nM30\n%\n");
+        let post = self.post;
+        let number = self.program_number;
+        self.frame_lines(&post.program.end, number, true);
+        self.frame_lines(&post.program.footer, number, false);
         self.out
     }
 }
@@ -296,7 +387,8 @@ mod tests {
 
     #[test]
     fn unchanged_words_and_blocks_are_suppressed() {
-        let mut w = BlockWriter::new(Dialect::Linuxcnc, Units::Mm, &xyz(), 4);
+        let linuxcnc = Post::builtin("linuxcnc").unwrap();
+        let mut w = BlockWriter::new(&linuxcnc, Units::Mm, &xyz(), 4);
         let none = || Ok(None);
         let feed = || Ok(Some(Feed::PerMinute(300.0)));
         assert!(
@@ -324,8 +416,9 @@ mod tests {
 
     #[test]
     fn inch_angles_and_inverse_time() {
+        let fanuc = Post::builtin("fanuc").unwrap();
         let axes = [('X', WordKind::Length), ('A', WordKind::Angle)];
-        let mut w = BlockWriter::new(Dialect::Fanuc, Units::Inch, &axes, 2);
+        let mut w = BlockWriter::new(&fanuc, Units::Inch, &axes, 2);
         w.start(12);
         w.comment("part (wave) é");
         let it = || Ok(Some(Feed::InverseTime(2.5)));
@@ -339,8 +432,34 @@ mod tests {
     }
 
     #[test]
+    fn heidenhain_numbers_blocks_and_signs_words() {
+        let post = Post::builtin("heidenhain").unwrap();
+        let mut w = BlockWriter::new(&post, Units::Mm, &xyz(), 4);
+        w.start(7);
+        w.comment("a (b)");
+        w.safe_modal(FeedMode::UnitsPerMinute);
+        w.tool_change(3, 5000.0).unwrap();
+        w.spindle_on(5000.0).unwrap();
+        let none = || Ok(None);
+        let feed = || Ok(Some(Feed::PerMinute(300.0)));
+        w.motion(0, MotionCode::Rapid, &[1.0, -2.0, 0.0], none)
+            .unwrap();
+        w.motion(1, MotionCode::Linear, &[1.0, -2.0, -0.25], feed)
+            .unwrap();
+        w.motion(2, MotionCode::Linear, &[4.0, -2.0, -0.25], feed)
+            .unwrap();
+        assert_eq!(
+            w.finish(),
+            "0 BEGIN PGM 7 MM\n1 ; a  b \n2 TOOL CALL 3 Z S5000\n3 M3\n\
+             4 L X+1 Y-2 Z+0 FMAX\n5 L Z-0.25 F300\n6 L X+4\n7 M5\n8 END PGM 7 MM\n"
+        );
+    }
+
+    #[test]
     fn non_finite_positions_and_program_numbers_are_errors() {
-        let mut w = BlockWriter::new(Dialect::Linuxcnc, Units::Mm, &xyz(), 1);
+        let linuxcnc = Post::builtin("linuxcnc").unwrap();
+        let fanuc = Post::builtin("fanuc").unwrap();
+        let mut w = BlockWriter::new(&linuxcnc, Units::Mm, &xyz(), 1);
         let e = w.motion(7, MotionCode::Rapid, &[f64::NAN, 0.0, 0.0], || Ok(None));
         assert!(matches!(e, Err(NcError::NonFinite { index: 7, .. })));
         let e = w.motion(8, MotionCode::Rapid, &[1e300, 0.0, 0.0], || Ok(None));
@@ -349,7 +468,9 @@ mod tests {
         let e = w.motion(9, MotionCode::Linear, &[1.0, 0.0, 0.0], feed);
         assert!(matches!(e, Err(NcError::NonFinite { index: 9, .. })));
         assert!(w.spindle_on(f64::NAN).is_err());
-        assert!(BlockWriter::check_program_number(Dialect::Fanuc, 0).is_err());
-        assert!(BlockWriter::check_program_number(Dialect::Linuxcnc, 0).is_ok());
+        let op = "test";
+        let per_minute = FeedMode::UnitsPerMinute;
+        assert!(fanuc.check(op, 0, per_minute, false).is_err());
+        assert!(linuxcnc.check(op, 0, per_minute, false).is_ok());
     }
 }

@@ -43,6 +43,28 @@ pub enum NcError {
         /// What was expected.
         message: String,
     },
+    /// A post description that cannot be used: the file, the field (`toml` for
+    /// malformed TOML, with the line in the message) and what is wrong.
+    #[error("{file}: {field}: {message}")]
+    Post {
+        /// The post file (or built-in name).
+        file: String,
+        /// The field.
+        field: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A program the post cannot express (inverse-time feed or rotary axes on a
+    /// control without them).
+    #[error("post {post}: {field}: {message}")]
+    Unsupported {
+        /// The post's name.
+        post: String,
+        /// The post field that refuses it.
+        field: &'static str,
+        /// The operation and what the control lacks.
+        message: String,
+    },
     /// A program file that cannot be read within bounds (not a regular file, too
     /// large, an I/O error): the message names the file.
     #[error("{0}")]
@@ -50,7 +72,7 @@ pub enum NcError {
     /// A file name whose extension names no program format swarf reads.
     #[error(
         "{path}: unknown program format: expected .ngc, .nc, .tap or .gcode (G-code), \
-         .cl, .apt or .cls (APT CL), or .csv (pose CSV)"
+         .h (Heidenhain conversational), .cl, .apt or .cls (APT CL), or .csv (pose CSV)"
     )]
     UnknownFormat {
         /// The file.

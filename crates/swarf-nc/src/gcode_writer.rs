@@ -1,29 +1,31 @@
-//! RS274/NGC G-code post for 3-axis programs, in two dialects: LinuxCNC (checked
-//! with its standalone interpreter `rs274 -g`) and Fanuc-style controls.
+//! The 3-axis post: a tool path's moves as a program for any post description
+//! ([`crate::post::Post`]: LinuxCNC, checked with its standalone interpreter
+//! `rs274 -g`; Fanuc; Mach3; grbl; Heidenhain conversational; a user's file).
 //!
-//! Layout: `%`, (Fanuc: an `O` program number), comment lines naming part, tool and
-//! strategy, a safe modal line `G17 G21|G20 G40 G49 G80 G90 G94`, tool change,
-//! spindle on, the moves (`G0`/`G1`, only changed words, `F` when it changes), spindle
-//! off, `M30`, `%`. A move that changes no written coordinate is dropped. Every value
-//! carries a decimal point (see [`crate::number`]). The blocks are written by the one
-//! block writer of every post, [`crate::block::BlockWriter`].
+//! Layout: the post's header and begin lines (`%`, Fanuc's `O` number, Heidenhain's
+//! `BEGIN PGM`), comment lines naming part, tool and strategy, the safe modal line
+//! (`G17 G21|G20 G40 G49 G80 G90 G94`), tool change (and length offset where the post
+//! writes it in 3-axis programs), spindle on, the moves (only changed words, `F` when
+//! it changes), the post's end blocks and footer. A move that changes no written
+//! coordinate is dropped. The blocks are written by the one block writer of every
+//! post, [`crate::block::BlockWriter`].
 
-pub use crate::block::Dialect;
 use crate::block::{BlockWriter, Feed, FeedMode, MotionCode, WordKind};
 use crate::error::NcError;
 use crate::number::Units;
+use crate::post::Post;
 use swarf_toolpath::{Feeds, Move, MoveKind};
 
 /// What the G-code post writes besides the moves.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GcodeOptions {
-    /// Control family.
-    pub dialect: Dialect,
+    /// The post: how the control wants its program written.
+    pub post: Post,
     /// Output units.
     pub units: Units,
-    /// Tool number for `T` (and `H` on Fanuc).
+    /// Tool number for the tool change (and the length offset).
     pub tool_number: u32,
-    /// Fanuc program number (`O`), 1..=9999.
+    /// Program number (Fanuc `O`, Heidenhain program name), within the post's range.
     pub program_number: u32,
     /// Comment lines for the header (part, tool, strategy, ...).
     pub comments: Vec<String>,
@@ -32,7 +34,7 @@ pub struct GcodeOptions {
 impl Default for GcodeOptions {
     fn default() -> Self {
         GcodeOptions {
-            dialect: Dialect::Linuxcnc,
+            post: Post::linuxcnc(),
             units: Units::Mm,
             tool_number: 1,
             program_number: 1000,
@@ -48,11 +50,14 @@ impl Default for GcodeOptions {
 ///
 /// # Errors
 /// [`NcError::NotThreeAxis`] when a pose's axis is not +Z, [`NcError::NonFinite`] for
-/// NaN or infinite values, [`NcError::InvalidOption`] for a bad program number.
+/// NaN or infinite values, [`NcError::InvalidOption`] for a program number outside
+/// the post's range.
 pub fn write_gcode(moves: &[Move], feeds: &Feeds, opts: &GcodeOptions) -> Result<String, NcError> {
-    BlockWriter::check_program_number(opts.dialect, opts.program_number)?;
+    let per_minute = FeedMode::UnitsPerMinute;
+    let post = &opts.post;
+    post.check("3-axis program", opts.program_number, per_minute, false)?;
     let axes = ['X', 'Y', 'Z'].map(|c| (c, WordKind::Length));
-    let mut w = BlockWriter::new(opts.dialect, opts.units, &axes, moves.len());
+    let mut w = BlockWriter::new(post, opts.units, &axes, moves.len());
     write_header(&mut w, feeds, opts)?;
     for (index, m) in moves.iter().enumerate() {
         check_move(index, m)?;
@@ -95,8 +100,8 @@ fn write_header(w: &mut BlockWriter, feeds: &Feeds, opts: &GcodeOptions) -> Resu
         w.comment(c);
     }
     w.safe_modal(FeedMode::UnitsPerMinute);
-    w.tool_change(opts.tool_number);
-    if opts.dialect == Dialect::Fanuc {
+    w.tool_change(opts.tool_number, feeds.spindle)?;
+    if w.length_offset_3_axis() {
         w.length_offset(opts.tool_number);
     }
     w.spindle_on(feeds.spindle)

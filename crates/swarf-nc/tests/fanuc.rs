@@ -4,12 +4,12 @@
 //! argument specification I, `#3000` alarms; and the bounds on loops.
 
 use swarf_geom::Point3;
-use swarf_nc::Dialect;
+use swarf_nc::Language;
 use swarf_nc::read::{FlowLimits, GcodeReadOptions, Program, parse_gcode};
 
 fn fanuc(text: &str) -> Program {
     let opts = GcodeReadOptions {
-        dialect: Dialect::Fanuc,
+        language: Language::Fanuc,
         ..GcodeReadOptions::default()
     };
     parse_gcode(text, "f.nc", &opts).unwrap()
@@ -118,7 +118,7 @@ fn alarms_missing_targets_and_unbounded_loops_stop_with_their_line() {
         d.message
     );
     let opts = GcodeReadOptions {
-        dialect: Dialect::Fanuc,
+        language: Language::Fanuc,
         limits: FlowLimits {
             loop_iterations: 1000,
             ..FlowLimits::default()

@@ -7,7 +7,7 @@ use swarf_geom::{Point3, Vec3};
 use swarf_nc::read::{
     GcodeReadOptions, MotionKind, Program, parse_cl, parse_gcode, parse_pose_csv, read_program,
 };
-use swarf_nc::{Dialect, GcodeOptions, NcError, Units, write_cl, write_gcode, write_pose_csv};
+use swarf_nc::{GcodeOptions, NcError, Post, Units, write_cl, write_gcode, write_pose_csv};
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Feeds, Linking, Move, MoveKind, Pass, PathPoint, Toolpath};
 
@@ -89,10 +89,10 @@ fn check(program: &Program, moves: &[Move], tol: f64, feed_tol: f64, axes: bool)
 fn gcode_round_trip_in_both_dialects_and_units() {
     let tp = toolpath(0.0);
     let moves = tp.moves();
-    for dialect in [Dialect::Linuxcnc, Dialect::Fanuc] {
+    for dialect in ["linuxcnc", "fanuc"] {
         for units in [Units::Mm, Units::Inch] {
             let opts = GcodeOptions {
-                dialect,
+                post: Post::builtin(dialect).unwrap(),
                 units,
                 comments: vec!["part wave".into()],
                 ..GcodeOptions::default()

@@ -293,7 +293,7 @@ fn radius_mismatch_limits_as_linuxcnc() {
 
 #[test]
 fn writer_output_matches_rs274_live() {
-    use swarf_nc::{Dialect, GcodeOptions, Units, write_gcode};
+    use swarf_nc::{GcodeOptions, Post, Units, write_gcode};
     use swarf_tool::Pose;
     use swarf_toolpath::{Feeds, Linking, Pass, PathPoint, Toolpath};
     let passes = (0..3)
@@ -317,7 +317,7 @@ fn writer_output_matches_rs274_live() {
     };
     for units in [Units::Mm, Units::Inch] {
         let opts = GcodeOptions {
-            dialect: Dialect::Linuxcnc,
+            post: Post::linuxcnc(),
             units,
             ..GcodeOptions::default()
         };

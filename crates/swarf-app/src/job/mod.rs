@@ -51,6 +51,8 @@
 //! machine = "builtin:xyzac-trunnion"  # or a machine file relative to the job file
 //! feed_mode = "inverse-time"          # G93 (default) or "units-per-minute" (G94)
 //! tool_length = 120                   # mm, machines with head axes
+//! post = "linuxcnc"                   # or fanuc, mach3, grbl, heidenhain, or a post
+//!                                     # file (.toml) relative to the job file
 //! gcode = "die.ngc"
 //! cl = "die.cl"                       # APT CL and pose CSV carry the tool axis
 //! ```
@@ -68,7 +70,7 @@ use serde::{Deserialize, Serialize};
 use swarf_fiveaxis::positioning::Positioning;
 use swarf_fiveaxis::post::FeedMode;
 use swarf_io::error::toml_message;
-use swarf_nc::{Dialect, Units};
+use swarf_nc::Units;
 use swarf_path::params::{Finish, IsoParams, ParamDir, RasterParams, StartSide, StrategyKind};
 use swarf_path::roughing::RoughingParams;
 use swarf_path::steep_shallow::SteepShallowParams;
@@ -447,9 +449,14 @@ pub struct Output {
     /// Output units: "mm" or "inch".
     #[serde(default)]
     pub units: Units,
-    /// G-code dialect: "linuxcnc" or "fanuc".
+    /// The post the program is written for: a built-in post (`linuxcnc`, the default;
+    /// `fanuc`, `mach3`, `grbl`, `heidenhain`) or a post file (`.toml`) relative to the
+    /// job file ([`swarf_nc::post`]).
     #[serde(default)]
-    pub dialect: Dialect,
+    pub post: Option<String>,
+    /// The older name of `post`, for the built-in posts (`dialect = "fanuc"`).
+    #[serde(default)]
+    pub dialect: Option<String>,
     /// Machine for five-axis G-code: a machine file relative to the job file, or
     /// `builtin:NAME` for a machine shipped with swarf (`builtin:xyzac-trunnion`, ...).
     #[serde(default)]
@@ -460,6 +467,16 @@ pub struct Output {
     /// Spindle gauge line to tool tip, mm (machines with head axes).
     #[serde(default)]
     pub tool_length: Option<f64>,
+}
+
+impl Output {
+    /// The post this output names: `post`, else `dialect`, else `linuxcnc`.
+    pub fn post_spec(&self) -> &str {
+        self.post
+            .as_deref()
+            .or(self.dialect.as_deref())
+            .unwrap_or("linuxcnc")
+    }
 }
 
 impl Job {

@@ -332,3 +332,24 @@ fn faces_and_import_options_parse_and_are_checked() {
         assert!(e.contains(field), "{bad}: {e}");
     }
 }
+
+#[test]
+fn the_post_is_chosen_by_post_or_its_older_name_dialect() {
+    let job = Job::parse(GOOD, "job.toml").unwrap();
+    assert_eq!(job.output.post_spec(), "linuxcnc");
+    let with =
+        |line: &str| GOOD.replace("gcode = \"a.ngc\"", &format!("gcode = \"a.ngc\"\n{line}"));
+    let job = Job::parse(&with("dialect = \"fanuc\""), "job.toml").unwrap();
+    assert_eq!(job.output.post_spec(), "fanuc");
+    let job = Job::parse(&with("post = \"shop.toml\""), "job.toml").unwrap();
+    assert_eq!(job.output.post_spec(), "shop.toml");
+    let e = Job::parse(&with("post = \"grbl\"\ndialect = \"fanuc\""), "job.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("output.dialect: give output.post"), "{e}");
+    for (name, _) in swarf_nc::post::BUILTIN_POSTS {
+        let job = Job::parse(&with(&format!("post = \"{name}\"")), "job.toml").unwrap();
+        let post = swarf_nc::Post::load(job.output.post_spec(), std::path::Path::new(".")).unwrap();
+        assert_eq!(post.name(), name);
+    }
+}

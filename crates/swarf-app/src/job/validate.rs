@@ -301,6 +301,12 @@ impl Job {
                     .into(),
             );
         }
+        if o.post.is_some() && o.dialect.is_some() {
+            return Err(
+                "output.dialect: give output.post or its older name output.dialect, not both"
+                    .into(),
+            );
+        }
         if o.machine.as_deref().is_some_and(str::is_empty) {
             return Err("output.machine: expected a machine file or builtin:NAME".into());
         }

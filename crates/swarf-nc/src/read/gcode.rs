@@ -1,5 +1,6 @@
 //! RS274/NGC G-code programs as LinuxCNC 2.9 reads them (and Fanuc macro B programs
-//! with [`GcodeReadOptions::dialect`]): the runner ([`crate::read::flow`]) around the
+//! with [`GcodeReadOptions::language`]; Heidenhain conversational programs go to
+//! [`crate::read::heidenhain`]): the runner ([`crate::read::flow`]) around the
 //! lexer ([`crate::read::lexer`]) and the modal state machine
 //! ([`crate::read::modal`]), program delimiters and the end of the program.
 //!
@@ -16,8 +17,8 @@
 //!   [`crate::read::kinematics`] for how the axes become poses over the part, and
 //!   [`crate::read::feed`] for G93 inverse-time and G94 feeds.
 
-use crate::block::Dialect;
 use crate::error::NcError;
+use crate::post::Language;
 use crate::read::axes::Axes;
 use crate::read::flow::{End, FlowLimits, FlowOptions, Runner};
 use crate::read::kinematics::{DEFAULT_KINEMATICS_TOL, Kinematics};
@@ -45,8 +46,9 @@ pub struct GcodeReadOptions<'k> {
     pub kinematics: Option<&'k dyn Kinematics>,
     /// Chordal tolerance of the motions a five-axis move is split into, mm.
     pub kinematics_tol: f64,
-    /// The language: LinuxCNC's RS274/NGC, or Fanuc macro B.
-    pub dialect: Dialect,
+    /// The language: LinuxCNC's RS274/NGC, Fanuc macro B, or Heidenhain
+    /// conversational (read by [`crate::read::heidenhain`]).
+    pub language: Language,
     /// The tool table (G41/G42 diameters, G43 offsets), if any.
     pub tool_table: Option<&'k ToolTable>,
     /// The machine's units are inches: tool table values and offsets stored in
@@ -70,7 +72,7 @@ impl Default for GcodeReadOptions<'_> {
             block_delete: false,
             kinematics: None,
             kinematics_tol: DEFAULT_KINEMATICS_TOL,
-            dialect: Dialect::Linuxcnc,
+            language: Language::Linuxcnc,
             tool_table: None,
             machine_inch: false,
             parameters: &[],
@@ -91,7 +93,7 @@ impl PartialEq for GcodeReadOptions<'_> {
         same && self.initial == other.initial
             && self.block_delete == other.block_delete
             && self.kinematics_tol == other.kinematics_tol
-            && self.dialect == other.dialect
+            && self.language == other.language
             && self.tool_table == other.tool_table
             && self.machine_inch == other.machine_inch
             && self.parameters == other.parameters
@@ -139,7 +141,10 @@ pub fn parse_gcode(text: &str, source: &str, opts: &GcodeReadOptions) -> Result<
             ),
         });
     }
-    let fanuc = opts.dialect == Dialect::Fanuc;
+    if opts.language == Language::Heidenhain {
+        return crate::read::heidenhain::parse_heidenhain(text, source, opts);
+    }
+    let fanuc = opts.language == Language::Fanuc;
     let syntax = Syntax { fanuc };
     let axes = Axes::new(&opts.initial, opts.kinematics, opts.kinematics_tol);
     let setup = Setup {

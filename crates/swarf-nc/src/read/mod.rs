@@ -1,5 +1,6 @@
-//! Reading NC programs for verification: RS274/NGC G-code (as LinuxCNC reads it),
-//! APT CL data and pose CSV, each turned into a [`Program`]: motions (straight,
+//! Reading NC programs for verification: RS274/NGC G-code (as LinuxCNC reads it, or
+//! Fanuc macro B), Heidenhain conversational ([`heidenhain`]), APT CL data and pose
+//! CSV, each turned into a [`Program`]: motions (straight,
 //! rapid, circular and helical) in mm and mm/min in the part frame, with the source
 //! line of each, and warnings for what was read but not simulated.
 //!
@@ -31,6 +32,7 @@ pub mod fanuc;
 pub mod feed;
 pub mod flow;
 pub mod gcode;
+pub mod heidenhain;
 pub mod kinematics;
 pub mod lexer;
 pub mod modal;
@@ -67,6 +69,8 @@ pub enum ProgramFormat {
     Cl,
     /// Pose CSV: `.csv`.
     PoseCsv,
+    /// Heidenhain conversational: `.h`.
+    Heidenhain,
 }
 
 impl ProgramFormat {
@@ -77,12 +81,14 @@ impl ProgramFormat {
             "ngc" | "nc" | "tap" | "gcode" => Some(ProgramFormat::Gcode),
             "cl" | "apt" | "cls" => Some(ProgramFormat::Cl),
             "csv" => Some(ProgramFormat::PoseCsv),
+            "h" => Some(ProgramFormat::Heidenhain),
             _ => None,
         }
     }
 }
 
-/// Reads the program at `path`, choosing the reader by extension: G-code (with
+/// Reads the program at `path`, choosing the reader by extension: G-code or
+/// Heidenhain conversational (`.h`) (with
 /// [`GcodeReadOptions::default`]), APT CL or pose CSV; [`read_program_with`] takes
 /// the G-code reader's options (a machine's kinematics). Text that is not valid UTF-8
 /// is read with the bad bytes replaced (they can only sit in comments of a valid
@@ -136,5 +142,6 @@ pub fn read_program_as(
         ProgramFormat::Gcode => parse_gcode(&text, &source, gcode),
         ProgramFormat::Cl => parse_cl(&text, &source),
         ProgramFormat::PoseCsv => parse_pose_csv(&text, &source),
+        ProgramFormat::Heidenhain => heidenhain::parse_heidenhain(&text, &source, gcode),
     }
 }

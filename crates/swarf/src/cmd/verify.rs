@@ -52,8 +52,10 @@ pub struct Args {
 pub struct GcodeArgs {
     /// The language of G-code programs: linuxcnc (RS274/NGC as LinuxCNC 2.9 reads it:
     /// parameters, expressions, O-word subroutines and loops, canned cycles, cutter
-    /// compensation, offsets) or fanuc (Fanuc macro B: IF/GOTO, WHILE/DO, M98/M99, G65).
-    #[arg(long, default_value = "linuxcnc", value_parser = ["linuxcnc", "fanuc"])]
+    /// compensation, offsets), fanuc (Fanuc macro B: IF/GOTO, WHILE/DO, M98/M99, G65) or
+    /// heidenhain (conversational, as swarf's Heidenhain post writes it; `.h` files are
+    /// read so whatever this says).
+    #[arg(long, default_value = "linuxcnc", value_parser = ["linuxcnc", "fanuc", "heidenhain"])]
     dialect: String,
     /// Tool table in LinuxCNC's format (`T1 P1 D6.35 Z50 ;comment`): cutter
     /// compensation radii (G41/G42 D) and tool length offsets (G43 H).
