@@ -20,9 +20,10 @@ pub use crate::programs::{GcodeSetup, machine_arg, parse_tools, read_with_machin
 use crate::programs::{planned_scallop, read_programs};
 use std::path::{Path, PathBuf};
 use swarf_geom::domain::excerpt;
-use swarf_nc::read::Motion;
+use swarf_nc::read::{Motion, Program};
 use swarf_sim::report::{ReportContext, flagged_csv, json_report};
 use swarf_sim::{Design, Progress, Stage, StockSpec, Verification, VerifyOptions};
+use swarf_tool::Cutter;
 
 /// Verification settings as a user gives them (`swarf verify` and `swarf compare`
 /// flags): each absent one takes a default from the job or the command.
@@ -263,6 +264,43 @@ fn design_of(model: &Model) -> Design<'_> {
     }
 }
 
+/// The programs cut into one stage per tool (a program that changes tools gives a
+/// stage per tool, [`swarf_nc::read::Program::split_by_tool`]) and the `--tool` of
+/// each stage, in order.
+///
+/// # Errors
+/// More `--tool`s than stages; a program that changes tools without a `--tool` for
+/// each of its tools (the last `--tool` would stand for them wrongly); a bad spec.
+fn split_by_tool(programs: Vec<Program>, specs: &[String]) -> Result<(Vec<Program>, Vec<Cutter>)> {
+    let changing: Vec<String> = programs
+        .iter()
+        .filter(|p| p.tools.len() > 1)
+        .map(|p| {
+            let t: Vec<String> = p
+                .tools
+                .iter()
+                .map(|t| format!("T{} at line {}", t.number, t.line))
+                .collect();
+            format!("{} ({})", p.source, t.join(", "))
+        })
+        .collect();
+    let programs: Vec<Program> = programs
+        .into_iter()
+        .flat_map(Program::split_by_tool)
+        .collect();
+    let tools = parse_tools(specs, programs.len())?;
+    if !changing.is_empty() && tools.len() < programs.len() {
+        bail!(
+            "--tool: {} for {} tools: {} changes tools; give a --tool for each tool, in the \
+             order the programs cut with them",
+            tools.len(),
+            programs.len(),
+            changing.join("; ")
+        );
+    }
+    Ok((programs, tools))
+}
+
 /// Reads the programs of `req` and runs `verify` on them (module doc of
 /// [`verify_request`]); [`Verified::written`] is left false.
 fn verify_with<F>(req: &VerifyRequest<'_>, verify: F) -> Result<Verified>
@@ -272,7 +310,6 @@ where
     if req.programs.is_empty() {
         bail!("--program: give at least one NC program to verify");
     }
-    let tools = parse_tools(req.tools, req.programs.len())?;
     let model = load_model(req.part)?;
     model.check_covers_xy(req.part)?;
     let planned = match req.sim.scallop {
@@ -283,13 +320,14 @@ where
         .sim
         .options(0.01, planned.unwrap_or(0.0), 5000.0, true)?;
     let sample_tol = opts.sample_tol.unwrap_or(0.25 * opts.tol);
-    let (mut programs, mut notes) = read_programs(
+    let (programs, mut notes) = read_programs(
         req.programs,
         req.gcode,
         req.machine,
         req.tool_length,
         sample_tol,
     )?;
+    let (mut programs, tools) = split_by_tool(programs, req.tools)?;
     match (req.sim.scallop, planned) {
         (Some(_), _) => {}
         (None, Some(h)) => notes.push(format!(

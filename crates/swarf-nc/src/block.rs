@@ -200,6 +200,17 @@ impl<'p> BlockWriter<'p> {
         self.tool_blocks(&post.tool.change, tool, rpm)
     }
 
+    /// Forgets the words last written, so the next motion block states the motion
+    /// word, every axis and the feed (after a tool change, where the control may
+    /// have moved).
+    pub fn forget_position(&mut self) {
+        for axis in &mut self.axes {
+            axis.2 = None;
+        }
+        self.motion = None;
+        self.feed = None;
+    }
+
     /// Whether the post writes the tool length offset in 3-axis programs too.
     pub fn length_offset_3_axis(&self) -> bool {
         self.post.tool.length_offset_3_axis

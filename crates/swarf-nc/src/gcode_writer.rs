@@ -43,7 +43,21 @@ impl Default for GcodeOptions {
     }
 }
 
-/// Writes `moves` as a 3-axis G-code program.
+/// One tool's share of a program with several tools: its moves, feeds, T number
+/// and the comments that open it.
+#[derive(Debug, Clone, Copy)]
+pub struct ToolSection<'a> {
+    /// The moves, from the clearance plane back to it.
+    pub moves: &'a [Move],
+    /// Feeds and spindle speed.
+    pub feeds: &'a Feeds,
+    /// T number.
+    pub tool_number: u32,
+    /// Comment lines before its tool change.
+    pub comments: &'a [String],
+}
+
+/// Writes `moves` as a 3-axis G-code program with one tool, `opts.tool_number`.
 ///
 /// # Units
 /// Moves and feeds in mm and mm/min; converted to `opts.units` on output.
@@ -53,20 +67,61 @@ impl Default for GcodeOptions {
 /// NaN or infinite values, [`NcError::InvalidOption`] for a program number outside
 /// the post's range.
 pub fn write_gcode(moves: &[Move], feeds: &Feeds, opts: &GcodeOptions) -> Result<String, NcError> {
+    let section = ToolSection {
+        moves,
+        feeds,
+        tool_number: opts.tool_number,
+        comments: &[],
+    };
+    write_gcode_sections(&[section], opts)
+}
+
+/// Writes a 3-axis G-code program of several tools: the header (`opts.comments`,
+/// the safe modal line), then for each section its comments, the tool change, the
+/// length offset (when the post writes it), the spindle and its moves, the first of
+/// them stating the whole position. `opts.tool_number` is not used.
+///
+/// # Units
+/// Moves and feeds in mm and mm/min; converted to `opts.units` on output.
+///
+/// # Errors
+/// As [`write_gcode`]; a move's index counts over all sections.
+pub fn write_gcode_sections(
+    sections: &[ToolSection<'_>],
+    opts: &GcodeOptions,
+) -> Result<String, NcError> {
     let per_minute = FeedMode::UnitsPerMinute;
     let post = &opts.post;
     post.check("3-axis program", opts.program_number, per_minute, false)?;
     let axes = ['X', 'Y', 'Z'].map(|c| (c, WordKind::Length));
-    let mut w = BlockWriter::new(post, opts.units, &axes, moves.len());
-    write_header(&mut w, feeds, opts)?;
-    for (index, m) in moves.iter().enumerate() {
-        check_move(index, m)?;
-        let code = match m.kind {
-            MoveKind::Rapid => MotionCode::Rapid,
-            MoveKind::Feed => MotionCode::Linear,
-        };
-        let feed = (m.kind == MoveKind::Feed).then_some(Feed::PerMinute(m.feed));
-        w.motion(index, code, m.to.cl.coords.as_slice(), || Ok(feed))?;
+    let blocks = sections.iter().map(|s| s.moves.len()).sum();
+    let mut w = BlockWriter::new(post, opts.units, &axes, blocks);
+    w.start(opts.program_number);
+    for c in &opts.comments {
+        w.comment(c);
+    }
+    w.safe_modal(per_minute);
+    let mut index = 0;
+    for s in sections {
+        for c in s.comments {
+            w.comment(c);
+        }
+        w.tool_change(s.tool_number, s.feeds.spindle)?;
+        if w.length_offset_3_axis() {
+            w.length_offset(s.tool_number);
+        }
+        w.spindle_on(s.feeds.spindle)?;
+        w.forget_position();
+        for m in s.moves {
+            check_move(index, m)?;
+            let code = match m.kind {
+                MoveKind::Rapid => MotionCode::Rapid,
+                MoveKind::Feed => MotionCode::Linear,
+            };
+            let feed = (m.kind == MoveKind::Feed).then_some(Feed::PerMinute(m.feed));
+            w.motion(index, code, m.to.cl.coords.as_slice(), || Ok(feed))?;
+            index += 1;
+        }
     }
     Ok(w.finish())
 }
@@ -92,17 +147,4 @@ fn check_move(index: usize, m: &Move) -> Result<(), NcError> {
         });
     }
     Ok(())
-}
-
-fn write_header(w: &mut BlockWriter, feeds: &Feeds, opts: &GcodeOptions) -> Result<(), NcError> {
-    w.start(opts.program_number);
-    for c in &opts.comments {
-        w.comment(c);
-    }
-    w.safe_modal(FeedMode::UnitsPerMinute);
-    w.tool_change(opts.tool_number, feeds.spindle)?;
-    if w.length_offset_3_axis() {
-        w.length_offset(opts.tool_number);
-    }
-    w.spindle_on(feeds.spindle)
 }

@@ -16,7 +16,7 @@ pub use block::{BlockWriter, FeedMode};
 pub use cl_writer::write_cl;
 pub use csv_writer::write_pose_csv;
 pub use error::NcError;
-pub use gcode_writer::{GcodeOptions, write_gcode};
+pub use gcode_writer::{GcodeOptions, ToolSection, write_gcode, write_gcode_sections};
 pub use number::Units;
 pub use post::{Language, Post};
 pub use read::{Diagnostic, Kinematics, Motion, MotionKind, Program};

@@ -225,13 +225,26 @@ fn a_program_that_stops_keeps_earlier_motions() {
 
 #[test]
 fn tool_changes() {
-    let p = read("G21 G90 T1 M6\nG0 X1\nT1 M6\nG0 X2\nT2 M6\nG0 X3\nM2\n");
-    assert_eq!(p.motions.len(), 2);
-    let stop = p.stopped.unwrap();
-    assert_eq!((stop.line, stop.column), (5, 4));
-    assert!(stop.message.contains("one tool per program"));
-    // changes before the first motion are fine
-    assert!(read("G21 T1 M6\nT2 M6\nG0 X1\nM2\n").stopped.is_none());
+    let p = read("G21 G90 T1 M6\nG0 X1\nT1 M6\nG0 X2\nT2 M6\nG0 X3\nG1 X4 F100\nM2\n");
+    assert!(p.stopped.is_none());
+    assert_eq!(p.motions.len(), 4);
+    let tools: Vec<(usize, u32, usize)> = p
+        .tools
+        .iter()
+        .map(|t| (t.first_motion, t.number, t.line))
+        .collect();
+    assert_eq!(tools, vec![(0, 1, 2), (2, 2, 6)]);
+    let parts = p.split_by_tool();
+    assert_eq!(parts.len(), 2);
+    assert_eq!(parts[0].source, "t.ngc T1");
+    assert_eq!(parts[0].motions.len(), 2);
+    assert_eq!(parts[1].motions.len(), 2);
+    assert_eq!(parts[1].motions[0].line, 6);
+    // changes before the first motion leave one tool
+    let p = read("G21 T1 M6\nT2 M6\nG0 X1\nM2\n");
+    assert!(p.stopped.is_none());
+    assert_eq!(p.tools.len(), 1);
+    assert_eq!(p.tools[0].number, 2);
 }
 
 #[test]

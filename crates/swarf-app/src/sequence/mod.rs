@@ -30,6 +30,7 @@
 //! [output]
 //! gcode = "pocket.ngc"  # one program, a tool change per operation
 //! summary = "pocket.json"
+//! post = "fanuc"        # linuxcnc (default), fanuc, mach3, grbl, heidenhain, a file
 //! ```
 //!
 //! Each operation is a job of its own ([`crate::job`]: the same tables, checked
@@ -126,6 +127,13 @@ pub struct SequenceOutput {
     /// JSON summary with every operation's report.
     #[serde(default)]
     pub summary: Option<String>,
+    /// The post: a built-in name (`linuxcnc`, `fanuc`, `mach3`, `grbl`,
+    /// `heidenhain`) or a post file relative to the job file (default `linuxcnc`).
+    #[serde(default)]
+    pub post: Option<String>,
+    /// Output units: "mm" or "inch".
+    #[serde(default)]
+    pub units: swarf_nc::Units,
 }
 
 /// One operation: its job and its tool number.

@@ -90,6 +90,9 @@ pub struct SequenceReport {
     /// The operations' programs (G-code), in order.
     #[serde(skip)]
     pub programs: Vec<String>,
+    /// The whole program, a tool change per operation.
+    #[serde(skip)]
+    pub program: String,
     /// Cells left more than the last operation's limit above the design: centre x,
     /// y and the material above the design, mm.
     #[serde(skip)]
@@ -133,9 +136,18 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
         operations: Vec::new(),
         time_s: 0.0,
         programs: Vec::new(),
+        program: String::new(),
         rest: Vec::new(),
     };
+    let spec = seq.output.post.as_deref().unwrap_or("linuxcnc");
+    let post = swarf_nc::Post::load(spec, job_dir)
+        .map_err(|e| AppError::Message(format!("output.post = {spec:?}: {e}")))?;
+    let read = GcodeReadOptions {
+        language: post.reader(),
+        ..GcodeReadOptions::default()
+    };
     let mut motions_before = 0;
+    let mut all_moves = Vec::with_capacity(seq.operations.len());
     for (k, op) in seq.operations.iter().enumerate() {
         let named = |e: AppError| AppError::Message(format!("operation[{k}] ({}): {e}", op.name));
         let reference = k.checked_sub(1).map(|p| seq.operations[p].job.tool);
@@ -146,10 +158,9 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
         let plan_s = start.elapsed().as_secs_f64();
         let start = std::time::Instant::now();
         let moves = planned.toolpath.moves();
-        let text = swarf_nc::write_gcode(&moves, &op.job.feeds, &gcode_options(op))
+        let text = swarf_nc::write_gcode(&moves, &op.job.feeds, &gcode_options(op, &post, seq))
             .map_err(|e| named(e.into()))?;
-        let program = parse_gcode(&text, &op.name, &GcodeReadOptions::default())
-            .map_err(|e| named(e.into()))?;
+        let program = parse_gcode(&text, &op.name, &read).map_err(|e| named(e.into()))?;
         let mut r = match &roughing {
             Some(rough) => measure_roughing(op, &mut dexel, &moves, rough, motions_before)?,
             None => simulate_operation(op, &mut dexel, &program, motions_before)?,
@@ -162,7 +173,25 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
         report.time_s += r.time_s;
         report.operations.push(r);
         report.programs.push(text);
+        all_moves.push(moves);
     }
+    let program = whole_program(seq, &post, &all_moves)?;
+    let back = parse_gcode(&program, "the whole program", &read)?;
+    if let Some(stop) = &back.stopped {
+        return Err(AppError::Message(format!(
+            "the whole program does not read back: {stop}"
+        )));
+    }
+    if back.motions.len() != motions_before {
+        return Err(AppError::Message(format!(
+            "the whole program reads back as {} motions, its operations as {motions_before}",
+            back.motions.len()
+        )));
+    }
+    if let Some(file) = &seq.output.gcode {
+        out.write(file, program.as_bytes())?;
+    }
+    report.program = program;
     if let Some(limit) = report.operations.last().map(|o| o.rest_limit_mm) {
         report.rest = rest_cells(&dexel, &design, limit);
     }
@@ -284,13 +313,55 @@ fn plan_operation(
     Ok((plan, None))
 }
 
-/// The operation's G-code options: its T number and a comment naming it.
-fn gcode_options(op: &Operation) -> swarf_nc::GcodeOptions {
+/// The operation's G-code options: the post, its T number and a comment naming it.
+fn gcode_options(op: &Operation, post: &swarf_nc::Post, seq: &Sequence) -> swarf_nc::GcodeOptions {
     swarf_nc::GcodeOptions {
+        post: post.clone(),
+        units: seq.output.units,
         tool_number: op.number,
-        comments: vec![format!("operation {}: {}", op.name, op.job.tool)],
+        comments: vec![section_comment(op)],
         ..swarf_nc::GcodeOptions::default()
     }
+}
+
+fn section_comment(op: &Operation) -> String {
+    format!(
+        "operation {}: {:?} with {}",
+        op.name, op.job.strategy.kind, op.job.tool
+    )
+}
+
+/// The whole program: every operation's moves after its tool change.
+fn whole_program(seq: &Sequence, post: &swarf_nc::Post, moves: &[Vec<Move>]) -> Result<String> {
+    let comments: Vec<Vec<String>> = seq
+        .operations
+        .iter()
+        .map(|op| vec![section_comment(op)])
+        .collect();
+    let sections: Vec<swarf_nc::ToolSection<'_>> = seq
+        .operations
+        .iter()
+        .zip(moves)
+        .zip(&comments)
+        .map(|((op, moves), comments)| swarf_nc::ToolSection {
+            moves,
+            feeds: &op.job.feeds,
+            tool_number: op.number,
+            comments,
+        })
+        .collect();
+    let mut header = vec![format!(
+        "swarf sequence: {}",
+        seq.name.as_deref().unwrap_or(&seq.part)
+    )];
+    header.push(format!("part: {}", seq.part));
+    let opts = swarf_nc::GcodeOptions {
+        post: post.clone(),
+        units: seq.output.units,
+        comments: header,
+        ..swarf_nc::GcodeOptions::default()
+    };
+    Ok(swarf_nc::write_gcode_sections(&sections, &opts)?)
 }
 
 /// Simulates the operation's program on the stock, its motions numbered from

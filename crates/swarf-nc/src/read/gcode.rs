@@ -184,6 +184,7 @@ pub fn parse_gcode(text: &str, source: &str, opts: &GcodeReadOptions) -> Result<
     }
     program.messages = std::mem::take(&mut runner.messages);
     program.motions = std::mem::take(&mut runner.machine.motions);
+    program.tools = std::mem::take(&mut runner.machine.tool_uses);
     program.warnings = std::mem::take(&mut runner.machine.warnings).finish();
     program.check_domain();
     Ok(program)

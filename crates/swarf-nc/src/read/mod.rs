@@ -54,7 +54,7 @@ pub use gcode::{GcodeReadOptions, parse_gcode};
 pub use kinematics::{AxisPosition, Kinematics};
 pub use params::parse_var_file;
 pub use pose_csv::parse_pose_csv;
-pub use program::{Diagnostic, Motion, MotionKind, Program};
+pub use program::{Diagnostic, Motion, MotionKind, Program, ToolUse};
 pub use tooltable::{Tool, ToolTable};
 
 use crate::error::NcError;

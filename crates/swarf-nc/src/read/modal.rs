@@ -102,8 +102,10 @@ pub struct Interpreter<'k> {
     selected_tool: Option<u32>,
     /// The tool in the spindle (M6, M61).
     pub(crate) loaded_tool: Option<u32>,
-    /// The tool the program cuts with (loaded at its first motion).
+    /// The tool the program cuts with now (noted at its first motion).
     cutting_tool: Option<u32>,
+    /// Each tool the program cuts with, from its first motion.
+    pub(crate) tool_uses: Vec<crate::read::program::ToolUse>,
     pub(crate) spindle: SpindleTurn,
     pub(crate) offsets: Offsets,
     pub(crate) cycle: CycleState,
@@ -149,6 +151,7 @@ impl<'k> Interpreter<'k> {
             selected_tool: None,
             loaded_tool: None,
             cutting_tool: None,
+            tool_uses: Vec::new(),
             spindle: SpindleTurn::Stopped,
             offsets: Offsets::default(),
             cycle: CycleState::default(),

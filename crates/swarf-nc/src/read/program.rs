@@ -287,9 +287,67 @@ pub struct Program {
     /// What the program says to the operator: `(MSG, ...)` and `(DEBUG, ...)` comments
     /// (parameters expanded), with their lines.
     pub messages: Vec<Diagnostic>,
+    /// G-code: each tool the program cuts with (T word and M6), in order, from its
+    /// first motion; empty when it loads none.
+    pub tools: Vec<ToolUse>,
+}
+
+/// A tool a program cuts with from one of its motions on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ToolUse {
+    /// Index of the first motion made with it.
+    pub first_motion: usize,
+    /// Its T number.
+    pub number: u32,
+    /// The line of that motion.
+    pub line: usize,
 }
 
 impl Program {
+    /// The program cut into one program per tool it cuts with: the motions from each
+    /// tool's first to the next tool's (the motions before the first tool go with
+    /// it), each named `SOURCE T<n>`; warnings and messages go with the first, a stop
+    /// with the last. A program with one tool or none is returned whole.
+    pub fn split_by_tool(self) -> Vec<Program> {
+        if self.tools.len() < 2 {
+            return vec![self];
+        }
+        let n = self.tools.len();
+        let mut out = Vec::with_capacity(n);
+        let mut motions = self.motions;
+        let (mut warnings, mut messages) = (self.warnings, self.messages);
+        let mut stopped = self.stopped;
+        let mut rest = Vec::new();
+        for k in (0..n).rev() {
+            let from = if k == 0 {
+                0
+            } else {
+                self.tools[k].first_motion.min(motions.len())
+            };
+            let tail = motions.split_off(from);
+            rest.push((k, tail));
+        }
+        rest.reverse();
+        for (k, part) in rest {
+            let mut p = Program::new(format!("{} T{}", self.source, self.tools[k].number));
+            p.motions = part;
+            p.tool = self.tool;
+            p.tools = vec![ToolUse {
+                first_motion: 0,
+                ..self.tools[k]
+            }];
+            if k == 0 {
+                p.warnings = std::mem::take(&mut warnings);
+                p.messages = std::mem::take(&mut messages);
+            }
+            if k + 1 == n {
+                p.stopped = stopped.take();
+            }
+            out.push(p);
+        }
+        out
+    }
+
     /// An empty program read from `source`.
     pub fn new(source: impl Into<String>) -> Self {
         Program {
@@ -299,6 +357,7 @@ impl Program {
             source: source.into(),
             stopped: None,
             messages: Vec::new(),
+            tools: Vec::new(),
         }
     }
 

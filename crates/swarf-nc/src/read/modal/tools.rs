@@ -3,7 +3,7 @@
 
 use super::{Interpreter, Pos, whole};
 use crate::read::codes::Action;
-use crate::read::program::Diagnostic;
+use crate::read::program::{Diagnostic, ToolUse};
 use crate::read::words::{Word, Words};
 
 impl Interpreter<'_> {
@@ -40,27 +40,15 @@ impl Interpreter<'_> {
         Ok(())
     }
 
-    /// Loads `tool` (M6 or M61): one tool per program.
-    /// Loads `tool` (M6 or M61): one cutting tool per program; T0 unloads it.
-    fn tool_change(&mut self, tool: u32, w: Word, line: usize) -> Result<(), Diagnostic> {
-        match self.cutting_tool {
-            Some(cutting) if tool != 0 && tool != cutting => Err(Diagnostic::new(
-                line,
-                w.column,
-                format!(
-                    "a second cutting tool (T{cutting} then T{tool}) is not supported: swarf \
-                     verifies one tool per program; split the program at the tool change"
-                ),
-            )),
-            _ => {
-                self.loaded_tool = Some(tool);
-                Ok(())
-            }
-        }
+    /// Loads `tool` (M6 or M61); T0 unloads it. The tools a program cuts with are
+    /// recorded at their first motion ([`crate::read::Program::tools`]).
+    fn tool_change(&mut self, tool: u32, _w: Word, _line: usize) -> Result<(), Diagnostic> {
+        self.loaded_tool = Some(tool);
+        Ok(())
     }
 
-    /// Notes the tool a motion is made with; feed motions need one loaded once a
-    /// tool has been (T0 M6 unloads it).
+    /// Notes the tool a motion is made with (a new one from this motion on); feed
+    /// motions need one loaded once a tool has been (T0 M6 unloads it).
     pub(crate) fn check_tool(&mut self, feed: bool, line: usize) -> Result<(), Diagnostic> {
         match self.loaded_tool {
             Some(0) if feed && self.cutting_tool.is_some() => Err(Diagnostic::new(
@@ -68,8 +56,13 @@ impl Interpreter<'_> {
                 1,
                 "feed motion with no tool in the spindle: T0 M6 unloaded it",
             )),
-            Some(t) if t != 0 && self.cutting_tool.is_none() => {
+            Some(t) if t != 0 && self.cutting_tool != Some(t) => {
                 self.cutting_tool = Some(t);
+                self.tool_uses.push(ToolUse {
+                    first_motion: self.motions.len(),
+                    number: t,
+                    line,
+                });
                 Ok(())
             }
             _ => Ok(()),
