@@ -24,7 +24,8 @@ pub struct Args {
     /// stock (a finish, then its cleanup): one report for the result.
     #[arg(long, required = true)]
     program: Vec<PathBuf>,
-    /// Tool spec, e.g. ball:d=8; the n-th --tool goes with the n-th --program. A
+    /// Tool spec, e.g. ball:d=8; the n-th --tool goes with the n-th --program, and
+    /// a program that changes tools (T.. M6) takes one --tool per tool, in order. A
     /// program past the last --tool uses its own CUTTER record, else the last --tool
     /// (default: the program's CUTTER record).
     #[arg(long)]
