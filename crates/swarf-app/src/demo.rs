@@ -21,6 +21,10 @@
 //!    single-point positioning along the same edge, cut on a dexel stock through
 //!    their CL (`edges/edges.md`, `edges/edges.json`; [`crate::edge_compare`]).
 //!
+//! 7. Thesis 002 §4.1 on the fillet pocket: the shipped sequence job (adaptive
+//!    roughing, rest roughing, finishing and cleanup from a box on one in-process
+//!    stock, one program with its tool changes; `sequence/`, [`crate::sequence`]).
+//!
 //! Every program verified in steps 3 and 4 also gets its 3D view (`*.view/`: GLB
 //! files, `view.json`, and the viewer page where it has been built; [`crate::view`]).
 //!
@@ -84,8 +88,12 @@ const DIE_JOBS: [(&str, &str); 3] = [
 /// Paper 003's job on the concave edge part (`jobs/edge-concave-drop-spin.toml`).
 const DROP_SPIN_JOB: &str = include_str!("../../../jobs/edge-concave-drop-spin.toml");
 
+/// Thesis 002 §4.1 on the fillet pocket: from a box to the part in one job
+/// (`jobs/fillet-pocket-sequence.toml`).
+const SEQUENCE_JOB: &str = include_str!("../../../jobs/fillet-pocket-sequence.toml");
+
 /// The demo's sections (for the progress of [`demo`]).
-const DEMO_SECTIONS: usize = 6;
+const DEMO_SECTIONS: usize = 7;
 
 /// Runs the demo into the directory `dir`, writing what it does to `text`. Every
 /// file is staged and the whole set is renamed into place at the end.
@@ -150,6 +158,28 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         "\n== drop and spin at the common edge (paper 003 on the edge parts)"
     )?;
     edges(out, text, reporter)?;
+    reporter.job(6, DEMO_SECTIONS, "demo: stock to part");
+    writeln!(
+        text,
+        "\n== from stock to part (thesis 002 §4.1 on the fillet pocket: rough, rest-rough, finish, clean up)"
+    )?;
+    let seq = crate::sequence::Sequence::parse(SEQUENCE_JOB, "fillet-pocket-sequence.toml")?;
+    let dir = out.path("sequence");
+    out.write(
+        dir.join("fillet-pocket-sequence.toml"),
+        SEQUENCE_JOB.as_bytes(),
+    )?;
+    let report = out.in_dir("sequence", |out| {
+        crate::sequence::plan_sequence(&seq, Path::new("."), out)
+    })?;
+    for line in report.lines() {
+        writeln!(text, "{line}")?;
+    }
+    writeln!(
+        text,
+        "program and summary: {}/fillet-pocket-sequence.*",
+        dir.display()
+    )?;
     reporter.jobs_done();
     outputs.commit()?;
     match crate::view::viewer_dist() {

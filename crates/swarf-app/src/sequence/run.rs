@@ -99,6 +99,42 @@ pub struct SequenceReport {
     pub rest: Vec<[f64; 3]>,
 }
 
+impl SequenceReport {
+    /// One line per operation, then the whole program's time.
+    pub fn lines(&self) -> Vec<String> {
+        let mut out: Vec<String> = self
+            .operations
+            .iter()
+            .map(|op| {
+                let eng = op.engagement.as_ref().map_or(String::new(), |e| {
+                    format!(
+                        ", engagement max {:.0} deg, {:.1} % over {:.0} deg",
+                        e.max_deg,
+                        100.0 * e.over_limit,
+                        e.limit_deg + 5.0
+                    )
+                });
+                format!(
+                    "T{} {} ({}, {}): {} motions, {:.0} mm, {:.0} s{eng}; after it: {} gouge \
+                     cells, {} cells more than {:.3} mm above the part",
+                    op.number,
+                    op.name,
+                    op.strategy,
+                    op.tool,
+                    op.motions,
+                    op.cutting_length_mm,
+                    op.time_s,
+                    op.gouge_cells,
+                    op.rest_cells,
+                    op.rest_limit_mm
+                )
+            })
+            .collect();
+        out.push(format!("whole program: {:.0} s", self.time_s));
+        out
+    }
+}
+
 /// Plans, posts and simulates every operation of `seq` in order on one stock
 /// (module doc of [`super`]).
 ///

@@ -5,7 +5,7 @@ use crate::progress::Bars;
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use swarf_app::Job;
-use swarf_app::sequence::{Sequence, SequenceReport, plan_sequence};
+use swarf_app::sequence::{Sequence, plan_sequence};
 
 /// Arguments of `swarf plan`.
 #[derive(clap::Args)]
@@ -29,7 +29,9 @@ pub fn run(args: &Args) -> Result<()> {
         let report = plan_sequence(&seq, job_dir, &mut out)
             .with_context(|| format!("{}: planning the sequence", args.job.display()))?;
         out.commit()?;
-        print_sequence(&report);
+        for line in report.lines() {
+            println!("{line}");
+        }
         return Ok(());
     }
     let job = Job::parse(&text, &args.job.display().to_string())?;
@@ -38,33 +40,4 @@ pub fn run(args: &Args) -> Result<()> {
     out.commit()?;
     println!("{summary}");
     Ok(())
-}
-
-/// One line per operation, then the whole program's time.
-fn print_sequence(r: &SequenceReport) {
-    for op in &r.operations {
-        let eng = op.engagement.as_ref().map_or(String::new(), |e| {
-            format!(
-                ", engagement max {:.0} deg, {:.1} % over {:.0} deg",
-                e.max_deg,
-                100.0 * e.over_limit,
-                e.limit_deg + 5.0
-            )
-        });
-        println!(
-            "T{} {} ({}, {}): {} motions, {:.0} mm, {:.0} s{eng}; after it: {} gouge cells, \
-             {} cells more than {:.3} mm above the part",
-            op.number,
-            op.name,
-            op.strategy,
-            op.tool,
-            op.motions,
-            op.cutting_length_mm,
-            op.time_s,
-            op.gouge_cells,
-            op.rest_cells,
-            op.rest_limit_mm
-        );
-    }
-    println!("whole program: {:.0} s", r.time_s);
 }
