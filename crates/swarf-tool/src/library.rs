@@ -261,7 +261,9 @@ impl ToolLibrary {
         })?;
         let mut tools: Vec<LibraryTool> = Vec::with_capacity(raw.tool.len());
         for (index, spanned) in raw.tool.into_iter().enumerate() {
-            let line = swarf_io::error::line_of(text, spanned.span().start);
+            let rest = text.get(spanned.span().start..).unwrap_or_default();
+            let start = text.len() - rest.trim_start().len();
+            let line = swarf_io::error::line_of(text, start);
             let entry = spanned.into_inner();
             let name = entry.name.clone();
             let place = Place {

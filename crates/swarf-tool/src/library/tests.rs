@@ -70,7 +70,7 @@ fn duplicates_are_refused_naming_both() {
     let twice = format!("{ONE}\n{}", ONE.replace("ball6-long", "other"));
     let e = err(&twice);
     assert!(
-        e.contains("line 13: tool[1] \"other\": number: 3 is already the number of \"ball6-long\""),
+        e.contains("line 12: tool[1] \"other\": number: 3 is already the number of \"ball6-long\""),
         "{e}"
     );
     let renamed = format!("{ONE}\n{}", ONE.replace("number = 3", "number = 4"));
