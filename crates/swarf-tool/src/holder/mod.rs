@@ -15,7 +15,8 @@
 //! - the assembly is the union of its pieces, so its lowest height at a distance
 //!   `rho` from the axis is the least of the pieces' there and its drop onto a mesh
 //!   is the highest of the pieces' drops, each lowered by the piece's height above
-//!   the tip ([`vertical`]);
+//!   the tip ([`vertical`]); a tilted tool is the same in its own frame
+//!   ([`tilted`], with the search for the extra tilt that clears);
 //! - its signed distance is the least of the pieces' (exact outside, where the sign
 //!   and the clearance are read).
 //!
@@ -27,6 +28,7 @@
 //!
 //! Units: mm.
 
+pub mod tilted;
 pub mod vertical;
 
 use crate::apt::Apt;

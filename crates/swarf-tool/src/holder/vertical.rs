@@ -99,10 +99,10 @@ pub struct HolderReport {
 }
 
 /// Pieces prepared for drops.
-struct Prepared(Vec<(Piece, DropCutter)>);
+pub(crate) struct Prepared(Vec<(Piece, DropCutter)>);
 
 impl Prepared {
-    fn new(pieces: Vec<Piece>) -> Prepared {
+    pub(crate) fn new(pieces: Vec<Piece>) -> Prepared {
         Prepared(
             pieces
                 .into_iter()
@@ -115,7 +115,7 @@ impl Prepared {
     }
 
     /// The tightest piece at `cl`; `None` when no piece is over the mesh.
-    fn clearance(
+    pub(crate) fn clearance(
         &self,
         mesh: &MeshDropper,
         cl: &Point3,
