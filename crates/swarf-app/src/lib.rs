@@ -15,6 +15,7 @@ pub mod dsm;
 pub mod edge_compare;
 pub mod error;
 pub mod five_axis;
+pub mod holder;
 pub mod inspect;
 pub mod job;
 pub mod model;
