@@ -177,14 +177,14 @@ pub fn check_program(
     let mut views: HashMap<[u64; 3], AxisView> = HashMap::new();
     for (pose, line) in &tilted {
         let key = [pose.axis.x, pose.axis.y, pose.axis.z].map(f64::to_bits);
-        if !views.contains_key(&key) {
-            let Some(view) = AxisView::new(mesh, &pose.axis, a) else {
-                continue;
-            };
-            views.insert(key, view);
-        }
-        let Some(view) = views.get(&key) else {
-            continue;
+        let view = match views.entry(key) {
+            std::collections::hash_map::Entry::Occupied(e) => e.into_mut(),
+            std::collections::hash_map::Entry::Vacant(e) => {
+                let Some(view) = AxisView::new(mesh, &pose.axis, a) else {
+                    continue;
+                };
+                e.insert(view)
+            }
         };
         if let Some(c) = view.clearance(a, &pose.cl)?
             && c.clearance < -CONTACT_EPS
