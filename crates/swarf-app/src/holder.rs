@@ -290,3 +290,54 @@ impl HolderCheck {
         s
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const LIBRARY: &str = "[[tool]]
+number = 3
+name = \"ball6-long\"
+cutter = \"ball:d=6\"
+flute_length = 12
+stick_out = 30
+shank = [{ d0 = 5, d1 = 6, length = 8 }, { d = 6, length = 40 }]
+holder = [{ d0 = 20, d1 = 32, length = 20 }, { d = 63, length = 30 }]
+";
+
+    /// Down into the deep pocket's floor, then 10 mm along it while tilting: one
+    /// vertical pose and ten tilted ones; the holder (face 30 above the tip, radius
+    /// 10) sits 10 mm into the top at the floor.
+    #[test]
+    fn vertical_and_tilted_poses_are_checked_with_their_lines() {
+        let csv = "x,y,z,i,j,k\n30,20,50,0,0,1\n30,20,0,0,0,1\n30,30,0,0.2,0,1\n";
+        let program = swarf_nc::read::parse_pose_csv(csv, "p.csv").unwrap();
+        let poses = program_poses(&program, 1.0);
+        assert_eq!(poses.len(), 11);
+        assert_eq!((poses[0].1, poses[10].1), (3, 4));
+        let library = ToolLibrary::parse(LIBRARY, "lib.toml").unwrap();
+        let tools = library_tools(&library, &["ball6-long".into()], 1).unwrap();
+        let mesh = swarf_io::builtin_mesh("deep-pocket").unwrap();
+        let check = check_program(&mesh, &program, tools[0], 1.0).unwrap();
+        assert_eq!((check.poses, check.tilted), (11, 10));
+        let first = check.collisions[0];
+        assert_eq!((first.line, first.piece), (3, PieceKind::Holder(0)));
+        assert!((first.depth - 10.0).abs() < 1e-9, "{first:?}");
+        assert!(check.collisions.iter().skip(1).all(|c| c.line == 4));
+        assert_eq!(
+            check.vertical.shortest,
+            StickOut::Clears {
+                stick_out: 40.0,
+                pose: Some(0)
+            }
+        );
+        let s = check.summary();
+        assert!(
+            s.contains("shortest stick-out that clears: 40.000 mm"),
+            "{s}"
+        );
+        assert!(s.contains("10 tilted poses"), "{s}");
+        let e = library_tools(&library, &[], 1).unwrap_err().to_string();
+        assert!(e.contains("give --tool NAME|NUMBER"), "{e}");
+    }
+}
