@@ -1,6 +1,7 @@
 //! swarf-app: the application layer. It reads job files (the TOML schema, [`job`]),
 //! runs the pipeline plan -> position -> post -> verify -> rest -> cleanup
-//! ([`plan_job()`], [`five_axis`], [`verify`] reading its programs with [`programs`],
+//! ([`plan_job()`], [`five_axis`], [`verify`] reading its programs with [`programs`]
+//! and checking their holders with [`holder`],
 //! [`cleanup`]), tabulates the comparison of paper 004 and thesis 000 ([`compare`]),
 //! writes 3D views of verified programs ([`view`]) and runs the demo ([`demo`]). It calls the kernel crates; it does not compute
 //! geometry. The `swarf` command line and the Python package are thin layers over it.
@@ -15,6 +16,7 @@ pub mod dsm;
 pub mod edge_compare;
 pub mod error;
 pub mod five_axis;
+pub mod holder;
 pub mod inspect;
 pub mod job;
 pub mod model;

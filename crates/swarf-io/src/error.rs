@@ -115,7 +115,7 @@ impl IoError {
 }
 
 /// 1-based line of byte `offset` in `text` (offsets past the end give the last line).
-pub(crate) fn line_of(text: &str, offset: usize) -> usize {
+pub fn line_of(text: &str, offset: usize) -> usize {
     let end = offset.min(text.len());
     text.as_bytes()[..end]
         .iter()

@@ -174,6 +174,50 @@ pub enum ToolError {
         /// Why.
         why: &'static str,
     },
+    /// A tool library entry or file that is wrong ([`crate::library`]).
+    #[error("{file}: {place}: {message}")]
+    Library {
+        /// The library file.
+        file: String,
+        /// Line, tool and field, e.g. `tool[2] \"ball6\": holder[1].d0`.
+        place: String,
+        /// What was expected and found.
+        message: String,
+    },
+    /// A tool asked for by name or number that the library does not hold.
+    #[error("{file}: no tool `{wanted}`: the library has {known}")]
+    UnknownTool {
+        /// The library file.
+        file: String,
+        /// The name or number asked for.
+        wanted: String,
+        /// The tools it has, `number name` each.
+        known: String,
+    },
+    /// The shank or holder reaches into the part ([`crate::holder`]).
+    #[error(
+        "the holder collides at {collisions} of {poses} poses at stick-out {stick_out} mm \
+         (first: pose {pose} at ({}, {}, {}), {piece} {depth:.3} mm into the part); {remedy}",
+        at[0], at[1], at[2]
+    )]
+    HolderCollides {
+        /// Poses that collide.
+        collisions: usize,
+        /// Poses checked.
+        poses: usize,
+        /// The stick-out checked, mm.
+        stick_out: f64,
+        /// The first pose that collides.
+        pose: usize,
+        /// Its tool tip, mm.
+        at: [f64; 3],
+        /// The piece that collides there (`holder[0]`, `shank[1]`).
+        piece: String,
+        /// How far into the part, mm.
+        depth: f64,
+        /// The stick-out that clears, or why none does.
+        remedy: String,
+    },
 }
 
 #[cfg(test)]

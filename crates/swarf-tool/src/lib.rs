@@ -13,6 +13,9 @@
 //! - [`contact`]: pose from a CC point and surface normal for any tool axis, and back
 //!   (thesis 000 §7, eqs. 7.1-7.4).
 //! - [`pose`]: [`Pose`] (CL point = tool tip + unit axis) and the tool frame.
+//! - [`holder`]: shank and holder as stacked cylinders and cones above the flutes,
+//!   their clearance over a mesh and the shortest stick-out that clears a path.
+//! - [`library`]: the tool library file (tools by number or name, with holders).
 //! - [`spec`]: spec strings `ball:d=8`, `bull:d=10,r=2`, ... ; `table`: config tables.
 //!
 //! Units: millimetres and radians inside; degrees only in spec strings and tables.
@@ -31,6 +34,8 @@ pub mod contact;
 pub mod cutter;
 pub mod drop;
 pub mod error;
+pub mod holder;
+pub mod library;
 pub mod pose;
 pub mod profile;
 pub mod segment;

@@ -1,5 +1,7 @@
 //! Built-in mesh parts for rest-material detection and cleanup (issue 11, item 7)
-//! and for steep/shallow classification (issue 12, item 7), built in code from their formulas (all mm, z up; `parts/README.md` lists them).
+//! and for steep/shallow classification (issue 12, item 7) and the holder check
+//! (issue 19), built in code from their formulas (all mm, z up; `parts/README.md`
+//! lists them).
 //!
 //! Each mesh is the part's upper surface as seen along +z, with the material below:
 //! the top, the pocket or groove walls (vertical faces included) and floors, wound
@@ -51,12 +53,18 @@
 //!   [40, 95.831] (contacts on the edge and on the floor), lifted most (12.288) at
 //!   CL x = 55 + 5 sqrt 2 = 62.071, where the free ball first touches the floor.
 //!
+//! - `deep-pocket` (`deep_pocket.rs`): 60 x 60 block, top z = 40, a pocket 10 wide
+//!   (x in [25, 35]) and 40 long (y in [10, 50]), 40 deep with vertical walls: the
+//!   holder and shank check of issue 19 (a tool centred in it clears a holder of
+//!   bottom radius >= 5 only with the holder face at or above the top).
+//!
 //! Segment count: the chord of an arc of radius r over angle t / n sags
 //! `r (1 - cos(t / 2n))` from it, so an arc needs the smallest n with that at most the
 //! tolerance (`arc_segments`). On a doubly curved patch (the pocket's corner tori)
 //! the sags of the two directions add at a quad's centre, so each direction gets half
 //! the tolerance.
 
+mod deep_pocket;
 mod fillet_pocket;
 mod grooves;
 mod walls;
@@ -71,14 +79,15 @@ use swarf_geom::{Point3, TriMesh};
 pub const MESH_PART_CHORD: f64 = 0.001;
 
 /// Names of the built-in mesh parts: `"fillet-pocket"`, `"v-grooves"`,
-/// `"short-grooves"`, `"boss"`, `"ramp-step"`.
-pub fn builtin_mesh_names() -> [&'static str; 5] {
+/// `"short-grooves"`, `"boss"`, `"ramp-step"`, `"deep-pocket"`.
+pub fn builtin_mesh_names() -> [&'static str; 6] {
     [
         "fillet-pocket",
         "v-grooves",
         "short-grooves",
         "boss",
         "ramp-step",
+        "deep-pocket",
     ]
 }
 
@@ -101,6 +110,7 @@ pub fn builtin_mesh(name: &str) -> Option<TriMesh> {
         "short-grooves" => Some(grooves::short_grooves()),
         "boss" => Some(walls::boss()),
         "ramp-step" => Some(walls::ramp_step()),
+        "deep-pocket" => Some(deep_pocket::deep_pocket()),
         _ => None,
     }
 }

@@ -132,7 +132,22 @@ impl MeshDropper {
     /// # Units
     /// mm.
     pub fn drop(&self, x: f64, y: f64, scratch: &mut DropScratch) -> Option<DropResult> {
-        self.run(x, y, 0.0, scratch, false)
+        self.run(&self.tool, x, y, 0.0, scratch, false)
+    }
+
+    /// As [`MeshDropper::drop`] for another cutter `tool` over the same mesh and grid
+    /// (the pieces of a shank and holder, [`crate::holder`], share one grid).
+    ///
+    /// # Units
+    /// mm.
+    pub fn drop_tool(
+        &self,
+        tool: &DropCutter,
+        x: f64,
+        y: f64,
+        scratch: &mut DropScratch,
+    ) -> Option<DropResult> {
+        self.run(tool, x, y, 0.0, scratch, false)
     }
 
     /// As [`MeshDropper::drop`], and fills `contacts` with every triangle contact
@@ -147,7 +162,7 @@ impl MeshDropper {
         contacts: &mut TopContacts,
     ) -> Option<DropResult> {
         contacts.clear();
-        let best = self.run(x, y, tol.max(0.0), scratch, true)?;
+        let best = self.run(&self.tool, x, y, tol.max(0.0), scratch, true)?;
         contacts.extend(scratch.near.iter().filter(|c| c.z >= best.z - tol));
         contacts.sort_by_key(|c| c.tri);
         Some(best)
@@ -178,6 +193,7 @@ impl MeshDropper {
 
     fn run(
         &self,
+        tool: &DropCutter,
         x: f64,
         y: f64,
         slack: f64,
@@ -196,6 +212,7 @@ impl MeshDropper {
             .filter(|&e| e < self.grid.len());
         if let Some(e) = hint {
             self.consider(
+                tool,
                 xy,
                 e,
                 f64::NEG_INFINITY,
@@ -204,11 +221,11 @@ impl MeshDropper {
             );
         }
         let seed = floor(&best);
-        let env = self.tool.envelope();
+        let env = tool.envelope();
         let mut heap = BinaryHeap::from(std::mem::take(&mut scratch.heap));
         heap.clear();
         self.grid
-            .for_each_in_disc(xy, self.tool.radius(), seed, |e, entry, d2| {
+            .for_each_in_disc(xy, tool.radius(), seed, |e, entry, d2| {
                 let ub = f64::from(entry.zmax) - env.height(d2.sqrt());
                 if ub >= seed && Some(e) != hint {
                     heap.push((order_key(ub), e as u32));
@@ -219,7 +236,14 @@ impl MeshDropper {
             if from_order_key(key) < f {
                 break;
             }
-            self.consider(xy, e as usize, f, &mut best, keep.then_some(&mut *near));
+            self.consider(
+                tool,
+                xy,
+                e as usize,
+                f,
+                &mut best,
+                keep.then_some(&mut *near),
+            );
         }
         scratch.heap = heap.into_vec();
         scratch.hint = best.map(|b| b.1 as u32);
@@ -230,13 +254,14 @@ impl MeshDropper {
     /// of it and `best` (ties to the lower triangle index) and records it in `near`.
     fn consider(
         &self,
+        tool: &DropCutter,
         xy: [f64; 2],
         e: usize,
         floor: f64,
         best: &mut Best,
         near: Option<&mut Vec<DropResult>>,
     ) {
-        let Some(c) = triangle_drop_above(&self.tool, xy, &self.grid.corners[e], floor) else {
+        let Some(c) = triangle_drop_above(tool, xy, &self.grid.corners[e], floor) else {
             return;
         };
         let r = DropResult {

@@ -7,9 +7,8 @@
 
 use crate::progress::Bars;
 use anyhow::{Result, bail};
-#[cfg(test)]
-use std::path::Path;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use swarf_app::holder;
 use swarf_app::verify::{GcodeSetup, SimSettings, VerifyRequest, verify_request};
 use swarf_sim::report::text_summary;
 
@@ -30,6 +29,11 @@ pub struct Args {
     /// (default: the program's CUTTER record).
     #[arg(long)]
     tool: Vec<String>,
+    /// Tool library (TOML, see tooling/library.toml): each --tool is then a tool's
+    /// name or T number in it, and verify adds the holder and shank check of every
+    /// program (holder.json: collisions, the shortest stick-out that clears).
+    #[arg(long)]
+    tool_library: Option<PathBuf>,
     /// Machine file (TOML) or builtin:NAME for five-axis G-code: the programs' X Y Z
     /// and rotary words are this machine's axes (every G-code program; not needed for
     /// APT CL or pose CSV).
@@ -165,10 +169,14 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let sim = args.sim.settings();
     let gcode = args.gcode.setup()?;
+    let tools = match &args.tool_library {
+        Some(lib) => holder::library_specs(lib, &args.tool, args.program.len())?,
+        None => args.tool.clone(),
+    };
     let req = VerifyRequest {
         part: &args.part,
         programs: &args.program,
-        tools: &args.tool,
+        tools: &tools,
         gcode: &gcode,
         machine: args.machine.as_deref(),
         tool_length: args.tool_length,
@@ -181,6 +189,9 @@ pub fn run(args: &Args) -> Result<()> {
         eprintln!("{note}");
     }
     print!("{}", text_summary(&done.verification, &done.context));
+    if let Some(library) = &args.tool_library {
+        holder_check(args, library, &gcode, sim.tol)?;
+    }
     match (&done.context.stopped, done.written) {
         (Some(stop), false) => bail!(
             "the program stopped at {stop}: no report was written and the previous reports \
@@ -193,6 +204,29 @@ pub fn run(args: &Args) -> Result<()> {
         }
         (None, _) => println!("reports in {}", args.out.display()),
     }
+    Ok(())
+}
+
+/// The holder check of `--tool-library`: prints a summary per program and writes
+/// `holder.json` into the output folder.
+fn holder_check(args: &Args, library: &Path, gcode: &GcodeSetup, tol: Option<f64>) -> Result<()> {
+    let checks = holder::check_request(&holder::HolderRequest {
+        part: &args.part,
+        programs: &args.program,
+        library,
+        tools: &args.tool,
+        gcode,
+        machine: args.machine.as_deref(),
+        tool_length: args.tool_length,
+        tol: tol.unwrap_or(0.01),
+        spacing: holder::POSE_SPACING,
+    })?;
+    for c in &checks {
+        println!("{}", c.summary());
+    }
+    let json = serde_json::to_vec_pretty(&checks)?;
+    std::fs::create_dir_all(&args.out)?;
+    swarf_io::write_atomic(&args.out.join("holder.json"), &json)?;
     Ok(())
 }
 
@@ -261,6 +295,7 @@ mod tests {
             part: part.display().to_string(),
             program: vec![program.to_path_buf()],
             tool: vec!["ball:d=6".into()],
+            tool_library: None,
             machine: None,
             tool_length: None,
             gcode: GcodeArgs::default(),
@@ -335,6 +370,7 @@ mod tests {
             part: part.display().to_string(),
             program: programs.iter().map(|p| p.to_path_buf()).collect(),
             tool: tools.iter().map(|t| (*t).to_string()).collect(),
+            tool_library: None,
             machine: None,
             tool_length: None,
             gcode: GcodeArgs::default(),
@@ -394,6 +430,61 @@ mod tests {
         let report = read_report(&dir.join("stop/report.json"));
         assert_eq!(report["complete"], serde_json::Value::Bool(false));
         assert!(report.get("programs").is_none(), "{}", report["programs"]);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// `--tool-library` with the shipped library: tool 3 (ball d=6, holder nose
+    /// d=20 at stick-out 30) plunged to the floor of the 40 mm deep pocket: the
+    /// holder hits the top from the tip at z < 10, and the holder face must sit on
+    /// the top at the floor: stick-out 40.
+    #[test]
+    fn verify_with_a_tool_library_reports_the_holder() {
+        let dir = std::env::temp_dir().join(format!("swarf-verify-holder-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let program = dir.join("pocket.ngc");
+        std::fs::write(
+            &program,
+            "G21 G90 G17\nG0 X30 Y20 Z50\nG1 Z0 F100\nG1 Y40 F300\nG0 Z50\n",
+        )
+        .unwrap();
+        let library = PathBuf::from(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../tooling/library.toml"
+        ));
+        let args = |tool: &str| Args {
+            part: "deep-pocket".into(),
+            program: vec![program.clone()],
+            tool: vec![tool.into()],
+            tool_library: Some(library.clone()),
+            machine: None,
+            tool_length: None,
+            gcode: GcodeArgs::default(),
+            sim: sim_args(),
+            out: dir.join("out"),
+        };
+        run(&args("ball6-long")).unwrap();
+        let checks = read_report(&dir.join("out/holder.json"));
+        let c = &checks[0];
+        assert_eq!(c["number"], 3);
+        let first = &c["collisions"][0];
+        assert_eq!(first["line"], 3, "{first}");
+        assert_eq!(first["piece"]["Holder"], 0, "{first}");
+        let deepest = c["collisions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["depth"].as_f64().unwrap())
+            .fold(0.0, f64::max);
+        assert!((deepest - 10.0).abs() < 1e-9, "{deepest}");
+        let s = c["vertical"]["shortest"]["Clears"]["stick_out"]
+            .as_f64()
+            .unwrap();
+        assert!((s - 40.0).abs() < 1e-9, "{s}");
+        let err = run(&args("T7")).unwrap_err().to_string();
+        assert!(
+            err.contains("no tool `T7`") && err.contains("3 \"ball6-long\""),
+            "{err}"
+        );
         let _ = std::fs::remove_dir_all(&dir);
     }
 

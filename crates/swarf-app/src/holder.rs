@@ -1,0 +1,343 @@
+//! The holder and shank check of NC programs (`swarf verify --tool-library`): the
+//! poses of each program, sampled along its motions, against the design's triangles
+//! with a tool of the library ([`swarf_tool::holder`]).
+//!
+//! Vertical poses go through [`check_vertical`], which also gives the shortest
+//! stick-out that clears them; tilted poses are checked one axis at a time
+//! ([`AxisView`], one re-laid grid per distinct axis) and add their collisions. The
+//! shortest stick-out covers the vertical poses only (a note says when there are
+//! tilted ones).
+
+use crate::error::{Result, bail};
+use crate::model::load_model;
+use crate::programs::{GcodeSetup, read_programs};
+use serde::Serialize;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use swarf_geom::{Point3, TriMesh, Vec3};
+use swarf_nc::read::{MotionKind, Program};
+use swarf_tool::drop::MeshDropper;
+use swarf_tool::holder::PieceKind;
+use swarf_tool::holder::tilted::AxisView;
+use swarf_tool::holder::vertical::{CONTACT_EPS, HolderReport, StickOut, check_vertical};
+use swarf_tool::library::{LibraryTool, ToolLibrary};
+
+/// An axis within this of +z (in each component) is vertical.
+const VERTICAL_EPS: f64 = 1e-9;
+
+/// Distance between checked poses along a motion for `swarf verify`, mm.
+pub const POSE_SPACING: f64 = 1.0;
+
+/// Arcs are sampled at least this many times.
+const ARC_SAMPLES: usize = 16;
+
+/// A collision, with the program line that commanded its pose.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LineCollision {
+    /// Source line of the motion.
+    pub line: usize,
+    /// Tool tip, mm.
+    pub cl: Point3,
+    /// Tool axis.
+    pub axis: Vec3,
+    /// How far the piece reaches into the part, mm.
+    pub depth: f64,
+    /// The piece (`holder[0]`, `shank[1]`).
+    pub piece: PieceKind,
+}
+
+/// The holder check of one program.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HolderCheck {
+    /// The program.
+    pub program: String,
+    /// The tool's T number.
+    pub number: u32,
+    /// The tool's name.
+    pub name: String,
+    /// Poses checked (motion ends and samples along the motions).
+    pub poses: usize,
+    /// Of which tilted.
+    pub tilted: usize,
+    /// Collisions at the library's stick-out, in program order.
+    pub collisions: Vec<LineCollision>,
+    /// The check of the vertical poses (shortest stick-out, least clearance).
+    pub vertical: HolderReport,
+}
+
+/// What `swarf verify --tool-library` asks for.
+#[derive(Debug, Clone, Copy)]
+pub struct HolderRequest<'a> {
+    /// Design part, as `--part` names it.
+    pub part: &'a str,
+    /// The programs.
+    pub programs: &'a [PathBuf],
+    /// The tool library file.
+    pub library: &'a Path,
+    /// Tool names or numbers, the k-th for the k-th program (the last for the rest).
+    pub tools: &'a [String],
+    /// How G-code is read.
+    pub gcode: &'a GcodeSetup,
+    /// Machine for five-axis G-code.
+    pub machine: Option<&'a str>,
+    /// Spindle gauge line to tool tip, mm (head machines).
+    pub tool_length: Option<f64>,
+    /// Chord tolerance of the design's triangles and sampling of arcs, mm.
+    pub tol: f64,
+    /// Distance between checked poses along a motion, mm.
+    pub spacing: f64,
+}
+
+/// The library's tools for the `--tool` keys, one per program.
+///
+/// # Errors
+/// No key, more keys than programs, a key the library lacks (listing its tools).
+pub fn library_tools<'l>(
+    library: &'l ToolLibrary,
+    keys: &[String],
+    programs: usize,
+) -> Result<Vec<&'l LibraryTool>> {
+    let Some(last) = keys.last() else {
+        bail!("--tool-library: give --tool NAME|NUMBER for the programs' tool");
+    };
+    if keys.len() > programs {
+        bail!("--tool: {} tools for {programs} programs", keys.len());
+    }
+    (0..programs)
+        .map(|k| Ok(library.get(keys.get(k).unwrap_or(last))?))
+        .collect()
+}
+
+/// The cutter spec strings of the library's tools for the `--tool` keys, one per
+/// program, for the simulation ([`crate::verify::VerifyRequest::tools`]).
+///
+/// # Errors
+/// As [`ToolLibrary::read`] and [`library_tools`].
+pub fn library_specs(library: &Path, keys: &[String], programs: usize) -> Result<Vec<String>> {
+    let library = ToolLibrary::read(library)?;
+    Ok(library_tools(&library, keys, programs)?
+        .iter()
+        .map(|t| t.assembly.cutter.to_string())
+        .collect())
+}
+
+/// Poses along the motions of `program`: each motion's end and points about
+/// `spacing` apart along it (the first motion: its end only), with their source
+/// lines.
+pub fn program_poses(program: &Program, spacing: f64) -> Vec<(swarf_tool::Pose, usize)> {
+    let mut out = Vec::new();
+    for (i, m) in program.motions.iter().enumerate() {
+        let chord = (m.end.cl - m.start.cl).norm();
+        let mut n = (chord / spacing.max(1e-3)).ceil().max(1.0) as usize;
+        if matches!(m.kind, MotionKind::Arc { .. }) {
+            n = n.max(ARC_SAMPLES);
+        }
+        if i == 0 {
+            // The first motion starts where the reader assumes the tool is, not at a
+            // commanded position: only its end counts.
+            n = 1;
+        }
+        out.extend((1..=n).map(|k| (m.point_at(k as f64 / n as f64), m.line)));
+    }
+    out
+}
+
+fn is_vertical(axis: &Vec3) -> bool {
+    axis.x.abs() <= VERTICAL_EPS && axis.y.abs() <= VERTICAL_EPS && axis.z > 0.0
+}
+
+/// Checks the poses of `program` with `tool` against `mesh` (module doc).
+///
+/// # Errors
+/// A shank or holder segment the kernel refuses.
+pub fn check_program(
+    mesh: &TriMesh,
+    program: &Program,
+    tool: &LibraryTool,
+    spacing: f64,
+) -> Result<HolderCheck> {
+    let a = &tool.assembly;
+    let poses = program_poses(program, spacing);
+    type Sample<'p> = &'p (swarf_tool::Pose, usize);
+    let (vertical, tilted): (Vec<Sample>, Vec<Sample>) =
+        poses.iter().partition(|p| is_vertical(&p.0.axis));
+    let cls: Vec<Point3> = vertical.iter().map(|p| p.0.cl).collect();
+    let report = check_vertical(a, &MeshDropper::new(mesh, &a.cutter), &cls)?;
+    let mut collisions: Vec<LineCollision> = report
+        .collisions
+        .iter()
+        .map(|c| LineCollision {
+            line: vertical[c.pose].1,
+            cl: c.cl,
+            axis: Vec3::z(),
+            depth: c.depth,
+            piece: c.piece,
+        })
+        .collect();
+    let mut views: HashMap<[u64; 3], AxisView> = HashMap::new();
+    for (pose, line) in &tilted {
+        let key = [pose.axis.x, pose.axis.y, pose.axis.z].map(f64::to_bits);
+        let view = match views.entry(key) {
+            std::collections::hash_map::Entry::Occupied(e) => e.into_mut(),
+            std::collections::hash_map::Entry::Vacant(e) => {
+                let Some(view) = AxisView::new(mesh, &pose.axis, a) else {
+                    continue;
+                };
+                e.insert(view)
+            }
+        };
+        if let Some(c) = view.clearance(a, &pose.cl)?
+            && c.clearance < -CONTACT_EPS
+        {
+            collisions.push(LineCollision {
+                line: *line,
+                cl: pose.cl,
+                axis: pose.axis,
+                depth: -c.clearance,
+                piece: c.piece,
+            });
+        }
+    }
+    collisions.sort_by_key(|c| c.line);
+    Ok(HolderCheck {
+        program: program.source.clone(),
+        number: tool.number,
+        name: tool.name.clone(),
+        poses: poses.len(),
+        tilted: tilted.len(),
+        collisions,
+        vertical: report,
+    })
+}
+
+/// Reads the part, the programs and the library of `req` and checks each program
+/// with its tool.
+///
+/// # Errors
+/// A part, program or library that cannot be read; a tool key the library lacks;
+/// the errors of [`check_program`].
+pub fn check_request(req: &HolderRequest<'_>) -> Result<Vec<HolderCheck>> {
+    let library = ToolLibrary::read(req.library)?;
+    let tools = library_tools(&library, req.tools, req.programs.len())?;
+    let model = load_model(req.part)?;
+    let mesh = model.triangles(req.tol)?;
+    let (programs, _) = read_programs(
+        req.programs,
+        req.gcode,
+        req.machine,
+        req.tool_length,
+        req.tol,
+    )?;
+    programs
+        .iter()
+        .zip(tools)
+        .map(|(p, t)| check_program(&mesh, p, t, req.spacing))
+        .collect()
+}
+
+impl HolderCheck {
+    /// A few lines for the terminal: the tool, the collisions, the shortest
+    /// stick-out.
+    pub fn summary(&self) -> String {
+        let a = &self.vertical;
+        let mut s = format!(
+            "holder: {} with T{} \"{}\" at stick-out {} mm: {} poses",
+            self.program, self.number, self.name, a.stick_out, self.poses
+        );
+        match self.collisions.first() {
+            None => s += ", no collision",
+            Some(c) => {
+                s += &format!(
+                    ", {} collide (first: line {}, {} {:.3} mm into the part at ({:.3}, {:.3}, \
+                     {:.3}))",
+                    self.collisions.len(),
+                    c.line,
+                    c.piece,
+                    c.depth,
+                    c.cl.x,
+                    c.cl.y,
+                    c.cl.z
+                );
+            }
+        }
+        s += &match a.shortest {
+            StickOut::Clears { stick_out, .. } => {
+                format!("\nholder: shortest stick-out that clears: {stick_out:.3} mm")
+            }
+            StickOut::ShankCollides {
+                stick_out,
+                collision,
+            } => format!(
+                "\nholder: no stick-out clears: at {stick_out:.3} mm {} reaches {:.3} mm into \
+                 the part",
+                collision.piece, collision.depth
+            ),
+            StickOut::TooLong {
+                stick_out,
+                tool_length,
+            } => format!(
+                "\nholder: clearing needs a stick-out of {stick_out:.3} mm; the tool is only \
+                 {tool_length:.3} mm long"
+            ),
+        };
+        if self.tilted > 0 {
+            s += &format!(
+                "\nholder: note: {} tilted poses checked at the library's stick-out; the \
+                 shortest stick-out covers the vertical poses",
+                self.tilted
+            );
+        }
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const LIBRARY: &str = "[[tool]]
+number = 3
+name = \"ball6-long\"
+cutter = \"ball:d=6\"
+flute_length = 12
+stick_out = 30
+shank = [{ d0 = 5, d1 = 6, length = 8 }, { d = 6, length = 40 }]
+holder = [{ d0 = 20, d1 = 32, length = 20 }, { d = 63, length = 30 }]
+";
+
+    /// Down into the deep pocket's floor, then 10 mm along it while tilting: one
+    /// vertical pose and ten tilted ones; the holder (face 30 above the tip, radius
+    /// 10) sits 10 mm into the top at the floor.
+    #[test]
+    fn vertical_and_tilted_poses_are_checked_with_their_lines() {
+        let csv = "x,y,z,i,j,k\n30,20,50,0,0,1\n30,20,0,0,0,1\n30,30,0,0.2,0,1\n";
+        let program = swarf_nc::read::parse_pose_csv(csv, "p.csv").unwrap();
+        let poses = program_poses(&program, 1.0);
+        assert_eq!(poses.len(), 11);
+        assert_eq!((poses[0].1, poses[10].1), (3, 4));
+        let library = ToolLibrary::parse(LIBRARY, "lib.toml").unwrap();
+        let tools = library_tools(&library, &["ball6-long".into()], 1).unwrap();
+        let mesh = swarf_io::builtin_mesh("deep-pocket").unwrap();
+        let check = check_program(&mesh, &program, tools[0], 1.0).unwrap();
+        assert_eq!((check.poses, check.tilted), (11, 10));
+        let first = check.collisions[0];
+        assert_eq!((first.line, first.piece), (3, PieceKind::Holder(0)));
+        assert!((first.depth - 10.0).abs() < 1e-9, "{first:?}");
+        assert!(check.collisions.iter().skip(1).all(|c| c.line == 4));
+        assert_eq!(
+            check.vertical.shortest,
+            StickOut::Clears {
+                stick_out: 40.0,
+                pose: Some(0)
+            }
+        );
+        let s = check.summary();
+        assert!(
+            s.contains("shortest stick-out that clears: 40.000 mm"),
+            "{s}"
+        );
+        assert!(s.contains("10 tilted poses"), "{s}");
+        let e = library_tools(&library, &[], 1).unwrap_err().to_string();
+        assert!(e.contains("give --tool NAME|NUMBER"), "{e}");
+    }
+}

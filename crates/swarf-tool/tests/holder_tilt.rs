@@ -1,0 +1,158 @@
+//! Five-axis holder check: a tool on a floor 8 mm from a 60 mm wall, whose holder
+//! reaches into the wall when vertical; tilting away from the wall clears it. The
+//! tilt found is the closed form's to the search tolerance; it clears and 0.002 rad
+//! less does not, judged by a brute-force oracle sharing no code with the check:
+//! points sampled densely on the shank and holder surfaces in the tilted frame, from
+//! the assembly's radius written here in closed form, tested against the part
+//! written as a closed-form solid.
+
+use swarf_geom::{Point3, TriMesh, Vec3};
+use swarf_tool::holder::tilted::{Tilt, TiltSearch, clearing_tilt, pose_clearance};
+use swarf_tool::holder::{Assembly, StackSegment};
+use swarf_tool::{Cutter, Pose};
+
+fn assembly() -> Assembly {
+    Assembly {
+        cutter: Cutter::ball(6.0, Some(12.0)).unwrap(),
+        shank: vec![StackSegment::Cylinder {
+            d: 6.0,
+            length: 40.0,
+        }],
+        holder: vec![
+            StackSegment::Cone {
+                d0: 8.0,
+                d1: 32.0,
+                length: 30.0,
+            },
+            StackSegment::Cylinder {
+                d: 63.0,
+                length: 30.0,
+            },
+        ],
+        stick_out: 25.0,
+    }
+}
+
+/// Radius at height `h` above the tip (oracle, closed form).
+fn radius(h: f64) -> Option<f64> {
+    match h {
+        h if h < 12.0 => None,
+        h if h < 25.0 => Some(3.0),
+        h if h < 55.0 => Some(4.0 + 0.4 * (h - 25.0)),
+        h if h <= 85.0 => Some(31.5),
+        _ => None,
+    }
+}
+
+/// The floor z = 0 for x in [0, 100] and the wall block x in [-50, 0] up to z = 60,
+/// y in [-50, 50].
+fn mesh() -> TriMesh {
+    let p = Point3::new;
+    let quad = |a: Point3, b: Point3, c: Point3, d: Point3| [[a, b, c], [a, c, d]];
+    let mut t = Vec::new();
+    t.extend(quad(
+        p(0.0, -50.0, 0.0),
+        p(100.0, -50.0, 0.0),
+        p(100.0, 50.0, 0.0),
+        p(0.0, 50.0, 0.0),
+    ));
+    t.extend(quad(
+        p(0.0, -50.0, 0.0),
+        p(0.0, 50.0, 0.0),
+        p(0.0, 50.0, 60.0),
+        p(0.0, -50.0, 60.0),
+    ));
+    t.extend(quad(
+        p(-50.0, -50.0, 60.0),
+        p(0.0, -50.0, 60.0),
+        p(0.0, 50.0, 60.0),
+        p(-50.0, 50.0, 60.0),
+    ));
+    TriMesh::from_triangles(&t)
+}
+
+fn in_material(q: &Point3) -> bool {
+    let e = 1e-9;
+    let in_y = q.y.abs() < 50.0 - e;
+    let wall = q.x > -50.0 + e && q.x < -e && q.z < 60.0 - e;
+    let floor = q.x > e && q.x < 100.0 - e && q.z < -e && q.z > -50.0;
+    in_y && (wall || floor)
+}
+
+/// Brute force at tip `cl`, axis `a`: any sampled surface point in the part?
+fn oracle_collides(cl: &Point3, a: &Vec3) -> bool {
+    let u = a.cross(&Vec3::y()).normalize();
+    let v = a.cross(&u);
+    let dirs: Vec<Vec3> = (0..720)
+        .map(|i| {
+            let (s, c) = (std::f64::consts::TAU * f64::from(i) / 720.0).sin_cos();
+            c * u + s * v
+        })
+        .collect();
+    let hit = |rho: f64, h: f64| dirs.iter().any(|d| in_material(&(cl + h * a + rho * d)));
+    for k in 0..=36_500 {
+        let h = 12.0 + 0.002 * f64::from(k);
+        if radius(h).is_some_and(|r| hit(r, h)) {
+            return true;
+        }
+    }
+    let discs = [(12.0, 0.0, 3.0), (25.0, 0.0, 4.0), (55.0, 16.0, 31.5)];
+    discs
+        .iter()
+        .any(|&(h, r0, r1)| (0..=400).any(|k| hit(r0 + (r1 - r0) * f64::from(k) / 400.0, h)))
+}
+
+#[test]
+fn tilting_away_from_the_wall_clears_the_holder() {
+    let (a, mesh) = (assembly(), mesh());
+    let pose = Pose::vertical(Point3::new(8.0, 0.0, 0.0));
+    let c = pose_clearance(&a, &mesh, &pose).unwrap().unwrap();
+    // Vertical: the nose cone (radius 4 + 0.4 t) reaches the wall 8 away at t = 10,
+    // so it sits on the wall top at z = 60 - 10: 25 mm into the part along the axis.
+    assert!((c.clearance + 25.0).abs() < 1e-9, "{c:?}");
+    assert!(oracle_collides(&pose.cl, &pose.axis));
+    let search = TiltSearch::default();
+    let Tilt::Clears {
+        tilt,
+        axis,
+        clearance,
+    } = clearing_tilt(&a, &mesh, &pose, &Vec3::x(), &search).unwrap()
+    else {
+        panic!("no tilt clears");
+    };
+    println!(
+        "clearing tilt {:.4} deg, clearance {clearance:.2e}",
+        tilt.to_degrees()
+    );
+    assert!(clearance >= 0.0 && tilt > 0.0 && tilt < search.max_tilt);
+    // Closed form: the wall's top edge (0, y, 60), at w = (-8, 0, 60) from the tip,
+    // meets the bottom face of the holder cylinder (55 above the tip, radius 31.5)
+    // when w . a = 55: -8 sin t + 60 cos t = 55, t = acos(55 / |w|) - atan(8 / 60)
+    // (there rho = 25.3: on the face; the nose cone, radius 16 at most, is clear).
+    let closed = (55.0 / 3664f64.sqrt()).acos() - (8.0f64 / 60.0).atan();
+    assert!(
+        tilt >= closed - 1e-9 && tilt - closed < search.tolerance,
+        "{tilt} vs {closed}"
+    );
+    assert!((axis.norm() - 1.0).abs() < 1e-12 && axis.x > 0.0 && axis.y.abs() < 1e-12);
+    assert!(
+        !oracle_collides(&pose.cl, &axis),
+        "tilt {tilt} still collides"
+    );
+    let less = tilt - 0.002;
+    let less_axis = Vec3::new(less.sin(), 0.0, less.cos());
+    assert!(
+        oracle_collides(&pose.cl, &less_axis),
+        "tilt {less} already clears"
+    );
+    // Tilting toward the wall never clears; a pose that clears needs none.
+    assert_eq!(
+        clearing_tilt(&a, &mesh, &pose, &-Vec3::x(), &search).unwrap(),
+        Tilt::Fails
+    );
+    let far = Pose::vertical(Point3::new(60.0, 0.0, 0.0));
+    assert_eq!(
+        clearing_tilt(&a, &mesh, &far, &Vec3::x(), &search).unwrap(),
+        Tilt::Clear
+    );
+}
