@@ -20,7 +20,7 @@ fn main() {
     let jobs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs");
     let file = jobs.join("fillet-pocket-sequence.toml");
     let text = std::fs::read_to_string(&file).expect("the shipped sequence job");
-    let seq = Sequence::parse(&text, "fillet-pocket-sequence.toml").expect("a valid job");
+    let seq = Sequence::parse(&text, "fillet-pocket-sequence.toml", &jobs).expect("a valid job");
     let scratch = std::env::temp_dir().join("swarf-sequence-bench");
     let mut best: Option<(f64, swarf_app::sequence::SequenceReport)> = None;
     for _ in 0..runs {

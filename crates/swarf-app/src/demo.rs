@@ -163,7 +163,11 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         text,
         "\n== from stock to part (thesis 002 §4.1 on the fillet pocket: rough, rest-rough, finish, clean up)"
     )?;
-    let seq = crate::sequence::Sequence::parse(SEQUENCE_JOB, "fillet-pocket-sequence.toml")?;
+    let seq = crate::sequence::Sequence::parse(
+        SEQUENCE_JOB,
+        "fillet-pocket-sequence.toml",
+        Path::new("."),
+    )?;
     let dir = out.path("sequence");
     out.write(
         dir.join("fillet-pocket-sequence.toml"),

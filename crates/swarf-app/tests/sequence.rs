@@ -13,7 +13,7 @@ fn jobs() -> PathBuf {
 }
 
 fn run(text: &str, tag: &str) -> SequenceReport {
-    let seq = Sequence::parse(text, "fillet-pocket-sequence.toml").unwrap();
+    let seq = Sequence::parse(text, "fillet-pocket-sequence.toml", &jobs()).unwrap();
     let dir = std::env::temp_dir().join(format!("swarf-sequence-test-{tag}"));
     let mut out = swarf_app::Outputs::new(&dir);
     plan_sequence(&seq, &jobs(), &mut out).unwrap()
@@ -128,7 +128,7 @@ fn bad_sequences_are_refused_naming_the_operation_and_field() {
         ),
     ];
     for (text, want) in cases {
-        let err = Sequence::parse(&text, "seq.toml")
+        let err = Sequence::parse(&text, "seq.toml", &jobs())
             .map(|_| ())
             .unwrap_err()
             .to_string();
@@ -139,7 +139,7 @@ fn bad_sequences_are_refused_naming_the_operation_and_field() {
     }
     // A cleanup first has nothing to clean up after; a box below the part is refused.
     let first_cleanup = base.replacen("kind = \"roughing\", allowance = 0.5, step_down = 4, max_engagement = 60, ramp_angle = 3, tolerance = 0.01", "kind = \"cleanup\", scallop = 0.01", 1);
-    let err = Sequence::parse(&first_cleanup, "seq.toml")
+    let err = Sequence::parse(&first_cleanup, "seq.toml", &jobs())
         .map(|_| ())
         .unwrap_err()
         .to_string();
@@ -148,7 +148,7 @@ fn bad_sequences_are_refused_naming_the_operation_and_field() {
         "{err}"
     );
     let mut out = swarf_app::Outputs::new(&std::env::temp_dir().join("swarf-sequence-bad"));
-    let low = Sequence::parse(&base.replace("top = 21", "top = 15"), "seq.toml").unwrap();
+    let low = Sequence::parse(&base.replace("top = 21", "top = 15"), "seq.toml", &jobs()).unwrap();
     let err = plan_sequence(&low, &jobs(), &mut out)
         .unwrap_err()
         .to_string();
@@ -156,4 +156,53 @@ fn bad_sequences_are_refused_naming_the_operation_and_field() {
         err.contains("stock.top: 15 mm is below the part's top"),
         "{err}"
     );
+}
+
+/// A sequence on the deep pocket (60 x 60 block, a 10 x 40 pocket 40 deep) finished
+/// by the library's `ball6-long` (T3: stick-out 30 mm, holder nose 20 mm across).
+fn deep_pocket(tool: &str) -> String {
+    format!(
+        "name = \"deep pocket\"\npart = \"builtin:deep-pocket\"\ntools = \"../tooling/library.toml\"\n\
+         [stock]\nkind = \"offset\"\nallowance = 0.5\ncell = 0.5\n\
+         [[operation]]\nname = \"finish\"\ntool = {tool}\n\
+         strategy = {{ kind = \"raster\", scallop = 0.5, tolerance = 0.01 }}\n"
+    )
+}
+
+#[test]
+fn library_tools_are_named_and_their_holders_checked() {
+    // By name: the holder collides at stick-out 30; the job stops, naming the
+    // operation, the place and the stick-out that clears.
+    let seq = Sequence::parse(&deep_pocket("\"ball6-long\""), "deep.toml", &jobs()).unwrap();
+    assert_eq!(seq.operations[0].number, 3);
+    assert_eq!(
+        seq.operations[0].job.feeds.feed, 1200.0,
+        "the library's feed"
+    );
+    let mut out = swarf_app::Outputs::new(&std::env::temp_dir().join("swarf-sequence-holder"));
+    let err = plan_sequence(&seq, &jobs(), &mut out)
+        .unwrap_err()
+        .to_string();
+    eprintln!("{err}");
+    assert!(
+        err.contains("operation[0] (finish)") && err.contains("collide"),
+        "{err}"
+    );
+    assert!(err.contains("shortest stick-out that clears"), "{err}");
+    // By a number the library lacks: the error lists the library's tools.
+    let err = Sequence::parse(&deep_pocket("7"), "deep.toml", &jobs())
+        .map(|_| ())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("operation[0]: tool") && err.contains("ball6-long"),
+        "{err}"
+    );
+    // A library tool without a library.
+    let text = deep_pocket("3").replace("tools = \"../tooling/library.toml\"\n", "");
+    let err = Sequence::parse(&text, "deep.toml", &jobs())
+        .map(|_| ())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("no `tools` library"), "{err}");
 }

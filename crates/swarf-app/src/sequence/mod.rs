@@ -6,6 +6,8 @@
 //! name = "fillet pocket, stock to part"
 //! part = "builtin:fillet-pocket"
 //!
+//! tools = "../tooling/library.toml"   # optional: operations may name its tools
+//!
 //! [stock]
 //! kind = "box"          # "box" (top, margin), "offset" (allowance) or "mesh" (file)
 //! top = 21              # box top, mm (default 1 mm above the part)
@@ -33,6 +35,13 @@
 //! post = "fanuc"        # linuxcnc (default), fanuc, mach3, grbl, heidenhain, a file
 //! ```
 //!
+//! With a tool library, an operation's `tool` may be a library tool's number or
+//! name: its cutter, T number and default feeds come from the library, and its
+//! shank and holder at the library's stick-out are checked against the part at
+//! every pose of the operation's program ([`crate::holder`]); a collision stops
+//! the job, naming the operation, where it collides and the shortest stick-out
+//! that clears.
+//!
 //! Each operation is a job of its own ([`crate::job`]: the same tables, checked
 //! the same way, errors naming `operation[k]`), on the sequence's part. Roughing
 //! takes its material from the in-process stock, so a second roughing is rest
@@ -48,7 +57,9 @@ use crate::error::AppError;
 use crate::job::Job;
 use crate::model::FaceRef;
 use serde::Deserialize;
+use std::path::Path;
 use swarf_io::error::toml_message;
+use swarf_tool::library::{LibraryTool, ToolLibrary};
 
 pub use run::{OperationReport, SequenceReport, plan_sequence};
 
@@ -63,6 +74,8 @@ struct SequenceRepr {
     faces: Option<Vec<FaceRef>>,
     #[serde(default)]
     import: Option<toml::Table>,
+    #[serde(default)]
+    tools: Option<String>,
     #[serde(default)]
     stock: Stock,
     operation: Vec<toml::Table>,
@@ -145,6 +158,8 @@ pub struct Operation {
     pub number: u32,
     /// The operation as a job on the sequence's part.
     pub job: Job,
+    /// The library tool it names (its shank, holder and stick-out are checked).
+    pub library_tool: Option<LibraryTool>,
 }
 
 /// A parsed sequence job.
@@ -171,12 +186,14 @@ impl Sequence {
         toml::from_str::<toml::Table>(text).is_ok_and(|t| t.contains_key("operation"))
     }
 
-    /// Parses and checks a sequence job; `source` names the file in errors.
+    /// Parses and checks a sequence job; `source` names the file in errors, `dir`
+    /// is where its paths (the tool library) are relative to.
     ///
     /// # Errors
     /// [`AppError::Job`] naming the file, and `operation[k]` and its field, for
-    /// malformed TOML, unknown keys, a bad stock, and every error a job can have.
-    pub fn parse(text: &str, source: &str) -> Result<Sequence, AppError> {
+    /// malformed TOML, unknown keys, a bad stock, a tool the library lacks, and
+    /// every error a job can have; a library that cannot be read.
+    pub fn parse(text: &str, source: &str, dir: &Path) -> Result<Sequence, AppError> {
         let err = |message: String| AppError::Job {
             file: source.to_string(),
             message,
@@ -197,9 +214,16 @@ impl Sequence {
                 repr.operation.len()
             )));
         }
+        let library = match &repr.tools {
+            Some(file) => {
+                Some(ToolLibrary::read(&dir.join(file)).map_err(|e| err(format!("tools: {e}")))?)
+            }
+            None => None,
+        };
         let mut operations = Vec::with_capacity(repr.operation.len());
         for (k, table) in repr.operation.iter().enumerate() {
-            let op = operation(&repr, k, table).map_err(|m| err(format!("operation[{k}]: {m}")))?;
+            let op = operation(&repr, library.as_ref(), k, table, operations.last())
+                .map_err(|m| err(format!("operation[{k}]: {m}")))?;
             operations.push(op);
         }
         Ok(Sequence {
@@ -212,22 +236,38 @@ impl Sequence {
     }
 }
 
-/// Operation `k` as a job: its own table with the sequence's part, faces and import.
-fn operation(repr: &SequenceRepr, k: usize, table: &toml::Table) -> Result<Operation, String> {
+/// Operation `k` as a job: its own table with the sequence's part, faces and import,
+/// its tool from the library when it names one.
+fn operation(
+    repr: &SequenceRepr,
+    library: Option<&ToolLibrary>,
+    k: usize,
+    table: &toml::Table,
+    prev: Option<&Operation>,
+) -> Result<Operation, String> {
     let mut t = table.clone();
+    let library_tool = library_tool(library, &mut t)?;
     let name = match t.remove("name") {
         Some(toml::Value::String(s)) => s,
         Some(v) => return Err(format!("name: expected text, found {v}")),
         None => format!("operation[{k}]"),
     };
-    let number = match t.remove("number") {
-        Some(toml::Value::Integer(n)) if (1..=99_999).contains(&n) => n as u32,
-        Some(v) => {
+    let number = match (t.remove("number"), &library_tool) {
+        (Some(v), Some(lt)) => {
+            return Err(format!(
+                "number: {v} given for the library's tool T{} \"{}\": the library gives its \
+                 number",
+                lt.number, lt.name
+            ));
+        }
+        (Some(toml::Value::Integer(n)), None) if (1..=99_999).contains(&n) => n as u32,
+        (Some(v), None) => {
             return Err(format!(
                 "number: expected a tool number from 1 to 99999, found {v}"
             ));
         }
-        None => k as u32 + 1,
+        (None, Some(lt)) => lt.number,
+        (None, None) => k as u32 + 1,
     };
     for key in ["part", "faces", "import", "output", "parent", "positioning"] {
         if t.contains_key(key) {
@@ -239,10 +279,7 @@ fn operation(repr: &SequenceRepr, k: usize, table: &toml::Table) -> Result<Opera
     }
     t.insert("part".into(), toml::Value::String(repr.part.clone()));
     // A cleanup cleans up after the operation before it (its tool is the reference).
-    let prev_tool = k
-        .checked_sub(1)
-        .and_then(|p| repr.operation[p].get("tool"))
-        .cloned();
+    let prev_tool = prev.map(|p| toml::Value::String(p.job.tool.to_string()));
     let is_cleanup = t
         .get("strategy")
         .and_then(|s| s.get("kind"))
@@ -274,7 +311,52 @@ fn operation(repr: &SequenceRepr, k: usize, table: &toml::Table) -> Result<Opera
         AppError::Job { message, .. } => without_line(&message).to_string(),
         other => other.to_string(),
     })?;
-    Ok(Operation { name, number, job })
+    Ok(Operation {
+        name,
+        number,
+        job,
+        library_tool,
+    })
+}
+
+/// The library tool operation table `t` names in `tool` (a number, or a name that
+/// is not a cutter spec), with `tool` replaced by its cutter and the table's feeds
+/// completed with the tool's defaults; `None` for a cutter spec.
+fn library_tool(
+    library: Option<&ToolLibrary>,
+    t: &mut toml::Table,
+) -> Result<Option<LibraryTool>, String> {
+    let key = match t.get("tool") {
+        Some(toml::Value::Integer(n)) => n.to_string(),
+        Some(toml::Value::String(s)) if !s.contains(':') => s.clone(),
+        _ => return Ok(None),
+    };
+    let Some(library) = library else {
+        return Err(format!(
+            "tool: {key:?} names a library tool, but the sequence gives no `tools` library \
+             (or give a cutter spec such as \"ball:d=6\")"
+        ));
+    };
+    let tool = library.get(&key).map_err(|e| format!("tool: {e}"))?.clone();
+    t.insert(
+        "tool".into(),
+        toml::Value::String(tool.assembly.cutter.to_string()),
+    );
+    let feeds = t
+        .entry("feeds")
+        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+    if let toml::Value::Table(f) = feeds {
+        for (key, value) in [
+            ("feed", tool.feed),
+            ("spindle", tool.spindle),
+            ("plunge", tool.plunge),
+        ] {
+            if let (false, Some(v)) = (f.contains_key(key), value) {
+                f.insert(key.into(), toml::Value::Float(v));
+            }
+        }
+    }
+    Ok(Some(tool))
 }
 
 /// `message` without a leading `line N: `.

@@ -4,6 +4,7 @@
 use super::{Operation, Sequence, Stock, StockKind};
 use crate::cleanup::part_mesh;
 use crate::error::{AppError, Result};
+use crate::holder::{POSE_SPACING, check_program};
 use crate::model::{Model, load_model_with};
 use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
@@ -20,6 +21,8 @@ use swarf_sim::grid::DEFAULT_MAX_BYTES;
 use swarf_sim::simulate_from;
 use swarf_sim::verify::program_stats;
 use swarf_sim::{Design, DesignSurface, Dexel, Grid, Quiet, SimOptions, SimTool, StockInit};
+use swarf_tool::holder::vertical::StickOut;
+use swarf_tool::library::LibraryTool;
 use swarf_toolpath::{Move, MoveKind, motion_stats};
 
 /// Engagement of a roughing operation, measured on the stock.
@@ -35,6 +38,37 @@ pub struct EngagementSummary {
     pub histogram_10deg: Vec<usize>,
     /// Entries (ramps into a level and their round at it), left out of the figures.
     pub entries: usize,
+}
+
+/// The holder check of an operation that cleared.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HolderSummary {
+    /// The library's stick-out, mm.
+    pub stick_out: f64,
+    /// Poses checked.
+    pub poses: usize,
+    /// The least clearance of shank or holder over the part, mm.
+    pub min_clearance: Option<f64>,
+    /// The shortest stick-out that clears (vertical poses).
+    pub shortest: StickOut,
+}
+
+/// Checks the shank and holder of `tool` at every pose of `program` (every motion's
+/// end and every [`POSE_SPACING`] mm along it).
+///
+/// # Errors
+/// A collision: its line, place and depth, and the shortest stick-out that clears.
+fn holder_check(mesh: &TriMesh, program: &Program, tool: &LibraryTool) -> Result<HolderSummary> {
+    let check = check_program(mesh, program, tool, POSE_SPACING)?;
+    if !check.collisions.is_empty() {
+        return Err(AppError::Message(check.summary()));
+    }
+    Ok(HolderSummary {
+        stick_out: check.vertical.stick_out,
+        poses: check.poses,
+        min_clearance: check.vertical.min_clearance.map(|(_, c)| c),
+        shortest: check.vertical.shortest,
+    })
 }
 
 /// What one operation did.
@@ -67,6 +101,9 @@ pub struct OperationReport {
     pub rest_limit_mm: f64,
     /// Highest material above the design, mm.
     pub max_rest_mm: f64,
+    /// The library tool's shank and holder against the part at every pose.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub holder: Option<HolderSummary>,
     /// Planning time, s (not part of deterministic outputs).
     #[serde(skip)]
     pub plan_s: f64,
@@ -114,9 +151,16 @@ impl SequenceReport {
                         e.limit_deg + 5.0
                     )
                 });
+                let holder = op.holder.as_ref().map_or(String::new(), |h| {
+                    format!(
+                        "; holder clears by {:.2} mm at stick-out {} mm",
+                        h.min_clearance.unwrap_or(f64::INFINITY),
+                        h.stick_out
+                    )
+                });
                 format!(
-                    "T{} {} ({}, {}): {} motions, {:.0} mm, {:.0} s{eng}; after it: {} gouge \
-                     cells, {} cells more than {:.3} mm above the part",
+                    "T{} {} ({}, {}): {} motions, {:.0} mm, {:.0} s{eng}{holder}; after it: {} \
+                     gouge cells, {} cells more than {:.3} mm above the part",
                     op.number,
                     op.name,
                     op.strategy,
@@ -197,11 +241,16 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
         let text = swarf_nc::write_gcode(&moves, &op.job.feeds, &gcode_options(op, &post, seq))
             .map_err(|e| named(e.into()))?;
         let program = parse_gcode(&text, &op.name, &read).map_err(|e| named(e.into()))?;
+        let holder = match &op.library_tool {
+            Some(tool) => Some(holder_check(&mesh, &program, tool).map_err(named)?),
+            None => None,
+        };
         let mut r = match &roughing {
             Some(rough) => measure_roughing(op, &mut dexel, &moves, rough, motions_before)?,
             None => simulate_operation(op, &mut dexel, &program, motions_before)?,
         };
         r.motions = program.motions.len();
+        r.holder = holder;
         motions_before += program.motions.len();
         r.plan_s = plan_s;
         deviation(&dexel, &design, op, seq.stock.tol, &mut r);
@@ -521,6 +570,7 @@ fn op_report(
         rest_cells: 0,
         rest_limit_mm: 0.0,
         max_rest_mm: 0.0,
+        holder: None,
         plan_s: 0.0,
         verify_s: 0.0,
     }

@@ -25,7 +25,7 @@ pub fn run(args: &Args) -> Result<()> {
     let out_dir = args.out.clone().unwrap_or_else(|| job_dir.to_path_buf());
     let mut out = swarf_app::Outputs::new(&out_dir);
     if Sequence::is_sequence(&text) {
-        let seq = Sequence::parse(&text, &args.job.display().to_string())?;
+        let seq = Sequence::parse(&text, &args.job.display().to_string(), job_dir)?;
         let report = plan_sequence(&seq, job_dir, &mut out)
             .with_context(|| format!("{}: planning the sequence", args.job.display()))?;
         out.commit()?;
