@@ -226,12 +226,28 @@ pub struct Verified {
 /// (naming its file); a head machine without a tool length; a program with no cutter
 /// (neither a tool nor a CUTTER record); the errors of [`verify_and_write`].
 pub fn verify_request(req: &VerifyRequest<'_>, progress: &dyn Progress) -> Result<Verified> {
+    verify_request_with(req, progress, &[])
+}
+
+/// [`verify_request`] with `extra` files (name relative to `req.out`, bytes) staged
+/// in the same output set, written with the reports or not at all.
+///
+/// # Errors
+/// As [`verify_request`].
+pub fn verify_request_with(
+    req: &VerifyRequest<'_>,
+    progress: &dyn Progress,
+    extra: &[(&str, Vec<u8>)],
+) -> Result<Verified> {
     let mut out = Outputs::new(req.out);
     let mut done = verify_with(req, |model, stages, opts, context| {
         verify_and_write(model, stages, opts, (&mut out, ""), context, progress)
     })?;
     done.written = done.context.stopped.is_none() || req.partial;
     if done.written {
+        for (name, bytes) in extra {
+            out.write(name, bytes)?;
+        }
         out.commit()?;
     }
     Ok(done)

@@ -9,7 +9,7 @@ use crate::progress::Bars;
 use anyhow::{Result, bail};
 use std::path::{Path, PathBuf};
 use swarf_app::holder;
-use swarf_app::verify::{GcodeSetup, SimSettings, VerifyRequest, verify_request};
+use swarf_app::verify::{GcodeSetup, SimSettings, VerifyRequest, verify_request_with};
 use swarf_sim::report::text_summary;
 
 /// Arguments of `swarf verify`.
@@ -184,13 +184,24 @@ pub fn run(args: &Args) -> Result<()> {
         out: &args.out,
         partial: args.sim.partial,
     };
-    let done = verify_request(&req, &Bars::default())?;
+    // The holder check is staged with the reports: holder.json is written with them
+    // or not at all.
+    let holder = match &args.tool_library {
+        Some(library) => Some(holder_check(args, library, &gcode, sim.tol)?),
+        None => None,
+    };
+    let extra: Vec<(&str, Vec<u8>)> = holder
+        .as_ref()
+        .map(|(_, json)| ("holder.json", json.clone()))
+        .into_iter()
+        .collect();
+    let done = verify_request_with(&req, &Bars::default(), &extra)?;
     for note in &done.notes {
         eprintln!("{note}");
     }
     print!("{}", text_summary(&done.verification, &done.context));
-    if let Some(library) = &args.tool_library {
-        holder_check(args, library, &gcode, sim.tol)?;
+    for line in holder.iter().flat_map(|(lines, _)| lines) {
+        println!("{line}");
     }
     match (&done.context.stopped, done.written) {
         (Some(stop), false) => bail!(
@@ -207,9 +218,13 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
-/// The holder check of `--tool-library`: prints a summary per program and writes
-/// `holder.json` into the output folder.
-fn holder_check(args: &Args, library: &Path, gcode: &GcodeSetup, tol: Option<f64>) -> Result<()> {
+/// The holder check of `--tool-library`: a summary per program and `holder.json`.
+fn holder_check(
+    args: &Args,
+    library: &Path,
+    gcode: &GcodeSetup,
+    tol: Option<f64>,
+) -> Result<(Vec<String>, Vec<u8>)> {
     let checks = holder::check_request(&holder::HolderRequest {
         part: &args.part,
         programs: &args.program,
@@ -221,13 +236,8 @@ fn holder_check(args: &Args, library: &Path, gcode: &GcodeSetup, tol: Option<f64
         tol: tol.unwrap_or(0.01),
         spacing: holder::POSE_SPACING,
     })?;
-    for c in &checks {
-        println!("{}", c.summary());
-    }
-    let json = serde_json::to_vec_pretty(&checks)?;
-    std::fs::create_dir_all(&args.out)?;
-    swarf_io::write_atomic(&args.out.join("holder.json"), &json)?;
-    Ok(())
+    let lines = checks.iter().map(holder::HolderCheck::summary).collect();
+    Ok((lines, serde_json::to_vec_pretty(&checks)?))
 }
 
 #[cfg(test)]
