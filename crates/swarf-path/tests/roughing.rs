@@ -137,38 +137,12 @@ fn rough(adaptive: bool) -> Run {
         }
     }
     // Entry motions (the ramps and their round at the level) are slots by design.
-    let entry = swarf_path::roughing::entry_moves(&moves, &report);
     let clearing: Vec<f64> = eng
-        .per_motion
-        .iter()
-        .zip(&entry)
-        .filter(|(_, e)| !**e)
-        .filter_map(|(a, _)| *a)
-        .filter(|a| *a > 0.0)
+        .without(&swarf_path::roughing::entry_moves(&moves, &report))
+        .cutting()
+        .into_iter()
         .map(f64::to_degrees)
         .collect();
-    if std::env::var("SWARF_DEBUG_ENGAGEMENT").is_ok() {
-        let mut idx = std::collections::BTreeMap::new();
-        for (k, m) in moves.iter().enumerate() {
-            let i = m.pass.map(|p| {
-                let i = idx.entry(p).or_insert(0usize);
-                *i += 1;
-                *i
-            });
-            if let Some(a) = eng.per_motion[k]
-                && a.to_degrees() > 100.0
-                && !entry[k]
-            {
-                eprintln!(
-                    "{k}: {:.0} pass {:?} point {i:?} at {:?}",
-                    a.to_degrees(),
-                    m.pass,
-                    m.to.cl
-                );
-            }
-        }
-        eprintln!("entries {:?}", report.entries);
-    }
     let mut hist = vec![0usize; 19];
     for a in &clearing {
         hist[(a / 10.0) as usize] += 1;

@@ -40,6 +40,18 @@ pub struct Engagement {
 }
 
 impl Engagement {
+    /// The same with the motions marked in `left_out` not measured (a roughing's
+    /// entry ramps, slots by design).
+    pub fn without(&self, left_out: &[bool]) -> Engagement {
+        let per_motion = self
+            .per_motion
+            .iter()
+            .enumerate()
+            .map(|(k, a)| a.filter(|_| !left_out.get(k).copied().unwrap_or(false)))
+            .collect();
+        Engagement { per_motion }
+    }
+
     /// The measured angles (radians) of the motions that cut (engagement above 0).
     pub fn cutting(&self) -> Vec<f64> {
         self.per_motion

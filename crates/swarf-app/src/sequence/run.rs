@@ -505,32 +505,19 @@ fn measure_roughing(
             motion
         })
         .collect();
-    let eng = measure_engagement(dexel, &tool, &motions, first, &sim_options(op), &Quiet);
-    let entry = entry_moves(moves, rough);
+    let eng = measure_engagement(dexel, &tool, &motions, first, &sim_options(op), &Quiet)
+        .without(&entry_moves(moves, rough));
     let limit = job.roughing_params().max_engagement.to_degrees();
-    let cutting: Vec<f64> = eng
-        .per_motion
+    let cutting = eng.cutting();
+    let over = cutting
         .iter()
-        .zip(&entry)
-        .filter(|(_, e)| !**e)
-        .filter_map(|(a, _)| *a)
-        .filter(|a| *a > 0.0)
-        .map(f64::to_degrees)
-        .collect();
-    let mut histogram = Vec::new();
-    for a in &cutting {
-        let k = (a / 10.0) as usize;
-        if histogram.len() <= k {
-            histogram.resize(k + 1, 0);
-        }
-        histogram[k] += 1;
-    }
-    let over = cutting.iter().filter(|a| **a > limit + 5.0).count();
+        .filter(|a| a.to_degrees() > limit + 5.0)
+        .count();
     let summary = EngagementSummary {
         limit_deg: limit,
-        max_deg: cutting.iter().copied().fold(0.0, f64::max),
+        max_deg: eng.max().to_degrees(),
         over_limit: over as f64 / cutting.len().max(1) as f64,
-        histogram_10deg: histogram,
+        histogram_10deg: eng.histogram(10.0),
         entries: rough.entries.len(),
     };
     let stats = motion_stats(moves, job.feeds.rapid);
