@@ -163,27 +163,7 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         text,
         "\n== from stock to part (thesis 002 §4.1 on the fillet pocket: rough, rest-rough, finish, clean up)"
     )?;
-    let seq = crate::sequence::Sequence::parse(
-        SEQUENCE_JOB,
-        "fillet-pocket-sequence.toml",
-        Path::new("."),
-    )?;
-    let dir = out.path("sequence");
-    out.write(
-        dir.join("fillet-pocket-sequence.toml"),
-        SEQUENCE_JOB.as_bytes(),
-    )?;
-    let report = out.in_dir("sequence", |out| {
-        crate::sequence::plan_sequence(&seq, Path::new("."), out)
-    })?;
-    for line in report.lines() {
-        writeln!(text, "{line}")?;
-    }
-    writeln!(
-        text,
-        "program and summary: {}/fillet-pocket-sequence.*",
-        dir.display()
-    )?;
+    sequence(out, text)?;
     reporter.jobs_done();
     outputs.commit()?;
     match crate::view::viewer_dist() {
@@ -204,6 +184,26 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         "\nall results in {} ({:.1} s)",
         dir.display(),
         start.elapsed().as_secs_f64()
+    )?;
+    Ok(())
+}
+
+/// Plans the shipped sequence job into `out/sequence` and prints its operations.
+fn sequence(out: &mut Outputs, text: &mut dyn Write) -> Result<()> {
+    let name = "fillet-pocket-sequence.toml";
+    let seq = crate::sequence::Sequence::parse(SEQUENCE_JOB, name, Path::new("."))?;
+    let dir = out.path("sequence");
+    out.write(dir.join(name), SEQUENCE_JOB.as_bytes())?;
+    let report = out.in_dir("sequence", |out| {
+        crate::sequence::plan_sequence(&seq, Path::new("."), out)
+    })?;
+    for line in report.lines() {
+        writeln!(text, "{line}")?;
+    }
+    writeln!(
+        text,
+        "program and summary: {}/fillet-pocket-sequence.*",
+        dir.display()
     )?;
     Ok(())
 }

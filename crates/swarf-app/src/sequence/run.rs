@@ -179,6 +179,17 @@ impl SequenceReport {
     }
 }
 
+/// What every operation of a sequence shares: the part, its mesh, the design's
+/// height per stock cell, the post and how its programs are read.
+struct Shop<'a> {
+    seq: &'a Sequence,
+    model: Model,
+    mesh: TriMesh,
+    design: Vec<f64>,
+    post: swarf_nc::Post,
+    read: GcodeReadOptions<'static>,
+}
+
 /// Plans, posts and simulates every operation of `seq` in order on one stock
 /// (module doc of [`super`]).
 ///
@@ -186,9 +197,45 @@ impl SequenceReport {
 /// The part or stock cannot be read; an operation cannot be planned (the error
 /// names it); an operation's program does not read back.
 pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Result<SequenceReport> {
+    let (shop, mut dexel) = open_shop(seq, job_dir)?;
+    let grid = *dexel.grid();
+    let mut report = SequenceReport {
+        name: seq.name.clone(),
+        grid: (grid.nx, grid.ny, grid.cell),
+        operations: Vec::new(),
+        time_s: 0.0,
+        programs: Vec::new(),
+        program: String::new(),
+        rest: Vec::new(),
+    };
+    let mut motions_before = 0;
+    let mut all_moves = Vec::with_capacity(seq.operations.len());
+    for k in 0..seq.operations.len() {
+        let (r, text, moves) = run_operation(&shop, k, &mut dexel, motions_before)?;
+        motions_before += r.motions;
+        report.time_s += r.time_s;
+        report.operations.push(r);
+        report.programs.push(text);
+        all_moves.push(moves);
+    }
+    report.program = whole_program(&shop, &all_moves, motions_before)?;
+    if let Some(file) = &seq.output.gcode {
+        out.write(file, report.program.as_bytes())?;
+    }
+    if let Some(limit) = report.operations.last().map(|o| o.rest_limit_mm) {
+        report.rest = rest_cells(&dexel, &shop.design, limit);
+    }
+    if let Some(file) = &seq.output.summary {
+        out.write_json(file, &report)?;
+    }
+    Ok(report)
+}
+
+/// The part, the design over the stock's grid, the post, and the stock.
+fn open_shop<'a>(seq: &'a Sequence, job_dir: &Path) -> Result<(Shop<'a>, Dexel)> {
     let first = &seq.operations[0].job;
     let model = load_model_with(&part_arg(first, job_dir), &first.load_options())?;
-    let mesh = part_mesh(&model, seq.stock.tol.min(first.strategy.tolerance))?;
+    let mesh = part_mesh(&model, seq.stock.tol.min(first.strategy.tolerance))?.into_owned();
     let b = mesh.aabb();
     let m = seq.stock.margin;
     let grid = Grid::covering(
@@ -209,16 +256,7 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
             b.max.z
         )));
     }
-    let mut dexel = initial_stock(&seq.stock, grid, &design, b.max.z, job_dir)?;
-    let mut report = SequenceReport {
-        name: seq.name.clone(),
-        grid: (grid.nx, grid.ny, grid.cell),
-        operations: Vec::new(),
-        time_s: 0.0,
-        programs: Vec::new(),
-        program: String::new(),
-        rest: Vec::new(),
-    };
+    let dexel = initial_stock(&seq.stock, grid, &design, b.max.z, job_dir)?;
     let spec = seq.output.post.as_deref().unwrap_or("linuxcnc");
     let post = swarf_nc::Post::load(spec, job_dir)
         .map_err(|e| AppError::Message(format!("output.post = {spec:?}: {e}")))?;
@@ -226,64 +264,52 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
         language: post.reader(),
         ..GcodeReadOptions::default()
     };
-    let mut motions_before = 0;
-    let mut all_moves = Vec::with_capacity(seq.operations.len());
-    for (k, op) in seq.operations.iter().enumerate() {
-        let named = |e: AppError| AppError::Message(format!("operation[{k}] ({}): {e}", op.name));
-        let reference = k.checked_sub(1).map(|p| seq.operations[p].job.tool);
-        let start = std::time::Instant::now();
-        let (planned, roughing) =
-            plan_operation(op, &model, &mesh, &dexel, &design, reference, seq.stock.tol)
-                .map_err(named)?;
-        let plan_s = start.elapsed().as_secs_f64();
-        let start = std::time::Instant::now();
-        let moves = planned.toolpath.moves();
-        let text = swarf_nc::write_gcode(&moves, &op.job.feeds, &gcode_options(op, &post, seq))
-            .map_err(|e| named(e.into()))?;
-        let program = parse_gcode(&text, &op.name, &read).map_err(|e| named(e.into()))?;
-        let holder = match &op.library_tool {
-            Some(tool) => Some(holder_check(&mesh, &program, tool).map_err(named)?),
-            None => None,
-        };
-        let mut r = match &roughing {
-            Some(rough) => measure_roughing(op, &mut dexel, &moves, rough, motions_before)?,
-            None => simulate_operation(op, &mut dexel, &program, motions_before)?,
-        };
-        r.motions = program.motions.len();
-        r.holder = holder;
-        motions_before += program.motions.len();
-        r.plan_s = plan_s;
-        deviation(&dexel, &design, op, seq.stock.tol, &mut r);
-        r.verify_s = start.elapsed().as_secs_f64();
-        report.time_s += r.time_s;
-        report.operations.push(r);
-        report.programs.push(text);
-        all_moves.push(moves);
-    }
-    let program = whole_program(seq, &post, &all_moves)?;
-    let back = parse_gcode(&program, "the whole program", &read)?;
-    if let Some(stop) = &back.stopped {
-        return Err(AppError::Message(format!(
-            "the whole program does not read back: {stop}"
-        )));
-    }
-    if back.motions.len() != motions_before {
-        return Err(AppError::Message(format!(
-            "the whole program reads back as {} motions, its operations as {motions_before}",
-            back.motions.len()
-        )));
-    }
-    if let Some(file) = &seq.output.gcode {
-        out.write(file, program.as_bytes())?;
-    }
-    report.program = program;
-    if let Some(limit) = report.operations.last().map(|o| o.rest_limit_mm) {
-        report.rest = rest_cells(&dexel, &design, limit);
-    }
-    if let Some(file) = &seq.output.summary {
-        out.write_json(file, &report)?;
-    }
-    Ok(report)
+    let shop = Shop {
+        seq,
+        model,
+        mesh,
+        design,
+        post,
+        read,
+    };
+    Ok((shop, dexel))
+}
+
+/// Operation `k`: planned on the stock, posted, read back, its holder checked,
+/// simulated on the stock (motions numbered from `first`) and reported; with its
+/// program and moves.
+fn run_operation(
+    shop: &Shop<'_>,
+    k: usize,
+    dexel: &mut Dexel,
+    first: usize,
+) -> Result<(OperationReport, String, Vec<Move>)> {
+    let seq = shop.seq;
+    let op = &seq.operations[k];
+    let named = |e: AppError| AppError::Message(format!("operation[{k}] ({}): {e}", op.name));
+    let reference = k.checked_sub(1).map(|p| seq.operations[p].job.tool);
+    let start = std::time::Instant::now();
+    let (planned, roughing) = plan_operation(op, shop, dexel, reference).map_err(named)?;
+    let plan_s = start.elapsed().as_secs_f64();
+    let start = std::time::Instant::now();
+    let moves = planned.toolpath.moves();
+    let text = swarf_nc::write_gcode(&moves, &op.job.feeds, &gcode_options(op, &shop.post, seq))
+        .map_err(|e| named(e.into()))?;
+    let program = parse_gcode(&text, &op.name, &shop.read).map_err(|e| named(e.into()))?;
+    let holder = match &op.library_tool {
+        Some(tool) => Some(holder_check(&shop.mesh, &program, tool).map_err(named)?),
+        None => None,
+    };
+    let mut r = match &roughing {
+        Some(rough) => measure_roughing(op, dexel, &moves, rough, first)?,
+        None => simulate_operation(op, dexel, &program, first)?,
+    };
+    r.motions = program.motions.len();
+    r.holder = holder;
+    r.plan_s = plan_s;
+    deviation(dexel, &shop.design, op, seq.stock.tol, &mut r);
+    r.verify_s = start.elapsed().as_secs_f64();
+    Ok((r, text, moves))
 }
 
 /// The stock before the first operation.
@@ -324,13 +350,11 @@ fn initial_stock(
 /// The operation's plan on the stock as it stands (and a roughing's report).
 fn plan_operation(
     op: &Operation,
-    model: &Model,
-    mesh: &TriMesh,
+    shop: &Shop<'_>,
     dexel: &Dexel,
-    design: &[f64],
     reference: Option<swarf_tool::Cutter>,
-    tol: f64,
 ) -> Result<(Plan, Option<RoughingReport>)> {
+    let (model, mesh, design, tol) = (&shop.model, &shop.mesh, &shop.design, shop.seq.stock.tol);
     let job = &op.job;
     let plan = match job.strategy.kind {
         StrategyKind::Roughing => {
@@ -416,8 +440,13 @@ fn section_comment(op: &Operation) -> String {
     )
 }
 
-/// The whole program: every operation's moves after its tool change.
-fn whole_program(seq: &Sequence, post: &swarf_nc::Post, moves: &[Vec<Move>]) -> Result<String> {
+/// The whole program: every operation's moves after its tool change; checked to
+/// read back whole, as `motions` motions.
+///
+/// # Errors
+/// A program the post refuses, or one that does not read back.
+fn whole_program(shop: &Shop<'_>, moves: &[Vec<Move>], motions: usize) -> Result<String> {
+    let seq = shop.seq;
     let comments: Vec<Vec<String>> = seq
         .operations
         .iter()
@@ -435,18 +464,33 @@ fn whole_program(seq: &Sequence, post: &swarf_nc::Post, moves: &[Vec<Move>]) -> 
             comments,
         })
         .collect();
-    let mut header = vec![format!(
-        "swarf sequence: {}",
-        seq.name.as_deref().unwrap_or(&seq.part)
-    )];
-    header.push(format!("part: {}", seq.part));
+    let header = vec![
+        format!(
+            "swarf sequence: {}",
+            seq.name.as_deref().unwrap_or(&seq.part)
+        ),
+        format!("part: {}", seq.part),
+    ];
     let opts = swarf_nc::GcodeOptions {
-        post: post.clone(),
+        post: shop.post.clone(),
         units: seq.output.units,
         comments: header,
         ..swarf_nc::GcodeOptions::default()
     };
-    Ok(swarf_nc::write_gcode_sections(&sections, &opts)?)
+    let program = swarf_nc::write_gcode_sections(&sections, &opts)?;
+    let back = parse_gcode(&program, "the whole program", &shop.read)?;
+    if let Some(stop) = &back.stopped {
+        return Err(AppError::Message(format!(
+            "the whole program does not read back: {stop}"
+        )));
+    }
+    if back.motions.len() != motions {
+        return Err(AppError::Message(format!(
+            "the whole program reads back as {} motions, its operations as {motions}",
+            back.motions.len()
+        )));
+    }
+    Ok(program)
 }
 
 /// Simulates the operation's program on the stock, its motions numbered from

@@ -6,7 +6,7 @@
 //! surface; the waterline contour of [`crate::waterline`], exact to its tolerance).
 //! Ring `k` is the boundary of that region offset inwards by `k s` (polygon buffers;
 //! the offset of the tool-centre region by `d` is the region of the cutter widened
-//! by `d`). The rings are cut from the innermost outwards ([`regions`]), so each
+//! by `d`). The rings are cut from the innermost outwards (`regions.rs`), so each
 //! removes a band one stepover `s` wide: on a straight stretch the cutter's
 //! engagement angle is `acos(1 - s / R)` (R the cutter radius). The tool enters a
 //! level at each innermost ring by ramping down along that ring's own loop at the
@@ -25,7 +25,7 @@
 //! Rings of plain offset roughing have sharp corners where the pocket has (the
 //! offset of a corner is a corner), and a tool turning one meets far more material
 //! than on a straight stretch. Adaptive roughing rounds them and steps over less, so
-//! that the engagement holds in right-angled corners too ([`corners`]); the
+//! that the engagement holds in right-angled corners too (`corners.rs`); the
 //! engagement measured on the simulated stock (swarf-sim's `engagement`) checks it.
 
 mod corners;
@@ -69,7 +69,7 @@ pub struct RoughingParams {
     /// Drop-field grid step, mm (default: a quarter of the tool radius).
     pub sampling: Option<f64>,
     /// Round the inner rings' corners and step over so that the engagement holds
-    /// in right-angled corners too ([`corners`]); false: plain offset rings, sharp
+    /// in right-angled corners too (`corners.rs`); false: plain offset rings, sharp
     /// corners, the straight-stretch stepover.
     pub adaptive: bool,
     /// Radius the inner rings' corners are rounded to, mm (default: the tool
