@@ -15,7 +15,7 @@ use swarf_geom::TriMesh;
 use swarf_nc::read::{GcodeReadOptions, Motion, MotionKind, Program, parse_gcode};
 use swarf_path::roughing::{RoughingReport, RoughingStock, entry_moves, plan as plan_roughing};
 use swarf_path::{Plan, PlanReport, StrategyKind};
-use swarf_rest::{CleanupParams, RestKind, Source, detect, plan_cleanup};
+use swarf_rest::{CleanupParams, Source, detect, plan_cleanup};
 use swarf_sim::engagement::measure_engagement;
 use swarf_sim::grid::DEFAULT_MAX_BYTES;
 use swarf_sim::simulate_from;
@@ -395,10 +395,8 @@ fn plan_operation(
                 excess: &excess,
                 design,
             };
-            let mut detection = detect(mesh, &reference, source, tol, &job.region_params())?;
-            detection
-                .regions
-                .retain(|r| r.kinds.contains(&RestKind::Stock) || !r.kinds.is_empty());
+            // Every region the stock shows is rest of the stock kind: all are cleaned.
+            let detection = detect(mesh, &reference, source, tol, &job.region_params())?;
             let params = CleanupParams {
                 finish: job.finish(),
                 pattern: job.strategy.pattern,
