@@ -51,6 +51,7 @@
 //! time, the engagement of roughing measured on the stock ([`swarf_sim::engagement`]),
 //! gouge and rest after it.
 
+mod report;
 mod run;
 
 use crate::error::AppError;
@@ -61,7 +62,8 @@ use std::path::Path;
 use swarf_io::error::toml_message;
 use swarf_tool::library::{LibraryTool, ToolLibrary};
 
-pub use run::{OperationReport, SequenceReport, plan_sequence};
+pub use report::{EngagementSummary, HolderSummary, OperationReport, SequenceReport};
+pub use run::plan_sequence;
 
 /// A sequence job as read (module doc).
 #[derive(Debug, Clone, Deserialize)]
