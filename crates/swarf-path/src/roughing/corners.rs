@@ -20,6 +20,13 @@
 //! allows the band `w(rho, phi) = rho + R - sqrt(rho² + R² + 2 rho R cos phi)`
 //! (`R (1 - cos phi)` as `rho` grows, 0 for a pivot). The stepover is
 //! `w(rho, phi) sin(a/2)` for the sharpest corner to be held, a right angle.
+//!
+//! The stepover therefore belongs to a ring, not to the plan: a ring opened by a
+//! halved radius turns tighter and must step over less. The ring inside it may be
+//! sharper still: its apex then lies nearer the corner, `s √2 + (rho' - rho)(√2 - 1)`
+//! from the outer ring's apex with `rho' <= rho`, so the band the outer ring cuts
+//! is no wider than with equal radii, and the outer ring's own radius sets its
+//! stepover (`regions.rs`).
 
 use super::regions::Ring;
 use geo::algorithm::buffer::{BufferStyle, LineJoin};
@@ -50,8 +57,9 @@ pub(crate) fn offset(poly: &Polygon, d: f64) -> MultiPolygon {
 }
 
 /// `region` opened by `rho`, or by half of it when that leaves nothing, and so on
-/// [`HALVINGS`] times (module doc); `None` when every try leaves nothing.
-pub(crate) fn opened(region: &Polygon, rho: f64) -> Option<MultiPolygon> {
+/// [`HALVINGS`] times (module doc), with the radius that opened it; `None` when
+/// every try leaves nothing.
+pub(crate) fn opened(region: &Polygon, rho: f64) -> Option<(MultiPolygon, f64)> {
     (0..HALVINGS).find_map(|h| {
         let r = rho / f64::from(1u32 << h);
         let shrunk = offset(region, -r);
@@ -59,8 +67,13 @@ pub(crate) fn opened(region: &Polygon, rho: f64) -> Option<MultiPolygon> {
             return None;
         }
         let grown: Vec<Polygon> = shrunk.iter().flat_map(|p| offset(p, r)).collect();
-        (!grown.is_empty()).then(|| MultiPolygon::new(grown))
+        (!grown.is_empty()).then(|| (MultiPolygon::new(grown), r))
     })
+}
+
+/// The smallest radius [`opened`] tries for `rho`.
+pub(crate) fn smallest(rho: f64) -> f64 {
+    rho / f64::from(1u32 << (HALVINGS - 1))
 }
 
 /// The loops of `poly`: its exterior counter-clockwise, then its holes clockwise
@@ -107,11 +120,12 @@ mod tests {
                 Vec::new(),
             )
         };
-        let out = opened(
+        let (out, r) = opened(
             &poly(&[[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]]),
             2.0,
         )
         .unwrap();
+        assert_eq!(r, 2.0);
         assert_eq!(out.0.len(), 1);
         let area = out.unsigned_area();
         // 100 less the four corners (2² - pi 2² / 4 each), to the joins' sag.
@@ -122,7 +136,9 @@ mod tests {
             &poly(&[[0.0, 0.0], [10.0, 0.0], [10.0, 1.0], [0.0, 1.0]]),
             2.0,
         );
-        let a = strip.unwrap().unsigned_area();
+        let (strip, r) = strip.unwrap();
+        assert_eq!(r, 0.25);
+        let a = strip.unsigned_area();
         assert!(
             (a - (10.0 - 0.0625 * (4.0 - std::f64::consts::PI))).abs() < 0.01,
             "{a}"

@@ -4,11 +4,12 @@
 //! At a level `z` the tool tip may stand where the cutter's drop height onto the part
 //! is at most `z - allowance` (thesis 002 §6.2.2, the Z-slice of the tool offset
 //! surface; the waterline contour of [`crate::waterline`], exact to its tolerance).
-//! Ring `k` is the boundary of that region offset inwards by `k s` (polygon buffers;
+//! Ring `k` is the boundary of that region offset inwards by `d_k` (polygon buffers;
 //! the offset of the tool-centre region by `d` is the region of the cutter widened
-//! by `d`). The rings are cut from the innermost outwards (`regions.rs`), so each
-//! removes a band one stepover `s` wide: on a straight stretch the cutter's
-//! engagement angle is `acos(1 - s / R)` (R the cutter radius). The tool enters a
+//! by `d`), `d_k` the sum of the stepovers of the rings outside it. The rings are
+//! cut from the innermost outwards (`regions.rs`), so each removes a band one
+//! stepover `s` wide: on a straight stretch the cutter's engagement angle is
+//! `acos(1 - s / R)` (R the cutter radius). The tool enters a
 //! level at each innermost ring by ramping down along that ring's own loop at the
 //! ramp angle (a helix when the ring is round), from the level above, which was
 //! cleared (the allowed region only shrinks downwards).
@@ -17,25 +18,34 @@
 //! stock's XY box joins the part, so every level is a closed pocket and the rings
 //! stop at the stock's side; a ring that passes no material (the in-process stock,
 //! [`RoughingStock::material`], is lower than the level within the tool's reach) is
-//! not cut, which makes rest roughing of an already roughed stock the same
-//! operation. Levels are `step_down` apart from the stock's top, with one more level
+//! not cut, and one that meets material in stretches only is cut in those, each a
+//! pass that starts and ends clear of material (`material.rs`). That makes rest
+//! roughing of an already roughed stock the same operation, cutting only where the
+//! previous tool left material. Levels are `step_down` apart from the stock's top, with one more level
 //! on every flat of the part (its height plus the allowance), so no floor keeps more
 //! than the allowance.
 //!
 //! Rings of plain offset roughing have sharp corners where the pocket has (the
 //! offset of a corner is a corner), and a tool turning one meets far more material
 //! than on a straight stretch. Adaptive roughing rounds them and steps over less, so
-//! that the engagement holds in right-angled corners too (`corners.rs`); the
-//! engagement measured on the simulated stock (swarf-sim's `engagement`) checks it.
+//! that the engagement holds in right-angled corners too (`corners.rs`), each ring
+//! with the stepover of its own corner radius. The step from a ring out to the
+//! next is spread along the ring just cut ([`BLEND_SLOPE`]): a step straight
+//! across the band would meet its whole width at once. The engagement measured on
+//! the simulated stock (swarf-sim's `engagement`) checks it.
 
 mod corners;
 mod levels;
+mod material;
+mod moves;
 mod regions;
 
 use crate::error::PathError;
 use crate::params::Finish;
 use crate::plan::{Plan, PlanReport};
 use crate::waterline::{Milling, Waterline, WaterlineParams};
+use material::Reach;
+use moves::{OnLoop, blend, link_aim, ramp_entry};
 use regions::{Region, Ring, cutting_order, link_parents};
 use swarf_geom::{Point3, TriMesh};
 use swarf_tool::{Cutter, Pose};
@@ -46,9 +56,13 @@ pub const MAX_RINGS: usize = 2_000;
 /// Gap between the stock's side and the skirt that bounds the tool, mm.
 pub const SKIRT_GAP: f64 = 1.0;
 /// Points closer than this are one, mm.
-const SAME_POINT: f64 = 1e-9;
-/// How far ahead (in tool radii) the step to the next ring lands.
+pub(crate) const SAME_POINT: f64 = 1e-9;
+/// How far ahead (in tool radii) the step to an island's ring lands.
 pub const LINK_LEAD: f64 = 2.0;
+/// Slope of the step out to the next ring across the band (gap over length).
+pub const BLEND_SLOPE: f64 = 0.125;
+/// Points of that step (at least).
+pub(crate) const BLEND_SAMPLES: usize = 16;
 /// Material higher than the level by less than this is not cut, mm.
 pub const MATERIAL_EPS: f64 = 1e-6;
 
@@ -98,11 +112,14 @@ impl RoughingParams {
     }
 
     /// The stepover from the largest engagement, mm: on straight stretches for
-    /// plain offset rings, in right-angled rounded corners for adaptive ones.
-    pub fn stepover(&self) -> f64 {
+    /// plain offset rings; for adaptive ones, in right-angled corners rounded to
+    /// `rho` (a ring's opening radius; `None`, a ring too narrow to open: the
+    /// smallest radius tried).
+    pub fn stepover(&self, rho: Option<f64>) -> f64 {
         let r = self.finish.tool.radius();
         if self.adaptive {
-            corners::stepover(self.rho(), r, self.max_engagement)
+            let rho = rho.unwrap_or_else(|| corners::smallest(self.rho()));
+            corners::stepover(rho, r, self.max_engagement)
         } else {
             r * (1.0 - self.max_engagement.cos())
         }
@@ -132,8 +149,8 @@ pub struct RoughingReport {
     /// index of the pass each begins, and how many of the pass's first points it
     /// takes.
     pub entries: Vec<(usize, usize)>,
-    /// Stepover, mm.
-    pub stepover: f64,
+    /// Smallest and largest stepover of the rings, mm.
+    pub stepover: [f64; 2],
 }
 
 /// Plans Z-level roughing of `stock` down to `mesh` plus the allowance (module doc).
@@ -153,17 +170,16 @@ pub fn plan(
     check(params, stock)?;
     let skirted = skirted(mesh, stock, params.finish.tool.radius());
     let levels = levels::levels(mesh, stock.top, params.allowance, params.step_down)?;
-    let s = params.stepover();
-    let rings = Rings::new(&skirted, params, s)?;
+    let rings = Rings::new(&skirted, params)?;
     let mut report = RoughingReport {
         levels: levels.clone(),
-        stepover: s,
+        stepover: [f64::INFINITY, 0.0],
         ..RoughingReport::default()
     };
     let mut passes: Vec<Pass> = Vec::new();
     let mut above = stock.top;
     for &z in &levels {
-        let regions = rings.level(z)?;
+        let regions = rings.level(z, &mut report.stepover)?;
         cut_level(&regions, z, above, stock, params, &mut passes, &mut report);
         above = z;
     }
@@ -175,7 +191,7 @@ pub fn plan(
         )));
     }
     let plan_report = PlanReport {
-        side_step_range: Some([s, s]),
+        side_step_range: Some(report.stepover),
         ..PlanReport::default()
     };
     Ok((
@@ -308,27 +324,22 @@ fn skirted(mesh: &TriMesh, stock: &RoughingStock<'_>, radius: f64) -> TriMesh {
 /// The level contours of the cutter over the skirted part, and the rings in them.
 struct Rings<'a> {
     params: &'a RoughingParams,
-    stepover: f64,
     waterline: Waterline<'a>,
 }
 
 impl<'a> Rings<'a> {
-    fn new(
-        mesh: &'a TriMesh,
-        params: &'a RoughingParams,
-        stepover: f64,
-    ) -> Result<Rings<'a>, PathError> {
+    fn new(mesh: &'a TriMesh, params: &'a RoughingParams) -> Result<Rings<'a>, PathError> {
         let mut wp = WaterlineParams::new(params.finish.clone(), 0.1);
         wp.sampling = params.sampling;
         Ok(Rings {
             params,
-            stepover,
             waterline: Waterline::new(mesh, &wp)?,
         })
     }
 
-    /// Every ring's regions at tip height `z`, parents linked.
-    fn level(&self, z: f64) -> Result<Vec<Region>, PathError> {
+    /// Every ring's regions at tip height `z`, parents linked; `range` widened to
+    /// the rings' stepovers.
+    fn level(&self, z: f64, range: &mut [f64; 2]) -> Result<Vec<Region>, PathError> {
         let loops = self
             .waterline
             .level(z - self.params.allowance, Milling::Climb)
@@ -339,24 +350,39 @@ impl<'a> Rings<'a> {
             .collect();
         let a0 = regions::allowed(loops);
         let rho = self.params.adaptive.then(|| self.params.rho());
+        let radius = self.params.finish.tool.radius();
         let mut all: Vec<Region> = Vec::new();
         let mut first_of = Vec::new();
+        let (mut d, mut step) = (0.0, 0.0);
         for k in 0..=MAX_RINGS {
             if k == MAX_RINGS {
                 return Err(PathError::InvalidParameter {
                     field: "strategy.max_engagement".into(),
                     message: format!(
-                        "a stepover of {:.4} mm needs more than {MAX_RINGS} rings on a level: \
-                         expected a larger engagement",
-                        self.stepover
+                        "a stepover of {step:.4} mm needs more than {MAX_RINGS} rings on a \
+                         level: expected a larger engagement"
                     ),
                 });
             }
+            let mut found = regions::ring_regions(&a0, k, d, rho);
+            if let Some(rho) = rho
+                && k > 0
+            {
+                let outer = &all[first_of[k - 1]..];
+                let margin = corners::smallest(rho);
+                found.retain(|g| g.rho.is_some() || !regions::covered(g, outer, radius, margin));
+            }
             first_of.push(all.len());
-            let found = regions::ring_regions(&a0, k, self.stepover * k as f64, rho);
             if found.is_empty() {
                 break;
             }
+            step = found
+                .iter()
+                .map(|g| self.params.stepover(g.rho))
+                .fold(f64::INFINITY, f64::min);
+            range[0] = range[0].min(step);
+            range[1] = range[1].max(step);
+            d += step;
             all.extend(found);
         }
         first_of.push(all.len());
@@ -378,38 +404,71 @@ fn cut_level(
     let radius = params.finish.tool.radius();
     let mut current: Option<Vec<[f64; 3]>> = None;
     let mut last_cut: Option<usize> = None;
+    // Where the tool stands on the loop it cut last.
+    let mut at: Option<OnLoop<'_>> = None;
     for (i, fresh) in cutting_order(regions) {
-        let region = &regions[i];
-        let live: Vec<&Ring> = region
-            .loops
-            .iter()
-            .filter(|lp| touches_material(lp, z, radius, stock))
-            .collect();
-        if live.is_empty() {
+        let mut live: Vec<&Ring> = Vec::new();
+        let mut stretches: Vec<Ring> = Vec::new();
+        for lp in &regions[i].loops {
+            match material::reach(lp, z, radius, stock) {
+                None => {}
+                // A leaf is entered along its loop: cut whole.
+                Some(Reach::Whole) => live.push(lp),
+                Some(Reach::Stretches(_)) if fresh => live.push(lp),
+                Some(Reach::Stretches(s)) => stretches.extend(s),
+            }
+        }
+        if live.is_empty() && stretches.is_empty() {
             continue;
         }
         let from_child = last_cut.is_some_and(|c| regions[c].parent == Some(i));
         last_cut = Some(i);
+        if !stretches.is_empty() {
+            // Each stretch is a pass of its own, coming down where it is clear; the
+            // tool leaves the ring it stood on.
+            if let Some(pts) = current.take() {
+                passes.push(pass_of(&pts));
+            }
+            at = None;
+            report.rings += 1;
+            for s in &stretches {
+                let pts: Vec<[f64; 3]> = s.iter().map(|p| [p[0], p[1], z]).collect();
+                passes.push(pass_of(&pts));
+            }
+        }
+        if live.is_empty() {
+            continue;
+        }
         let fresh_entry = fresh || !from_child || current.is_none();
         if fresh_entry {
             if let Some(pts) = current.take() {
                 passes.push(pass_of(&pts));
             }
             let mut pts = Vec::new();
-            ramp_entry(live[0], above, z, params.ramp_angle, &mut pts);
+            at = Some(ramp_entry(live[0], above, z, params.ramp_angle, &mut pts));
             report.entries.push((passes.len(), pts.len()));
             current = Some(pts);
         }
-        let entered = fresh_entry;
         let pts = current.get_or_insert_with(Vec::new);
-        for lp in live.into_iter().skip(usize::from(entered)) {
-            let start = nearest(lp, link_aim(pts, radius));
-            pts.extend(
-                lp[start..]
-                    .iter()
-                    .chain(&lp[..=start])
-                    .map(|p| [p[0], p[1], z]),
-            );
+        for (n, lp) in live.into_iter().enumerate() {
+            if fresh_entry && n == 0 {
+                continue;
+            }
+            let blended = at
+                .filter(|_| n == 0)
+                .and_then(|from| blend(&from, lp, z, radius, pts));
+            let (seg, start) = blended.unwrap_or_else(|| {
+                let (seg, _, p) = regions::distance_to_loop(lp, link_aim(pts, radius));
+                (seg, p)
+            });
+            pts.push([start[0], start[1], z]);
+            let m = lp.len();
+            for k in 1..=m {
+                let p = lp[(seg + k) % m];
+                pts.push([p[0], p[1], z]);
+            }
+            pts.push([start[0], start[1], z]);
+            at = Some(OnLoop { lp, seg, p: start });
             report.rings += 1;
         }
     }
@@ -418,99 +477,8 @@ fn cut_level(
     }
 }
 
-/// Where the next ring starts: nearest the point [`LINK_LEAD`] radii ahead of the
-/// tool along its last move, so that the step out to the next ring runs forwards
-/// at a slant rather than square into the band.
-fn link_aim(pts: &[[f64; 3]], radius: f64) -> [f64; 2] {
-    let n = pts.len();
-    let Some(&last) = pts.last() else {
-        return [0.0, 0.0];
-    };
-    let before = pts[..n - 1]
-        .iter()
-        .rev()
-        .find(|p| (p[0] - last[0]).hypot(p[1] - last[1]) > 1e-9);
-    let Some(b) = before else {
-        return [last[0], last[1]];
-    };
-    let len = (last[0] - b[0]).hypot(last[1] - b[1]);
-    let k = LINK_LEAD * radius / len;
-    [
-        last[0] + k * (last[0] - b[0]),
-        last[1] + k * (last[1] - b[1]),
-    ]
-}
-
-/// Whether material stands above `z` within the tool's reach of some point of `lp`
-/// (checked at the loop's points and at eight points round each, at half and all of
-/// the radius).
-fn touches_material(lp: &Ring, z: f64, radius: f64, stock: &RoughingStock<'_>) -> bool {
-    let level = z + MATERIAL_EPS;
-    lp.iter().any(|p| {
-        (stock.material)(p[0], p[1]) > level
-            || (0..16).any(|k| {
-                let a = std::f64::consts::TAU * (k % 8) as f64 / 8.0;
-                let r = if k < 8 { 0.5 } else { 0.98 } * radius;
-                (stock.material)(p[0] + r * a.cos(), p[1] + r * a.sin()) > level
-            })
-    })
-}
-
-/// The ramp into a level along `lp`: from `above` down to `z` at `angle` from the
-/// horizontal, going round the loop as often as it takes, then once more round it
-/// at the level.
-fn ramp_entry(lp: &Ring, above: f64, z: f64, angle: f64, pts: &mut Vec<[f64; 3]>) {
-    let slope = angle.tan();
-    let n = lp.len();
-    let mut h = above.max(z);
-    let push = |p: [f64; 3], pts: &mut Vec<[f64; 3]>| {
-        let same = pts.last().is_some_and(|q: &[f64; 3]| {
-            (q[0] - p[0]).hypot(q[1] - p[1]).hypot(q[2] - p[2]) < SAME_POINT
-        });
-        if !same {
-            pts.push(p);
-        }
-    };
-    push([lp[0][0], lp[0][1], h], pts);
-    let length: f64 = (0..n).map(|i| dist(lp[i], lp[(i + 1) % n])).sum();
-    if length < 1e-6 {
-        push([lp[0][0], lp[0][1], z], pts);
-        return;
-    }
-    let mut i = 0;
-    while h > z {
-        let (a, b) = (lp[i % n], lp[(i + 1) % n]);
-        let drop = dist(a, b) * slope;
-        if h - drop <= z {
-            let t = (h - z) / drop;
-            let reach = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), z];
-            push(reach, pts);
-            // One whole round at the level, back to where the ramp reached it: the
-            // last round of the ramp left a wedge above the level all the way.
-            let j = i % n;
-            for p in lp[j + 1..].iter().chain(&lp[..=j]) {
-                push([p[0], p[1], z], pts);
-            }
-            push(reach, pts);
-            return;
-        }
-        h -= drop;
-        push([b[0], b[1], h], pts);
-        i += 1;
-    }
-}
-
-fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+pub(crate) fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
-}
-
-/// Index of the point of `lp` nearest `q`.
-fn nearest(lp: &[[f64; 2]], q: [f64; 2]) -> usize {
-    lp.iter()
-        .enumerate()
-        .map(|(i, p)| (i, dist(*p, q)))
-        .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))
-        .map_or(0, |(i, _)| i)
 }
 
 fn pass_of(pts: &[[f64; 3]]) -> Pass {

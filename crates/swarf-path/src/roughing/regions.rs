@@ -1,21 +1,24 @@
 //! One level's clearing rings and the order they are cut in.
 //!
-//! Ring `k` of a level is the boundary of `A_k = {D >= k s}`, where `D` is the
-//! distance from the boundary of the tool centre's allowed region `A_0` and `s` the
-//! stepover: `A_0` from the waterline contour of the level, `A_k` its inward offset
-//! by `k s` (geo's buffers). Each connected part of `A_k` is a [`Region`]: an outer
+//! Ring `k` of a level is the boundary of `A_k = {D >= d_k}`, where `D` is the
+//! distance from the boundary of the tool centre's allowed region `A_0` and
+//! `d_k = s_0 + ... + s_(k-1)` the stepovers of the rings outside it (each ring's
+//! own, from its corner radius: `corners.rs`): `A_0` from the waterline contour of
+//! the level, `A_k` its inward offset by `d_k` (geo's buffers). Each connected part of `A_k` is a [`Region`]: an outer
 //! loop (allowed inside, counter-clockwise) and the hole loops round the islands in
 //! it (clockwise). A region of ring `k + 1` lies in exactly one region of ring `k`,
 //! its parent, which makes a forest. Regions are cut children first (post-order): a
 //! leaf is where the tool enters the level (the innermost ring of a pocket, entered
 //! by a ramp along its own loop), and every parent is cut right after its last
 //! child, a stepover outside it, so the cut grows outwards ring by ring and every
-//! ring removes a band of one stepover. The tool stays at the level from a child to
+//! ring removes a band of its stepover. The tool stays at the level from a child to
 //! its parent; it leaves the level only to reach another leaf.
 //!
 //! Every point of `A_0` is within one stepover of some ring (the distance falls at
 //! unit rate towards the boundary), so with a stepover below the tool radius the
-//! rings clear the whole level.
+//! rings clear the whole level. A sharp inner region (too narrow to open) is not
+//! made a ring when the tool on the ring outside it reaches all of it
+//! ([`covered`]): its ring would only pivot in material already cut.
 
 use super::corners::{loops_of, offset, opened};
 use geo::{Area, Contains, Coord, LineString, MultiPolygon, Polygon};
@@ -35,6 +38,8 @@ pub(crate) struct Region {
     pub outline: Polygon,
     /// Index of the parent region (ring `k - 1`), if any.
     pub parent: Option<usize>,
+    /// The radius that opened the loops (`None`: left sharp).
+    pub rho: Option<f64>,
 }
 
 /// `A_0` as polygons from the level's contour loops (waterline orientation: the
@@ -69,8 +74,8 @@ pub(crate) fn allowed(loops: Vec<Ring>) -> Vec<Polygon> {
         .collect()
 }
 
-/// The regions of ring `k`: `A_0` offset inwards by `d` (`k s`), each part opened by
-/// `rho` when given ([`super::corners`]).
+/// The regions of ring `k`: `A_0` offset inwards by `d` (the stepovers of the rings
+/// outside it), each part opened by `rho` when given ([`super::corners`]).
 pub(crate) fn ring_regions(a0: &[Polygon], k: usize, d: f64, rho: Option<f64>) -> Vec<Region> {
     let parts: Vec<Polygon> = if k == 0 {
         a0.to_vec()
@@ -81,17 +86,54 @@ pub(crate) fn ring_regions(a0: &[Polygon], k: usize, d: f64, rho: Option<f64>) -
         .into_iter()
         .filter(|p| p.unsigned_area() > 0.0)
         .map(|outline| {
-            let cut: MultiPolygon = rho
-                .and_then(|r| opened(&outline, r))
-                .unwrap_or_else(|| MultiPolygon::new(vec![outline.clone()]));
+            let (cut, rho) = match rho.and_then(|r| opened(&outline, r)) {
+                Some((cut, r)) => (cut, Some(r)),
+                None => (MultiPolygon::new(vec![outline.clone()]), None),
+            };
             Region {
                 ring: k,
                 loops: cut.iter().flat_map(loops_of).collect(),
                 outline,
                 parent: None,
+                rho,
             }
         })
         .collect()
+}
+
+/// Whether a tool of radius `reach` on the loops of `outer` covers all of
+/// `region`: every vertex of its outline within `reach - margin` of a loop, with
+/// `margin` the half-width bound of a region too narrow to open.
+pub(crate) fn covered(region: &Region, outer: &[Region], reach: f64, margin: f64) -> bool {
+    let loops: Vec<&Ring> = outer.iter().flat_map(|r| &r.loops).collect();
+    region.outline.exterior().0.iter().all(|c| {
+        loops
+            .iter()
+            .any(|lp| distance_to_loop(lp, [c.x, c.y]).1 + margin <= reach)
+    })
+}
+
+/// The point of the closed loop `lp` nearest `q`: the index `j` of the segment
+/// from `lp[j]` to `lp[j + 1]` it lies on, its distance, and the point.
+pub(crate) fn distance_to_loop(lp: &[[f64; 2]], q: [f64; 2]) -> (usize, f64, [f64; 2]) {
+    let n = lp.len();
+    let mut best = (0, f64::INFINITY, lp.first().copied().unwrap_or(q));
+    for j in 0..n {
+        let (a, b) = (lp[j], lp[(j + 1) % n]);
+        let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
+        let len2 = ux * ux + uy * uy;
+        let t = if len2 > 0.0 {
+            (((q[0] - a[0]) * ux + (q[1] - a[1]) * uy) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let p = [a[0] + t * ux, a[1] + t * uy];
+        let d = (q[0] - p[0]).hypot(q[1] - p[1]);
+        if d < best.1 {
+            best = (j, d, p);
+        }
+    }
+    best
 }
 
 /// Sets each region's parent: the region of the ring before whose outline holds the
@@ -182,6 +224,7 @@ mod tests {
         assert_eq!(a0.len(), 1);
         assert_eq!(a0[0].interiors().len(), 1);
         let mut all = ring_regions(&a0, 0, 0.0, None);
+        assert!(all.iter().all(|r| r.rho.is_none()));
         let mut first_of = vec![0];
         for k in 1..4 {
             first_of.push(all.len());
