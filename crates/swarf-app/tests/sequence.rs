@@ -42,9 +42,13 @@ fn fillet_pocket_from_a_box_in_one_job() {
         );
         assert_eq!(op.gouge_cells, 0, "{} gouges", op.name);
     }
-    let rough = report.operations[0].engagement.as_ref().unwrap();
-    eprintln!("roughing engagement: {rough:?}");
-    assert!(rough.over_limit < 0.02, "{rough:?}");
+    // Both roughings (the second is rest roughing with a smaller tool) hold the
+    // stated engagement on every clearing motion, to the measurement's 1 degree.
+    for op in &report.operations[..2] {
+        let e = op.engagement.as_ref().unwrap();
+        eprintln!("{} engagement: {e:?}", op.name);
+        assert!(e.max_deg <= e.limit_deg + 1.0, "{}: {e:?}", op.name);
+    }
     let last = report.operations.last().unwrap();
     assert_eq!(
         last.rest_cells, 0,
