@@ -49,6 +49,9 @@ fn fillet_pocket_from_a_box_in_one_job() {
         eprintln!("{} engagement: {e:?}", op.name);
         assert!(e.max_deg <= e.limit_deg + 1.0, "{}: {e:?}", op.name);
     }
+    // Rest roughing cuts where the first tool left material, little in the air.
+    let rest = report.operations[1].engagement.as_ref().unwrap();
+    assert!(rest.air < 0.5, "{rest:?}");
     let last = report.operations.last().unwrap();
     assert_eq!(
         last.rest_cells, 0,

@@ -14,8 +14,11 @@ pub struct EngagementSummary {
     pub limit_deg: f64,
     /// The largest measured on a clearing motion, degrees.
     pub max_deg: f64,
-    /// Share of the cutting motions above the limit plus 5 degrees.
+    /// Share of the cutting motions above the limit plus the measurement's rim step
+    /// (1 degree).
     pub over_limit: f64,
+    /// Share of the clearing motions that met no material.
+    pub air: f64,
     /// Cutting motions by engagement in 10 degree bins from 0.
     pub histogram_10deg: Vec<usize>,
     /// Entries (ramps into a level and their round at it), left out of the figures.

@@ -225,9 +225,19 @@ fn plan_operation(
     let plan = match job.strategy.kind {
         StrategyKind::Roughing => {
             let grid = *dexel.grid();
+            // Material to rough: stock above the design plus the allowance (the part
+            // itself, and what an earlier roughing left of the allowance, are not).
+            let leave = job.roughing_params().allowance + tol;
             let material = |x: f64, y: f64| {
-                grid.cell_of(x, y)
-                    .map_or(f64::NEG_INFINITY, |(i, j)| dexel.height(i, j))
+                grid.cell_of(x, y).map_or(f64::NEG_INFINITY, |(i, j)| {
+                    let h = dexel.height(i, j);
+                    let d = design[j * grid.nx + i];
+                    if d.is_finite() && h <= d + leave {
+                        f64::NEG_INFINITY
+                    } else {
+                        h
+                    }
+                })
             };
             let top = dexel
                 .heights()
@@ -419,12 +429,14 @@ fn measure_roughing(
     let cutting = eng.cutting();
     let over = cutting
         .iter()
-        .filter(|a| a.to_degrees() > limit + 5.0)
+        .filter(|a| a.to_degrees() > limit + swarf_sim::engagement::RIM_STEP_DEG)
         .count();
+    let measured = eng.per_motion.iter().flatten().count();
     let summary = EngagementSummary {
         limit_deg: limit,
         max_deg: eng.max().to_degrees(),
         over_limit: over as f64 / cutting.len().max(1) as f64,
+        air: (measured - cutting.len()) as f64 / measured.max(1) as f64,
         histogram_10deg: eng.histogram(10.0),
         entries: rough.entries.len(),
     };

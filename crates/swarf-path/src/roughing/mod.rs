@@ -134,7 +134,8 @@ pub struct RoughingStock<'a> {
     pub max: [f64; 2],
     /// Highest point of the stock, mm.
     pub top: f64,
-    /// Top of the material at `(x, y)`, mm (`-inf` where there is none).
+    /// Top of the material to remove at `(x, y)`, mm (`-inf` where there is none:
+    /// no stock, or none above the part plus the allowance).
     pub material: &'a (dyn Fn(f64, f64) -> f64 + Sync),
 }
 
