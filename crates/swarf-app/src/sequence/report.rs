@@ -112,10 +112,12 @@ impl SequenceReport {
             .map(|op| {
                 let eng = op.engagement.as_ref().map_or(String::new(), |e| {
                     format!(
-                        ", engagement max {:.0} deg, {:.1} % over {:.0} deg",
+                        ", engagement max {:.0} deg (stated {:.0}), {:.1} % over, {:.0} % of \
+                         clearing motions in air",
                         e.max_deg,
+                        e.limit_deg,
                         100.0 * e.over_limit,
-                        e.limit_deg + 5.0
+                        100.0 * e.air
                     )
                 });
                 let holder = op.holder.as_ref().map_or(String::new(), |h| {
