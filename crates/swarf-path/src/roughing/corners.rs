@@ -5,8 +5,9 @@
 //! material all round its front, far beyond the straight-stretch engagement. So the
 //! rings are opened by a radius `rho` (eroded, then dilated: every convex corner
 //! becomes an arc of radius `rho`, nothing else moves), with geo's buffers; a region
-//! narrower than `2 rho` is opened by half the radius, and so on [`HALVINGS`] times,
-//! else left sharp. The outermost ring is opened too: it leaves the corners of the
+//! narrower than `2 rho`, or with a channel narrower (opening would leave it out,
+//! though the tool fits), is opened by half the radius, and so on [`HALVINGS`]
+//! times, else left sharp. The outermost ring is opened too: it leaves the corners of the
 //! allowed region uncut (a corner of angle `a` keeps `rho (1 / sin(a/2) - 1)` along
 //! its bisector), rest for a smaller tool, which the in-process stock carries to the
 //! next operation.
@@ -30,13 +31,17 @@
 
 use super::regions::Ring;
 use geo::algorithm::buffer::{BufferStyle, LineJoin};
-use geo::{Area, Buffer, LineString, MultiPolygon, Polygon};
+use geo::{Area, BooleanOps, Buffer, LineString, MultiPolygon, Polygon};
 
 /// Angle step of the buffers' round joins, radians (arc sag `rho (1 - cos 0.025)`,
 /// 3e-4 of the radius).
 const JOIN_ANGLE: f64 = 0.05;
 /// How many times the corner radius is halved for a region too narrow for it.
 pub(crate) const HALVINGS: u32 = 4;
+/// Most area, in squared radii, that opening may take from one place: a corner of
+/// angle `a` loses `r² (cot(a/2) - (π - a)/2)`, 0.21 for a right angle, 0.69 for 60
+/// degrees; more is a channel the tool fits in, which opening would leave uncut.
+const CORNER_LOSS: f64 = 0.75;
 /// Half of the sharpest corner angle whose engagement is held (a right angle).
 const HALF_CORNER: f64 = std::f64::consts::FRAC_PI_4;
 
@@ -58,17 +63,48 @@ pub(crate) fn offset(poly: &Polygon, d: f64) -> MultiPolygon {
 
 /// `region` opened by `rho`, or by half of it when that leaves nothing, and so on
 /// [`HALVINGS`] times (module doc), with the radius that opened it; `None` when
-/// every try leaves nothing.
+/// every try leaves nothing. Channels that the opening would take whole (more than
+/// a corner's rounding: [`CORNER_LOSS`]) are kept, opened by the halved radii
+/// ([`with_channels`]).
 pub(crate) fn opened(region: &Polygon, rho: f64) -> Option<(MultiPolygon, f64)> {
     (0..HALVINGS).find_map(|h| {
         let r = rho / f64::from(1u32 << h);
-        let shrunk = offset(region, -r);
-        if shrunk.unsigned_area() <= 0.0 {
-            return None;
-        }
-        let grown: Vec<Polygon> = shrunk.iter().flat_map(|p| offset(p, r)).collect();
-        (!grown.is_empty()).then(|| (MultiPolygon::new(grown), r))
+        let grown = open(region, r)?;
+        Some((with_channels(region, grown, r, HALVINGS - 1 - h), r))
     })
+}
+
+/// `region` opened by `r` (eroded, dilated); `None` when nothing is left.
+fn open(region: &Polygon, r: f64) -> Option<MultiPolygon> {
+    let shrunk = offset(region, -r);
+    if shrunk.unsigned_area() <= 0.0 {
+        return None;
+    }
+    let grown: Vec<Polygon> = shrunk.iter().flat_map(|p| offset(p, r)).collect();
+    (!grown.is_empty()).then(|| MultiPolygon::new(grown))
+}
+
+/// `grown` (`region` opened by `r`) with the channels it lost put back: each part
+/// of `region` it misses that is more than a corner's rounding, as far as the
+/// region opened by half the radius covers it, and so on `halvings` times; past
+/// that the channel is kept sharp.
+fn with_channels(region: &Polygon, grown: MultiPolygon, r: f64, halvings: u32) -> MultiPolygon {
+    let whole = MultiPolygon::new(vec![region.clone()]);
+    let lost = whole.difference(&grown);
+    let channels: Vec<Polygon> = lost
+        .into_iter()
+        .filter(|p| p.unsigned_area() > CORNER_LOSS * r * r)
+        .collect();
+    if channels.is_empty() {
+        return grown;
+    }
+    // The channels and a radius round them (where they join the rest).
+    let near = MultiPolygon::new(channels.iter().flat_map(|c| offset(c, r)).collect());
+    let finer = match (halvings > 0).then(|| open(region, r / 2.0)).flatten() {
+        Some(f) => with_channels(region, f, r / 2.0, halvings - 1),
+        None => whole,
+    };
+    grown.union(&finer.intersection(&near))
 }
 
 /// The smallest radius [`opened`] tries for `rho`.

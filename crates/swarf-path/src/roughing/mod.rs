@@ -35,6 +35,7 @@
 //! the simulated stock (swarf-sim's `engagement`) checks it.
 
 mod corners;
+mod cut;
 mod levels;
 mod material;
 mod moves;
@@ -44,9 +45,8 @@ use crate::error::PathError;
 use crate::params::Finish;
 use crate::plan::{Plan, PlanReport};
 use crate::waterline::{Milling, Waterline, WaterlineParams};
-use material::Reach;
-use moves::{OnLoop, blend, link_aim, ramp_entry};
-use regions::{Region, Ring, cutting_order, link_parents};
+use cut::cut_level;
+use regions::{Region, Ring, link_parents};
 use swarf_geom::{Point3, TriMesh};
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Pass, PathPoint};
@@ -57,8 +57,6 @@ pub const MAX_RINGS: usize = 2_000;
 pub const SKIRT_GAP: f64 = 1.0;
 /// Points closer than this are one, mm.
 pub(crate) const SAME_POINT: f64 = 1e-9;
-/// How far ahead (in tool radii) the step to an island's ring lands.
-pub const LINK_LEAD: f64 = 2.0;
 /// Slope of the step out to the next ring across the band (gap over length).
 pub const BLEND_SLOPE: f64 = 0.125;
 /// Points of that step (at least).
@@ -355,6 +353,7 @@ impl<'a> Rings<'a> {
         let mut all: Vec<Region> = Vec::new();
         let mut first_of = Vec::new();
         let (mut d, mut step) = (0.0, 0.0);
+        let mut steps = Vec::new();
         for k in 0..=MAX_RINGS {
             if k == MAX_RINGS {
                 return Err(PathError::InvalidParameter {
@@ -381,6 +380,7 @@ impl<'a> Rings<'a> {
                 .iter()
                 .map(|g| self.params.stepover(g.rho))
                 .fold(f64::INFINITY, f64::min);
+            steps.push(step);
             range[0] = range[0].min(step);
             range[1] = range[1].max(step);
             d += step;
@@ -388,93 +388,8 @@ impl<'a> Rings<'a> {
         }
         first_of.push(all.len());
         link_parents(&mut all, &first_of);
+        regions::add_ridges(&mut all, &steps);
         Ok(all)
-    }
-}
-
-/// Cuts one level's regions in order (module doc of [`regions`]), appending passes.
-fn cut_level(
-    regions: &[Region],
-    z: f64,
-    above: f64,
-    stock: &RoughingStock<'_>,
-    params: &RoughingParams,
-    passes: &mut Vec<Pass>,
-    report: &mut RoughingReport,
-) {
-    let radius = params.finish.tool.radius();
-    let mut current: Option<Vec<[f64; 3]>> = None;
-    let mut last_cut: Option<usize> = None;
-    // Where the tool stands on the loop it cut last.
-    let mut at: Option<OnLoop<'_>> = None;
-    for (i, fresh) in cutting_order(regions) {
-        let mut live: Vec<&Ring> = Vec::new();
-        let mut stretches: Vec<Ring> = Vec::new();
-        for lp in &regions[i].loops {
-            match material::reach(lp, z, radius, stock) {
-                None => {}
-                // A leaf is entered along its loop: cut whole.
-                Some(Reach::Whole) => live.push(lp),
-                Some(Reach::Stretches(_)) if fresh => live.push(lp),
-                Some(Reach::Stretches(s)) => stretches.extend(s),
-            }
-        }
-        if live.is_empty() && stretches.is_empty() {
-            continue;
-        }
-        let from_child = last_cut.is_some_and(|c| regions[c].parent == Some(i));
-        last_cut = Some(i);
-        if !stretches.is_empty() {
-            // Each stretch is a pass of its own, coming down where it is clear; the
-            // tool leaves the ring it stood on.
-            if let Some(pts) = current.take() {
-                passes.push(pass_of(&pts));
-            }
-            at = None;
-            report.rings += 1;
-            for s in &stretches {
-                let pts: Vec<[f64; 3]> = s.iter().map(|p| [p[0], p[1], z]).collect();
-                passes.push(pass_of(&pts));
-            }
-        }
-        if live.is_empty() {
-            continue;
-        }
-        let fresh_entry = fresh || !from_child || current.is_none();
-        if fresh_entry {
-            if let Some(pts) = current.take() {
-                passes.push(pass_of(&pts));
-            }
-            let mut pts = Vec::new();
-            at = Some(ramp_entry(live[0], above, z, params.ramp_angle, &mut pts));
-            report.entries.push((passes.len(), pts.len()));
-            current = Some(pts);
-        }
-        let pts = current.get_or_insert_with(Vec::new);
-        for (n, lp) in live.into_iter().enumerate() {
-            if fresh_entry && n == 0 {
-                continue;
-            }
-            let blended = at
-                .filter(|_| n == 0)
-                .and_then(|from| blend(&from, lp, z, radius, pts));
-            let (seg, start) = blended.unwrap_or_else(|| {
-                let (seg, _, p) = regions::distance_to_loop(lp, link_aim(pts, radius));
-                (seg, p)
-            });
-            pts.push([start[0], start[1], z]);
-            let m = lp.len();
-            for k in 1..=m {
-                let p = lp[(seg + k) % m];
-                pts.push([p[0], p[1], z]);
-            }
-            pts.push([start[0], start[1], z]);
-            at = Some(OnLoop { lp, seg, p: start });
-            report.rings += 1;
-        }
-    }
-    if let Some(pts) = current {
-        passes.push(pass_of(&pts));
     }
 }
 
@@ -482,7 +397,7 @@ pub(crate) fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
 
-fn pass_of(pts: &[[f64; 3]]) -> Pass {
+pub(crate) fn pass_of(pts: &[[f64; 3]]) -> Pass {
     let mut points: Vec<PathPoint> = Vec::with_capacity(pts.len());
     for p in pts {
         if let Some(last) = points.last()

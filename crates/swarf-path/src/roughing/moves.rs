@@ -1,9 +1,8 @@
-//! How the tool gets onto a level's rings: down a ramp onto the innermost, out
-//! from each ring to the next by a step spread along the ring just cut, and across
-//! to an island's ring.
+//! How the tool gets onto a level's rings: down a ramp onto the innermost, and out
+//! from each ring to the next by a step spread along the ring just cut.
 
 use super::regions::{self, Ring};
-use super::{BLEND_SAMPLES, BLEND_SLOPE, LINK_LEAD, SAME_POINT, dist};
+use super::{BLEND_SAMPLES, BLEND_SLOPE, SAME_POINT, dist};
 
 /// Where the tool stands on a loop it has cut all round: on the segment from
 /// `lp[seg]` to `lp[seg + 1]`, at `p`.
@@ -60,29 +59,6 @@ pub(crate) fn blend(
         end = (j, q);
     }
     Some(end)
-}
-
-/// Where the next ring starts: nearest the point [`LINK_LEAD`] radii ahead of the
-/// tool along its last move, so that the step to a loop that is not the one just
-/// cut's (an island's) runs forwards at a slant rather than square into the band.
-pub(crate) fn link_aim(pts: &[[f64; 3]], radius: f64) -> [f64; 2] {
-    let n = pts.len();
-    let Some(&last) = pts.last() else {
-        return [0.0, 0.0];
-    };
-    let before = pts[..n - 1]
-        .iter()
-        .rev()
-        .find(|p| (p[0] - last[0]).hypot(p[1] - last[1]) > 1e-9);
-    let Some(b) = before else {
-        return [last[0], last[1]];
-    };
-    let len = (last[0] - b[0]).hypot(last[1] - b[1]);
-    let k = LINK_LEAD * radius / len;
-    [
-        last[0] + k * (last[0] - b[0]),
-        last[1] + k * (last[1] - b[1]),
-    ]
 }
 
 /// The ramp into a level along `lp`: from `above` down to `z` at `angle` from the

@@ -21,7 +21,14 @@
 //! ([`covered`]): its ring would only pivot in material already cut.
 
 use super::corners::{loops_of, offset, opened};
-use geo::{Area, Contains, Coord, LineString, MultiPolygon, Polygon};
+use geo::{Area, BooleanOps, Contains, Coord, LineString, MultiPolygon, Polygon};
+
+/// A ridge is farther than the stepover times this from every child: the band of a
+/// right-angled corner is `s √2` wide at its apex (`corners.rs`), and a little more
+/// is the polygon offsets' noise.
+const RIDGE_REACH: f64 = 1.45;
+/// Smaller ridges (in squared reaches) are noise of the polygon offsets.
+const RIDGE_AREA: f64 = 2.0;
 
 /// A closed loop of tool-centre positions (first point not repeated).
 pub(crate) type Ring = Vec<[f64; 2]>;
@@ -36,6 +43,8 @@ pub(crate) struct Region {
     pub loops: Vec<Ring>,
     /// The part of `A_k` itself (not rounded).
     pub outline: Polygon,
+    /// What the loops bound (the outline opened, or the outline).
+    pub shape: MultiPolygon,
     /// Index of the parent region (ring `k - 1`), if any.
     pub parent: Option<usize>,
     /// The radius that opened the loops (`None`: left sharp).
@@ -94,6 +103,7 @@ pub(crate) fn ring_regions(a0: &[Polygon], k: usize, d: f64, rho: Option<f64>) -
                 ring: k,
                 loops: cut.iter().flat_map(loops_of).collect(),
                 outline,
+                shape: cut,
                 parent: None,
                 rho,
             }
@@ -102,9 +112,12 @@ pub(crate) fn ring_regions(a0: &[Polygon], k: usize, d: f64, rho: Option<f64>) -
 }
 
 /// Whether a tool of radius `reach` on the loops of `outer` covers all of
-/// `region`: every vertex of its outline within `reach - margin` of a loop, with
-/// `margin` the half-width bound of a region too narrow to open.
+/// `region`: it is thinner than `2 margin` (nothing is left of it eroded by
+/// `margin`), and every vertex of its outline is within `reach - margin` of a loop.
 pub(crate) fn covered(region: &Region, outer: &[Region], reach: f64, margin: f64) -> bool {
+    if offset(&region.outline, -margin).unsigned_area() > 0.0 {
+        return false;
+    }
     let loops: Vec<&Ring> = outer.iter().flat_map(|r| &r.loops).collect();
     region.outline.exterior().0.iter().all(|c| {
         loops
@@ -134,6 +147,46 @@ pub(crate) fn distance_to_loop(lp: &[[f64; 2]], q: [f64; 2]) -> (usize, f64, [f6
         }
     }
     best
+}
+
+/// Adds, as leaves inside each region that has children, the parts of it farther
+/// than its ring's stepover (`steps[k]` for ring `k`, times [`RIDGE_REACH`]) from
+/// every child: ridges of
+/// the distance from the boundary (a band between two islands that closes before
+/// the next ring), where the region's own loops would have uncut material on both
+/// sides. Cut first, by a ramp along their outline, they leave the loops one band.
+pub(crate) fn add_ridges(all: &mut Vec<Region>, steps: &[f64]) {
+    let n = all.len();
+    let mut children: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (i, r) in all.iter().enumerate() {
+        if let Some(p) = r.parent {
+            children[p].push(i);
+        }
+    }
+    for (p, kids) in children.iter().enumerate() {
+        if kids.is_empty() {
+            continue;
+        }
+        let reach = steps.get(all[p].ring).copied().unwrap_or(0.0) * RIDGE_REACH;
+        let near: Vec<Polygon> = kids
+            .iter()
+            .flat_map(|&c| all[c].shape.0.iter().flat_map(|g| offset(g, reach)))
+            .collect();
+        let far = all[p].shape.difference(&MultiPolygon::new(near));
+        for part in far {
+            if part.unsigned_area() < RIDGE_AREA * reach * reach {
+                continue;
+            }
+            all.push(Region {
+                ring: all[p].ring + 1,
+                loops: loops_of(&part),
+                shape: MultiPolygon::new(vec![part.clone()]),
+                outline: part,
+                parent: Some(p),
+                rho: None,
+            });
+        }
+    }
 }
 
 /// Sets each region's parent: the region of the ring before whose outline holds the
