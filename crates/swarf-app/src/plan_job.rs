@@ -288,6 +288,7 @@ fn write_outputs(
                 post: post.clone(),
                 units: job.output.units,
                 comments,
+                arc_tolerance: job.output.arc_tolerance_mm(),
                 ..GcodeOptions::default()
             };
             let text = swarf_nc::write_gcode(&moves, &job.feeds, &opts)?;
