@@ -517,6 +517,8 @@ mod tests {
         for (name, _) in BUILTIN_POSTS {
             let p = Post::builtin(name).unwrap();
             assert_eq!(p.name(), name);
+            let arcs = p.arc_fit(0.01).unwrap();
+            assert_eq!(arcs.helical, name != "heidenhain", "{name}");
         }
         let e = Post::builtin("sinumerik").unwrap_err().to_string();
         assert!(e.contains("built in: linuxcnc, fanuc"), "{e}");

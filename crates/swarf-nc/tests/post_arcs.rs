@@ -236,6 +236,7 @@ fn rs274_reads_the_same_arcs() {
                 .filter(|m| matches!(m.kind, MotionKind::Arc { .. }))
                 .collect();
             assert_eq!(theirs.len(), ours.len(), "{name} {units:?}\n{out}");
+            assert_eq!(ours.len(), 7, "{name} {units:?}");
             // rs274 prints 4 decimals in program units.
             let tol = 0.6e-4 * unit;
             for (t, m) in theirs.iter().zip(&ours) {
@@ -260,5 +261,28 @@ fn rs274_reads_the_same_arcs() {
                 assert_eq!(t[4] < 0.0, clockwise, "{name} {units:?}: {t:?}");
             }
         }
+    }
+}
+
+#[test]
+fn without_an_arc_table_or_a_tolerance_the_program_is_unchanged() {
+    let moves = moves();
+    let feeds = Feeds::default();
+    for (name, text) in swarf_nc::post::BUILTIN_POSTS {
+        let post = Post::builtin(name).unwrap();
+        let lines = write_gcode(&moves, &feeds, &options(&post, Units::Mm, false)).unwrap();
+        assert!(!lines.contains("G2 ") && !lines.contains(" CC "), "{name}");
+        let bare = Post::parse(text.split("[arc]").next().unwrap(), name).unwrap();
+        let again = write_gcode(&moves, &feeds, &options(&bare, Units::Mm, true)).unwrap();
+        assert_eq!(again, lines, "{name}");
+    }
+    let post = Post::builtin("linuxcnc").unwrap();
+    for bad in [0.0, -1.0, 2.0, f64::NAN] {
+        let opts = GcodeOptions {
+            arc_tolerance: Some(bad),
+            ..options(&post, Units::Mm, true)
+        };
+        let e = write_gcode(&moves, &feeds, &opts).unwrap_err().to_string();
+        assert!(e.starts_with("arc_tolerance: expected"), "{bad}: {e}");
     }
 }
