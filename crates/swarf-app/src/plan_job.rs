@@ -255,6 +255,23 @@ pub fn part_arg(job: &Job, job_dir: &Path) -> String {
     }
 }
 
+/// The job's 3-axis program: `moves` through `post`, with arcs when the job asks.
+fn three_axis_gcode(
+    job: &Job,
+    post: &Post,
+    moves: &[swarf_toolpath::Move],
+    comments: Vec<String>,
+) -> Result<String> {
+    let opts = GcodeOptions {
+        post: post.clone(),
+        units: job.output.units,
+        comments,
+        arc_tolerance: job.output.arc_tolerance_mm(),
+        ..GcodeOptions::default()
+    };
+    Ok(swarf_nc::write_gcode(moves, &job.feeds, &opts)?)
+}
+
 fn write_outputs(
     job: &Job,
     plan: &Plan,
@@ -284,13 +301,7 @@ fn write_outputs(
             rotary = post.rotary_ranges;
         }
         (Some(rel), None) => {
-            let opts = GcodeOptions {
-                post: post.clone(),
-                units: job.output.units,
-                comments,
-                ..GcodeOptions::default()
-            };
-            let text = swarf_nc::write_gcode(&moves, &job.feeds, &opts)?;
+            let text = three_axis_gcode(job, post, &moves, comments)?;
             out.write(rel, text.as_bytes())?;
         }
         (None, _) => {}

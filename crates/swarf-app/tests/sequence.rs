@@ -13,10 +13,19 @@ fn jobs() -> PathBuf {
 }
 
 fn run(text: &str, tag: &str) -> SequenceReport {
+    run_program(text, tag).0
+}
+
+/// The report and the whole program's text.
+fn run_program(text: &str, tag: &str) -> (SequenceReport, String) {
     let seq = Sequence::parse(text, "fillet-pocket-sequence.toml", &jobs()).unwrap();
     let dir = std::env::temp_dir().join(format!("swarf-sequence-test-{tag}"));
     let mut out = swarf_app::Outputs::new(&dir);
-    plan_sequence(&seq, &jobs(), &mut out).unwrap()
+    let report = plan_sequence(&seq, &jobs(), &mut out).unwrap();
+    let program = out
+        .read_text(&out.path("fillet-pocket-sequence.ngc"))
+        .unwrap();
+    (report, program)
 }
 
 fn shipped() -> String {
@@ -27,7 +36,14 @@ fn shipped() -> String {
 fn fillet_pocket_from_a_box_in_one_job() {
     let text = shipped();
     assert!(Sequence::is_sequence(&text));
-    let report = run(&text, "d4");
+    let (report, program) = run_program(&text, "d4");
+    // The shipped job writes arcs (read back and simulated as arcs).
+    let arcs = program
+        .lines()
+        .filter(|l| l.starts_with("G2 ") || l.starts_with("G3 "))
+        .count();
+    eprintln!("{} blocks, {arcs} opening an arc", program.lines().count());
+    assert!(arcs > 0);
     for op in &report.operations {
         eprintln!(
             "T{} {}: {} motions, {:.0} s; gouge cells {}, rest cells {} over {:.3} mm, max {:.3} mm",
@@ -132,6 +148,14 @@ fn bad_sequences_are_refused_naming_the_operation_and_field() {
         (
             base.replace("gcode = \"fillet-pocket-sequence.ngc\"", "gcode = \"\""),
             "output.gcode",
+        ),
+        (
+            base.replace(
+                "arcs = true",
+                "arcs = true
+arc_tolerance = 2",
+            ),
+            "output.arc_tolerance: expected",
         ),
     ];
     for (text, want) in cases {

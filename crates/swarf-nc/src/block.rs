@@ -15,11 +15,15 @@
 //! ([`crate::number::format_decimal`]). Every value is checked before it is written:
 //! lengths within the coordinate domain, feeds within the rate domain, angles finite
 //! ([`crate::number::writable_length`]), so no program holds `inf` or a 300-digit word.
+//! Arc blocks, in the post's `[arc]` convention, are written by [`arc`].
 
 use crate::error::NcError;
 use crate::number::{Units, format_decimal, writable_length, writable_rate, writable_spindle};
 use crate::post::{Post, render};
 use serde::{Deserialize, Serialize};
+
+pub mod arc;
+pub use arc::ArcBlock;
 
 /// How feeds are written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -48,6 +52,10 @@ pub enum MotionCode {
     Rapid,
     /// Straight feed (`G1`, Heidenhain `L ... F`).
     Linear,
+    /// Clockwise arc (`G2`, Heidenhain `C ... DR-`), written by [`BlockWriter::arc`].
+    ArcCw,
+    /// Counter-clockwise arc (`G3`, Heidenhain `C ... DR+`).
+    ArcCcw,
 }
 
 /// The `F` word of a motion block.
@@ -342,17 +350,9 @@ impl<'p> BlockWriter<'p> {
         if words.is_empty() {
             return Ok(false);
         }
-        let m = &self.post.motion;
-        let mut block = String::new();
-        if self.motion != Some(code) || !m.modal {
-            block.push_str(match code {
-                MotionCode::Rapid => &m.rapid,
-                MotionCode::Linear => &m.linear,
-            });
-            block.push(' ');
-            self.motion = Some(code);
-        }
+        let mut block = self.motion_word(code);
         block.push_str(&words);
+        let m = &self.post.motion;
         if code == MotionCode::Rapid && !m.rapid_suffix.is_empty() {
             block.push(' ');
             block.push_str(&m.rapid_suffix);
@@ -362,6 +362,24 @@ impl<'p> BlockWriter<'p> {
         }
         self.block(&block);
         Ok(true)
+    }
+
+    /// The motion word of `code` and a space, when it is written: when the motion
+    /// changed, or always for posts whose motion word is not modal.
+    fn motion_word(&mut self, code: MotionCode) -> String {
+        let m = &self.post.motion;
+        if self.motion == Some(code) && m.modal {
+            return String::new();
+        }
+        self.motion = Some(code);
+        let arc = self.post.arc.as_ref();
+        let word = match code {
+            MotionCode::Rapid => &m.rapid,
+            MotionCode::Linear => &m.linear,
+            MotionCode::ArcCw => arc.map_or("", |a| &a.cw),
+            MotionCode::ArcCcw => arc.map_or("", |a| &a.ccw),
+        };
+        format!("{word} ")
     }
 
     /// Closes the program (the post's end blocks and footer lines) and returns its

@@ -9,8 +9,13 @@
 //! it changes), the post's end blocks and footer. A move that changes no written
 //! coordinate is dropped. The blocks are written by the one block writer of every
 //! post, [`crate::block::BlockWriter`].
+//!
+//! With `arc_tolerance` set and a post that writes arcs, runs of feed moves at one
+//! feed that lie on an arc or helix ([`crate::arc_fit`]) become arc blocks; rapids
+//! never do.
 
-use crate::block::{BlockWriter, Feed, FeedMode, MotionCode, WordKind};
+use crate::arc_fit::{FittedArc, fit_arcs};
+use crate::block::{ArcBlock, BlockWriter, Feed, FeedMode, MotionCode, WordKind};
 use crate::error::NcError;
 use crate::number::Units;
 use crate::post::Post;
@@ -29,7 +34,21 @@ pub struct GcodeOptions {
     pub program_number: u32,
     /// Comment lines for the header (part, tool, strategy, ...).
     pub comments: Vec<String>,
+    /// Arcs: fit them within this distance of the moves (mm, from
+    /// [`MIN_ARC_TOLERANCE_MM`] to [`MAX_ARC_TOLERANCE_MM`]) where the post writes
+    /// arcs; `None` writes straight moves only.
+    pub arc_tolerance: Option<f64>,
 }
+
+/// Smallest arc tolerance, mm.
+pub const MIN_ARC_TOLERANCE_MM: f64 = 1e-5;
+/// Largest arc tolerance, mm.
+pub const MAX_ARC_TOLERANCE_MM: f64 = 1.0;
+/// The arc tolerance of jobs that ask for arcs without giving one, mm: above the
+/// chord error of the arcs swarf's strategies sample (leads at 5 degrees a step,
+/// round joins at 0.05 rad), since an arc can only be fitted to a polyline within
+/// the polyline's own sagitta.
+pub const DEFAULT_ARC_TOLERANCE_MM: f64 = 0.01;
 
 impl Default for GcodeOptions {
     fn default() -> Self {
@@ -39,6 +58,7 @@ impl Default for GcodeOptions {
             tool_number: 1,
             program_number: 1000,
             comments: Vec::new(),
+            arc_tolerance: None,
         }
     }
 }
@@ -65,7 +85,7 @@ pub struct ToolSection<'a> {
 /// # Errors
 /// [`NcError::NotThreeAxis`] when a pose's axis is not +Z, [`NcError::NonFinite`] for
 /// NaN or infinite values, [`NcError::InvalidOption`] for a program number outside
-/// the post's range.
+/// the post's range or an arc tolerance outside its domain.
 pub fn write_gcode(moves: &[Move], feeds: &Feeds, opts: &GcodeOptions) -> Result<String, NcError> {
     let section = ToolSection {
         moves,
@@ -95,12 +115,27 @@ pub fn write_gcode_sections(
     post.check("3-axis program", opts.program_number, per_minute, false)?;
     let axes = ['X', 'Y', 'Z'].map(|c| (c, WordKind::Length));
     let blocks = sections.iter().map(|s| s.moves.len()).sum();
+    let fit = match opts.arc_tolerance {
+        Some(t) if (MIN_ARC_TOLERANCE_MM..=MAX_ARC_TOLERANCE_MM).contains(&t) => post.arc_fit(t),
+        Some(t) => {
+            return Err(NcError::InvalidOption {
+                field: "arc_tolerance",
+                message: format!(
+                    "expected {MIN_ARC_TOLERANCE_MM} to {MAX_ARC_TOLERANCE_MM} mm, found {t}"
+                ),
+            });
+        }
+        None => None,
+    };
     let mut w = BlockWriter::new(post, opts.units, &axes, blocks);
     w.start(opts.program_number);
     for c in &opts.comments {
         w.comment(c);
     }
     w.safe_modal(per_minute);
+    if fit.is_some() {
+        w.arc_setup();
+    }
     let mut index = 0;
     for s in sections {
         for c in s.comments {
@@ -112,18 +147,71 @@ pub fn write_gcode_sections(
         }
         w.spindle_on(s.feeds.spindle)?;
         w.forget_position();
-        for m in s.moves {
-            check_move(index, m)?;
-            let code = match m.kind {
-                MoveKind::Rapid => MotionCode::Rapid,
-                MoveKind::Feed => MotionCode::Linear,
-            };
-            let feed = (m.kind == MoveKind::Feed).then_some(Feed::PerMinute(m.feed));
-            w.motion(index, code, m.to.cl.coords.as_slice(), || Ok(feed))?;
-            index += 1;
+        for (k, m) in s.moves.iter().enumerate() {
+            check_move(index + k, m)?;
         }
+        let arcs = fit.map_or_else(Vec::new, |f| section_arcs(s.moves, &f));
+        let mut arcs = arcs.iter().peekable();
+        let mut k = 0;
+        while k < s.moves.len() {
+            if let Some(&&(_, last, arc)) = arcs.peek().filter(|a| a.0 == k) {
+                arcs.next();
+                let m = &s.moves[last];
+                let block = ArcBlock {
+                    end: [m.to.cl.x, m.to.cl.y, m.to.cl.z],
+                    center: arc.center,
+                    ccw: arc.ccw,
+                };
+                let feed = Some(Feed::PerMinute(m.feed));
+                if w.arc(index + last, &block, || Ok(feed))? {
+                    k = last + 1;
+                    continue;
+                }
+            }
+            line(&mut w, index + k, &s.moves[k])?;
+            k += 1;
+        }
+        index += s.moves.len();
     }
     Ok(w.finish())
+}
+
+/// A straight move's block.
+fn line(w: &mut BlockWriter<'_>, index: usize, m: &Move) -> Result<bool, NcError> {
+    let code = match m.kind {
+        MoveKind::Rapid => MotionCode::Rapid,
+        MoveKind::Feed => MotionCode::Linear,
+    };
+    let feed = (m.kind == MoveKind::Feed).then_some(Feed::PerMinute(m.feed));
+    w.motion(index, code, m.to.cl.coords.as_slice(), || Ok(feed))
+}
+
+/// The arcs of a section's moves, as (first move, last move, arc), in order: fitted
+/// on each run of feed moves at one feed, from the point before the run.
+fn section_arcs(
+    moves: &[Move],
+    fit: &crate::arc_fit::ArcFitOptions,
+) -> Vec<(usize, usize, FittedArc)> {
+    let mut out = Vec::new();
+    let mut i = 1;
+    while i < moves.len() {
+        let feed = moves[i].feed;
+        let same = |m: &Move| m.kind == MoveKind::Feed && m.feed.to_bits() == feed.to_bits();
+        if !same(&moves[i]) {
+            i += 1;
+            continue;
+        }
+        let mut j = i;
+        while j + 1 < moves.len() && same(&moves[j + 1]) {
+            j += 1;
+        }
+        let points: Vec<_> = moves[i - 1..=j].iter().map(|m| m.to.cl).collect();
+        for a in fit_arcs(&points, fit) {
+            out.push((i + a.start, i - 1 + a.end, a));
+        }
+        i = j + 1;
+    }
+    out
 }
 
 fn check_move(index: usize, m: &Move) -> Result<(), NcError> {

@@ -3,6 +3,7 @@
 //! Heidenhain conversational, or a user's file), APT CL data and pose CSV; readers
 //! read them back ([`read`]).
 
+pub mod arc_fit;
 pub mod block;
 pub mod cl_writer;
 pub mod csv_writer;
@@ -16,7 +17,9 @@ pub use block::{BlockWriter, FeedMode};
 pub use cl_writer::write_cl;
 pub use csv_writer::write_pose_csv;
 pub use error::NcError;
-pub use gcode_writer::{GcodeOptions, ToolSection, write_gcode, write_gcode_sections};
+pub use gcode_writer::{
+    DEFAULT_ARC_TOLERANCE_MM, GcodeOptions, ToolSection, write_gcode, write_gcode_sections,
+};
 pub use number::Units;
 pub use post::{Language, Post};
 pub use read::{Diagnostic, Kinematics, Motion, MotionKind, Program};

@@ -25,7 +25,14 @@
 //! - `[modal]`: the safe modal `line`, the words of the units (`mm`, `inch`) and feed
 //!   modes (`per_minute`, `inverse_time`);
 //! - `[tool]`: the `change` blocks, the `length_offset` blocks (five-axis table-table
-//!   programs, and 3-axis programs when `length_offset_3_axis`), `spindle_on`.
+//!   programs, and 3-axis programs when `length_offset_3_axis`), `spindle_on`;
+//! - `[arc]` (optional; a post without it never gets arcs): the `cw` and `ccw`
+//!   words (`G2`, `G3`; Heidenhain `C`), the `center` form: `"ij"` (incremental
+//!   `I J` from the start), `"r"` (an `R` word: `max_sweep` must stay below 180) or
+//!   `"cc"` (a `center_block` word, `CC X.. Y..`, then the arc block), the
+//!   `cw_suffix` and `ccw_suffix` words (Heidenhain `DR-`, `DR+`), `helical` (Z may
+//!   change along an arc), `max_sweep` (degrees per block, below 360) and `setup`
+//!   blocks written after the safe modal line in programs with arcs (`G91.1`).
 //!
 //! A program the post cannot express (inverse-time feed or rotary axes where it has
 //! none) is refused before anything is written ([`Post::check`]).
@@ -163,6 +170,43 @@ pub(crate) struct ToolWords {
     pub(crate) spindle_on: Vec<String>,
 }
 
+/// How a post writes an arc's centre (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum CenterForm {
+    /// Incremental `I J` from the start.
+    Ij,
+    /// An `R` word (the radius; at most half a turn).
+    R,
+    /// A centre block (`CC X.. Y..`) before the arc block.
+    Cc,
+}
+
+/// Arc words (module doc).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ArcWords {
+    pub(crate) cw: String,
+    pub(crate) ccw: String,
+    pub(crate) center: CenterForm,
+    #[serde(default)]
+    pub(crate) center_block: String,
+    #[serde(default)]
+    pub(crate) cw_suffix: String,
+    #[serde(default)]
+    pub(crate) ccw_suffix: String,
+    #[serde(default = "yes")]
+    pub(crate) helical: bool,
+    #[serde(default = "half_turn")]
+    pub(crate) max_sweep: f64,
+    #[serde(default)]
+    pub(crate) setup: Vec<String>,
+}
+
+fn half_turn() -> f64 {
+    180.0
+}
+
 fn yes() -> bool {
     true
 }
@@ -187,6 +231,8 @@ pub struct Post {
     pub(crate) modal: Modal,
     #[serde(default)]
     pub(crate) tool: ToolWords,
+    #[serde(default)]
+    pub(crate) arc: Option<ArcWords>,
 }
 
 impl Post {
@@ -271,6 +317,16 @@ impl Post {
     /// Whether the post writes inverse-time feeds (G93).
     pub fn has_inverse_time(&self) -> bool {
         self.inverse_time
+    }
+
+    /// The arcs the post writes, for fitting within `tolerance` (mm): `None` when
+    /// the post has no `[arc]` table.
+    pub fn arc_fit(&self, tolerance: f64) -> Option<crate::arc_fit::ArcFitOptions> {
+        self.arc.as_ref().map(|a| crate::arc_fit::ArcFitOptions {
+            tolerance,
+            helical: a.helical,
+            max_sweep: a.max_sweep.to_radians(),
+        })
     }
 
     /// Checks that the post can express a program: program number `number`, feeds
@@ -369,6 +425,9 @@ impl Post {
                 return Err((field.into(), format!("expected 0..=12 decimals, found {d}")));
             }
         }
+        if let Some(a) = &self.arc {
+            validate_arc(a)?;
+        }
         if self.numbers.as_ref().is_some_and(|n| n.step == 0) {
             return Err(("numbers.step".into(), "expected a step > 0".into()));
         }
@@ -389,6 +448,36 @@ impl Post {
         }
         Ok(())
     }
+}
+
+fn validate_arc(a: &ArcWords) -> Result<(), (String, String)> {
+    if a.cw.is_empty() || a.ccw.is_empty() {
+        return Err(("arc".into(), "expected cw and ccw words".into()));
+    }
+    let most = if a.center == CenterForm::R {
+        180.0
+    } else {
+        360.0
+    };
+    if !(a.max_sweep >= 1.0 && a.max_sweep < most) {
+        return Err((
+            "arc.max_sweep".into(),
+            format!(
+                "expected 1 <= degrees < {most} (R arcs are ambiguous from a half turn), found {}",
+                a.max_sweep
+            ),
+        ));
+    }
+    if (a.center == CenterForm::Cc) == a.center_block.is_empty() {
+        return Err((
+            "arc.center_block".into(),
+            "expected a centre block word (CC) exactly when center = \"cc\"".into(),
+        ));
+    }
+    for (k, line) in a.setup.iter().enumerate() {
+        check_template(line, &[]).map_err(|m| (format!("arc.setup[{k}]"), m))?;
+    }
+    Ok(())
 }
 
 /// Checks that `template` uses only the placeholders `allowed`, and has no stray
@@ -428,6 +517,8 @@ mod tests {
         for (name, _) in BUILTIN_POSTS {
             let p = Post::builtin(name).unwrap();
             assert_eq!(p.name(), name);
+            let arcs = p.arc_fit(0.01).unwrap();
+            assert_eq!(arcs.helical, name != "heidenhain", "{name}");
         }
         let e = Post::builtin("sinumerik").unwrap_err().to_string();
         assert!(e.contains("built in: linuxcnc, fanuc"), "{e}");
@@ -451,6 +542,18 @@ mod tests {
             .replace("[motion]", "[motion]\nspeed = 3");
         let e = Post::parse(&text, "my.toml").unwrap_err().to_string();
         assert!(e.contains("line ") && e.contains("speed"), "{e}");
+        let text = format!(
+            "{}\n[arc]\ncw = \"G2\"\nccw = \"G3\"\ncenter = \"r\"\n",
+            BUILTIN_POSTS[0].1.split("[arc]").next().unwrap()
+        );
+        let e = Post::parse(&text, "my.toml").unwrap_err().to_string();
+        assert!(
+            e.starts_with("my.toml: arc.max_sweep: expected 1 <= degrees < 180"),
+            "{e}"
+        );
+        let text = text.replace("\"r\"", "\"cc\"");
+        let e = Post::parse(&text, "my.toml").unwrap_err().to_string();
+        assert!(e.starts_with("my.toml: arc.center_block"), "{e}");
         assert!(check_template("G{x", &["{x}"]).is_err());
         assert!(check_template("a}b", &["{x}"]).is_err());
     }

@@ -57,6 +57,11 @@
 //! cl = "die.cl"                       # APT CL and pose CSV carry the tool axis
 //! ```
 //!
+//! `arcs = true` in `[output]` writes runs of feed moves that lie on an arc or helix
+//! as arc blocks in the post's convention (`G2`/`G3`, Heidenhain `CC`/`C`), within
+//! `arc_tolerance` mm (default 0.01) of the moves; 3-axis programs only, off by
+//! default ([`swarf_nc::arc_fit`]).
+//!
 //! A tilted tool path is never written as 3-axis G-code: a `positioning` with a
 //! `gcode` output needs `output.machine`. A machine without a positioning writes the
 //! 3-axis path (vertical tool) as five-axis G-code.
@@ -464,9 +469,22 @@ pub struct Output {
     /// Spindle gauge line to tool tip, mm (machines with head axes).
     #[serde(default)]
     pub tool_length: Option<f64>,
+    /// Write arcs (G2/G3, Heidenhain `C`) where the post has them: runs of feed
+    /// moves on an arc or helix become one block (3-axis programs only).
+    #[serde(default)]
+    pub arcs: bool,
+    /// Largest distance between an arc and the moves it replaces, mm (default
+    /// [`swarf_nc::DEFAULT_ARC_TOLERANCE_MM`]); only with `arcs = true`.
+    #[serde(default)]
+    pub arc_tolerance: Option<f64>,
 }
 
 impl Output {
+    /// The arc tolerance the program is written with: `None` without arcs.
+    pub fn arc_tolerance_mm(&self) -> Option<f64> {
+        arc_tolerance_mm(self.arcs, self.arc_tolerance)
+    }
+
     /// The post this output names: `post`, else `dialect`, else `linuxcnc`.
     pub fn post_spec(&self) -> &str {
         self.post
@@ -498,6 +516,13 @@ impl Job {
 mod params;
 mod validate;
 pub use validate::MAX_DROP_SPIN_PASSES;
+pub(crate) use validate::check_arcs;
+
+/// The arc tolerance of an output with `arcs` and `arc_tolerance`, mm: `None`
+/// without arcs.
+pub(crate) fn arc_tolerance_mm(arcs: bool, arc_tolerance: Option<f64>) -> Option<f64> {
+    arcs.then(|| arc_tolerance.unwrap_or(swarf_nc::DEFAULT_ARC_TOLERANCE_MM))
+}
 pub(crate) use validate::output_file;
 
 #[cfg(test)]

@@ -353,3 +353,39 @@ fn the_post_is_chosen_by_post_or_its_older_name_dialect() {
         assert_eq!(post.name(), name);
     }
 }
+
+#[test]
+fn arcs_are_asked_for_with_a_checked_tolerance() {
+    let job = Job::parse(GOOD, "job.toml").unwrap();
+    assert_eq!(job.output.arc_tolerance_mm(), None);
+    let with =
+        |line: &str| GOOD.replace("gcode = \"a.ngc\"", &format!("gcode = \"a.ngc\"\n{line}"));
+    let job = Job::parse(&with("arcs = true"), "job.toml").unwrap();
+    assert_eq!(
+        job.output.arc_tolerance_mm(),
+        Some(swarf_nc::DEFAULT_ARC_TOLERANCE_MM)
+    );
+    let job = Job::parse(&with("arcs = true\narc_tolerance = 0.002"), "job.toml").unwrap();
+    assert_eq!(job.output.arc_tolerance_mm(), Some(0.002));
+    for (bad, message) in [
+        (
+            "arc_tolerance = 0.002",
+            "output.arc_tolerance: given without arcs",
+        ),
+        (
+            "arcs = true\narc_tolerance = 0",
+            "output.arc_tolerance: expected",
+        ),
+        (
+            "arcs = true\narc_tolerance = 5",
+            "output.arc_tolerance: expected",
+        ),
+        (
+            "arcs = true\nmachine = \"builtin:xyzac-trunnion\"",
+            "output.arcs: five-axis",
+        ),
+    ] {
+        let e = Job::parse(&with(bad), "job.toml").unwrap_err().to_string();
+        assert!(e.contains(message), "{bad}: {e}");
+    }
+}

@@ -310,7 +310,28 @@ impl Job {
         if o.machine.as_deref().is_some_and(str::is_empty) {
             return Err("output.machine: expected a machine file or builtin:NAME".into());
         }
+        check_arcs(o.arcs, o.arc_tolerance)?;
+        if o.arcs && o.machine.is_some() {
+            return Err(
+                "output.arcs: five-axis programs (output.machine) are written without arcs".into(),
+            );
+        }
         in_domain("output.tool_length", o.tool_length, TOOL_LENGTH)
+    }
+}
+
+/// `output.arcs` and `output.arc_tolerance`: a tolerance only with arcs, within
+/// swarf-nc's arc tolerance domain.
+pub(crate) fn check_arcs(arcs: bool, tolerance: Option<f64>) -> Result<(), String> {
+    use swarf_nc::gcode_writer::{MAX_ARC_TOLERANCE_MM, MIN_ARC_TOLERANCE_MM};
+    match tolerance {
+        Some(_) if !arcs => {
+            Err("output.arc_tolerance: given without arcs = true (no arcs are written)".into())
+        }
+        Some(t) if !(MIN_ARC_TOLERANCE_MM..=MAX_ARC_TOLERANCE_MM).contains(&t) => Err(format!(
+            "output.arc_tolerance: expected {MIN_ARC_TOLERANCE_MM} to {MAX_ARC_TOLERANCE_MM} mm, found {t}"
+        )),
+        _ => Ok(()),
     }
 }
 

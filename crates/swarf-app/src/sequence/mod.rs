@@ -33,6 +33,8 @@
 //! gcode = "pocket.ngc"  # one program, a tool change per operation
 //! summary = "pocket.json"
 //! post = "fanuc"        # linuxcnc (default), fanuc, mach3, grbl, heidenhain, a file
+//! arcs = true           # arcs and helices as G2/G3 (Heidenhain CC/C), as a job's
+//! arc_tolerance = 0.01  # mm, the default
 //! ```
 //!
 //! With a tool library, an operation's `tool` may be a library tool's number or
@@ -149,6 +151,19 @@ pub struct SequenceOutput {
     /// Output units: "mm" or "inch".
     #[serde(default)]
     pub units: swarf_nc::Units,
+    /// Write arcs where the post has them (as a job's `output.arcs`).
+    #[serde(default)]
+    pub arcs: bool,
+    /// Arc tolerance, mm (as a job's `output.arc_tolerance`).
+    #[serde(default)]
+    pub arc_tolerance: Option<f64>,
+}
+
+impl SequenceOutput {
+    /// The arc tolerance the program is written with: `None` without arcs.
+    pub fn arc_tolerance_mm(&self) -> Option<f64> {
+        crate::job::arc_tolerance_mm(self.arcs, self.arc_tolerance)
+    }
 }
 
 /// One operation: its job and its tool number.
@@ -202,6 +217,7 @@ impl Sequence {
         };
         let repr: SequenceRepr = toml::from_str(text).map_err(|e| err(toml_message(text, &e)))?;
         check_stock(&repr.stock).map_err(err)?;
+        crate::job::check_arcs(repr.output.arcs, repr.output.arc_tolerance).map_err(err)?;
         for (name, file) in [
             ("output.gcode", &repr.output.gcode),
             ("output.summary", &repr.output.summary),

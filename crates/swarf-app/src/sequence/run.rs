@@ -303,6 +303,7 @@ fn gcode_options(op: &Operation, post: &swarf_nc::Post, seq: &Sequence) -> swarf
         units: seq.output.units,
         tool_number: op.number,
         comments: vec![section_comment(op)],
+        arc_tolerance: seq.output.arc_tolerance_mm(),
         ..swarf_nc::GcodeOptions::default()
     }
 }
@@ -349,6 +350,7 @@ fn whole_program(shop: &Shop<'_>, moves: &[Vec<Move>], motions: usize) -> Result
         post: shop.post.clone(),
         units: seq.output.units,
         comments: header,
+        arc_tolerance: seq.output.arc_tolerance_mm(),
         ..swarf_nc::GcodeOptions::default()
     };
     let program = swarf_nc::write_gcode_sections(&sections, &opts)?;

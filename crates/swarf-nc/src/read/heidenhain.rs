@@ -7,14 +7,19 @@
 //! | Heidenhain | G-code |
 //! |---|---|
 //! | `n` (block number), `; text`, `* text` | (nothing) |
-//! | `BEGIN PGM name MM` / `INCH` | `G17 G21` / `G20` `G40 G49 G80 G90 G94` |
+//! | `BEGIN PGM name MM` / `INCH` | `G17 G21` / `G20` `G40 G49 G80 G90 G90.1 G94` |
 //! | `TOOL CALL t Z S s` | `T t M6 S s` |
 //! | `L X+1 Y-2 Z+3 [A B C] R0 FMAX M..` | `G0 X1 Y-2 Z3 ... M..` |
 //! | `L X.. F f M..` (or no F: the last one) | `G1 X.. F f M..` |
+//! | `CC X+a Y+b` (circle centre, both words) | (nothing; kept for `C`) |
+//! | `C X.. Y.. [Z..] DR- [R0] [F f] [M..]` (`DR+`) | `G2 X.. Y.. Z.. I a J b F f M..` (`G3`) |
 //! | `M3`, `M5` ... (a block of M words) | the same |
 //! | `END PGM name MM` | `M30` |
 //!
-//! `FMAX` holds for its block only; `F` is modal. Anything else (`CC`, `C`, `CR`,
+//! `FMAX` holds for its block only; `F` is modal; `CC` holds until the next one.
+//! `C` turns about `CC` in the XY plane (`DR+` counter-clockwise); a `C` block with
+//! a `Z` word is read as a helix, as the G-code it becomes. Anything else (`CR`, `CT`,
+//! `CP`, polar `PA`, a `C` without `DR` or before any `CC`,
 //! `CYCL DEF`, `LBL`, incremental `IX`, radius compensation `RL`/`RR`, a tool axis
 //! other than Z ...) stops the reading at its line and column, as an error inside
 //! any program does ([`crate::read::Program::stopped`]); so does a program without
@@ -89,6 +94,8 @@ struct State {
     begin: Option<(String, String)>,
     /// The line of `END PGM`.
     end: Option<usize>,
+    /// The circle centre of the last `CC` (X and Y as G-code writes them).
+    cc: Option<(String, String)>,
 }
 
 /// The words of a line with their 1-based columns, the block number, comments and
@@ -140,6 +147,11 @@ fn statement(raw: &str, line: usize, state: &mut State) -> Result<String, Diagno
         "BEGIN" | "END" => program(&w, line, state),
         "TOOL" => tool_call(&w, line),
         "L" => straight(&w[1..], line),
+        "CC" => {
+            state.cc = Some(circle_center(&w, line)?);
+            Ok(String::new())
+        }
+        "C" => circle(&w, line, state.cc.as_ref()),
         _ if keyword.starts_with('M') => {
             let mut block = String::new();
             for &(col, word) in &w {
@@ -151,7 +163,7 @@ fn statement(raw: &str, line: usize, state: &mut State) -> Result<String, Diagno
             col,
             format!(
                 "{first} is not read by swarf's Heidenhain reader (it reads BEGIN PGM, \
-                 TOOL CALL, L, M blocks, ; comments and END PGM)"
+                 TOOL CALL, L, CC, C, M blocks, ; comments and END PGM)"
             ),
         )),
     }
@@ -182,7 +194,7 @@ fn program(w: &[(usize, &str)], line: usize, state: &mut State) -> Result<String
         }
         state.begin = Some(declared);
         let g = if units == "MM" { "G21" } else { "G20" };
-        return Ok(format!("G17 {g} G40 G49 G80 G90 G94"));
+        return Ok(format!("G17 {g} G40 G49 G80 G90 G90.1 G94"));
     }
     if state.begin.as_ref() != Some(&declared) {
         let (n, u) = state.begin.clone().unwrap_or_default();
@@ -240,8 +252,86 @@ fn tool_call(w: &[(usize, &str)], line: usize) -> Result<String, Diagnostic> {
     Ok(block)
 }
 
+/// `CC X+a Y+b`: the centre's X and Y.
+fn circle_center(w: &[(usize, &str)], line: usize) -> Result<(String, String), Diagnostic> {
+    let at = |col: usize, m: String| Diagnostic::new(line, col, m);
+    let (mut x, mut y) = (None, None);
+    for &(col, word) in &w[1..] {
+        let upper = word.to_ascii_uppercase();
+        let (letter, value) = upper.split_at(1.min(upper.len()));
+        let slot = match letter {
+            "X" => &mut x,
+            "Y" => &mut y,
+            _ => {
+                return Err(at(
+                    col,
+                    format!("CC: {word} is not read (swarf reads CC X.. Y..)"),
+                ));
+            }
+        };
+        *slot = Some(number(value).map_err(|e| at(col, e))?);
+    }
+    match (x, y) {
+        (Some(x), Some(y)) => Ok((x, y)),
+        _ => Err(at(w[0].0, "CC: expected both X and Y".into())),
+    }
+}
+
+/// `C X.. Y.. [Z..] DR-|DR+ ...` about the centre `cc`.
+fn circle(
+    w: &[(usize, &str)],
+    line: usize,
+    cc: Option<&(String, String)>,
+) -> Result<String, Diagnostic> {
+    let at = |col: usize, m: String| Diagnostic::new(line, col, m);
+    let Some((cx, cy)) = cc else {
+        return Err(at(w[0].0, "C: no circle centre (CC) before it".into()));
+    };
+    let mut direction = None;
+    let mut rest = Vec::with_capacity(w.len());
+    for &(col, word) in &w[1..] {
+        match word.to_ascii_uppercase().as_str() {
+            "DR-" => direction = Some("G2"),
+            "DR+" => direction = Some("G3"),
+            "FMAX" => return Err(at(col, "C: FMAX is not read on arcs".into())),
+            _ => rest.push((col, word)),
+        }
+    }
+    let Some(g) = direction else {
+        return Err(at(w[0].0, "C: expected DR- or DR+".into()));
+    };
+    let (axes, feed, m, _) = motion_words(&rest, line, "C")?;
+    if axes.is_empty() {
+        return Err(at(w[0].0, "C: expected an end point".into()));
+    }
+    let mut block = format!("{g} {axes} I{cx} J{cy}");
+    push(&mut block, &feed);
+    push(&mut block, &m);
+    Ok(block)
+}
+
 /// The words after `L`.
 fn straight(w: &[(usize, &str)], line: usize) -> Result<String, Diagnostic> {
+    let (axes, feed, m, rapid) = motion_words(w, line, "L")?;
+    let mut block = String::new();
+    if !axes.is_empty() {
+        block.push_str(if rapid { "G0 " } else { "G1 " });
+        block.push_str(&axes);
+    }
+    if !rapid {
+        push(&mut block, &feed);
+    }
+    push(&mut block, &m);
+    Ok(block)
+}
+
+/// The axis, feed and M words of a motion statement `what` (`L`, `C`), and
+/// whether it is a rapid (`FMAX`).
+fn motion_words(
+    w: &[(usize, &str)],
+    line: usize,
+    what: &str,
+) -> Result<(String, String, String, bool), Diagnostic> {
     let at = |col: usize, m: String| Diagnostic::new(line, col, m);
     let (mut axes, mut feed, mut m) = (String::new(), String::new(), String::new());
     let mut rapid = false;
@@ -265,23 +355,14 @@ fn straight(w: &[(usize, &str)], line: usize) -> Result<String, Diagnostic> {
             "R" => {
                 return Err(at(
                     col,
-                    format!("L: radius compensation {word} is not read (R0 only)"),
+                    format!("{what}: radius compensation {word} is not read (R0 only)"),
                 ));
             }
-            "I" => return Err(at(col, format!("L: incremental {word} is not read"))),
-            _ => return Err(at(col, format!("L: {word} is not read"))),
+            "I" => return Err(at(col, format!("{what}: incremental {word} is not read"))),
+            _ => return Err(at(col, format!("{what}: {word} is not read"))),
         }
     }
-    let mut block = String::new();
-    if !axes.is_empty() {
-        block.push_str(if rapid { "G0 " } else { "G1 " });
-        block.push_str(&axes);
-    }
-    if !rapid {
-        push(&mut block, &feed);
-    }
-    push(&mut block, &m);
-    Ok(block)
+    Ok((axes, feed, m, rapid))
 }
 
 /// An `M` word, checked.
@@ -316,6 +397,7 @@ fn push(block: &mut String, word: &str) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::read::MotionKind;
 
     fn read(text: &str) -> Program {
         parse_heidenhain(text, "t.h", &GcodeReadOptions::default()).unwrap()
@@ -336,9 +418,81 @@ mod tests {
     }
 
     #[test]
+    fn circles_about_cc_are_arcs() {
+        let p = read(
+            "0 BEGIN PGM 5 MM\n1 TOOL CALL 2 Z S8000\n2 L X+10 Y+0 Z-1 FMAX\n\
+             3 CC X+0 Y+0\n4 C X+0 Y+10 DR+ F300\n5 C X-10 Y+0 Z-2 DR- R0\n\
+             6 L X+20 F200\n7 END PGM 5 MM\n",
+        );
+        assert!(p.stopped.is_none(), "{:?}", p.stopped);
+        assert_eq!(p.motions.len(), 4);
+        let (ccw, cw) = (&p.motions[1], &p.motions[2]);
+        assert!(matches!(
+            ccw.kind,
+            MotionKind::Arc {
+                clockwise: false,
+                ..
+            }
+        ));
+        assert!(matches!(
+            cw.kind,
+            MotionKind::Arc {
+                clockwise: true,
+                ..
+            }
+        ));
+        // A quarter turn counter-clockwise passes (7.07, 7.07); the clockwise way
+        // on to (-10, 0) goes through the fourth quadrant (three quarters), falling 1 mm.
+        let mid = ccw.point_at(0.5).cl;
+        assert!((mid.x - 50f64.sqrt()).abs() < 1e-9 && (mid.y - 50f64.sqrt()).abs() < 1e-9);
+        assert!((cw.sweep().unwrap() - 1.5 * std::f64::consts::PI).abs() < 1e-9);
+        let mid = cw.point_at(0.5).cl;
+        assert!((mid.x - 50f64.sqrt()).abs() < 1e-9 && (mid.y + 50f64.sqrt()).abs() < 1e-9);
+        assert!((mid.z + 1.5).abs() < 1e-9);
+        assert!((cw.end.cl.z + 2.0).abs() < 1e-12 && (cw.feed - 300.0).abs() < 1e-12);
+        assert!(matches!(p.motions[3].kind, MotionKind::Linear));
+        assert_eq!(p.motions[3].line, 7);
+    }
+
+    #[test]
     fn what_is_not_read_stops_at_its_line_and_column() {
         let cases = [
-            ("0 BEGIN PGM 1 MM\n1 CC X+0 Y+0\n", 2, 3, "CC is not read"),
+            (
+                "0 BEGIN PGM 1 MM\n1 CR X+0 Y+0 R+5 DR-\n",
+                2,
+                3,
+                "CR is not read",
+            ),
+            (
+                "0 BEGIN PGM 1 MM\n1 CC X+0\n",
+                2,
+                3,
+                "CC: expected both X and Y",
+            ),
+            (
+                "0 BEGIN PGM 1 MM\n1 CC IX+0 Y+0\n",
+                2,
+                6,
+                "CC: IX+0 is not read",
+            ),
+            (
+                "0 BEGIN PGM 1 MM\n1 C X+1 Y+0 DR-\n",
+                2,
+                3,
+                "no circle centre",
+            ),
+            (
+                "0 BEGIN PGM 1 MM\n1 CC X+0 Y+0\n2 C X+1 Y+0 F100\n",
+                3,
+                3,
+                "expected DR- or DR+",
+            ),
+            (
+                "0 BEGIN PGM 1 MM\n1 CC X+0 Y+0\n2 C X+1 Y+0 RL DR+ F100\n",
+                3,
+                13,
+                "C: radius compensation RL",
+            ),
             (
                 "0 BEGIN PGM 1 MM\n1 L X+1 RL F100\n",
                 2,
