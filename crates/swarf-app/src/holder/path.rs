@@ -1,9 +1,9 @@
 //! The holder and shank check of a planned job's path (`swarf plan` with a library
 //! tool, [`crate::job`]): every pose of every pass, and points about
-//! [`POSE_SPACING`] apart between them, checked as a program's are
-//! ([`super::check_poses`]: vertical poses with the shortest stick-out, tilted
-//! poses in their own frame), each collision named by its pass and pose and, when
-//! the job writes three-axis G-code, the line that commands it.
+//! [`POSE_SPACING`] apart between them, checked as [`super::check_program`] checks
+//! a program's (vertical poses with the shortest stick-out, tilted poses in their
+//! own frame), each collision named by its pass and pose and, when the job writes
+//! three-axis G-code, the line that commands it.
 //!
 //! A tilted pose that collides (five-axis) is also searched for the extra tilt that
 //! clears ([`clearing_tilt`]): the axis turned about the tool tip away from where
