@@ -89,9 +89,12 @@ pub struct HolderSummary {
     pub stick_out: f64,
     /// Poses checked.
     pub poses: usize,
+    /// Of which tilted (checked at the library's stick-out only).
+    pub tilted: usize,
     /// The least clearance of shank or holder over the part, mm.
     pub min_clearance: Option<f64>,
-    /// The shortest stick-out that clears (vertical poses).
+    /// The shortest stick-out that clears the vertical poses (the flute length
+    /// when there are none).
     pub shortest: StickOut,
 }
 
@@ -379,6 +382,7 @@ impl HolderCheck {
         Ok(HolderSummary {
             stick_out: self.vertical.stick_out,
             poses: self.poses,
+            tilted: self.tilted,
             min_clearance: self.min_clearance,
             shortest: self.vertical.shortest,
         })
