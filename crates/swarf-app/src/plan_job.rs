@@ -7,6 +7,8 @@ use crate::cleanup::{plan_cleanup_job, rest_json, stage_file, steep_json};
 use crate::drop_spin::{contacts_csv, drop_spin_json, plan_drop_spin};
 use crate::error::{AppError, Result, bail};
 use crate::five_axis::{position_plan, write_job_gcode};
+use crate::holder::HolderCheck;
+use crate::holder::path::{check_path, gcode_line, refusal};
 use crate::job::Job;
 use crate::model::{Model, load_model_with};
 use crate::outputs::Outputs;
@@ -16,9 +18,12 @@ use crate::report::Reporter;
 use std::path::Path;
 use swarf_fiveaxis::machine::{Machine, load_machine};
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport};
+use swarf_geom::TriMesh;
 use swarf_geom::domain::excerpt;
+use swarf_nc::read::GcodeReadOptions;
 use swarf_nc::{GcodeOptions, Post};
 use swarf_path::{Plan, StrategyKind};
+use swarf_tool::library::LibraryTool;
 use swarf_toolpath::{Toolpath, motion_stats};
 
 /// Loads the job's part, plans it (and positions it, for a five-axis job) and stages
@@ -117,6 +122,7 @@ pub fn plan_model_toolpath(
     };
     let written = Written {
         part_name: &name,
+        model,
         machine: machine.as_ref(),
         post,
         positioning: positioning.as_ref(),
@@ -132,6 +138,8 @@ pub fn plan_model_toolpath(
 /// What a job's outputs say besides its plan.
 struct Written<'a> {
     part_name: &'a str,
+    /// The part (the holder check of a library tool runs on its triangles).
+    model: &'a Model,
     machine: Option<&'a Machine>,
     /// The post of the G-code.
     post: &'a Post,
@@ -162,6 +170,7 @@ fn drop_spin_outputs(
     }
     let written = Written {
         part_name: &part.name,
+        model,
         machine,
         post,
         positioning: None,
@@ -201,6 +210,10 @@ fn cleanup_outputs(
     for (k, stage) in stages.iter().enumerate() {
         let mut staged = job.clone();
         staged.tool = stage.tool;
+        if staged.tool != job.tool {
+            // A chain's intermediate tool is not the library's.
+            staged.library_tool = None;
+        }
         if k + 1 < n {
             let o = &mut staged.output;
             for f in [&mut o.gcode, &mut o.cl, &mut o.csv, &mut o.summary] {
@@ -210,6 +223,7 @@ fn cleanup_outputs(
         let summary_file = staged.output.summary.take();
         let written = Written {
             part_name: &name,
+            model,
             machine,
             post,
             positioning: None,
@@ -262,13 +276,16 @@ fn three_axis_gcode(
     moves: &[swarf_toolpath::Move],
     comments: Vec<String>,
 ) -> Result<String> {
-    let opts = GcodeOptions {
+    let mut opts = GcodeOptions {
         post: post.clone(),
         units: job.output.units,
         comments,
         arc_tolerance: job.output.arc_tolerance_mm(),
         ..GcodeOptions::default()
     };
+    if let Some(tool) = &job.library_tool {
+        opts.tool_number = tool.number;
+    }
     Ok(swarf_nc::write_gcode(moves, &job.feeds, &opts)?)
 }
 
@@ -280,31 +297,29 @@ fn write_outputs(
 ) -> Result<serde_json::Value> {
     let Written {
         part_name,
+        model,
         machine,
         post,
         positioning,
         notes,
     } = *written;
+    let holder = match &job.library_tool {
+        Some(tool) => {
+            let mesh = model.triangles(job.strategy.tolerance)?;
+            let name = job.name.as_deref().unwrap_or(part_name);
+            let check = check_path(&mesh, &plan.toolpath, tool, name)?;
+            Some((tool, mesh, check))
+        }
+        None => None,
+    };
     let moves = plan.toolpath.moves();
     let stats = motion_stats(&moves, job.feeds.rapid);
     let strategy = serde_json::to_value(job.strategy.kind)?;
     let strategy = strategy.as_str().unwrap_or("?").to_string();
     let comments = header_comments(job, plan, part_name, &strategy, notes);
-    let mut rotary = None;
-    match (&job.output.gcode, machine) {
-        (Some(rel), Some(m)) => {
-            let post = write_job_gcode(job, m, post, &plan.toolpath, comments).map_err(|e| {
-                let spec = job.output.machine.as_deref().unwrap_or_default();
-                AppError::Message(format!("output.machine = {spec:?} ({}): {e}", m.name))
-            })?;
-            out.write(rel, post.gcode.as_bytes())?;
-            rotary = post.rotary_ranges;
-        }
-        (Some(rel), None) => {
-            let text = three_axis_gcode(job, post, &moves, comments)?;
-            out.write(rel, text.as_bytes())?;
-        }
-        (None, _) => {}
+    let (rotary, program) = write_program(job, plan, written, &moves, comments, out)?;
+    if let Some((tool, mesh, check)) = &holder {
+        refuse_collisions(job, plan, post, program.as_deref(), (tool, mesh, check))?;
     }
     if let Some(rel) = &job.output.cl {
         let text = swarf_nc::write_cl(&moves, &job.feeds, &job.tool, part_name, job.output.units)?;
@@ -348,10 +363,81 @@ fn write_outputs(
     if let Some(p) = positioning {
         summary["positioning"] = serde_json::to_value(p)?;
     }
+    if let Some((tool, _, check)) = &holder {
+        summary["holder"] = holder_json(tool, check)?;
+    }
     if let Some(rel) = &job.output.summary {
         out.write_json(rel, &summary)?;
     }
     Ok(summary)
+}
+
+/// The ranges of a five-axis program's two rotary axes, radians.
+type RotaryRanges = [[f64; 2]; 2];
+
+/// Writes the program `output.gcode` asks for: five-axis for `output.machine`
+/// (with the rotary axes' ranges), else three-axis (returned as text, the T number
+/// the library tool's).
+fn write_program(
+    job: &Job,
+    plan: &Plan,
+    written: &Written<'_>,
+    moves: &[swarf_toolpath::Move],
+    comments: Vec<String>,
+    out: &mut Outputs,
+) -> Result<(Option<RotaryRanges>, Option<String>)> {
+    let Some(rel) = &job.output.gcode else {
+        return Ok((None, None));
+    };
+    if let Some(m) = written.machine {
+        let post =
+            write_job_gcode(job, m, written.post, &plan.toolpath, comments).map_err(|e| {
+                let spec = job.output.machine.as_deref().unwrap_or_default();
+                AppError::Message(format!("output.machine = {spec:?} ({}): {e}", m.name))
+            })?;
+        out.write(rel, post.gcode.as_bytes())?;
+        return Ok((post.rotary_ranges, None));
+    }
+    let text = three_axis_gcode(job, written.post, moves, comments)?;
+    out.write(rel, text.as_bytes())?;
+    Ok((None, Some(text)))
+}
+
+/// The summary's `holder` section: the check's figures and the tool.
+fn holder_json(tool: &LibraryTool, check: &HolderCheck) -> Result<serde_json::Value> {
+    let mut h = serde_json::to_value(check.cleared()?)?;
+    h["number"] = serde_json::json!(tool.number);
+    h["name"] = serde_json::json!(tool.name);
+    Ok(h)
+}
+
+/// Refuses a path whose shank or holder reaches into the part (module doc of
+/// [`crate::holder::path`]): the first collision's pass, pose and G-code line (when
+/// `program` is the three-axis G-code written), the shortest stick-out that clears,
+/// and for a tilted pose the extra tilt that clears.
+fn refuse_collisions(
+    job: &Job,
+    plan: &Plan,
+    post: &Post,
+    program: Option<&str>,
+    (tool, mesh, check): (&LibraryTool, &TriMesh, &HolderCheck),
+) -> Result<()> {
+    let Some(first) = check.collisions.first() else {
+        return Ok(());
+    };
+    let mut check = check.clone();
+    if let Some(text) = program {
+        let read = GcodeReadOptions {
+            language: post.reader(),
+            ..GcodeReadOptions::default()
+        };
+        check.collisions[0].line = gcode_line(text, &read, &plan.toolpath, first);
+    }
+    let max_tilt = match job.positioning {
+        Some(Positioning::GougeFree { max_alpha, .. }) => Some(max_alpha.to_radians()),
+        _ => None,
+    };
+    Err(AppError::Message(refusal(mesh, tool, &check, max_tilt)?))
 }
 
 /// The program's header comments.

@@ -62,6 +62,20 @@
 //! `arc_tolerance` mm (default 0.01) of the moves; 3-axis programs only, off by
 //! default ([`swarf_nc::arc_fit`]).
 //!
+//! With a tool library the tool may be one of its tools, by T number or name:
+//!
+//! ```toml
+//! tools = "../tooling/library.toml"   # relative to the job file
+//! tool = "ball6-long"                 # or tool = 3
+//! ```
+//!
+//! The library gives the cutter, the program's T number and the feeds the job's
+//! `[feeds]` leave out; `swarf plan` then checks the tool's shank and holder at the
+//! library's stick-out at every pose of the planned path and refuses a path where
+//! they reach into the part, naming the pass, the pose, the G-code line and the
+//! shortest stick-out that clears (five-axis: the extra tilt that clears), as a
+//! sequence job does ([`crate::holder::path`]).
+//!
 //! A tilted tool path is never written as 3-axis G-code: a `positioning` with a
 //! `gcode` output needs `output.machine`. A machine without a positioning writes the
 //! 3-axis path (vertical tool) as five-axis G-code.
@@ -98,8 +112,16 @@ pub struct Job {
     /// How a STEP or IGES part is read.
     #[serde(default)]
     pub import: Import,
+    /// The tool library the job's `tool` may name (a file relative to the job file):
+    /// a T number or name gives the cutter, the T number and default feeds, and the
+    /// shank and holder are checked at every pose of the plan.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tools: Option<String>,
     /// The cutter.
     pub tool: Cutter,
+    /// The library tool `tool` names (set by [`Job::parse_in`]).
+    #[serde(skip)]
+    pub library_tool: Option<swarf_tool::library::LibraryTool>,
     /// Strategy and its parameters.
     pub strategy: StrategyParams,
     /// Five-axis positioning of the strategy's CC paths (none: a vertical tool).
@@ -495,12 +517,9 @@ impl Output {
 }
 
 impl Job {
-    /// Parses and validates a job from TOML text; `source` names the file in errors.
-    ///
-    /// # Errors
-    /// [`AppError::Job`] with the file, line and field for malformed TOML, unknown
-    /// keys, bad tools, and out-of-range parameters.
-    pub fn parse(text: &str, source: &str) -> Result<Job, AppError> {
+    /// Parses and validates a job from TOML text naming no library tool; `source`
+    /// names the file in errors.
+    fn parse_plain(text: &str, source: &str) -> Result<Job, AppError> {
         let job: Job = toml::from_str(text).map_err(|e| AppError::Job {
             file: source.to_string(),
             message: toml_message(text, &e),
@@ -514,6 +533,7 @@ impl Job {
 }
 
 mod params;
+mod tools;
 mod validate;
 pub use validate::MAX_DROP_SPIN_PASSES;
 pub(crate) use validate::check_arcs;

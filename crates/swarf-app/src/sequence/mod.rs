@@ -57,14 +57,16 @@ mod report;
 mod run;
 
 use crate::error::AppError;
+use crate::holder::library::{default_feeds, named_tool};
 use crate::job::Job;
 use crate::model::FaceRef;
 use serde::Deserialize;
 use std::path::Path;
 use swarf_io::error::toml_message;
-use swarf_tool::library::{LibraryTool, ToolLibrary};
+use swarf_tool::library::ToolLibrary;
 
-pub use report::{EngagementSummary, HolderSummary, OperationReport, SequenceReport};
+pub use crate::holder::HolderSummary;
+pub use report::{EngagementSummary, OperationReport, SequenceReport};
 pub use run::plan_sequence;
 
 /// A sequence job as read (module doc).
@@ -173,10 +175,9 @@ pub struct Operation {
     pub name: String,
     /// T number.
     pub number: u32,
-    /// The operation as a job on the sequence's part.
+    /// The operation as a job on the sequence's part (with the library tool it
+    /// names, whose shank, holder and stick-out are checked).
     pub job: Job,
-    /// The library tool it names (its shank, holder and stick-out are checked).
-    pub library_tool: Option<LibraryTool>,
 }
 
 /// A parsed sequence job.
@@ -264,7 +265,11 @@ fn operation(
     prev: Option<&Operation>,
 ) -> Result<Operation, String> {
     let mut t = table.clone();
-    let library_tool = library_tool(library, &mut t)?;
+    let library_tool = named_tool(library, t.get("tool"))?.cloned();
+    if let Some(lt) = &library_tool {
+        let spec = toml::Value::String(lt.assembly.cutter.to_string());
+        t.insert("tool".into(), spec);
+    }
     let name = match t.remove("name") {
         Some(toml::Value::String(s)) => s,
         Some(v) => return Err(format!("name: expected text, found {v}")),
@@ -287,11 +292,19 @@ fn operation(
         (None, Some(lt)) => lt.number,
         (None, None) => k as u32 + 1,
     };
-    for key in ["part", "faces", "import", "output", "parent", "positioning"] {
+    for key in [
+        "part",
+        "faces",
+        "import",
+        "output",
+        "parent",
+        "positioning",
+        "tools",
+    ] {
         if t.contains_key(key) {
             return Err(format!(
-                "{key}: not an operation's key (the sequence gives part, faces, import and \
-                 output; operations are three-axis)"
+                "{key}: not an operation's key (the sequence gives part, faces, import, tools \
+                 and output; operations are three-axis)"
             ));
         }
     }
@@ -325,56 +338,15 @@ fn operation(
     let text = toml::to_string(&t).map_err(|e| e.to_string())?;
     // The table was written out again: a line number in a message would be of that
     // text, not of the file, so it is dropped.
-    let job = Job::parse(&text, "").map_err(|e| match e {
+    let mut job = Job::parse(&text, "").map_err(|e| match e {
         AppError::Job { message, .. } => without_line(&message).to_string(),
         other => other.to_string(),
     })?;
-    Ok(Operation {
-        name,
-        number,
-        job,
-        library_tool,
-    })
-}
-
-/// The library tool operation table `t` names in `tool` (a number, or a name that
-/// is not a cutter spec), with `tool` replaced by its cutter and the table's feeds
-/// completed with the tool's defaults; `None` for a cutter spec.
-fn library_tool(
-    library: Option<&ToolLibrary>,
-    t: &mut toml::Table,
-) -> Result<Option<LibraryTool>, String> {
-    let key = match t.get("tool") {
-        Some(toml::Value::Integer(n)) => n.to_string(),
-        Some(toml::Value::String(s)) if !s.contains(':') => s.clone(),
-        _ => return Ok(None),
-    };
-    let Some(library) = library else {
-        return Err(format!(
-            "tool: {key:?} names a library tool, but the sequence gives no `tools` library \
-             (or give a cutter spec such as \"ball:d=6\")"
-        ));
-    };
-    let tool = library.get(&key).map_err(|e| format!("tool: {e}"))?.clone();
-    t.insert(
-        "tool".into(),
-        toml::Value::String(tool.assembly.cutter.to_string()),
-    );
-    let feeds = t
-        .entry("feeds")
-        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-    if let toml::Value::Table(f) = feeds {
-        for (key, value) in [
-            ("feed", tool.feed),
-            ("spindle", tool.spindle),
-            ("plunge", tool.plunge),
-        ] {
-            if let (false, Some(v)) = (f.contains_key(key), value) {
-                f.insert(key.into(), toml::Value::Float(v));
-            }
-        }
+    if let Some(lt) = &library_tool {
+        default_feeds(lt, table.get("feeds"), &mut job.feeds);
     }
-    Ok(Some(tool))
+    job.library_tool = library_tool;
+    Ok(Operation { name, number, job })
 }
 
 /// `message` without a leading `line N: `.

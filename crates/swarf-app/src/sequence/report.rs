@@ -2,10 +2,10 @@
 //! gouge and rest after each operation.
 
 use super::Operation;
+use crate::holder::HolderSummary;
 use serde::Serialize;
 use swarf_path::StrategyKind;
 use swarf_sim::Dexel;
-use swarf_tool::holder::vertical::StickOut;
 
 /// Engagement of a roughing operation, measured on the stock.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -23,19 +23,6 @@ pub struct EngagementSummary {
     pub histogram_10deg: Vec<usize>,
     /// Entries (ramps into a level and their round at it), left out of the figures.
     pub entries: usize,
-}
-
-/// The holder check of an operation that cleared.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct HolderSummary {
-    /// The library's stick-out, mm.
-    pub stick_out: f64,
-    /// Poses checked.
-    pub poses: usize,
-    /// The least clearance of shank or holder over the part, mm.
-    pub min_clearance: Option<f64>,
-    /// The shortest stick-out that clears (vertical poses).
-    pub shortest: StickOut,
 }
 
 /// What one operation did.

@@ -2,13 +2,12 @@
 //! back, simulated on the stock and reported (module doc of [`super`]).
 
 use super::report::{
-    EngagementSummary, HolderSummary, OperationReport, SequenceReport, deviation, op_report,
-    rest_cells,
+    EngagementSummary, OperationReport, SequenceReport, deviation, op_report, rest_cells,
 };
 use super::{Operation, Sequence, Stock, StockKind};
 use crate::cleanup::part_mesh;
 use crate::error::{AppError, Result};
-use crate::holder::{POSE_SPACING, check_program};
+use crate::holder::{HolderSummary, POSE_SPACING, check_program};
 use crate::model::{Model, load_model_with};
 use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
@@ -33,16 +32,7 @@ use swarf_toolpath::{Move, MoveKind, motion_stats};
 /// # Errors
 /// A collision: its line, place and depth, and the shortest stick-out that clears.
 fn holder_check(mesh: &TriMesh, program: &Program, tool: &LibraryTool) -> Result<HolderSummary> {
-    let check = check_program(mesh, program, tool, POSE_SPACING)?;
-    if !check.collisions.is_empty() {
-        return Err(AppError::Message(check.summary()));
-    }
-    Ok(HolderSummary {
-        stick_out: check.vertical.stick_out,
-        poses: check.poses,
-        min_clearance: check.vertical.min_clearance.map(|(_, c)| c),
-        shortest: check.vertical.shortest,
-    })
+    check_program(mesh, program, tool, POSE_SPACING)?.cleared()
 }
 
 /// What every operation of a sequence shares: the part, its mesh, the design's
@@ -162,7 +152,7 @@ fn run_operation(
     let text = swarf_nc::write_gcode(&moves, &op.job.feeds, &gcode_options(op, &shop.post, seq))
         .map_err(|e| named(e.into()))?;
     let program = parse_gcode(&text, &op.name, &shop.read).map_err(|e| named(e.into()))?;
-    let holder = match &op.library_tool {
+    let holder = match &op.job.library_tool {
         Some(tool) => Some(holder_check(&shop.mesh, &program, tool).map_err(named)?),
         None => None,
     };

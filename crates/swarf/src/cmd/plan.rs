@@ -34,7 +34,7 @@ pub fn run(args: &Args) -> Result<()> {
         }
         return Ok(());
     }
-    let job = Job::parse(&text, &args.job.display().to_string())?;
+    let job = Job::parse_in(&text, &args.job.display().to_string(), job_dir)?;
     let summary = swarf_app::plan_job(&job, job_dir, &mut out, &Bars::default())
         .with_context(|| format!("{}: planning the job", args.job.display()))?;
     out.commit()?;

@@ -30,8 +30,9 @@ pub struct Args {
     #[arg(long)]
     tool: Vec<String>,
     /// Tool library (TOML, see tooling/library.toml): each --tool is then a tool's
-    /// name or T number in it, and verify adds the holder and shank check of every
-    /// program (holder.json: collisions, the shortest stick-out that clears).
+    /// name or T number in it (without --tool, each tool section's T word is looked
+    /// up), and verify adds the holder and shank check of every tool section
+    /// (holder.json: collisions, the shortest stick-out that clears).
     #[arg(long)]
     tool_library: Option<PathBuf>,
     /// Machine file (TOML) or builtin:NAME for five-axis G-code: the programs' X Y Z
@@ -170,7 +171,7 @@ pub fn run(args: &Args) -> Result<()> {
     let sim = args.sim.settings();
     let gcode = args.gcode.setup()?;
     let tools = match &args.tool_library {
-        Some(lib) => holder::library_specs(lib, &args.tool, args.program.len())?,
+        Some(library) => holder::library_specs(&holder_request(args, library, &gcode, sim.tol))?,
         None => args.tool.clone(),
     };
     let req = VerifyRequest {
@@ -218,14 +219,14 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
-/// The holder check of `--tool-library`: a summary per program and `holder.json`.
-fn holder_check(
-    args: &Args,
-    library: &Path,
-    gcode: &GcodeSetup,
+/// What the holder check of `--tool-library` reads.
+fn holder_request<'a>(
+    args: &'a Args,
+    library: &'a Path,
+    gcode: &'a GcodeSetup,
     tol: Option<f64>,
-) -> Result<(Vec<String>, Vec<u8>)> {
-    let checks = holder::check_request(&holder::HolderRequest {
+) -> holder::HolderRequest<'a> {
+    holder::HolderRequest {
         part: &args.part,
         programs: &args.program,
         library,
@@ -235,7 +236,18 @@ fn holder_check(
         tool_length: args.tool_length,
         tol: tol.unwrap_or(0.01),
         spacing: holder::POSE_SPACING,
-    })?;
+    }
+}
+
+/// The holder check of `--tool-library`: a summary per tool section of each program
+/// and `holder.json`.
+fn holder_check(
+    args: &Args,
+    library: &Path,
+    gcode: &GcodeSetup,
+    tol: Option<f64>,
+) -> Result<(Vec<String>, Vec<u8>)> {
+    let checks = holder::check_request(&holder_request(args, library, gcode, tol))?;
     let lines = checks.iter().map(holder::HolderCheck::summary).collect();
     Ok((lines, serde_json::to_vec_pretty(&checks)?))
 }

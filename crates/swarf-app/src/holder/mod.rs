@@ -7,8 +7,16 @@
 //! ([`AxisView`], one re-laid grid per distinct axis) and add their collisions. The
 //! shortest stick-out covers the vertical poses only (a note says when there are
 //! tilted ones).
+//!
+//! Without `--tool`, each tool section of a program (a program that changes tools
+//! is cut at its tool changes, [`Program::split_by_tool`]) takes the library tool of
+//! its T number ([`stage_tools`]). A planned job's path is checked the same way
+//! ([`path`]); the resolution of library tools in job files is [`library`].
 
-use crate::error::{Result, bail};
+pub mod library;
+pub mod path;
+
+use crate::error::{AppError, Result, bail};
 use crate::model::load_model;
 use crate::programs::{GcodeSetup, read_programs};
 use serde::Serialize;
@@ -31,11 +39,16 @@ pub const POSE_SPACING: f64 = 1.0;
 /// Arcs are sampled at least this many times.
 const ARC_SAMPLES: usize = 16;
 
-/// A collision, with the program line that commanded its pose.
+/// A collision, with the program line that commanded its pose (and, for a planned
+/// path, its pass and pose).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct LineCollision {
-    /// Source line of the motion.
-    pub line: usize,
+    /// Source line of the motion (none for a planned path with no G-code written).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line: Option<usize>,
+    /// A planned path's pass and pose within it, from 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pass: Option<[usize; 2]>,
     /// Tool tip, mm.
     pub cl: Point3,
     /// Tool axis.
@@ -44,6 +57,8 @@ pub struct LineCollision {
     pub depth: f64,
     /// The piece (`holder[0]`, `shank[1]`).
     pub piece: PieceKind,
+    /// Where the piece touches the part when moved onto it along the axis, mm.
+    pub contact: Point3,
 }
 
 /// The holder check of one program.
@@ -61,8 +76,26 @@ pub struct HolderCheck {
     pub tilted: usize,
     /// Collisions at the library's stick-out, in program order.
     pub collisions: Vec<LineCollision>,
+    /// The least clearance over every pose, vertical and tilted, mm.
+    pub min_clearance: Option<f64>,
     /// The check of the vertical poses (shortest stick-out, least clearance).
     pub vertical: HolderReport,
+}
+
+/// The holder check of a program or path that cleared.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HolderSummary {
+    /// The library's stick-out, mm.
+    pub stick_out: f64,
+    /// Poses checked.
+    pub poses: usize,
+    /// Of which tilted (checked at the library's stick-out only).
+    pub tilted: usize,
+    /// The least clearance of shank or holder over the part, mm.
+    pub min_clearance: Option<f64>,
+    /// The shortest stick-out that clears the vertical poses (the flute length
+    /// when there are none).
+    pub shortest: StickOut,
 }
 
 /// What `swarf verify --tool-library` asks for.
@@ -108,14 +141,71 @@ pub fn library_tools<'l>(
         .collect()
 }
 
-/// The cutter spec strings of the library's tools for the `--tool` keys, one per
-/// program, for the simulation ([`crate::verify::VerifyRequest::tools`]).
+/// The library tool of each stage (a program's section with one tool): the
+/// `--tool` keys in order when given ([`library_tools`]), else the tool of the
+/// stage's T number.
 ///
 /// # Errors
-/// As [`ToolLibrary::read`] and [`library_tools`].
-pub fn library_specs(library: &Path, keys: &[String], programs: usize) -> Result<Vec<String>> {
-    let library = ToolLibrary::read(library)?;
-    Ok(library_tools(&library, keys, programs)?
+/// As [`library_tools`]; without keys, a stage with no T word, or a T number the
+/// library lacks (naming the line where that tool first cuts and the library file).
+pub fn stage_tools<'l>(
+    library: &'l ToolLibrary,
+    file: &Path,
+    keys: &[String],
+    stages: &[Program],
+) -> Result<Vec<&'l LibraryTool>> {
+    if !keys.is_empty() {
+        return library_tools(library, keys, stages.len());
+    }
+    stages
+        .iter()
+        .map(|p| {
+            let Some(t) = p.tools.first() else {
+                bail!(
+                    "{}: no T word to look up in the tool library {}: give --tool NAME|NUMBER",
+                    p.source,
+                    file.display()
+                );
+            };
+            library.get(&t.number.to_string()).map_err(|e| {
+                AppError::Message(format!(
+                    "{}: line {}: T{} (the tool cutting from this line) is not in the tool \
+                     library {}: {e}",
+                    p.source,
+                    t.line,
+                    t.number,
+                    file.display()
+                ))
+            })
+        })
+        .collect()
+}
+
+/// The programs of `req`, cut at their tool changes, and the library.
+fn read_stages(req: &HolderRequest<'_>) -> Result<(ToolLibrary, Vec<Program>)> {
+    let library = ToolLibrary::read(req.library)?;
+    let (programs, _) = read_programs(
+        req.programs,
+        req.gcode,
+        req.machine,
+        req.tool_length,
+        req.tol,
+    )?;
+    let stages = programs
+        .into_iter()
+        .flat_map(Program::split_by_tool)
+        .collect();
+    Ok((library, stages))
+}
+
+/// The cutter spec strings of the library tools of `req` ([`stage_tools`]), one per
+/// stage, for the simulation ([`crate::verify::VerifyRequest::tools`]).
+///
+/// # Errors
+/// A library or program that cannot be read; as [`stage_tools`].
+pub fn library_specs(req: &HolderRequest<'_>) -> Result<Vec<String>> {
+    let (library, stages) = read_stages(req)?;
+    Ok(stage_tools(&library, req.library, req.tools, &stages)?
         .iter()
         .map(|t| t.assembly.cutter.to_string())
         .collect())
@@ -146,36 +236,50 @@ fn is_vertical(axis: &Vec3) -> bool {
     axis.x.abs() <= VERTICAL_EPS && axis.y.abs() <= VERTICAL_EPS && axis.z > 0.0
 }
 
-/// Checks the poses of `program` with `tool` against `mesh` (module doc).
-///
-/// # Errors
-/// A shank or holder segment the kernel refuses.
-pub fn check_program(
+/// The collisions of poses tagged `tag` (a line, or an index the caller maps),
+/// in tag order, the least clearance over all, and the vertical poses' report.
+pub(crate) struct PoseCheck {
+    pub(crate) collisions: Vec<(usize, LineCollision)>,
+    pub(crate) min_clearance: Option<f64>,
+    pub(crate) tilted: usize,
+    pub(crate) vertical: HolderReport,
+}
+
+/// Checks the shank and holder of `tool` at `poses` (each with a tag) against
+/// `mesh`: vertical poses at once with the shortest stick-out, tilted ones one
+/// axis at a time (module doc).
+pub(crate) fn check_poses(
     mesh: &TriMesh,
-    program: &Program,
+    poses: &[(swarf_tool::Pose, usize)],
     tool: &LibraryTool,
-    spacing: f64,
-) -> Result<HolderCheck> {
+) -> Result<PoseCheck> {
     let a = &tool.assembly;
-    let poses = program_poses(program, spacing);
     type Sample<'p> = &'p (swarf_tool::Pose, usize);
     let (vertical, tilted): (Vec<Sample>, Vec<Sample>) =
         poses.iter().partition(|p| is_vertical(&p.0.axis));
     let cls: Vec<Point3> = vertical.iter().map(|p| p.0.cl).collect();
     let report = check_vertical(a, &MeshDropper::new(mesh, &a.cutter), &cls)?;
-    let mut collisions: Vec<LineCollision> = report
+    let collision =
+        |pose: &swarf_tool::Pose, depth: f64, piece: PieceKind, contact: Point3| LineCollision {
+            line: None,
+            pass: None,
+            cl: pose.cl,
+            axis: pose.axis,
+            depth,
+            piece,
+            contact,
+        };
+    let mut collisions: Vec<(usize, LineCollision)> = report
         .collisions
         .iter()
-        .map(|c| LineCollision {
-            line: vertical[c.pose].1,
-            cl: c.cl,
-            axis: Vec3::z(),
-            depth: c.depth,
-            piece: c.piece,
+        .map(|c| {
+            let (pose, tag) = &vertical[c.pose];
+            (*tag, collision(pose, c.depth, c.piece, c.contact))
         })
         .collect();
+    let mut min_clearance = report.min_clearance.map(|(_, c)| c);
     let mut views: HashMap<[u64; 3], AxisView> = HashMap::new();
-    for (pose, line) in &tilted {
+    for (pose, tag) in &tilted {
         let key = [pose.axis.x, pose.axis.y, pose.axis.z].map(f64::to_bits);
         let view = match views.entry(key) {
             std::collections::hash_map::Entry::Occupied(e) => e.into_mut(),
@@ -186,56 +290,104 @@ pub fn check_program(
                 e.insert(view)
             }
         };
-        if let Some(c) = view.clearance(a, &pose.cl)?
-            && c.clearance < -CONTACT_EPS
-        {
-            collisions.push(LineCollision {
-                line: *line,
-                cl: pose.cl,
-                axis: pose.axis,
-                depth: -c.clearance,
-                piece: c.piece,
-            });
+        if let Some(c) = view.clearance(a, &pose.cl)? {
+            min_clearance = Some(min_clearance.map_or(c.clearance, |m| m.min(c.clearance)));
+            if c.clearance < -CONTACT_EPS {
+                collisions.push((*tag, collision(pose, -c.clearance, c.piece, c.contact)));
+            }
         }
     }
-    collisions.sort_by_key(|c| c.line);
+    collisions.sort_by_key(|c| c.0);
+    Ok(PoseCheck {
+        collisions,
+        min_clearance,
+        tilted: tilted.len(),
+        vertical: report,
+    })
+}
+
+/// Checks the poses of `program` with `tool` against `mesh` (module doc).
+///
+/// # Errors
+/// A shank or holder segment the kernel refuses.
+pub fn check_program(
+    mesh: &TriMesh,
+    program: &Program,
+    tool: &LibraryTool,
+    spacing: f64,
+) -> Result<HolderCheck> {
+    let poses = program_poses(program, spacing);
+    let check = check_poses(mesh, &poses, tool)?;
     Ok(HolderCheck {
         program: program.source.clone(),
         number: tool.number,
         name: tool.name.clone(),
         poses: poses.len(),
-        tilted: tilted.len(),
-        collisions,
-        vertical: report,
+        tilted: check.tilted,
+        collisions: check
+            .collisions
+            .into_iter()
+            .map(|(line, c)| LineCollision {
+                line: Some(line),
+                ..c
+            })
+            .collect(),
+        min_clearance: check.min_clearance,
+        vertical: check.vertical,
     })
 }
 
-/// Reads the part, the programs and the library of `req` and checks each program
-/// with its tool.
+/// Reads the part, the programs and the library of `req` and checks each tool
+/// section of each program with its tool ([`stage_tools`]).
 ///
 /// # Errors
-/// A part, program or library that cannot be read; a tool key the library lacks;
-/// the errors of [`check_program`].
+/// A part, program or library that cannot be read; a tool key or T number the
+/// library lacks; the errors of [`check_program`].
 pub fn check_request(req: &HolderRequest<'_>) -> Result<Vec<HolderCheck>> {
-    let library = ToolLibrary::read(req.library)?;
-    let tools = library_tools(&library, req.tools, req.programs.len())?;
+    let (library, stages) = read_stages(req)?;
+    let tools = stage_tools(&library, req.library, req.tools, &stages)?;
     let model = load_model(req.part)?;
     let mesh = model.triangles(req.tol)?;
-    let (programs, _) = read_programs(
-        req.programs,
-        req.gcode,
-        req.machine,
-        req.tool_length,
-        req.tol,
-    )?;
-    programs
+    stages
         .iter()
         .zip(tools)
         .map(|(p, t)| check_program(&mesh, p, t, req.spacing))
         .collect()
 }
 
+impl LineCollision {
+    /// Where it is: `pass P, pose K, line L`, whichever are known.
+    pub fn place(&self) -> String {
+        let mut parts = Vec::new();
+        if let Some([pass, pose]) = self.pass {
+            parts.push(format!("pass {pass}, pose {pose}"));
+        }
+        if let Some(line) = self.line {
+            parts.push(format!("line {line}"));
+        }
+        parts.join(", ")
+    }
+}
+
 impl HolderCheck {
+    /// The summary of a check that cleared.
+    ///
+    /// # Errors
+    /// A collision: [`HolderCheck::summary`] (where, how deep, the shortest
+    /// stick-out that clears).
+    pub fn cleared(&self) -> Result<HolderSummary> {
+        if !self.collisions.is_empty() {
+            return Err(AppError::Message(self.summary()));
+        }
+        Ok(HolderSummary {
+            stick_out: self.vertical.stick_out,
+            poses: self.poses,
+            tilted: self.tilted,
+            min_clearance: self.min_clearance,
+            shortest: self.vertical.shortest,
+        })
+    }
+
     /// A few lines for the terminal: the tool, the collisions, the shortest
     /// stick-out.
     pub fn summary(&self) -> String {
@@ -248,10 +400,10 @@ impl HolderCheck {
             None => s += ", no collision",
             Some(c) => {
                 s += &format!(
-                    ", {} collide (first: line {}, {} {:.3} mm into the part at ({:.3}, {:.3}, \
+                    ", {} collide (first: {}, {} {:.3} mm into the part at ({:.3}, {:.3}, \
                      {:.3}))",
                     self.collisions.len(),
-                    c.line,
+                    c.place(),
                     c.piece,
                     c.depth,
                     c.cl.x,
@@ -321,9 +473,9 @@ holder = [{ d0 = 20, d1 = 32, length = 20 }, { d = 63, length = 30 }]
         let check = check_program(&mesh, &program, tools[0], 1.0).unwrap();
         assert_eq!((check.poses, check.tilted), (11, 10));
         let first = check.collisions[0];
-        assert_eq!((first.line, first.piece), (3, PieceKind::Holder(0)));
+        assert_eq!((first.line, first.piece), (Some(3), PieceKind::Holder(0)));
         assert!((first.depth - 10.0).abs() < 1e-9, "{first:?}");
-        assert!(check.collisions.iter().skip(1).all(|c| c.line == 4));
+        assert!(check.collisions.iter().skip(1).all(|c| c.line == Some(4)));
         assert_eq!(
             check.vertical.shortest,
             StickOut::Clears {
