@@ -12,7 +12,9 @@ bit, and errors carry its messages (``SwarfError``, a ``ValueError``).
   off the part; the GIL is released and every core used);
 - paths: :func:`waterline`, :func:`raster` (lists of ``(K, 3)`` arrays);
 - jobs: :class:`Job`, :func:`plan` (poses ``(N, 6)``, move kinds, summary dict,
-  G-code and APT CL);
+  G-code and APT CL); a sequence job (``[[operation]]`` tables, stock to part)
+  gives a :class:`SequencePlan` (report and per-operation dicts, the whole program,
+  rest cells ``(N, 3)``);
 - verification: :func:`verify` (report dict, deviation grid ``(ny, nx)``);
 - rest material: :func:`rest` (regions as arrays of polygons).
 """
@@ -29,6 +31,7 @@ from ._swarf import (
     Plan,
     Rest,
     RestRegion,
+    SequencePlan,
     SwarfError,
     Tool,
     Verification,
@@ -54,6 +57,7 @@ __all__ = [
     "Plan",
     "Rest",
     "RestRegion",
+    "SequencePlan",
     "SwarfError",
     "Tool",
     "Verification",

@@ -210,9 +210,39 @@ class Plan:
     def write_gcode(self, path: PathLike) -> None: ...
     def write_cl(self, path: PathLike) -> None: ...
 
-def plan(job: JobLike, *, out: Optional[PathLike] = None) -> Plan:
+class SequencePlan:
+    """A planned sequence job (``[[operation]]`` tables: operations in order on one
+    stock, a tool change each), as ``swarf plan`` plans it."""
+
+    @property
+    def report(self) -> Dict[str, Any]:
+        """The sequence's report (``output.summary``'s JSON): ``name``, ``grid``,
+        ``operations``, ``time_s``."""
+    @property
+    def operations(self) -> List[Dict[str, Any]]:
+        """Each operation's report: ``name``, ``number``, ``tool``, ``strategy``,
+        ``motions``, ``cutting_length_mm``, ``time_s``, ``engagement`` (roughing),
+        ``gouge_cells``, ``worst_gouge_mm``, ``rest_cells``, ``rest_limit_mm``,
+        ``max_rest_mm``, ``holder``."""
+    @property
+    def program(self) -> str:
+        """The whole program's G-code, a tool change per operation."""
+    @property
+    def programs(self) -> List[str]:
+        """Each operation's own G-code, in order."""
+    @property
+    def rest(self) -> FloatArray:
+        """``(N, 3)`` cells left more than the last operation's limit above the
+        design: centre ``x, y`` and the material above it, mm."""
+    def lines(self) -> List[str]:
+        """The lines ``swarf plan`` prints: one per operation, then the total."""
+    def write_gcode(self, path: PathLike) -> None: ...
+
+def plan(job: JobLike, *, out: Optional[PathLike] = None) -> Union[Plan, SequencePlan]:
     """Plans a job (a ``Job``, a dict, TOML text or a job file path) as
-    ``swarf plan`` does; with ``out`` writes the job's outputs there."""
+    ``swarf plan`` does; with ``out`` writes the job's outputs there. A sequence
+    job (``[[operation]]`` tables; a path, TOML text or a dict) gives a
+    ``SequencePlan``; errors name ``operation[k]``."""
 
 class Verification:
     """What a verification found, over the dexel grid (``ny`` rows, ``nx`` columns)."""

@@ -99,7 +99,14 @@ fn key_at(text: &str, line: usize) -> Option<String> {
 /// Parses generated TOML `text` as a job named `source`; a parse error names the key
 /// instead of the line of the generated text.
 fn parse_generated(text: &str, source: &str) -> PyResult<swarf_app::Job> {
-    swarf_app::Job::parse(text, source).map_err(|e| match e {
+    single_job(text, source)?;
+    swarf_app::Job::parse(text, source).map_err(|e| keyed_error(text, e))
+}
+
+/// An error parsing generated TOML `text` as a Python error: a message naming a line
+/// of `text` names the key on that line instead.
+pub fn keyed_error(text: &str, e: AppError) -> PyErr {
+    match e {
         AppError::Job { file, message } => {
             let lined = message
                 .strip_prefix("line ")
@@ -111,7 +118,7 @@ fn parse_generated(text: &str, source: &str) -> PyResult<swarf_app::Job> {
             }
         }
         other => swarf_err(other),
-    })
+    }
 }
 
 /// A job (the job file schema: part, tool, strategy, feeds, linking, output), with
@@ -147,7 +154,7 @@ impl Job {
                 crate::errors::chain(&e)
             ))
         })?;
-        let job = swarf_app::Job::parse(&text, &path).map_err(swarf_err)?;
+        let job = parse_single(&text, &path)?;
         Ok(Job {
             job,
             dir: p.parent().unwrap_or(Path::new(".")).to_path_buf(),
@@ -162,7 +169,7 @@ impl Job {
     #[pyo3(signature = (text, base_dir = None))]
     fn from_toml(text: String, base_dir: Option<&Bound<'_, PyAny>>) -> PyResult<Job> {
         let source = "<toml>".to_string();
-        let job = swarf_app::Job::parse(&text, &source).map_err(swarf_err)?;
+        let job = parse_single(&text, &source)?;
         Ok(Job {
             job,
             dir: base_dir_arg(base_dir)?,
@@ -228,6 +235,26 @@ impl Job {
             self.job.name.as_deref().unwrap_or("")
         )
     }
+}
+
+/// `text` parsed as a single job named `source`.
+fn parse_single(text: &str, source: &str) -> PyResult<swarf_app::Job> {
+    single_job(text, source)?;
+    swarf_app::Job::parse(text, source).map_err(swarf_err)
+}
+
+/// Checks that `text` is not a sequence job, which a [`Job`] cannot hold.
+///
+/// # Errors
+/// `SwarfError` saying where a sequence goes instead.
+fn single_job(text: &str, source: &str) -> PyResult<()> {
+    if swarf_app::sequence::Sequence::is_sequence(text) {
+        return Err(swarf_msg(format!(
+            "{source}: a sequence job ([[operation]] tables): a Job holds a single job; \
+             swarf.plan takes a sequence as a path, TOML text or a dict"
+        )));
+    }
+    Ok(())
 }
 
 /// `base_dir` as a folder (default `.`).

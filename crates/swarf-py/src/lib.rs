@@ -16,6 +16,8 @@
 //! - [`mod@drop`]: drop-cutter heights on every core (`swarf drop`);
 //! - [`job`], [`plan`]: jobs from files, TOML text or dicts, planned as arrays plus
 //!   the summary, G-code and APT CL (`swarf plan`); waterline and raster passes;
+//! - [`sequence`]: sequence jobs (stock to part, several tools) planned into their
+//!   report, program and rest cells (`swarf plan` of a sequence);
 //! - [`verify`]: the report and the deviation grid (`swarf verify`);
 //! - [`rest`]: rest regions as polygons (`swarf rest`).
 //!
@@ -29,6 +31,7 @@ pub mod job;
 pub mod model;
 pub mod plan;
 pub mod rest;
+pub mod sequence;
 pub mod tool;
 pub mod verify;
 
@@ -50,6 +53,7 @@ fn _swarf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<drop::DropContacts>()?;
     m.add_class::<job::Job>()?;
     m.add_class::<plan::Plan>()?;
+    m.add_class::<sequence::SequencePlan>()?;
     m.add_class::<verify::Verification>()?;
     m.add_class::<rest::Rest>()?;
     m.add_class::<rest::RestRegion>()?;

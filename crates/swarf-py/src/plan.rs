@@ -1,12 +1,14 @@
 //! Planning a job from Python: `swarf plan` as values ([`swarf_app::plan_model_toolpath`]):
 //! the program's moves as arrays, the summary as a dict, and the G-code and APT CL
 //! text the job writes; the strategy functions [`waterline`] and [`raster`] give the
-//! passes of one strategy on a part or mesh as a list of arrays.
+//! passes of one strategy on a part or mesh as a list of arrays. [`plan`] hands a
+//! sequence job to [`crate::sequence`].
 
 use crate::arrays::{grid_out, vec_out};
 use crate::errors::{detached, swarf_err, swarf_msg};
 use crate::job::{Job, job_arg, job_from_dict};
 use crate::model::{ModelArg, path_text};
+use crate::sequence::{plan_sequence_values, sequence_arg};
 use crate::tool::cutter_arg;
 use numpy::PyArray2;
 use pyo3::prelude::*;
@@ -25,7 +27,7 @@ pub fn json_to_py(py: Python<'_>, value: &serde_json::Value) -> PyResult<Py<PyAn
 }
 
 /// A folder of its own under the system's temporary folder, removed on drop.
-struct Scratch(PathBuf);
+pub(crate) struct Scratch(PathBuf);
 
 impl Scratch {
     fn new() -> PyResult<Scratch> {
@@ -41,6 +43,18 @@ impl Scratch {
 impl Drop for Scratch {
     fn drop(&mut self) {
         let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// The folder outputs are staged in: `out`, or (without it) a scratch folder of its
+/// own, returned with it so that it lives as long as the staging.
+pub(crate) fn output_dir(out: Option<&Path>) -> PyResult<(PathBuf, Option<Scratch>)> {
+    match out {
+        Some(o) => Ok((o.to_path_buf(), None)),
+        None => {
+            let scratch = Scratch::new()?;
+            Ok((scratch.0.clone(), Some(scratch)))
+        }
     }
 }
 
@@ -75,8 +89,8 @@ fn plan_job_values(job: &Job, out: Option<&Path>) -> PyResult<Planned> {
     };
     let part = swarf_app::plan_job::part_arg(&job.job, &job.dir);
     let model = swarf_app::load_model_with(&part, &job.job.load_options()).map_err(context)?;
-    let (staged_job, scratch) = match out {
-        Some(_) => (job.job.clone(), None),
+    let staged_job = match out {
+        Some(_) => job.job.clone(),
         None => {
             let mut j = job.job.clone();
             let o = &mut j.output;
@@ -87,13 +101,10 @@ fn plan_job_values(job: &Job, out: Option<&Path>) -> PyResult<Planned> {
             o.gcode = (!tilted || o.machine.is_some()).then(|| "plan.ngc".to_string());
             o.cl = Some("plan.cl".to_string());
             (o.csv, o.summary, o.double_contacts, o.contacts) = (None, None, None, None);
-            (j, Some(Scratch::new()?))
+            j
         }
     };
-    let dir = out.map_or_else(
-        || scratch.as_ref().map(|s| s.0.clone()).unwrap_or_default(),
-        Path::to_path_buf,
-    );
+    let (dir, _scratch) = output_dir(out)?;
     let mut outputs = Outputs::new(&dir);
     let planned =
         swarf_app::plan_model_toolpath(&staged_job, &model, &job.dir, &mut outputs, &Quiet)
@@ -111,21 +122,22 @@ fn plan_job_values(job: &Job, out: Option<&Path>) -> PyResult<Planned> {
 }
 
 /// Plans a job as `swarf plan` does: `job` is a `Job`, a dict in the job file's
-/// schema, TOML text (a str with a line break) or the path of a job file. With
+/// schema, TOML text (a str with a line break) or the path of a job file; a
+/// sequence job (`[[operation]]` tables) as a path, TOML text or a dict. With
 /// `out`, the job's outputs are written into that folder as `swarf plan JOB --out
 /// OUT` writes them; without, nothing is written.
 ///
 /// Returns a `Plan`: the program's moves as arrays, the summary dict, and the
-/// G-code and APT CL text. Raises `SwarfError` with the job file (or `job dict`),
-/// the line or key and the field for a bad job, and the planning's errors.
+/// G-code and APT CL text; for a sequence, a `SequencePlan`. Raises `SwarfError`
+/// with the job file (or `job dict`), the line or key and the field for a bad job
+/// (`operation[k]` for a sequence's operation), and the planning's errors.
 #[pyfunction]
 #[pyo3(signature = (job, *, out = None))]
 pub fn plan(
     py: Python<'_>,
     job: &Bound<'_, PyAny>,
     out: Option<&Bound<'_, PyAny>>,
-) -> PyResult<Plan> {
-    let job = job_arg(job)?;
+) -> PyResult<Py<PyAny>> {
     let out = out
         .map(|o| {
             path_text(o).map(PathBuf::from).ok_or_else(|| {
@@ -133,13 +145,19 @@ pub fn plan(
             })
         })
         .transpose()?;
+    if let Some(seq) = sequence_arg(job)? {
+        let planned = detached(py, || plan_sequence_values(&seq, out.as_deref()))?;
+        return Ok(Py::new(py, planned)?.into_any());
+    }
+    let job = job_arg(job)?;
     let planned = detached(py, || plan_job_values(&job, out.as_deref()))?;
-    Ok(Plan {
+    let plan = Plan {
         summary: planned.summary,
         toolpath: planned.toolpath,
         gcode: planned.gcode,
         cl: planned.cl,
-    })
+    };
+    Ok(Py::new(py, plan)?.into_any())
 }
 
 /// A planned tool path: the program's moves (links included) as arrays, the passes,
@@ -254,7 +272,7 @@ impl Plan {
 }
 
 /// Writes `text` to the file `path`.
-fn write_text(path: &Bound<'_, PyAny>, text: Option<&str>, what: &str) -> PyResult<()> {
+pub(crate) fn write_text(path: &Bound<'_, PyAny>, text: Option<&str>, what: &str) -> PyResult<()> {
     let p = path_text(path)
         .ok_or_else(|| pyo3::exceptions::PyTypeError::new_err("path: expected a str or a path"))?;
     let Some(text) = text else {
