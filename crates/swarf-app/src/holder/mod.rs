@@ -245,6 +245,33 @@ pub(crate) struct PoseCheck {
     pub(crate) vertical: HolderReport,
 }
 
+impl PoseCheck {
+    /// The check of `poses` poses of `program` with `tool`, each collision placed
+    /// by `place` from its pose's tag.
+    pub(crate) fn into_check(
+        self,
+        program: String,
+        tool: &LibraryTool,
+        poses: usize,
+        place: impl Fn(usize, LineCollision) -> LineCollision,
+    ) -> HolderCheck {
+        HolderCheck {
+            program,
+            number: tool.number,
+            name: tool.name.clone(),
+            poses,
+            tilted: self.tilted,
+            collisions: self
+                .collisions
+                .into_iter()
+                .map(|(tag, c)| place(tag, c))
+                .collect(),
+            min_clearance: self.min_clearance,
+            vertical: self.vertical,
+        }
+    }
+}
+
 /// Checks the shank and holder of `tool` at `poses` (each with a tag) against
 /// `mesh`: vertical poses at once with the shortest stick-out, tilted ones one
 /// axis at a time (module doc).
@@ -318,23 +345,14 @@ pub fn check_program(
 ) -> Result<HolderCheck> {
     let poses = program_poses(program, spacing);
     let check = check_poses(mesh, &poses, tool)?;
-    Ok(HolderCheck {
-        program: program.source.clone(),
-        number: tool.number,
-        name: tool.name.clone(),
-        poses: poses.len(),
-        tilted: check.tilted,
-        collisions: check
-            .collisions
-            .into_iter()
-            .map(|(line, c)| LineCollision {
+    Ok(
+        check.into_check(program.source.clone(), tool, poses.len(), |line, c| {
+            LineCollision {
                 line: Some(line),
                 ..c
-            })
-            .collect(),
-        min_clearance: check.min_clearance,
-        vertical: check.vertical,
-    })
+            }
+        }),
+    )
 }
 
 /// Reads the part, the programs and the library of `req` and checks each tool

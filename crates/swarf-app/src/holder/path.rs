@@ -69,23 +69,12 @@ pub fn check_path(
         .map(|(i, (pose, _))| (*pose, i))
         .collect();
     let check = check_poses(mesh, &poses, tool)?;
-    Ok(HolderCheck {
-        program: name.to_string(),
-        number: tool.number,
-        name: tool.name.clone(),
-        poses: poses.len(),
-        tilted: check.tilted,
-        collisions: check
-            .collisions
-            .into_iter()
-            .map(|(i, c)| LineCollision {
-                pass: Some(tagged[i].1),
-                ..c
-            })
-            .collect(),
-        min_clearance: check.min_clearance,
-        vertical: check.vertical,
-    })
+    Ok(
+        check.into_check(name.to_string(), tool, poses.len(), |i, c| LineCollision {
+            pass: Some(tagged[i].1),
+            ..c
+        }),
+    )
 }
 
 /// The line of the first motion of the G-code `text` (read as `read` says) that
