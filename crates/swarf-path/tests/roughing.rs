@@ -6,7 +6,7 @@
 //! overload at their corners and links.
 
 use swarf_geom::Point3;
-use swarf_nc::read::{Motion, MotionKind};
+use swarf_nc::read::Motion;
 use swarf_path::Finish;
 use swarf_path::roughing::{RoughingParams, RoughingStock, plan};
 use swarf_sim::engagement::measure_engagement;
@@ -15,7 +15,6 @@ use swarf_sim::simulate::SimOptions;
 use swarf_sim::sweep::SimTool;
 use swarf_sim::{Dexel, Grid, StockInit};
 use swarf_tool::{Cutter, Pose};
-use swarf_toolpath::MoveKind;
 
 const STOCK_TOP: f64 = 21.0;
 
@@ -33,29 +32,6 @@ fn design(x: f64, y: f64) -> f64 {
     } else {
         20.0
     }
-}
-
-fn motions(moves: &[swarf_toolpath::Move]) -> Vec<Motion> {
-    let mut at = Pose::vertical(Point3::new(0.0, 0.0, 100.0));
-    moves
-        .iter()
-        .enumerate()
-        .map(|(k, m)| {
-            let kind = match m.kind {
-                MoveKind::Rapid => MotionKind::Rapid,
-                MoveKind::Feed => MotionKind::Linear,
-            };
-            let out = Motion {
-                kind,
-                start: at,
-                end: m.to,
-                feed: m.feed,
-                line: k + 1,
-            };
-            at = m.to;
-            out
-        })
-        .collect()
 }
 
 /// What one roughing run gave.
@@ -201,7 +177,7 @@ fn rough(case: &Case, adaptive: bool) -> Run {
     };
     let (plan, report) = plan(&mesh, &stock, &params).unwrap();
     let moves = plan.toolpath.moves();
-    let motions = motions(&moves);
+    let motions = Motion::of_moves(&moves, Pose::vertical(Point3::new(0.0, 0.0, 100.0)));
     let grid = Grid::covering(lo, hi, 0.2, 1 << 30).unwrap();
     let mut dexel = Dexel::new(grid, StockInit::Box { top }).unwrap();
     let sim_tool = SimTool::new(&tool).unwrap();

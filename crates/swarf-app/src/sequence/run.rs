@@ -14,7 +14,7 @@ use crate::plan::{PlanInput, plan};
 use crate::plan_job::part_arg;
 use std::path::Path;
 use swarf_geom::TriMesh;
-use swarf_nc::read::{GcodeReadOptions, Motion, MotionKind, Program, parse_gcode};
+use swarf_nc::read::{GcodeReadOptions, Motion, Program, parse_gcode};
 use swarf_path::roughing::{RoughingReport, RoughingStock, entry_moves, plan as plan_roughing};
 use swarf_path::{Plan, PlanReport, StrategyKind};
 use swarf_rest::{CleanupParams, Source, detect, plan_cleanup};
@@ -24,7 +24,7 @@ use swarf_sim::simulate_from;
 use swarf_sim::verify::program_stats;
 use swarf_sim::{Design, DesignSurface, Dexel, Grid, Quiet, SimOptions, SimTool, StockInit};
 use swarf_tool::library::LibraryTool;
-use swarf_toolpath::{Move, MoveKind, motion_stats};
+use swarf_toolpath::{Move, motion_stats};
 
 /// Checks the shank and holder of `tool` at every pose of `program` (every motion's
 /// end and every [`POSE_SPACING`] mm along it).
@@ -393,28 +393,11 @@ fn measure_roughing(
 ) -> Result<OperationReport> {
     let job = &op.job;
     let tool = SimTool::new(&job.tool)?;
-    let mut at = moves.first().map_or_else(
+    let start = moves.first().map_or_else(
         || swarf_tool::Pose::vertical(swarf_geom::Point3::origin()),
         |m| m.to,
     );
-    let motions: Vec<Motion> = moves
-        .iter()
-        .enumerate()
-        .map(|(k, m)| {
-            let motion = Motion {
-                kind: match m.kind {
-                    MoveKind::Rapid => MotionKind::Rapid,
-                    MoveKind::Feed => MotionKind::Linear,
-                },
-                start: at,
-                end: m.to,
-                feed: m.feed,
-                line: k + 1,
-            };
-            at = m.to;
-            motion
-        })
-        .collect();
+    let motions = Motion::of_moves(moves, start);
     let eng = measure_engagement(dexel, &tool, &motions, first, &sim_options(op), &Quiet)
         .without(&entry_moves(moves, rough));
     let limit = job.roughing_params().max_engagement.to_degrees();

@@ -128,6 +128,30 @@ pub struct Motion {
 }
 
 impl Motion {
+    /// The motions of a planned tool path's `moves`, straight from `start`: rapids
+    /// and straight feeds, move `k` on line `k + 1` (a program not yet written).
+    pub fn of_moves(moves: &[swarf_toolpath::Move], start: Pose) -> Vec<Motion> {
+        let mut at = start;
+        moves
+            .iter()
+            .enumerate()
+            .map(|(k, m)| {
+                let motion = Motion {
+                    kind: match m.kind {
+                        swarf_toolpath::MoveKind::Rapid => MotionKind::Rapid,
+                        swarf_toolpath::MoveKind::Feed => MotionKind::Linear,
+                    },
+                    start: at,
+                    end: m.to,
+                    feed: m.feed,
+                    line: k + 1,
+                };
+                at = m.to;
+                motion
+            })
+            .collect()
+    }
+
     /// The pose at parameter `t` (clamped to `[0, 1]`): `start` at 0, `end` at 1,
     /// uniform in arc angle on arcs and helices, uniform in distance on straight
     /// motions (see the module documentation for the exact formulas).

@@ -45,6 +45,12 @@ impl Cutter<'_> {
         at
     }
 
+    /// A leaf's ring: ramped into, which cuts it all round.
+    fn ring_entry<'r>(&mut self, lp: &'r Ring) -> OnLoop<'r> {
+        self.report.rings += 1;
+        self.ramp(lp)
+    }
+
     /// Cuts `lp` all round from `at`'s ring by a spread step, or `None` when it is
     /// out of reach (nothing pushed).
     fn ring_from<'r>(&mut self, at: &OnLoop<'_>, lp: &'r Ring) -> Option<OnLoop<'r>> {
@@ -121,14 +127,6 @@ pub(super) fn cut_level(
         }
     }
     cutter.flush();
-}
-
-impl Cutter<'_> {
-    /// A leaf's ring: ramped into, which cuts it all round.
-    fn ring_entry<'r>(&mut self, lp: &'r Ring) -> OnLoop<'r> {
-        self.report.rings += 1;
-        self.ramp(lp)
-    }
 }
 
 /// Cuts `lp` of region `i` in a pass of its own (module doc): from the nearest
