@@ -154,13 +154,27 @@ fn content_type(path: &Path) -> &'static str {
     }
 }
 
+/// Reads a request head up to its blank line (it may come in several pieces), the
+/// end of the stream, or [`MAX_REQUEST`] bytes, whichever is first.
+fn read_head(stream: &mut impl Read) -> std::io::Result<Vec<u8>> {
+    let mut head = Vec::new();
+    let mut piece = [0; 1024];
+    while head.len() < MAX_REQUEST && !head.windows(4).any(|w| w == b"\r\n\r\n") {
+        let n = stream.read(&mut piece)?;
+        if n == 0 {
+            break;
+        }
+        head.extend_from_slice(&piece[..n]);
+    }
+    Ok(head)
+}
+
 /// Answers one request.
 fn answer(root: &Path, mut stream: TcpStream) -> std::io::Result<()> {
     stream.set_nonblocking(false)?;
     stream.set_read_timeout(Some(Duration::from_secs(5)))?;
-    let mut head = vec![0; MAX_REQUEST];
-    let n = stream.read(&mut head)?;
-    let head = String::from_utf8_lossy(&head[..n]);
+    let head = read_head(&mut stream)?;
+    let head = String::from_utf8_lossy(&head);
     let target = head
         .lines()
         .next()
@@ -193,4 +207,36 @@ fn answer(root: &Path, mut stream: TcpStream) -> std::io::Result<()> {
         body.len()
     )?;
     stream.write_all(&body)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A stream that hands out its bytes a few at a time, as a socket may.
+    struct Pieces<'a>(&'a [u8]);
+
+    impl Read for Pieces<'_> {
+        fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+            let n = self.0.len().min(buf.len()).min(4);
+            buf[..n].copy_from_slice(&self.0[..n]);
+            self.0 = &self.0[n..];
+            Ok(n)
+        }
+    }
+
+    #[test]
+    fn a_request_head_in_pieces_is_read_whole() {
+        let request = b"GET /stock.glb HTTP/1.1\r\nHost: x\r\n\r\n";
+        let head = read_head(&mut Pieces(request)).unwrap();
+        assert_eq!(head, request);
+    }
+
+    #[test]
+    fn a_head_without_its_blank_line_stops_at_the_end_or_the_limit() {
+        assert_eq!(read_head(&mut Pieces(b"GET /")).unwrap(), b"GET /");
+        let endless = vec![b'a'; 3 * MAX_REQUEST];
+        let head = read_head(&mut Pieces(&endless)).unwrap();
+        assert!(head.len() >= MAX_REQUEST && head.len() < MAX_REQUEST + 4);
+    }
 }
