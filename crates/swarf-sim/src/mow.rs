@@ -9,9 +9,11 @@
 //! `F(0)` is the vertical deviation `dz`; where the machined surface runs parallel to
 //! the design, `F'(t) = -1 / N_z`, so the first-order root is `t1 = dz N_z` (exact for a
 //! uniform offset of a plane). Secant steps from `0` and `t1` refine it to
-//! [`MOW_RESIDUAL`]. Where the blade leaves the grid or meets a cell without material,
-//! or the iteration does not settle in [`MOW_STEPS`], the first-order value is kept and
-//! the cell is counted. On steep walls a vertical deviation overstates the error by
+//! [`MOW_RESIDUAL`], kept between two points that straddle the root once they are
+//! found (Illinois): at the foot of a wall the surface drops within one cell and a
+//! free secant step flies off. Where the blade leaves the grid or meets a cell
+//! without material, or the iteration does not settle in [`MOW_STEPS`], the
+//! first-order value is kept and the cell is counted. On steep walls a vertical deviation overstates the error by
 //! `1 / cos(slope)`; the normal deviation does not.
 
 use crate::grid::Grid;
@@ -75,7 +77,11 @@ pub fn normal_deviation(
     (out.into_iter().map(|(v, _)| v).collect(), fallback)
 }
 
-/// The blade from `p` along `n`: `(length, kept first order)`.
+/// The blade from `p` along `n`: `(length, kept first order)`. Secant steps from
+/// `0` and the first-order root until two points straddle the root; from then on
+/// the Illinois variant of regula falsi, which keeps the root between them (the
+/// machined surface has kinks, at cell centres and where a wall drops, on which a
+/// free secant step can fly off).
 fn blade(grid: &Grid, machined: &[f64], p: [f64; 3], n: [f64; 3], dz: f64) -> (f64, bool) {
     let first = dz * n[2];
     if dz.abs() <= MOW_RESIDUAL {
@@ -84,21 +90,28 @@ fn blade(grid: &Grid, machined: &[f64], p: [f64; 3], n: [f64; 3], dz: f64) -> (f
     let f = |t: f64| bilinear(grid, machined, p[0] + t * n[0], p[1] + t * n[1]) - (p[2] + t * n[2]);
     let (mut t0, mut f0) = (0.0, dz);
     let (mut t1, mut f1) = (first, f(first));
+    let mut straddled = false;
     for _ in 0..MOW_STEPS {
         if f1.is_nan() {
             return (first, true);
         }
-        if f1.abs() <= MOW_RESIDUAL {
+        if f1.abs() <= MOW_RESIDUAL || (straddled && (t1 - t0).abs() <= MOW_RESIDUAL) {
             return (t1, false);
         }
+        straddled = straddled || (f0 < 0.0) != (f1 < 0.0);
         let den = f1 - f0;
         if den == 0.0 {
             break;
         }
         let t2 = t1 - f1 * (t1 - t0) / den;
-        (t0, f0) = (t1, f1);
-        t1 = t2;
-        f1 = f(t1);
+        let f2 = f(t2);
+        if !straddled || (f2 < 0.0) != (f1 < 0.0) {
+            (t0, f0) = (t1, f1);
+        } else {
+            // The same side twice: halve the far end's value (Illinois).
+            f0 *= 0.5;
+        }
+        (t1, f1) = (t2, f2);
     }
     (first, true)
 }
@@ -155,5 +168,42 @@ mod tests {
             dev[k]
         );
         assert!(bilinear(&g, &machined, -1.0, 1.0).is_nan());
+    }
+
+    #[test]
+    fn a_blade_past_an_uncut_column_at_a_wall_foot_finds_its_root() {
+        // One column of cells left 17 mm high beside cut ones (a sliver at the foot
+        // of a wall): from its centre, a blade nearly horizontal (a fillet's top)
+        // leaves the column within one cell. The machined surface along the blade is
+        // the straight line between the centres (the heights vary with x only), so
+        // the root is that line's crossing with the blade, found here by bisection.
+        let g = Grid::covering([0.0, 0.0], [4.0, 1.0], 0.05, 1 << 20).unwrap();
+        let wall = 10;
+        let high = |i: usize| if i <= wall { 19.917 } else { 0.0 };
+        let design_z = 2.77;
+        let machined: Vec<f64> = (0..g.len()).map(|k| high(k % g.nx)).collect();
+        let design = vec![design_z; g.len()];
+        let (nx, nz) = (0.996f64, 0.0891f64);
+        let l = nx.hypot(nz);
+        let normals = vec![[(nx / l) as f32, 0.0, (nz / l) as f32]; g.len()];
+        let n = normals[0].map(f64::from);
+        let vertical: Vec<f64> = machined.iter().zip(&design).map(|(m, d)| m - d).collect();
+        let (dev, _) = normal_deviation(&g, &machined, &design, &normals, &vertical);
+        let k = 10 * g.nx + wall;
+        let x0 = g.x(wall);
+        // Along the blade x = x0 + t n_x: height 19.917 falling linearly to 0 over one cell.
+        let line = |t: f64| 19.917 * (1.0 - (t * n[0] / 0.05).clamp(0.0, 1.0));
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if line(mid) - (design_z + mid * n[2]) > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        assert!(x0 > 0.0);
+        assert!((dev[k] - lo).abs() < 1e-9, "{} against {lo}", dev[k]);
+        assert!(dev[k] < 0.05, "the blade leaves the column within a cell");
     }
 }
