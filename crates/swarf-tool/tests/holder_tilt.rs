@@ -7,7 +7,11 @@
 //! written as a closed-form solid.
 
 use swarf_geom::{Point3, TriMesh, Vec3};
-use swarf_tool::holder::tilted::{Tilt, TiltSearch, clearing_tilt, pose_clearance};
+use swarf_tool::drop::MeshDropper;
+use swarf_tool::holder::tilted::{
+    Tilt, TiltSearch, Views, clearing_tilt, pose_clearance, shortest_stick_out_posed,
+};
+use swarf_tool::holder::vertical::StickOut;
 use swarf_tool::holder::{Assembly, StackSegment};
 use swarf_tool::{Cutter, Pose};
 
@@ -155,4 +159,66 @@ fn tilting_away_from_the_wall_clears_the_holder() {
         clearing_tilt(&a, &mesh, &far, &Vec3::x(), &search).unwrap(),
         Tilt::Clear
     );
+}
+
+/// Whether the tool at (8, 0, 0), tilted by `t` away from the wall, meets it at
+/// stick-out `s` (closed form in the plane y = 0, where the pieces come nearest:
+/// along the axis `a = (sin t, 0, cos t)` at height `h`, the point `rho` toward the
+/// wall is `(8 + h sin t - rho cos t, h cos t + rho sin t)`, in the wall when
+/// `rho > lo(h) = (8 + h sin t) / cos t` and `rho < hi(h) = (60 - h cos t) / sin t`).
+/// The shank (radius 3 < 8) never reaches; the cone (radius `4 + 0.4 (h - s)` on
+/// `[s, s + 30]`) and the cylinder above it (31.5, extended up the axis) do when
+/// `lo` is below both their radius and `hi` somewhere: `lo` rises and `hi` falls
+/// with `h`, so at the lowest cylinder height, and at the cone's highest height
+/// below `h* = 60 cos t - 8 sin t` (where `lo = hi`).
+fn tilted_collides(t: f64, s: f64) -> bool {
+    let (sn, cs) = t.sin_cos();
+    let lo = |h: f64| (8.0 + h * sn) / cs;
+    let hi = |h: f64| (60.0 - h * cs) / sn;
+    let h_star = 60.0 * cs - 8.0 * sn;
+    let cylinder = s + 30.0 < h_star && lo(s + 30.0) < 31.5f64.min(hi(s + 30.0));
+    let top = (s + 30.0).min(h_star);
+    let cone = s < h_star && lo(top) < 4.0 + 0.4 * (top - s);
+    cylinder || cone
+}
+
+#[test]
+fn the_shortest_stick_out_covers_tilted_poses() {
+    let (a, mesh) = (assembly(), mesh());
+    let t = 5f64.to_radians();
+    let tilted = Pose::new(Point3::new(8.0, 0.0, 0.0), Vec3::new(t.sin(), 0.0, t.cos())).unwrap();
+    // A vertical pose far from the wall needs only the flute length.
+    let poses = [Pose::vertical(Point3::new(60.0, 0.0, 0.0)), tilted];
+    let dropper = MeshDropper::new(&mesh, &a.cutter);
+    let mut views = Views::new(&mesh);
+    let vertical = |v: &Vec3| v.x == 0.0 && v.y == 0.0;
+    let got = shortest_stick_out_posed(&a, &dropper, &mut views, &poses, vertical).unwrap();
+    // The oracle's shortest stick-out by bisection on the closed form.
+    let (mut lo, mut hi) = (12.0, 52.0);
+    assert!(tilted_collides(t, lo) && !tilted_collides(t, hi));
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if tilted_collides(t, mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    println!(
+        "tilted 5 degrees, 8 mm from the wall: shortest stick-out {got:?}, closed form {hi:.6}"
+    );
+    let StickOut::Clears { stick_out, pose } = got else {
+        panic!("{got:?}");
+    };
+    assert_eq!(pose, Some(1));
+    assert!((stick_out - hi).abs() < 1e-6, "{stick_out} vs {hi}");
+    // Vertical at the same place it needs 50 (the cone meets the wall top at 8 from
+    // the axis: 4 + 0.4 (60 - s) = 8).
+    let upright = [Pose::vertical(Point3::new(8.0, 0.0, 0.0)), tilted];
+    let got = shortest_stick_out_posed(&a, &dropper, &mut views, &upright, vertical).unwrap();
+    let StickOut::Clears { stick_out, pose } = got else {
+        panic!("{got:?}");
+    };
+    assert_eq!(pose, Some(0));
+    assert!((stick_out - 50.0).abs() < 1e-6, "{stick_out}");
 }

@@ -4,9 +4,9 @@
 //!
 //! Vertical poses go through [`check_vertical`], which also gives the shortest
 //! stick-out that clears them; tilted poses are checked one axis at a time
-//! ([`AxisView`], one re-laid grid per distinct axis) and add their collisions. The
-//! shortest stick-out covers the vertical poses only (a note says when there are
-//! tilted ones).
+//! ([`Views`], one re-laid grid per distinct axis) and add their collisions. With
+//! tilted poses the shortest stick-out is found over all of them, each in its own
+//! axis's frame ([`shortest_stick_out_posed`]).
 //!
 //! Without `--tool`, each tool section of a program (a program that changes tools
 //! is cut at its tool changes, [`Program::split_by_tool`]) takes the library tool of
@@ -20,13 +20,12 @@ use crate::error::{AppError, Result, bail};
 use crate::model::load_model;
 use crate::programs::{GcodeSetup, read_programs};
 use serde::Serialize;
-use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use swarf_geom::{Point3, TriMesh, Vec3};
 use swarf_nc::read::{MotionKind, Program};
 use swarf_tool::drop::MeshDropper;
 use swarf_tool::holder::PieceKind;
-use swarf_tool::holder::tilted::AxisView;
+use swarf_tool::holder::tilted::{Views, shortest_stick_out_posed};
 use swarf_tool::holder::vertical::{CONTACT_EPS, HolderReport, StickOut, check_vertical};
 use swarf_tool::library::{LibraryTool, ToolLibrary};
 
@@ -78,7 +77,10 @@ pub struct HolderCheck {
     pub collisions: Vec<LineCollision>,
     /// The least clearance over every pose, vertical and tilted, mm.
     pub min_clearance: Option<f64>,
-    /// The check of the vertical poses (shortest stick-out, least clearance).
+    /// The shortest stick-out that clears every pose, vertical and tilted.
+    pub shortest: StickOut,
+    /// The check of the vertical poses alone (their shortest stick-out and least
+    /// clearance).
     pub vertical: HolderReport,
 }
 
@@ -89,12 +91,12 @@ pub struct HolderSummary {
     pub stick_out: f64,
     /// Poses checked.
     pub poses: usize,
-    /// Of which tilted (checked at the library's stick-out only).
+    /// Of which tilted.
     pub tilted: usize,
     /// The least clearance of shank or holder over the part, mm.
     pub min_clearance: Option<f64>,
-    /// The shortest stick-out that clears the vertical poses (the flute length
-    /// when there are none).
+    /// The shortest stick-out that clears every pose (the flute length when no
+    /// holder piece is over the part).
     pub shortest: StickOut,
 }
 
@@ -242,6 +244,7 @@ pub(crate) struct PoseCheck {
     pub(crate) collisions: Vec<(usize, LineCollision)>,
     pub(crate) min_clearance: Option<f64>,
     pub(crate) tilted: usize,
+    pub(crate) shortest: StickOut,
     pub(crate) vertical: HolderReport,
 }
 
@@ -267,6 +270,7 @@ impl PoseCheck {
                 .map(|(tag, c)| place(tag, c))
                 .collect(),
             min_clearance: self.min_clearance,
+            shortest: self.shortest,
             vertical: self.vertical,
         }
     }
@@ -285,7 +289,8 @@ pub(crate) fn check_poses(
     let (vertical, tilted): (Vec<Sample>, Vec<Sample>) =
         poses.iter().partition(|p| is_vertical(&p.0.axis));
     let cls: Vec<Point3> = vertical.iter().map(|p| p.0.cl).collect();
-    let report = check_vertical(a, &MeshDropper::new(mesh, &a.cutter), &cls)?;
+    let dropper = MeshDropper::new(mesh, &a.cutter);
+    let report = check_vertical(a, &dropper, &cls)?;
     let collision =
         |pose: &swarf_tool::Pose, depth: f64, piece: PieceKind, contact: Point3| LineCollision {
             line: None,
@@ -305,17 +310,10 @@ pub(crate) fn check_poses(
         })
         .collect();
     let mut min_clearance = report.min_clearance.map(|(_, c)| c);
-    let mut views: HashMap<[u64; 3], AxisView> = HashMap::new();
+    let mut views = Views::new(mesh);
     for (pose, tag) in &tilted {
-        let key = [pose.axis.x, pose.axis.y, pose.axis.z].map(f64::to_bits);
-        let view = match views.entry(key) {
-            std::collections::hash_map::Entry::Occupied(e) => e.into_mut(),
-            std::collections::hash_map::Entry::Vacant(e) => {
-                let Some(view) = AxisView::new(mesh, &pose.axis, a) else {
-                    continue;
-                };
-                e.insert(view)
-            }
+        let Some(view) = views.along(&pose.axis, a) else {
+            continue;
         };
         if let Some(c) = view.clearance(a, &pose.cl)? {
             min_clearance = Some(min_clearance.map_or(c.clearance, |m| m.min(c.clearance)));
@@ -325,10 +323,17 @@ pub(crate) fn check_poses(
         }
     }
     collisions.sort_by_key(|c| c.0);
+    let shortest = if tilted.is_empty() {
+        report.shortest
+    } else {
+        let all: Vec<swarf_tool::Pose> = poses.iter().map(|p| p.0).collect();
+        shortest_stick_out_posed(a, &dropper, &mut views, &all, is_vertical)?
+    };
     Ok(PoseCheck {
         collisions,
         min_clearance,
         tilted: tilted.len(),
+        shortest,
         vertical: report,
     })
 }
@@ -402,7 +407,7 @@ impl HolderCheck {
             poses: self.poses,
             tilted: self.tilted,
             min_clearance: self.min_clearance,
-            shortest: self.vertical.shortest,
+            shortest: self.shortest,
         })
     }
 
@@ -430,7 +435,7 @@ impl HolderCheck {
                 );
             }
         }
-        s += &match a.shortest {
+        s += &match self.shortest {
             StickOut::Clears { stick_out, .. } => {
                 format!("\nholder: shortest stick-out that clears: {stick_out:.3} mm")
             }
@@ -450,13 +455,6 @@ impl HolderCheck {
                  {tool_length:.3} mm long"
             ),
         };
-        if self.tilted > 0 {
-            s += &format!(
-                "\nholder: note: {} tilted poses checked at the library's stick-out; the \
-                 shortest stick-out covers the vertical poses",
-                self.tilted
-            );
-        }
         s
     }
 }
@@ -502,11 +500,33 @@ holder = [{ d0 = 20, d1 = 32, length = 20 }, { d = 63, length = 30 }]
             }
         );
         let s = check.summary();
-        assert!(
-            s.contains("shortest stick-out that clears: 40.000 mm"),
-            "{s}"
+        // Over the tilted poses too. They lean toward the pocket's wall at x = 35:
+        // from one on, the shank's side, extended up its axis, meets the wall below
+        // the top (z = 40), so whatever stick-out holds the holder clear bares shank
+        // against the wall. Closed form at tilt t (axis x slope 0.02 k at sample k):
+        // the side of the radius 3 shank reaches x = 35 at h = (5 - 3 cos t) / sin t
+        // along the axis, at height h cos t - 3 sin t.
+        let StickOut::ShankCollides {
+            stick_out,
+            collision,
+        } = check.shortest
+        else {
+            panic!("{:?}", check.shortest);
+        };
+        let meets_wall = |k: usize| {
+            let t = (0.02 * k as f64).atan();
+            let h = (5.0 - 3.0 * t.cos()) / t.sin();
+            h * t.cos() - 3.0 * t.sin() < 40.0
+        };
+        let first = (1..=10).find(|&k| meets_wall(k)).unwrap();
+        println!(
+            "no stick-out clears: at {stick_out:.3} mm, pose {}",
+            collision.pose
         );
-        assert!(s.contains("10 tilted poses"), "{s}");
+        assert!(stick_out >= 40.0, "{stick_out}");
+        assert_eq!(collision.pose, first);
+        assert!(matches!(collision.piece, PieceKind::Shank(_)));
+        assert!(s.contains("no stick-out clears"), "{s}");
         let e = library_tools(&library, &[], 1).unwrap_err().to_string();
         assert!(e.contains("give --tool NAME|NUMBER"), "{e}");
     }

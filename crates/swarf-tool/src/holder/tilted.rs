@@ -8,7 +8,10 @@
 //! three axes the pieces are extended along the axis away from the tip (the spindle
 //! above the holder), so anything the tool would meet on its way in along the axis
 //! counts. One frame serves every pose with the same axis (3+2 work); a new axis
-//! re-lays the mesh's grid.
+//! re-lays the mesh's grid ([`Views`] keeps one per axis). Along its own axis a
+//! holder piece moves by exactly the change of stick-out, so the shortest stick-out
+//! that clears a pose is found in its frame as in three axes, and over a path of
+//! any axes it is the largest of the poses' ([`shortest_stick_out_posed`]).
 //!
 //! The tilt search turns the axis about the tool tip in the plane of the axis and a
 //! given direction, `a(t) = a cos t + d sin t` (`d` the direction's part normal to
@@ -18,10 +21,11 @@
 //! the step can be missed; the answer is the first clearing tilt on that grid.
 
 use super::Assembly;
-use super::vertical::{Clearance, Prepared};
+use super::vertical::{CONTACT_EPS, Clearance, Collision, Prepared, StickOut, shortest_from};
 use crate::drop::{DropScratch, MeshDropper};
 use crate::error::ToolError;
 use crate::pose::{Pose, reference_frame};
+use std::collections::HashMap;
 use swarf_geom::{Point3, TriMesh, Vec3};
 
 /// How the clearing tilt is searched (radians).
@@ -103,14 +107,91 @@ impl AxisView {
     ) -> Result<Option<Clearance>, ToolError> {
         let mut pieces = assembly.shank_pieces(assembly.stick_out)?;
         pieces.extend(assembly.holder_pieces(assembly.stick_out)?);
+        Ok(self.clearance_of(&Prepared::new(pieces), cl, &mut DropScratch::default()))
+    }
+
+    /// The clearance of `pieces` with the tool tip at `cl`, the contact in the
+    /// mesh's own frame.
+    fn clearance_of(
+        &self,
+        pieces: &Prepared,
+        cl: &Point3,
+        scratch: &mut DropScratch,
+    ) -> Option<Clearance> {
         let local = to_frame(&self.frame, cl);
-        let mut c =
-            Prepared::new(pieces).clearance(&self.dropper, &local, &mut DropScratch::default());
+        let mut c = pieces.clearance(&self.dropper, &local, scratch);
         if let Some(c) = &mut c {
             c.contact = from_frame(&self.frame, &c.contact);
         }
-        Ok(c)
+        c
     }
+}
+
+/// A mesh's views along the tool axes asked for, each laid out once.
+pub struct Views<'m> {
+    mesh: &'m TriMesh,
+    by_axis: HashMap<[u64; 3], Option<AxisView>>,
+}
+
+impl<'m> Views<'m> {
+    /// No view laid out yet.
+    pub fn new(mesh: &'m TriMesh) -> Views<'m> {
+        Views {
+            mesh,
+            by_axis: HashMap::new(),
+        }
+    }
+
+    /// The view along `axis` ([`AxisView::new`]).
+    pub fn along(&mut self, axis: &Vec3, assembly: &Assembly) -> Option<&AxisView> {
+        let key = [axis.x, axis.y, axis.z].map(f64::to_bits);
+        let mesh = self.mesh;
+        self.by_axis
+            .entry(key)
+            .or_insert_with(|| AxisView::new(mesh, axis, assembly))
+            .as_ref()
+    }
+}
+
+/// The shortest stick-out that clears every one of `poses`, whatever their axes
+/// ([`super::vertical`]'s rule in each pose's own frame: the holder's needs at
+/// every pose, then the shank bared to the largest): the poses `vertical` says are
+/// on `dropper` (the mesh as it is), the others in their views. Pose indices are
+/// into `poses`.
+///
+/// # Errors
+/// A shank or holder segment outside the domain of tools.
+pub fn shortest_stick_out_posed(
+    assembly: &Assembly,
+    dropper: &MeshDropper,
+    views: &mut Views<'_>,
+    poses: &[Pose],
+    vertical: impl Fn(&Vec3) -> bool,
+) -> Result<StickOut, ToolError> {
+    let mut scratch = DropScratch::default();
+    let mut at = |pieces: &Prepared, pose: &Pose, views: &mut Views<'_>| {
+        if vertical(&pose.axis) {
+            pieces.clearance(dropper, &pose.cl, &mut scratch)
+        } else {
+            views
+                .along(&pose.axis, assembly)?
+                .clearance_of(pieces, &pose.cl, &mut scratch)
+        }
+    };
+    let face_pieces = Prepared::new(assembly.holder_pieces(0.0)?);
+    let face: Vec<Option<Clearance>> = poses.iter().map(|p| at(&face_pieces, p, views)).collect();
+    shortest_from(assembly, &face, |shank| {
+        Ok(poses.iter().enumerate().find_map(|(i, p)| {
+            let c = at(shank, p, views)?;
+            (c.clearance < -CONTACT_EPS).then_some(Collision {
+                pose: i,
+                cl: p.cl,
+                depth: -c.clearance,
+                piece: c.piece,
+                contact: c.contact,
+            })
+        }))
+    })
 }
 
 fn to_frame(f: &[Vec3; 3], p: &Point3) -> Point3 {

@@ -204,6 +204,21 @@ pub fn shortest_stick_out(
     cls: &[Point3],
 ) -> Result<StickOut, ToolError> {
     let face = Prepared::new(assembly.holder_pieces(0.0)?).clearances(dropper, cls);
+    shortest_from(assembly, &face, |shank| {
+        Ok(collisions(cls, &shank.clearances(dropper, cls))
+            .first()
+            .copied())
+    })
+}
+
+/// The shortest stick-out from the holder's clearances at stick-out 0 at every pose
+/// (`face`; none where no holder piece is over the part), and `shank_collision`,
+/// the first collision of the shank pieces it is given (bared to that stick-out).
+pub(crate) fn shortest_from(
+    assembly: &Assembly,
+    face: &[Option<Clearance>],
+    shank_collision: impl FnOnce(&Prepared) -> Result<Option<Collision>, ToolError>,
+) -> Result<StickOut, ToolError> {
     let mut stick_out = assembly.cutter.length();
     let mut pose = None;
     for (i, c) in face.iter().enumerate() {
@@ -221,9 +236,9 @@ pub fn shortest_stick_out(
             tool_length,
         });
     }
-    let shank = Prepared::new(assembly.shank_pieces(stick_out)?).clearances(dropper, cls);
-    Ok(match collisions(cls, &shank).first() {
-        Some(&collision) => StickOut::ShankCollides {
+    let shank = Prepared::new(assembly.shank_pieces(stick_out)?);
+    Ok(match shank_collision(&shank)? {
+        Some(collision) => StickOut::ShankCollides {
             stick_out,
             collision,
         },
