@@ -89,8 +89,9 @@ impl<'a> IsoSetup<'a> {
                     .ok_or_else(|| PathError::InvalidParameter {
                         field: "strategy.stepover".into(),
                         message: format!(
-                            "expected 0 < stepover < tool diameter {} mm, found {step} mm",
-                            2.0 * params.finish.tool.radius()
+                            "expected 0 < stepover < tool diameter {} mm, found {} mm",
+                            2.0 * params.finish.tool.radius(),
+                            swarf_geom::domain::show(step)
                         ),
                     })?,
                 (None, None) => {

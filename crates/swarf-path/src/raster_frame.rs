@@ -57,7 +57,8 @@ impl Frame {
             return Err(PathError::InvalidParameter {
                 field: "strategy.stepover".into(),
                 message: format!(
-                    "{stepover} mm: expected a stepover > 0 and at most the tool diameter {} mm",
+                    "{} mm: expected a stepover > 0 and at most the tool diameter {} mm",
+                    swarf_geom::domain::show(stepover),
                     2.0 * radius
                 ),
             });

@@ -26,7 +26,7 @@ impl Job {
         {
             return Err(format!(
                 "import.trim_chord: {}: expected a chordal tolerance from {} to {} mm",
-                self.import.trim_chord,
+                swarf_geom::domain::show(self.import.trim_chord),
                 swarf_io::cad::MIN_TRIM_CHORD,
                 swarf_io::cad::MAX_TRIM_CHORD
             ));

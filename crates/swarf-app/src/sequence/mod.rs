@@ -62,6 +62,7 @@ use crate::job::Job;
 use crate::model::FaceRef;
 use serde::Deserialize;
 use std::path::Path;
+use swarf_geom::domain::show;
 use swarf_io::error::toml_message;
 use swarf_tool::library::ToolLibrary;
 
@@ -363,24 +364,27 @@ fn without_line(message: &str) -> &str {
 fn check_stock(s: &Stock) -> Result<(), String> {
     let cell_ok = s.cell.is_finite() && (0.01..=10.0).contains(&s.cell);
     if !cell_ok {
-        return Err(format!("stock.cell: {} mm: expected 0.01 to 10 mm", s.cell));
+        return Err(format!(
+            "stock.cell: {} mm: expected 0.01 to 10 mm",
+            show(s.cell)
+        ));
     }
     if !(s.tol.is_finite() && s.tol > 0.0 && s.tol <= 10.0) {
         return Err(format!(
             "stock.tol: {} mm: expected more than 0, at most 10 mm",
-            s.tol
+            show(s.tol)
         ));
     }
     if !(s.margin.is_finite() && (0.0..=1000.0).contains(&s.margin)) {
         return Err(format!(
             "stock.margin: {} mm: expected 0 to 1000 mm",
-            s.margin
+            show(s.margin)
         ));
     }
     if !(s.allowance.is_finite() && (0.0..=1000.0).contains(&s.allowance)) {
         return Err(format!(
             "stock.allowance: {} mm: expected 0 to 1000 mm",
-            s.allowance
+            show(s.allowance)
         ));
     }
     if let Some(top) = s.top

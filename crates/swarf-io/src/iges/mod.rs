@@ -101,7 +101,7 @@ pub fn parse_iges(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart
             "trim_chord",
             format!(
                 "{} mm: expected {MIN_TRIM_CHORD:e} to {MAX_TRIM_CHORD} mm",
-                opts.trim_chord
+                swarf_geom::domain::show(opts.trim_chord)
             ),
         ));
     }

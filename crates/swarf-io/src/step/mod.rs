@@ -80,7 +80,7 @@ pub fn parse_step(text: &str, source: &str, opts: &CadOptions) -> Result<CadPart
             At::File,
             format!(
                 "trim_chord {} mm: expected {MIN_TRIM_CHORD:e} to {MAX_TRIM_CHORD} mm",
-                opts.trim_chord
+                swarf_geom::domain::show(opts.trim_chord)
             ),
         ));
     }

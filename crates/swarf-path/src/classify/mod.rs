@@ -131,7 +131,10 @@ impl ClassifyParams {
         if !(self.cell.is_finite() && self.cell > 0.0) {
             return bad(
                 "classify.cell",
-                format!("{} mm: expected a finite cell size above 0", self.cell),
+                format!(
+                    "{} mm: expected a finite cell size above 0",
+                    swarf_geom::domain::show(self.cell)
+                ),
             );
         }
         if self.feed_angle.is_some_and(|a| !a.is_finite()) {

@@ -47,6 +47,7 @@ use crate::plan::{Plan, PlanReport};
 use crate::waterline::{Milling, Waterline, WaterlineParams};
 use cut::cut_level;
 use regions::{Region, Ring, link_parents};
+use swarf_geom::domain::show;
 use swarf_geom::{Point3, TriMesh};
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{Pass, PathPoint};
@@ -236,7 +237,7 @@ fn check(params: &RoughingParams, stock: &RoughingStock<'_>) -> Result<(), PathE
     if !(params.allowance.is_finite() && params.allowance >= 0.0 && params.allowance <= 100.0) {
         return Err(bad(
             "strategy.allowance",
-            format!("{} mm: expected 0 to 100 mm", params.allowance),
+            format!("{} mm: expected 0 to 100 mm", show(params.allowance)),
         ));
     }
     if !(params.step_down.is_finite() && params.step_down > 0.0 && params.step_down <= 1000.0) {
@@ -244,7 +245,7 @@ fn check(params: &RoughingParams, stock: &RoughingStock<'_>) -> Result<(), PathE
             "strategy.step_down",
             format!(
                 "{} mm: expected more than 0, at most 1000 mm",
-                params.step_down
+                show(params.step_down)
             ),
         ));
     }
@@ -267,7 +268,8 @@ fn check(params: &RoughingParams, stock: &RoughingStock<'_>) -> Result<(), PathE
         return Err(bad(
             "strategy.corner_radius",
             format!(
-                "{rho} mm: expected 0.05 to 100 tool radii ({} to {} mm)",
+                "{} mm: expected 0.05 to 100 tool radii ({} to {} mm)",
+                show(rho),
                 0.05 * r,
                 100.0 * r
             ),
@@ -412,5 +414,62 @@ pub(crate) fn pass_of(pts: &[[f64; 3]]) -> Pass {
     Pass {
         points,
         ..Pass::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bad_parameters_name_their_field_and_read_as_given() {
+        let material = |_: f64, _: f64| 10.0;
+        let stock = RoughingStock {
+            min: [0.0, 0.0],
+            max: [10.0, 10.0],
+            top: 10.0,
+            material: &material,
+        };
+        let params = RoughingParams::new(Finish::new(Cutter::flat(10.0, None).unwrap()));
+        assert!(check(&params, &stock).is_ok());
+        let message = |p: RoughingParams| check(&p, &stock).unwrap_err().to_string();
+        let e = message(RoughingParams {
+            step_down: 1e300,
+            ..params.clone()
+        });
+        assert!(
+            e.contains("strategy.step_down") && e.contains("1e300 mm"),
+            "{e}"
+        );
+        let e = message(RoughingParams {
+            max_engagement: 95f64.to_radians(),
+            ..params.clone()
+        });
+        assert!(
+            e.contains("strategy.max_engagement") && e.contains("95 degrees"),
+            "{e}"
+        );
+        let e = message(RoughingParams {
+            corner_radius: Some(0.1),
+            ..params.clone()
+        });
+        assert!(
+            e.contains("strategy.corner_radius") && e.contains("0.25 to 500 mm"),
+            "{e}"
+        );
+        let e = message(RoughingParams {
+            ramp_angle: f64::NAN,
+            ..params.clone()
+        });
+        assert!(
+            e.contains("strategy.ramp_angle") && e.contains("NaN degrees"),
+            "{e}"
+        );
+        let flat = RoughingStock {
+            max: [0.0, 10.0],
+            ..stock
+        };
+        let e = check(&params, &flat).unwrap_err().to_string();
+        assert!(e.contains("stock") && e.contains("min below max"), "{e}");
     }
 }
