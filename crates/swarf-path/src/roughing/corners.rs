@@ -31,7 +31,7 @@
 
 use super::regions::Ring;
 use geo::algorithm::buffer::{BufferStyle, LineJoin};
-use geo::{Area, BooleanOps, Buffer, LineString, MultiPolygon, Polygon};
+use geo::{Area, BooleanOps, Buffer, LineString, MultiPolygon, Polygon, Simplify};
 
 /// Angle step of the buffers' round joins, radians (arc sag `rho (1 - cos 0.025)`,
 /// 3e-4 of the radius).
@@ -42,6 +42,9 @@ pub(crate) const HALVINGS: u32 = 4;
 /// angle `a` loses `r² (cot(a/2) - (π - a)/2)`, 0.21 for a right angle, 0.69 for 60
 /// degrees; more is a channel the tool fits in, which opening would leave uncut.
 const CORNER_LOSS: f64 = 0.75;
+/// Tolerance of the channels' outline, in radii, for the neighbourhood round
+/// them ([`with_channels`]).
+const NEAR_SIMPLIFY: f64 = 0.01;
 /// Half of the sharpest corner angle whose engagement is held (a right angle).
 const HALF_CORNER: f64 = std::f64::consts::FRAC_PI_4;
 
@@ -98,8 +101,15 @@ fn with_channels(region: &Polygon, grown: MultiPolygon, r: f64, halvings: u32) -
     if channels.is_empty() {
         return grown;
     }
-    // The channels and a radius round them (where they join the rest).
-    let near = MultiPolygon::new(channels.iter().flat_map(|c| offset(c, r)).collect());
+    // The channels and a radius round them (where they join the rest). Only a
+    // neighbourhood, cut from the region opened finer: simplified first, as the
+    // lost slivers' many tiny edges would each get a round join.
+    let near = MultiPolygon::new(
+        channels
+            .iter()
+            .flat_map(|c| offset(&c.simplify(NEAR_SIMPLIFY * r), r))
+            .collect(),
+    );
     let finer = match (halvings > 0).then(|| open(region, r / 2.0)).flatten() {
         Some(f) => with_channels(region, f, r / 2.0, halvings - 1),
         None => whole,
