@@ -81,7 +81,7 @@ pub fn plan(part: &Part, params: &IsoParams) -> Result<Plan, PathError> {
             field: "strategy.angle".into(),
             message: format!(
                 "expected a finite angle in degrees, found {}",
-                crate::params::degrees(params.angle)
+                crate::params::shown_degrees(params.angle)
             ),
         });
     }
@@ -96,7 +96,7 @@ pub fn plan(part: &Part, params: &IsoParams) -> Result<Plan, PathError> {
     if rows.iter().all(|r| r.is_empty()) {
         return Err(PathError::NoPath(format!(
             "no drive plane at {} degrees meets a reachable point of part {:?}",
-            crate::params::degrees(params.angle),
+            crate::params::shown_degrees(params.angle),
             part.name
         )));
     }

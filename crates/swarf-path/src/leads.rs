@@ -61,7 +61,7 @@ impl Leads {
                 field: "linking.ramp_angle".into(),
                 message: format!(
                     "{} degrees: expected 0.5 to 60 degrees",
-                    crate::params::degrees(a)
+                    crate::params::shown_degrees(a)
                 ),
             });
         }

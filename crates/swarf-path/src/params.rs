@@ -163,9 +163,13 @@ impl RasterParams {
     }
 }
 
-/// An angle in radians as the degrees a user gave, for messages
-/// ([`display_degrees`]: a plane at 60 degrees reads 60 again after the conversion
-/// to radians; [`show`]: no hundreds of digits for an absurd value).
-pub fn degrees(angle: f64) -> String {
-    show(display_degrees(angle.to_degrees(), angle, f64::to_radians))
+/// An angle in radians as the degrees a user gave ([`display_degrees`]: a plane at
+/// 60 degrees reads 60 again in messages after the conversion to radians).
+pub fn degrees(angle: f64) -> f64 {
+    display_degrees(angle.to_degrees(), angle, f64::to_radians)
+}
+
+/// [`degrees`] for a message ([`show`]: no hundreds of digits for an absurd value).
+pub fn shown_degrees(angle: f64) -> String {
+    show(degrees(angle))
 }

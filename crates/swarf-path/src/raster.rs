@@ -159,7 +159,7 @@ fn ramp_slope(params: &RasterParams) -> Result<Option<f64>, PathError> {
             field: "strategy.max_ramp".into(),
             message: format!(
                 "{} degrees: expected an angle between 0 and 90 degrees",
-                crate::params::degrees(a)
+                crate::params::shown_degrees(a)
             ),
         }),
     }

@@ -55,7 +55,7 @@
 //! holds the scallop to about `1e-5 h` in the tests).
 
 use crate::error::PathError;
-use crate::params::degrees;
+use crate::params::shown_degrees;
 use crate::side_step::{self, SideStep, ball_step, check_scallop};
 use std::f64::consts::FRAC_PI_2;
 use swarf_tool::Cutter;
@@ -222,7 +222,7 @@ pub fn check_slope(field: &str, slope: f64) -> Result<(), PathError> {
         field: field.into(),
         message: format!(
             "{} degrees: expected a slope between 0 and 90 degrees",
-            degrees(slope)
+            shown_degrees(slope)
         ),
     })
 }

@@ -40,7 +40,7 @@ mod board;
 mod regions;
 
 use crate::error::PathError;
-use crate::params::degrees;
+use crate::params::shown_degrees;
 use geo::MultiPolygon;
 use rayon::prelude::*;
 use swarf_geom::{TriMesh, Vec3};
@@ -104,7 +104,7 @@ impl ClassifyParams {
                 "classify.steep_angle",
                 format!(
                     "{} degrees: expected an angle above 0 and at most 90 degrees",
-                    degrees(self.steep_angle)
+                    shown_degrees(self.steep_angle)
                 ),
             );
         }
@@ -113,7 +113,7 @@ impl ClassifyParams {
                 "classify.flat_angle",
                 format!(
                     "{} degrees: expected an angle of at least 0 and below 90 degrees",
-                    degrees(self.flat_angle)
+                    shown_degrees(self.flat_angle)
                 ),
             );
         }
@@ -123,8 +123,8 @@ impl ClassifyParams {
                 format!(
                     "{} degrees is not above classify.flat_angle = {} degrees: expected \
                      the steep angle above the flat angle",
-                    degrees(self.steep_angle),
-                    degrees(self.flat_angle)
+                    shown_degrees(self.steep_angle),
+                    shown_degrees(self.flat_angle)
                 ),
             );
         }

@@ -249,7 +249,7 @@ fn check(params: &RoughingParams, stock: &RoughingStock<'_>) -> Result<(), PathE
             ),
         ));
     }
-    let deg = crate::params::degrees;
+    let deg = crate::params::shown_degrees;
     if !(params.max_engagement >= 1f64.to_radians()
         && params.max_engagement <= std::f64::consts::FRAC_PI_2)
     {

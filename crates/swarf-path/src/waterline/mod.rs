@@ -239,7 +239,7 @@ fn check_angles(params: &WaterlineParams) -> Result<(), PathError> {
                 field: field.into(),
                 message: format!(
                     "{} degrees: expected an angle between 0 and 90 degrees",
-                    crate::params::degrees(a)
+                    crate::params::shown_degrees(a)
                 ),
             });
         }
@@ -250,8 +250,8 @@ fn check_angles(params: &WaterlineParams) -> Result<(), PathError> {
             message: format!(
                 "{} degrees is not above strategy.flat_angle ({} degrees): expected \
                  flat_angle < steep_angle",
-                crate::params::degrees(params.steep_angle),
-                crate::params::degrees(params.flat_angle)
+                crate::params::shown_degrees(params.steep_angle),
+                crate::params::shown_degrees(params.flat_angle)
             ),
         });
     }
