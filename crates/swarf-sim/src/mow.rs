@@ -13,8 +13,8 @@
 //! found (Illinois): at the foot of a wall the surface drops within one cell and a
 //! free secant step flies off. Where the blade leaves the grid or meets a cell
 //! without material, or the iteration does not settle in [`MOW_STEPS`], the
-//! first-order value is kept and the cell is counted. On steep walls a vertical deviation overstates the error by
-//! `1 / cos(slope)`; the normal deviation does not.
+//! first-order value is kept and the cell is counted. On steep walls a vertical
+//! deviation overstates the error by `1 / cos(slope)`; the normal deviation does not.
 
 use crate::grid::Grid;
 use rayon::prelude::*;

@@ -21,7 +21,7 @@
 //! the step can be missed; the answer is the first clearing tilt on that grid.
 
 use super::Assembly;
-use super::vertical::{CONTACT_EPS, Clearance, Collision, Prepared, StickOut, shortest_from};
+use super::vertical::{Clearance, Prepared, StickOut, collisions, shortest_from};
 use crate::drop::{DropScratch, MeshDropper};
 use crate::error::ToolError;
 use crate::pose::{Pose, reference_frame};
@@ -181,16 +181,9 @@ pub fn shortest_stick_out_posed(
     let face_pieces = Prepared::new(assembly.holder_pieces(0.0)?);
     let face: Vec<Option<Clearance>> = poses.iter().map(|p| at(&face_pieces, p, views)).collect();
     shortest_from(assembly, &face, |shank| {
-        Ok(poses.iter().enumerate().find_map(|(i, p)| {
-            let c = at(shank, p, views)?;
-            (c.clearance < -CONTACT_EPS).then_some(Collision {
-                pose: i,
-                cl: p.cl,
-                depth: -c.clearance,
-                piece: c.piece,
-                contact: c.contact,
-            })
-        }))
+        let clear: Vec<Option<Clearance>> = poses.iter().map(|p| at(shank, p, views)).collect();
+        let cls: Vec<Point3> = poses.iter().map(|p| p.cl).collect();
+        Ok(collisions(&cls, &clear).first().copied())
     })
 }
 

@@ -146,7 +146,8 @@ impl Prepared {
     }
 }
 
-fn collisions(cls: &[Point3], clear: &[Option<Clearance>]) -> Vec<Collision> {
+/// The poses of `cls` whose clearance `clear` is a collision.
+pub(crate) fn collisions(cls: &[Point3], clear: &[Option<Clearance>]) -> Vec<Collision> {
     cls.iter()
         .zip(clear)
         .enumerate()
