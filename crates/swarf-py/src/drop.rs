@@ -20,7 +20,7 @@ pub const FEATURES: [&str; 7] = [
 ];
 
 /// The code of a feature in [`FEATURES`].
-fn feature_code(f: Feature) -> i8 {
+pub(crate) fn feature_code(f: Feature) -> i8 {
     match f {
         Feature::Vertex(k) => k as i8,
         Feature::Edge(k) => 3 + k as i8,
@@ -52,7 +52,7 @@ fn mesh_model(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<Arc<Model>> {
 }
 
 /// Checks a `threads` argument (1 to 1024; None: one per core).
-fn threads_arg(threads: Option<usize>) -> PyResult<Option<usize>> {
+pub(crate) fn threads_arg(threads: Option<usize>) -> PyResult<Option<usize>> {
     if let Some(n) = threads {
         swarf_geom::domain::THREADS
             .check_named("threads", n as f64)

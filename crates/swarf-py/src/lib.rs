@@ -19,7 +19,9 @@
 //! - [`sequence`]: sequence jobs (stock to part, several tools) planned into their
 //!   report, program and rest cells (`swarf plan` of a sequence);
 //! - [`verify`]: the report and the deviation grid (`swarf verify`);
-//! - [`rest`]: rest regions as polygons (`swarf rest`).
+//! - [`rest`]: rest regions as polygons (`swarf rest`);
+//! - [`ocl`]: the native half of `swarf.ocl`, the OpenCAMLib-compatible layer
+//!   (waterline levels, single-triangle drops).
 //!
 //! Units: mm and radians inside, degrees where the job file and the command line
 //! take degrees.
@@ -29,6 +31,7 @@ pub mod drop;
 pub mod errors;
 pub mod job;
 pub mod model;
+pub mod ocl;
 pub mod plan;
 pub mod rest;
 pub mod sequence;
@@ -64,5 +67,7 @@ fn _swarf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(plan::raster, m)?)?;
     m.add_function(wrap_pyfunction!(verify::verify, m)?)?;
     m.add_function(wrap_pyfunction!(rest::rest, m)?)?;
+    m.add_class::<ocl::OclWaterline>()?;
+    m.add_function(wrap_pyfunction!(ocl::triangle_drop_at, m)?)?;
     Ok(())
 }

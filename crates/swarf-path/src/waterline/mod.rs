@@ -37,6 +37,7 @@ use contour::{Loop, level_loops};
 use field::DropField;
 use probe::Probe;
 use serde::{Deserialize, Serialize};
+use std::borrow::Cow;
 use swarf_geom::TriMesh;
 use swarf_tool::drop::MeshDropper;
 use swarf_toolpath::PathPoint;
@@ -110,9 +111,10 @@ pub struct LevelContour {
     pub loops: Vec<Vec<PathPoint>>,
 }
 
-/// A mesh prepared for waterline contours of one cutter.
+/// A mesh prepared for waterline contours of one cutter (borrowing the mesh, or
+/// owning it: [`Waterline::owned`]).
 pub struct Waterline<'a> {
-    mesh: &'a TriMesh,
+    mesh: Cow<'a, TriMesh>,
     dropper: MeshDropper,
     field: DropField,
     tolerance: f64,
@@ -126,17 +128,30 @@ impl<'a> Waterline<'a> {
     /// [`PathError::InvalidParameter`] for a sampling that is not positive or makes
     /// too large a grid, or a tolerance that is not positive.
     pub fn new(mesh: &'a TriMesh, params: &WaterlineParams) -> Result<Waterline<'a>, PathError> {
+        Waterline::build(Cow::Borrowed(mesh), params)
+    }
+
+    /// As [`Waterline::new`], owning `mesh`: for callers that keep the waterline
+    /// longer than they could lend the mesh (the Python layer's objects).
+    ///
+    /// # Errors
+    /// As [`Waterline::new`].
+    pub fn owned(mesh: TriMesh, params: &WaterlineParams) -> Result<Waterline<'static>, PathError> {
+        Waterline::build(Cow::Owned(mesh), params)
+    }
+
+    fn build(mesh: Cow<'a, TriMesh>, params: &WaterlineParams) -> Result<Waterline<'a>, PathError> {
         let tool = &params.finish.tool;
         let sampling = params.sampling.unwrap_or(0.25 * tool.radius());
         positive("strategy.sampling", sampling)?;
         positive("strategy.tolerance", params.finish.tolerance)?;
-        let dropper = MeshDropper::new(mesh, tool);
+        let dropper = MeshDropper::new(&mesh, tool);
         if dropper.is_empty() {
             return Err(PathError::NoPath(
                 "waterline: the mesh has no triangle with finite corners".into(),
             ));
         }
-        let field = DropField::sample(mesh, &dropper, tool.radius(), sampling)?;
+        let field = DropField::sample(&mesh, &dropper, tool.radius(), sampling)?;
         Ok(Waterline {
             mesh,
             dropper,
@@ -162,7 +177,7 @@ impl<'a> Waterline<'a> {
             .map(|lp| {
                 let mut pts: Vec<PathPoint> = lp
                     .iter()
-                    .map(|p| drop_point(self.mesh, p.xy, z, &p.hit))
+                    .map(|p| drop_point(&self.mesh, p.xy, z, &p.hit))
                     .collect();
                 if direction == Milling::Conventional {
                     pts.reverse();

@@ -39,10 +39,17 @@ pub fn drop_points_threads(
     points: &[[f64; 2]],
     threads: Option<usize>,
 ) -> (Vec<Option<DropResult>>, usize) {
+    with_threads(threads, || drop_points(dropper, points))
+}
+
+/// Runs `f` on a pool of `threads` workers (`None` or 0: the current pool, one worker
+/// per core or `RAYON_NUM_THREADS`), and returns its result and the number of
+/// workers. Falls back to the current pool if a new one cannot be made.
+pub fn with_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> (T, usize) {
     if let Some(n) = threads.filter(|&n| n > 0)
         && let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(n).build()
     {
-        return (pool.install(|| drop_points(dropper, points)), n);
+        return (pool.install(f), n);
     }
-    (drop_points(dropper, points), rayon::current_num_threads())
+    (f(), rayon::current_num_threads())
 }

@@ -30,7 +30,7 @@ pub mod grid;
 pub mod kernel;
 pub mod mesh;
 
-pub use batch::{drop_points, drop_points_threads};
+pub use batch::{drop_points, drop_points_threads, with_threads};
 pub use envelope::Envelope;
 pub use kernel::{edge_drop, facet_drop, triangle_drop, triangle_drop_above, vertex_drop};
 pub use mesh::{DropResult, DropScratch, MeshDropper, TopContacts};

@@ -1,0 +1,118 @@
+"""Meshes the OpenCAMLib comparisons generate, as ``(M, 3, 3)`` float64 arrays of
+triangle corners (counter-clockwise seen from above), and the ways to hand them to
+either library.
+
+- ``mold``: a height field with a pocket, a boss in it and a gentle wave outside,
+  the shape of a mold cavity (40 x 30 mm);
+- ``die``: swarf's built-in die, tessellated;
+- ``vgroove``: an open V-groove, two planes at 30 degrees meeting along X (the mesh
+  ends at its borders: a cutter there falls off its edges);
+- ``hole``: a flat plate with a square hole through it (no walls: a small cutter
+  falls through, a large one bridges it);
+- ``closed_mold``: ``mold`` closed by four walls and a bottom, a solid for FreeCAD.
+"""
+
+import struct
+
+import numpy as np
+
+import swarf
+
+
+def grid_surface(xs, ys, f):
+    """The triangles of ``z = f(x, y)`` over the grid ``xs`` x ``ys`` (two per cell)."""
+    X, Y = np.meshgrid(xs, ys)
+    Z = f(X, Y)
+    P = np.stack([X, Y, Z], axis=-1)
+    a, b, c, d = P[:-1, :-1], P[:-1, 1:], P[1:, 1:], P[1:, :-1]
+    t1 = np.stack([a, b, c], axis=-2).reshape(-1, 3, 3)
+    t2 = np.stack([a, c, d], axis=-2).reshape(-1, 3, 3)
+    return np.concatenate([t1, t2])
+
+
+def mold_height(x, y):
+    """The mold's height: 10 mm, a pocket 6 mm deep with a boss, a wave outside."""
+    r = np.hypot((x - 20) / 12, (y - 15) / 8)
+    pocket = 6 * np.clip(1.6 - 1.6 * r, 0, 1) ** 0.7
+    boss = 3.5 * np.exp(-((x - 22) ** 2 + (y - 14) ** 2) / 4)
+    return 10 + 0.6 * np.sin(x / 3) * np.cos(y / 4) - pocket + boss
+
+
+def mold(step=1.0):
+    """The mold height field, 40 x 30 mm, ``step`` mm cells."""
+    return grid_surface(np.arange(0, 40 + 1e-9, step), np.arange(0, 30 + 1e-9, step), mold_height)
+
+
+def die(tol=0.05):
+    """swarf's built-in die tessellated within ``tol`` mm."""
+    m = swarf.Part.load("builtin:die").tessellate(tol)
+    return m.vertices[m.faces]
+
+
+def vgroove():
+    """An open V-groove along X: ``z = 10 + |y| tan(30 deg)`` for |y| <= 8, x in [0, 25]."""
+    k = np.tan(np.radians(30))
+    return grid_surface(np.linspace(0, 25, 6), np.linspace(-8, 8, 5), lambda x, y: 10 + np.abs(y) * k)
+
+
+def hole():
+    """A plate at z = 5 over [0, 30]^2 with the square hole [11, 19]^2 through it."""
+    xs = np.array([0.0, 11.0, 19.0, 30.0])
+    tris = grid_surface(xs, xs, lambda x, y: 5 + 0 * x)
+    centre = tris[:, :, :2].mean(axis=1)
+    inside = (np.abs(centre - 15) < 4).all(axis=1)
+    return tris[~inside]
+
+
+def closed_mold(step=1.25):
+    """The mold closed by walls down to z = 0 and a bottom: a watertight solid."""
+    xs, ys = np.arange(0, 40 + 1e-9, step), np.arange(0, 30 + 1e-9, step)
+    top = grid_surface(xs, ys, mold_height)
+    X0, X1, Y0, Y1 = xs[0], xs[-1], ys[0], ys[-1]
+    rim = (
+        [(x, Y0) for x in xs]
+        + [(X1, y) for y in ys[1:]]
+        + [(x, Y1) for x in xs[::-1][1:]]
+        + [(X0, y) for y in ys[::-1][1:]]
+    )
+    walls = []
+    for (x0, y0), (x1, y1) in zip(rim[:-1], rim[1:]):
+        p = (x0, y0, float(mold_height(x0, y0)))
+        q = (x1, y1, float(mold_height(x1, y1)))
+        walls += [(p, (x0, y0, 0.0), (x1, y1, 0.0)), (p, (x1, y1, 0.0), q)]
+    bottom = [((X0, Y0, 0), (X1, Y1, 0), (X1, Y0, 0)), ((X0, Y0, 0), (X0, Y1, 0), (X1, Y1, 0))]
+    return np.concatenate([top, np.array(walls, dtype=float), np.array(bottom, dtype=float)])
+
+
+MESHES = {"mold": mold, "die": die, "vgroove": vgroove, "hole": hole}
+
+
+def write_binary_stl(path, tris, header=b"swarf test mesh"):
+    """Writes ``tris`` as a binary STL (normals zero) with the given 80-byte header."""
+    with open(path, "wb") as f:
+        f.write(header.ljust(80, b" ")[:80])
+        f.write(struct.pack("<I", len(tris)))
+        for t in np.asarray(tris, dtype=np.float32):
+            f.write(struct.pack("<3f", 0, 0, 0))
+            f.write(t.tobytes())
+            f.write(b"\0\0")
+
+
+def write_ascii_stl(path, tris):
+    """Writes ``tris`` as an ASCII STL, nine significant digits."""
+    with open(path, "w") as f:
+        f.write("solid test\n")
+        for t in tris:
+            f.write("facet normal 0 0 0\nouter loop\n")
+            for p in t:
+                f.write("vertex %.9g %.9g %.9g\n" % tuple(p))
+            f.write("endloop\nendfacet\n")
+        f.write("endsolid test\n")
+
+
+def surface(lib, tris):
+    """An ``STLSurf`` of ``lib`` (``opencamlib.ocl`` or ``swarf.ocl``) holding ``tris``."""
+    s = lib.STLSurf()
+    for a, b, c in np.asarray(tris, dtype=np.float64).tolist():
+        s.addTriangle(lib.Triangle(lib.Point(*a), lib.Point(*b), lib.Point(*c)))
+    return s
