@@ -84,7 +84,7 @@ def main():
     ops = [
         ("surface_line", PathSurface.Create("surface_line"), {"CutPattern": "Line"}),
         ("surface_zigzag", PathSurface.Create("surface_zigzag"), {"CutPattern": "ZigZag"}),
-        ("waterline", PathWaterline.Create("waterline"), {"Algorithm": "OCL Dropcutter"}),
+        ("waterline", PathWaterline.Create("waterline"), {"Algorithm": "OCL Dropcutter", "LayerMode": "Multi-pass", "BoundBox": "Stock"}),
     ]
     ball = tool_controller(doc, job, "6mm_Ball_End.fctb", 2)
     tools = {"surface_line": ball, "surface_zigzag": flat, "waterline": ball}

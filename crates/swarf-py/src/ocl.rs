@@ -7,7 +7,7 @@
 //!   height, every loop point found by root finding on it). The drop field is sampled
 //!   once when the object is made and serves every level, so OpenCAMLib's pattern of
 //!   `setZ`, `run`, `getLoops` per level pays for a level's contour only.
-//! - [`triangle_drop`]: the vertex, edge or facet drop onto one triangle, or the
+//! - [`triangle_drop_at`]: the vertex, edge or facet drop onto one triangle, or the
 //!   whole triangle's ([`swarf_tool::drop::kernel`]), which OpenCAMLib's
 //!   `MillingCutter.vertexDrop`, `edgeDrop`, `facetDrop` and `dropCutter` are.
 //!
@@ -119,12 +119,12 @@ pub fn triangle_drop_at(
         )));
     }
     let t = tri.map(|[a, b, c]| Point3::new(a, b, c));
-    Ok(triangle_drop(&cutter, [x, y], &t, kind)?
+    Ok(case_drop(&cutter, [x, y], &t, kind)?
         .map(|c| (c.z, (c.cc.x, c.cc.y, c.cc.z), feature_code(c.feature))))
 }
 
 /// The highest contact of one drop case ([`triangle_drop_at`]).
-fn triangle_drop(
+fn case_drop(
     cutter: &swarf_tool::Cutter,
     xy: [f64; 2],
     t: &[Point3; 3],
@@ -143,7 +143,7 @@ fn triangle_drop(
         "vertex" => Ok(best([0, 1, 2].map(|k| vertex_drop(&tool, xy, t, k)))),
         "edge" => Ok(best([0, 1, 2].map(|k| edge_drop(&tool, xy, t, k)))),
         "facet" => Ok(facet_drop(&tool, xy, t)),
-        "all" => Ok(swarf_tool::drop::triangle_drop(&tool, xy, t)),
+        "all" => Ok(triangle_drop(&tool, xy, t)),
         _ => Err(value_err(format!(
             "kind: {kind:?}: expected \"vertex\", \"edge\", \"facet\" or \"all\""
         ))),

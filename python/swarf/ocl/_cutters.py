@@ -166,8 +166,6 @@ class BallCutter(MillingCutter):
         d, length = _length(call, "diameter", diameter), _length(call, "length", length)
         self._setup(_swarf.Tool(shape="ball", d=d), d, length)
 
-    _TYPES = (CCType.VERTEX, CCType.EDGE_BALL, CCType.FACET)
-
     def offsetCutter(self, d):
         return BallCutter(self._d + 2 * d, self._length + d)
 
@@ -211,11 +209,12 @@ class ConeCutter(MillingCutter):
         self._setup(_swarf.Tool(shape="cone", d=d, angle=math.degrees(2 * a)), d, d / 2.0 / math.tan(a) + extra)
 
     def _cc_types(self, codes, cc, cl):
+        """A cone touches a facet with its tip (``FACET_TIP``) or its rim
+        (``FACET_CYL``)."""
         kinds = _kinds(codes)
         rim = np.hypot(cc[:, 0] - cl[:, 0], cc[:, 1] - cl[:, 1]) >= 0.5 * self._d * (1 - 1e-9)
         facet = np.where(rim, int(CCType.FACET_CYL), int(CCType.FACET_TIP))
-        edge = np.where(rim, int(CCType.EDGE_CONE_BASE), int(CCType.EDGE_CONE))
-        return np.select([kinds == _FACET, kinds == _EDGE], [facet, edge], int(CCType.VERTEX))
+        return np.where(kinds == _FACET, facet, super()._cc_types(codes, cc, cl))
 
     def offsetCutter(self, d):
         return BallConeCutter(2 * d, self._d + 2 * d, self._angle)

@@ -327,6 +327,10 @@ class AdaptivePathDropCutter(_PathOperation):
             a, b, c = all_xyz[lo], md.xyz, all_xyz[hi]
             fw = np.sqrt((c[:, 0] - a[:, 0]) ** 2 + (c[:, 1] - a[:, 1]) ** 2)
             split = (fw > self._sampling) | (~self._flat(a, b, c) & (fw > self._min_sampling))
+            # An interval too short to halve in double precision (an arc whose end
+            # is off its circle never closes up; OpenCAMLib's recursion overflows
+            # the stack there) ends where it is.
+            split &= (t0 < mid_t) & (mid_t < t1)
             keys.append((span[~split], t1[~split], hi[~split]))
             mid_rows = base + np.arange(len(span))
             base += len(span)
