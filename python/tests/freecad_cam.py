@@ -20,7 +20,7 @@ import traceback
 
 def timed_ocl(ocl, clock):
     """Replaces ``ocl.PathDropCutter`` with a subclass adding the time of its calls to
-    ``clock["s"]``."""
+    ``clock["s"]`` and keeping the CL points of every run in ``clock["runs"]``."""
     base = ocl.PathDropCutter
 
     def timing(name):
@@ -29,9 +29,12 @@ def timed_ocl(ocl, clock):
         def call(self, *args):
             t = time.perf_counter()
             try:
-                return method(self, *args)
+                out = method(self, *args)
             finally:
                 clock["s"] += time.perf_counter() - t
+            if name == "getCLPoints" and clock["keep"]:
+                clock["runs"].append([(p.x, p.y, p.z) for p in out])
+            return out
 
         return call
 
@@ -66,7 +69,7 @@ def main():
     import Part
     import ocl
 
-    clock = {"s": 0.0}
+    clock = {"s": 0.0, "runs": [], "keep": settings.get("scans", False)}
     timed_ocl(ocl, clock)
     import PathScripts.PathJob as PathJob
     import PathScripts.PathSurface as PathSurface
@@ -84,7 +87,7 @@ def main():
     ops = [
         ("surface_line", PathSurface.Create("surface_line"), {"CutPattern": "Line"}),
         ("surface_zigzag", PathSurface.Create("surface_zigzag"), {"CutPattern": "ZigZag"}),
-        ("waterline", PathWaterline.Create("waterline"), {"Algorithm": "OCL Dropcutter", "LayerMode": "Multi-pass", "BoundBox": "Stock"}),
+        ("waterline", PathWaterline.Create("waterline"), {"Algorithm": "OCL Dropcutter", "LayerMode": "Multi-pass", "StepDown": 1.5}),
     ]
     ball = tool_controller(doc, job, "6mm_Ball_End.fctb", 2)
     tools = {"surface_line": ball, "surface_zigzag": flat, "waterline": ball}
@@ -95,11 +98,11 @@ def main():
         op.StepOver = settings["stepover"]
         for k, v in props.items():
             setattr(op, k, v)
-        clock["s"] = 0.0
+        clock["s"], clock["runs"] = 0.0, []
         t = time.perf_counter()
         op.recompute()
         seconds = time.perf_counter() - t
-        result["ops"][name] = {"seconds": seconds, "ocl_seconds": clock["s"], "commands": commands(op.Path)}
+        result["ops"][name] = {"seconds": seconds, "ocl_seconds": clock["s"], "commands": commands(op.Path), "scans": clock["runs"]}
         gcode = os.path.join(settings["out"], name + ".ngc")
         linuxcnc_post.export([tools[name], op], gcode, "--no-show-editor --precision=4 --no-header --no-comments")
     with open(os.path.join(settings["out"], "result.json"), "w") as f:

@@ -116,3 +116,25 @@ def surface(lib, tris):
     for a, b, c in np.asarray(tris, dtype=np.float64).tolist():
         s.addTriangle(lib.Triangle(lib.Point(*a), lib.Point(*b), lib.Point(*c)))
     return s
+
+
+def write_step(path):
+    """Writes a STEP solid with OpenCASCADE (OCP): a 50 x 40 x 4 mm plate with a
+    dome 7 mm high, a round boss 10 mm high and a square pocket 2 mm deep, so that
+    waterlines at levels between 4 and 10 mm loop around the dome and the boss."""
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Common, BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder, BRepPrimAPI_MakeSphere
+    from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
+    from OCP.IFSelect import IFSelect_RetDone
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
+
+    plate = BRepPrimAPI_MakeBox(50.0, 40.0, 4.0).Shape()
+    ball = BRepPrimAPI_MakeSphere(gp_Pnt(18, 20, -3), 10.0).Shape()
+    dome = BRepAlgoAPI_Common(ball, BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 50.0, 40.0, 20.0).Shape()).Shape()
+    boss = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(38, 20, 0), gp_Dir(0, 0, 1)), 4.0, 10.0).Shape()
+    pocket = BRepPrimAPI_MakeBox(gp_Pnt(36, 4, 2), 10.0, 8.0, 3.0).Shape()
+    solid = BRepAlgoAPI_Cut(BRepAlgoAPI_Fuse(BRepAlgoAPI_Fuse(plate, dome).Shape(), boss).Shape(), pocket).Shape()
+    writer = STEPControl_Writer()
+    writer.Transfer(solid, STEPControl_AsIs)
+    if writer.Write(str(path)) != IFSelect_RetDone:
+        raise OSError(f"{path}: OpenCASCADE could not write the STEP file")

@@ -33,13 +33,37 @@ MAX_POINTS = 20_000_000
 
 def _dropper(call, surf, cutter):
     """The surface's :class:`~swarf.Dropper` for ``cutter`` (cached with the surface)."""
+    return _prepared(call, surf, cutter)[0]
+
+
+def _prepared(call, surf, cutter):
+    """The surface's :class:`~swarf.Dropper` for ``cutter`` and its ``(M, 3, 3)``
+    triangle corners."""
     _, mesh, _, cache = surf._state()
     if mesh is None:
         raise ValueError(f"{call}: the surface has no triangles (OpenCAMLib crashes on an empty surface)")
     key = ("drop", cutter._tool.spec)
     if key not in cache:
         cache[key] = _swarf.Dropper(mesh, cutter._tool)
-    return cache[key]
+    return cache[key], cache["tris"]
+
+
+def _contact_codes(codes, tris, tri, cc):
+    """swarf's feature codes with a facet contact on its triangle's border named as
+    the edge (or corner) it lies on: OpenCAMLib counts only contacts strictly inside
+    a facet as facet contacts."""
+    facet = np.nonzero(codes == 6)[0]
+    if len(facet) == 0:
+        return codes
+    t = tris[tri[facet]]
+    r = t[:, :, :2] - cc[facet, None, :2]
+    e = np.stack([np.cross(r[:, (k + 1) % 3], r[:, (k + 2) % 3]) for k in range(3)], axis=1)
+    total = e.sum(axis=1, keepdims=True)
+    on = np.abs(e) <= 1e-12 * np.maximum(np.abs(total), 1e-300)
+    codes = codes.copy()
+    codes[facet[on.sum(axis=1) == 1]] = 3
+    codes[facet[on.sum(axis=1) >= 2]] = 0
+    return codes
 
 
 class _Drops:
@@ -52,7 +76,7 @@ class _Drops:
     @staticmethod
     def run(call, surf, cutter, xyz, threads):
         """Drops ``cutter`` at the points ``xyz`` (``(N, 3)``: XY, floor z)."""
-        d = _dropper(call, surf, cutter)
+        d, tris = _prepared(call, surf, cutter)
         xyz = np.array(xyz, dtype=np.float64).reshape(-1, 3)
         if len(xyz) == 0:
             return _Drops(xyz, np.zeros((0, 3)), np.zeros(0, dtype=np.int64))
@@ -60,7 +84,8 @@ class _Drops:
         lifted = (r.tri >= 0) & (r.z > xyz[:, 2])
         xyz[:, 2] = np.where(lifted, r.z, xyz[:, 2])
         cc = np.where(lifted[:, None], r.cc, 0.0)
-        types = np.where(lifted, cutter._cc_types(np.maximum(r.feature, 0), r.cc, xyz[:, :2]), 0)
+        codes = _contact_codes(r.feature.astype(np.int64), tris, np.maximum(r.tri, 0), r.cc)
+        types = np.where(lifted, cutter._cc_types(np.maximum(codes, 0), r.cc, xyz[:, :2]), 0)
         return _Drops(xyz, cc, types)
 
     def clpoints(self):

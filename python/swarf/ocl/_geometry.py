@@ -313,7 +313,9 @@ class STLSurf:
         return np.array(self._tris, dtype=np.float64).reshape(-1, 3, 3)
 
     def _state(self):
-        """``(version, swarf.Mesh or None, bounds, droppers)`` for the current triangles."""
+        """``(version, swarf.Mesh or None, bounds, cache)`` for the current triangles;
+        the cache dict holds the ``(M, 3, 3)`` corners under ``"tris"`` and the drop
+        indexes and waterline fields made for them."""
         if self._cache is None or self._cache[0] != self._version:
             tris = self._array()
             if len(tris):
@@ -322,7 +324,7 @@ class STLSurf:
                 lo, hi = v.min(axis=0), v.max(axis=0)
             else:
                 mesh, lo, hi = None, np.zeros(3), np.zeros(3)
-            self._cache = (self._version, mesh, (lo, hi), {})
+            self._cache = (self._version, mesh, (lo, hi), {"tris": tris})
         return self._cache
 
     def getBounds(self):

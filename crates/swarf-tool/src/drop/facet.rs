@@ -8,8 +8,10 @@
 //! contact, or, past the flank, largest on the rim). Hence:
 //!
 //! - when it lies in the triangle's XY projection, it is the triangle's drop (no
-//!   vertex or edge can do better); its height comes from barycentric interpolation,
-//!   bounded by the corner heights however steep the facet;
+//!   vertex or edge can do better); its height comes from barycentric interpolation
+//!   from the first corner, `p0.z + l1 (p1.z - p0.z) + l2 (p2.z - p0.z)`, bounded
+//!   by the corner heights however steep the facet and exact on a level facet (the
+//!   same height everywhere on it, as OpenCAMLib gives it);
 //! - otherwise the plane's drop `plane(cc) - z_c` is an upper bound for the whole
 //!   triangle, and a triangle whose bound is below the best height found so far is
 //!   done with without touching its vertices and edges. The plane height at `cc` is
@@ -60,7 +62,7 @@ pub(crate) fn plane_drop(tool: &DropCutter, xy: [f64; 2], tri: &[Point3; 3]) -> 
         xy
     };
     if let Some(lam) = barycentric_xy(tri, q) {
-        let z = lam[0] * p0.z + lam[1] * p1.z + lam[2] * p2.z;
+        let z = p0.z + lam[1] * (p1.z - p0.z) + lam[2] * (p2.z - p0.z);
         return PlaneDrop::Inside(TriContact {
             z: z - zc,
             cc: Point3::new(q[0], q[1], z),
@@ -145,6 +147,13 @@ mod tests {
             PlaneDrop::Unknown
         ));
         let flat = [p(1.0, 1.0, 2.0), p(3.0, 1.0, 2.0), p(1.0, 3.0, 2.0)];
+        for q in [[1.3, 1.7], [2.1, 1.1], [1.0 / 3.0, 0.1]] {
+            let xy = [1.0 + q[0] * 0.7, 1.0 + q[1] * 0.6];
+            match plane_drop(&ball, xy, &flat) {
+                PlaneDrop::Inside(c) => assert_eq!(c.z, 2.0, "level facets are exact"),
+                _ => panic!("expected a contact at {xy:?}"),
+            }
+        }
         match plane_drop(&ball, [0.0, 0.0], &flat) {
             PlaneDrop::Bound(b) => assert!((b - 2.0).abs() < 1e-8),
             _ => panic!("expected a bound"),
