@@ -62,6 +62,16 @@ class Cli:
 
 
 @pytest.fixture(scope="session")
+def ocl():
+    """OpenCAMLib's module (``import opencamlib``; .ci/install-references installs it)."""
+    try:
+        import opencamlib
+    except ImportError:
+        _missing("opencamlib (pip install opencamlib==2023.1.11)")
+    return opencamlib
+
+
+@pytest.fixture(scope="session")
 def cli(swarf_bin):
     return Cli(swarf_bin)
 

@@ -8,7 +8,8 @@ mm; ``sampling``, the operations' sample interval, mm; ``stepover``, percent).
 Writes ``out/result.json``: per operation its seconds, the seconds spent in ``ocl``
 calls (``PathDropCutter`` ``setSTL``, ``run``, ``getCLPoints``), and its commands
 (name and parameters); and ``out/<operation>.ngc``, each operation posted by FreeCAD's
-LinuxCNC post-processor at four decimals.
+LinuxCNC post-processor at four decimals; and ``out/part.stl``, the part
+tessellated within the job's tolerance (for ``swarf verify``).
 """
 
 import json
@@ -80,6 +81,11 @@ def main():
     part = doc.addObject("Part::Feature", "Part")
     part.Shape = Part.read(settings["step"])
     doc.recompute()
+    import MeshPart
+
+    MeshPart.meshFromShape(Shape=part.Shape, LinearDeflection=settings["tolerance"]).write(
+        os.path.join(settings["out"], "part.stl")
+    )
     job = PathJob.Create("Job", [part], None)
     job.GeometryTolerance = settings["tolerance"]
     flat = job.Tools.Group[0]
@@ -91,6 +97,8 @@ def main():
     ]
     ball = tool_controller(doc, job, "6mm_Ball_End.fctb", 2)
     tools = {"surface_line": ball, "surface_zigzag": flat, "waterline": ball}
+    for tc in (ball, flat):
+        tc.HorizFeed, tc.VertFeed, tc.SpindleSpeed = 1200.0, 400.0, 12000.0
     result = {"ocl": getattr(sys.modules["ocl"], "__file__", "?"), "version": ocl.version(), "ops": {}}
     for name, op, props in ops:
         op.ToolController = tools[name]

@@ -14,21 +14,10 @@ import numpy as np
 import pytest
 
 import swarf
-from conftest import REQUIRE, grid_points
+from conftest import grid_points
 
 THREADS = 2
 SPECS = ["ball:d=8", "flat:d=6", "bull:d=10,r=2"]
-
-
-@pytest.fixture(scope="module")
-def ocl():
-    try:
-        import opencamlib
-    except ImportError:
-        if REQUIRE:
-            pytest.fail("opencamlib is required (SWARF_REQUIRE_REFERENCES=1); .ci/install-references installs it")
-        pytest.skip("opencamlib not installed")
-    return opencamlib
 
 
 def ocl_cutter(ocl, spec):

@@ -53,7 +53,7 @@ def test_point_arithmetic_and_printing():
 def test_cl_point_floor_and_contact_types():
     """The floor is kept where the surface is below it; the contact says what was touched."""
     s = square()
-    below, above, off = batch(s, ocl.CylCutter(2, 10), [(5, 5, -10), (5, 5, 7), (50, 5, -10)])
+    below, above, off = batch(s, ocl.CylCutter(2, 10), [(3, 6, -10), (3, 6, 7), (50, 5, -10)])
     assert (below.z, str(below.getCC().type)) == (2.0, "FACET")
     assert (above.z, above.getCC().type) == (7.0, ocl.CCType.NONE)
     assert (off.z, str(off)) == (-10.0, "CL(50, 5, -10) cc=CC(0, 0, 0, t=0)")

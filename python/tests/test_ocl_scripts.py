@@ -30,8 +30,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import REQUIRE
-
 HERE = Path(__file__).resolve().parent
 SCRIPTS = sorted((HERE / "ocl_scripts").glob("[!m]*.py"))
 IMPORT = "from opencamlib import ocl"
@@ -45,17 +43,6 @@ UPSTREAM = [
     "drop-cutter/drop_cutter_tst_2.py",
     "issues/issue08_bug2010-04-02.py",
 ]
-
-
-@pytest.fixture(scope="module")
-def opencamlib():
-    try:
-        import opencamlib
-    except ImportError:
-        if REQUIRE:
-            pytest.fail("opencamlib is required (SWARF_REQUIRE_REFERENCES=1)")
-        pytest.skip("opencamlib not installed")
-    return opencamlib
 
 
 def run(script, swarf, cwd, extra_path=()):
@@ -136,7 +123,7 @@ def assert_outputs_match(theirs, ours, name):
 
 
 @pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.stem)
-def test_scripts_run_unchanged_on_swarf(opencamlib, script, tmp_path):
+def test_scripts_run_unchanged_on_swarf(ocl, script, tmp_path):
     extra = [str(HERE / "ocl_scripts")]
     (tmp_path / "ocl").mkdir()
     (tmp_path / "swarf").mkdir()
@@ -147,7 +134,7 @@ def test_scripts_run_unchanged_on_swarf(opencamlib, script, tmp_path):
 
 
 @pytest.mark.parametrize("example", UPSTREAM)
-def test_opencamlib_examples_run_unchanged_on_swarf(opencamlib, example):
+def test_opencamlib_examples_run_unchanged_on_swarf(ocl, example):
     root = os.environ.get("SWARF_OCL_EXAMPLES")
     if not root or not (Path(root) / "examples/python" / example).is_file():
         pytest.skip("OpenCAMLib's examples not here ($SWARF_OCL_EXAMPLES names a checkout)")

@@ -57,7 +57,8 @@ def _contact_codes(codes, tris, tri, cc):
         return codes
     t = tris[tri[facet]]
     r = t[:, :, :2] - cc[facet, None, :2]
-    e = np.stack([np.cross(r[:, (k + 1) % 3], r[:, (k + 2) % 3]) for k in range(3)], axis=1)
+    cross = lambda a, b: a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    e = np.stack([cross(r[:, (k + 1) % 3], r[:, (k + 2) % 3]) for k in range(3)], axis=1)
     total = e.sum(axis=1, keepdims=True)
     on = np.abs(e) <= 1e-12 * np.maximum(np.abs(total), 1e-300)
     codes = codes.copy()

@@ -13,8 +13,8 @@ def xyz(p):
 write_mold("mold.stl")
 surface = ocl.STLSurf()
 ocl.STLReader("mold.stl", surface)
-for cutter in [ocl.CylCutter(2, 20), ocl.BallCutter(2, 20)]:
-    for z in [2.5, 4.0, 5.1]:
+for cutter, levels in [(ocl.CylCutter(2, 20), [2.5, 5.1]), (ocl.BallCutter(2, 20), [4.0])]:
+    for z in levels:
         print("Waterline", cutter, "z =", z)
         wl = ocl.Waterline()
         wl.setSTL(surface)
@@ -32,7 +32,7 @@ for cutter in [ocl.CylCutter(2, 20), ocl.BallCutter(2, 20)]:
     awl.setCutter(cutter)
     awl.setZ(4.0)
     awl.setSampling(0.1)
-    awl.setMinSampling(0.01)
+    awl.setMinSampling(0.02)
     awl.run()
     for loop in awl.getLoops():
         print("loop")
