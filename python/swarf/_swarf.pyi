@@ -351,3 +351,20 @@ def rest(
 ) -> Rest:
     """The rest material a finishing tool (``reference``) or job (``job``) leaves, as
     ``swarf rest`` finds it."""
+
+class OclWaterline:
+    """swarf.ocl's waterline: the drop field of ``tool`` over ``mesh`` on a grid of
+    ``sampling`` mm, ready for any level."""
+
+    def __init__(
+        self, mesh: Mesh, tool: ToolLike, sampling: float, tolerance: float, threads: Optional[int] = None
+    ) -> None: ...
+    def loops(self, z: float) -> List[FloatArray]:
+        """The loops at tip height ``z``: ``(K, 2)`` arrays, the material on their
+        left, every chord within ``tolerance`` of the contour."""
+
+def triangle_drop_at(
+    tool: ToolLike, x: float, y: float, tri: Tuple[Tuple[float, float, float], ...], kind: str
+) -> Optional[Tuple[float, Tuple[float, float, float], int]]:
+    """The ``"vertex"``, ``"edge"``, ``"facet"`` or ``"all"`` drop of ``tool`` at
+    ``(x, y)`` onto one triangle: ``(z, cc, feature)`` or None."""

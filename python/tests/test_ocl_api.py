@@ -57,10 +57,12 @@ def test_cl_point_floor_and_contact_types():
     assert (below.z, str(below.getCC().type)) == (2.0, "FACET")
     assert (above.z, above.getCC().type) == (7.0, ocl.CCType.NONE)
     assert (off.z, str(off)) == (-10.0, "CL(50, 5, -10) cc=CC(0, 0, 0, t=0)")
+    (seam,) = batch(s, ocl.CylCutter(2, 10), [(5, 5, -10)])
+    assert seam.getCC().type == ocl.CCType.EDGE, "on the triangles' common edge: an edge contact, as OpenCAMLib counts it"
     corner, edge = batch(s, ocl.BallCutter(2, 10), [(-0.6, -0.8, -10), (-0.6, 5, -10)])
     assert corner.getCC().type == ocl.CCType.VERTEX and abs(corner.z - 1.0) < 1e-15
     assert edge.getCC().type == ocl.CCType.EDGE and abs(edge.z - 1.8) < 1e-15
-    tip, rim = batch(s, ocl.ConeCutter(4, math.pi / 4), [(5, 5, -10), (-1, 5, -10)])
+    tip, rim = batch(s, ocl.ConeCutter(4, math.pi / 4), [(3, 6, -10), (-1, 5, -10)])
     assert tip.getCC().type == ocl.CCType.FACET_TIP
     assert rim.getCC().type == ocl.CCType.EDGE and abs(rim.z - 1.0) < 1e-15
 

@@ -9,8 +9,9 @@ with a hole):
   no code with either) agrees with swarf within 1e-6 mm and not with OpenCAMLib;
 - paths (``PathDropCutter``, ``AdaptivePathDropCutter``, lines and arcs): the same
   points, XY bit for bit, heights within 1e-6 mm;
-- waterlines (``Waterline``, ``AdaptiveWaterline``) at 0.1 mm sampling: the loops
-  within 0.02 mm of each other (Hausdorff), except where an exact reference shows
+- waterlines (``Waterline``, ``AdaptiveWaterline``) at 0.1 mm sampling: as many
+  loops, the same way round and of the same area within 0.1 %, within 0.02 mm of
+  each other (Hausdorff), except where an exact reference shows
   swarf right: a swarf point farther from OpenCAMLib's loops is on the contour by
   OpenCAMLib's own drops (they straddle the level 1e-6 mm to either side across the
   loop; OpenCAMLib's chords cut across the contour's corners there, or its loops
@@ -215,6 +216,9 @@ def test_waterlines_match_opencamlib(ocl, mesh, cutter, z, adaptive, capsys):
         assert on_contour(ocl, t, make, z, op[o_far], on[o_far]).all(), "swarf's points away from OpenCAMLib's are on the contour"
     if len(t_far):
         assert not on_contour(ocl, t, make, z, tp[t_far], tn[t_far]).any(), "OpenCAMLib's points away from swarf's are not"
+    area = lambda lp: 0.5 * np.sum(lp[:, 0] * np.roll(lp[:, 1], -1) - np.roll(lp[:, 0], -1) * lp[:, 1])
+    ta, oa = sorted(map(area, theirs)), sorted(map(area, ours))
+    assert len(ta) == len(oa) and np.allclose(ta, oa, rtol=1e-3, atol=0.1), ("signed areas: the same loops, the same way round", ta, oa)
     with capsys.disabled():
         print(f"\n  {'Adaptive' if adaptive else ''}Waterline {cutter} on {mesh} at z = {z}: {len(theirs)} and "
               f"{len(ours)} loops, {len(tp)} and {len(op)} points; OpenCAMLib's points beyond 0.02 mm of swarf's "

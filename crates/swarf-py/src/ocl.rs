@@ -76,8 +76,9 @@ impl OclWaterline {
     }
 
     /// The loops at tool tip height `z` (mm): a list of `(K, 2)` float64 arrays of
-    /// XY points, closed (the first point not repeated), counter-clockwise around
-    /// the material (OpenCAMLib's orientation). Raises `ValueError` for a `z` that
+    /// XY points, closed (the first point not repeated), the material on their left
+    /// (counter-clockwise around an island, clockwise inside a pocket: OpenCAMLib's
+    /// orientation). Raises `ValueError` for a `z` that
     /// is not finite.
     fn loops<'py>(&self, py: Python<'py>, z: f64) -> PyResult<Vec<Bound<'py, PyArray2<f64>>>> {
         if !z.is_finite() {

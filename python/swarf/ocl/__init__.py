@@ -56,22 +56,9 @@ import numpy as np
 from .. import __version__ as _swarf_version
 from ._cutters import BallConeCutter, BallCutter, BullCutter, ConeCutter, CylCutter, MillingCutter
 from ._dropcutter import AdaptivePathDropCutter, BatchDropCutter, PathDropCutter
-from ._geometry import (
-    Arc,
-    ArcSpanType,
-    Bbox,
-    CCPoint,
-    CCType,
-    CLPoint,
-    Line,
-    LineSpanType,
-    Path,
-    Point,
-    SpanType,
-    STLReader,
-    STLSurf,
-    Triangle,
-)
+from ._geometry import Bbox, STLReader, STLSurf, Triangle
+from ._path import Arc, ArcSpanType, Line, LineSpanType, Path, SpanType
+from ._points import CCPoint, CCType, CLPoint, Point
 from ._waterline import AdaptiveWaterline, Waterline
 
 #: The OpenCAMLib release whose API this module follows.

@@ -18,7 +18,8 @@ import math
 import numpy as np
 
 from .. import _swarf
-from ._geometry import CCPoint, CCType, CLPoint, STLSurf, Triangle, _g
+from ._geometry import STLSurf, Triangle
+from ._points import CCPoint, CCType, CLPoint, _g
 
 #: Kinds of drop contacts by swarf feature code (``swarf.FEATURES``).
 _VERTEX, _EDGE, _FACET = range(3)

@@ -25,7 +25,9 @@ import numpy as np
 
 from .. import _swarf
 from ._cutters import MillingCutter
-from ._geometry import CCPoint, CCType, CLPoint, Line, Path, STLSurf
+from ._geometry import STLSurf
+from ._path import Line, Path
+from ._points import CCPoint, CCType, CLPoint
 
 #: Most points one run may drop (each costs a few hundred bytes in Python).
 MAX_POINTS = 20_000_000

@@ -7,16 +7,17 @@ through it: every loop point is an exact contour point (root finding on the drop
 height), and points are added until every chord is within a tolerance of the
 contour: ``sampling / 100`` for :class:`Waterline`, ``min_sampling / 10`` for
 :class:`AdaptiveWaterline`. Loops smaller than the grid can be missed, as between
-OpenCAMLib's fibers. Loops run counter-clockwise around the material, the first
-point not repeated, as OpenCAMLib's. The grid is cached with the surface, so running
-level after level (``reset``, ``setZ``, ``run``) costs each level its contour only.
+OpenCAMLib's fibers. Loops keep the material on their left (counter-clockwise
+around an island, clockwise inside a pocket), the first point not repeated, as
+OpenCAMLib's. The grid is cached with the surface, so running level after level
+(``reset``, ``setZ``, ``run``) costs each level its contour only.
 """
 
 import math
 
 from .. import _swarf
 from ._dropcutter import _Operation, _positive
-from ._geometry import Point
+from ._points import Point
 
 
 class Waterline(_Operation):
