@@ -53,7 +53,7 @@ def main():
             same = (Path(tmp) / "OpenCAMLib" / f"{op}.ngc").read_bytes() == (Path(tmp) / "swarf.ocl" / f"{op}.ngc").read_bytes()
             print(f"| {op} | {t['seconds']:.2f} s ({t['ocl_seconds']:.2f} s) | {o['seconds']:.2f} s ({o['ocl_seconds']:.2f} s) "
                   f"| {t['seconds'] / o['seconds']:.1f}x ({t['ocl_seconds'] / o['ocl_seconds']:.1f}x) | "
-                  f"{'the same' if same else 'different'}, {len(t['commands'])} commands |")
+                  f"{'the same' if same else 'different'}, {len(t['commands'])} commands; {t['triangles']} triangles |")
 
 
 if __name__ == "__main__":

@@ -33,6 +33,8 @@ def timed_ocl(ocl, clock):
                 out = method(self, *args)
             finally:
                 clock["s"] += time.perf_counter() - t
+            if name == "setSTL":
+                clock["triangles"] = args[0].size()
             if name == "getCLPoints" and clock["keep"]:
                 clock["runs"].append([(p.x, p.y, p.z) for p in out])
             return out
@@ -110,7 +112,7 @@ def main():
         t = time.perf_counter()
         op.recompute()
         seconds = time.perf_counter() - t
-        result["ops"][name] = {"seconds": seconds, "ocl_seconds": clock["s"], "commands": commands(op.Path), "scans": clock["runs"]}
+        result["ops"][name] = {"seconds": seconds, "ocl_seconds": clock["s"], "commands": commands(op.Path), "scans": clock["runs"], "triangles": clock.get("triangles")}
         gcode = os.path.join(settings["out"], name + ".ngc")
         linuxcnc_post.export([tools[name], op], gcode, "--no-show-editor --precision=4 --no-header --no-comments")
     with open(os.path.join(settings["out"], "result.json"), "w") as f:

@@ -9,7 +9,9 @@ either library.
   ends at its borders: a cutter there falls off its edges);
 - ``hole``: a flat plate with a square hole through it (no walls: a small cutter
   falls through, a large one bridges it);
-- ``closed_mold``: ``mold`` closed by four walls and a bottom, a solid for FreeCAD.
+- ``write_step``: a STEP solid for FreeCAD's CAM jobs.
+
+``distance_to`` measures points against waterline loops.
 """
 
 import struct
@@ -62,26 +64,6 @@ def hole():
     centre = tris[:, :, :2].mean(axis=1)
     inside = (np.abs(centre - 15) < 4).all(axis=1)
     return tris[~inside]
-
-
-def closed_mold(step=1.25):
-    """The mold closed by walls down to z = 0 and a bottom: a watertight solid."""
-    xs, ys = np.arange(0, 40 + 1e-9, step), np.arange(0, 30 + 1e-9, step)
-    top = grid_surface(xs, ys, mold_height)
-    X0, X1, Y0, Y1 = xs[0], xs[-1], ys[0], ys[-1]
-    rim = (
-        [(x, Y0) for x in xs]
-        + [(X1, y) for y in ys[1:]]
-        + [(x, Y1) for x in xs[::-1][1:]]
-        + [(X0, y) for y in ys[::-1][1:]]
-    )
-    walls = []
-    for (x0, y0), (x1, y1) in zip(rim[:-1], rim[1:]):
-        p = (x0, y0, float(mold_height(x0, y0)))
-        q = (x1, y1, float(mold_height(x1, y1)))
-        walls += [(p, (x0, y0, 0.0), (x1, y1, 0.0)), (p, (x1, y1, 0.0), q)]
-    bottom = [((X0, Y0, 0), (X1, Y1, 0), (X1, Y0, 0)), ((X0, Y0, 0), (X0, Y1, 0), (X1, Y1, 0))]
-    return np.concatenate([top, np.array(walls, dtype=float), np.array(bottom, dtype=float)])
 
 
 MESHES = {"mold": mold, "die": die, "vgroove": vgroove, "hole": hole}
@@ -138,3 +120,24 @@ def write_step(path):
     writer.Transfer(solid, STEPControl_AsIs)
     if writer.Write(str(path)) != IFSelect_RetDone:
         raise OSError(f"{path}: OpenCASCADE could not write the STEP file")
+
+
+def distance_to(points, loops):
+    """Each point's distance to the closed polylines ``loops`` and the nearest point
+    on them."""
+    best = np.full(len(points), np.inf)
+    near = np.zeros_like(points)
+    for lp in loops:
+        a, d = lp, np.roll(lp, -1, axis=0) - lp
+        l2 = np.where((d * d).sum(1) > 0, (d * d).sum(1), 1.0)
+        for k in range(0, len(points), 500):
+            q = points[k:k + 500, None, :] - a[None]
+            t = np.clip((q * d[None]).sum(2) / l2[None], 0, 1)
+            foot = a[None] + t[..., None] * d[None]
+            dist = np.hypot(*(points[k:k + 500, None, :] - foot).transpose(2, 0, 1))
+            j = dist.argmin(axis=1)
+            dj = dist[np.arange(len(j)), j]
+            better = dj < best[k:k + 500]
+            best[k:k + 500] = np.where(better, dj, best[k:k + 500])
+            near[k:k + 500][better] = foot[np.arange(len(j)), j][better]
+    return best, near

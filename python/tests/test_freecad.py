@@ -28,7 +28,7 @@ MOVES = ("G0", "G1", "G2", "G3")
 def freecad_run(step, out, pythonpath, **settings):
     """Runs ``freecad_cam.py`` in ``freecadcmd`` with ``ocl`` found on ``pythonpath``."""
     out.mkdir()
-    job = {"step": str(step), "out": str(out), "tolerance": 0.05, "sampling": 0.5, "stepover": 50, **settings}
+    job = {"step": str(step), "out": str(out), "tolerance": 0.05, "sampling": 1.0, "stepover": 50, **settings}
     env = {**os.environ, "SWARF_FREECAD_JOB": json.dumps(job), "PYTHONPATH": pythonpath}
     r = subprocess.run(["freecadcmd", str(HERE / "freecad_cam.py")], capture_output=True, text=True, env=env, timeout=1200)
     assert r.returncode == 0 and (out / "result.json").is_file(), r.stdout[-3000:] + r.stderr[-3000:]

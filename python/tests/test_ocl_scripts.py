@@ -30,6 +30,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from ocl_meshes import distance_to
+
 HERE = Path(__file__).resolve().parent
 SCRIPTS = sorted((HERE / "ocl_scripts").glob("[!m]*.py"))
 IMPORT = "from opencamlib import ocl"
@@ -90,19 +92,6 @@ def loops(lines):
     return [np.array(lp) for lp in out if lp]
 
 
-def distance_to(points, polylines):
-    """Each point's distance to the closed polylines."""
-    best = np.full(len(points), np.inf)
-    for lp in polylines:
-        a, d = lp, np.roll(lp, -1, axis=0) - lp
-        l2 = np.where((d * d).sum(1) > 0, (d * d).sum(1), 1.0)
-        for k in range(0, len(points), 1000):
-            q = points[k:k + 1000, None, :] - a[None]
-            t = np.clip((q * d[None]).sum(2) / l2[None], 0, 1)
-            best[k:k + 1000] = np.minimum(best[k:k + 1000], np.hypot(*(q - t[..., None] * d[None]).transpose(2, 0, 1)).min(1))
-    return best
-
-
 def assert_outputs_match(theirs, ours, name):
     st, so = sections(theirs), sections(ours)
     assert len(st) == len(so), f"{name}: {len(st)} sections, swarf {len(so)}"
@@ -112,8 +101,8 @@ def assert_outputs_match(theirs, ours, name):
             lt, lo = loops(bt), loops(bo)
             assert bool(lt) == bool(lo), f"{name}: {ht}: {len(lt)} loops, swarf {len(lo)}"
             if lt:
-                theirs_off = distance_to(np.concatenate(lt), lo).max()
-                ours_off = distance_to(np.concatenate(lo), lt).max()
+                theirs_off = distance_to(np.concatenate(lt), lo)[0].max()
+                ours_off = distance_to(np.concatenate(lo), lt)[0].max()
                 assert theirs_off <= 0.02, f"{name}: {ht}: an OpenCAMLib point {theirs_off:.4f} mm off swarf's loops"
                 assert ours_off <= 0.1, f"{name}: {ht}: a swarf point {ours_off:.4f} mm off OpenCAMLib's loops"
             continue
