@@ -173,14 +173,16 @@ WATERLINES = [
     ("vgroove", "bull-d10-r2", 11.5),
     ("hole", "flat-d6", 4.0),
 ]
+#: OpenCAMLib's AdaptiveWaterline takes minutes on the mold (ocl_api_bench.py runs it).
 ADAPTIVE = ("vgroove", "hole")
 
 
-@pytest.mark.parametrize("mesh, cutter, z", WATERLINES)
-@pytest.mark.parametrize("adaptive", [False, True], ids=["Waterline", "AdaptiveWaterline"])
-def test_waterlines_match_opencamlib(ocl, mesh, cutter, z, adaptive, capsys):
-    if adaptive and mesh not in ADAPTIVE:
-        pytest.skip("OpenCAMLib's AdaptiveWaterline takes minutes here (examples/ocl_api_bench.py runs it)")
+@pytest.mark.parametrize(
+    "adaptive, mesh, cutter, z",
+    [(False, *case) for case in WATERLINES] + [(True, *case) for case in WATERLINES if case[0] in ADAPTIVE],
+    ids=lambda v: {False: "Waterline", True: "AdaptiveWaterline"}.get(v, str(v)) if isinstance(v, bool) else str(v),
+)
+def test_waterlines_match_opencamlib(ocl, adaptive, mesh, cutter, z, capsys):
     t, make = tris(mesh), CUTTERS[cutter][0]
     theirs, ts = run_waterline(ocl, t, make, z, adaptive)
     ours, os_ = run_waterline(sw, t, make, z, adaptive)

@@ -98,6 +98,9 @@ impl OclWaterline {
     }
 }
 
+/// A contact as Python gets it: tip height, CC point, feature code.
+type Contact = (f64, (f64, f64, f64), i8);
+
 /// The drop of `tool` at `(x, y)` onto the triangle `tri` (three `(x, y, z)`
 /// corners, mm) for one case, `kind`: `"vertex"`, `"edge"`, `"facet"` or `"all"`
 /// (the highest of them). Returns `None` where the cutter cannot touch that way,
@@ -111,7 +114,7 @@ pub fn triangle_drop_at(
     y: f64,
     tri: [[f64; 3]; 3],
     kind: &str,
-) -> PyResult<Option<(f64, (f64, f64, f64), i8)>> {
+) -> PyResult<Option<Contact>> {
     let cutter = cutter_arg("tool", tool)?;
     if let Some(k) = tri.iter().position(|p| p.iter().any(|v| !v.is_finite())) {
         return Err(value_err(format!(

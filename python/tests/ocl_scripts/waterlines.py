@@ -13,7 +13,7 @@ def xyz(p):
 write_mold("mold.stl")
 surface = ocl.STLSurf()
 ocl.STLReader("mold.stl", surface)
-for cutter, levels in [(ocl.CylCutter(2, 20), [2.5, 5.1]), (ocl.BallCutter(2, 20), [4.0])]:
+for cutter, levels in [(ocl.CylCutter(2, 20), [5.1]), (ocl.BallCutter(2, 20), [4.0])]:
     for z in levels:
         print("Waterline", cutter, "z =", z)
         wl = ocl.Waterline()
