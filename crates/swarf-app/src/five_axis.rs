@@ -70,7 +70,7 @@ pub fn position_plan(
         part,
         &cc,
         positioning,
-        job.strategy.tolerance,
+        job.tolerance(),
         progress,
     )?;
     plan.toolpath.linking = linking(&job.linking, &job.tool, part, &passes);
@@ -109,7 +109,7 @@ pub fn post_options(
         comments,
         feed_mode: job.output.feed_mode,
         tool_length,
-        path_tol: job.strategy.tolerance,
+        path_tol: job.tolerance(),
         ..PostOptions::default()
     })
 }

@@ -27,6 +27,7 @@ pub mod programs;
 pub mod report;
 pub mod rest;
 pub mod sequence;
+pub mod strategy;
 pub mod verify;
 pub mod view;
 
@@ -35,5 +36,6 @@ pub use job::Job;
 pub use model::{FaceRef, LoadOptions, Model, load_model, load_model_with, load_part};
 pub use outputs::Outputs;
 pub use plan::{PlanInput, plan};
+pub use strategy::Strategy;
 pub use plan_job::{Planned, plan_job, plan_model_toolpath};
 pub use report::Reporter;

@@ -22,7 +22,8 @@ use swarf_geom::TriMesh;
 use swarf_geom::domain::excerpt;
 use swarf_nc::read::GcodeReadOptions;
 use swarf_nc::{GcodeOptions, Post};
-use swarf_path::{Plan, StrategyKind};
+use crate::strategy::Strategy;
+use swarf_path::Plan;
 use swarf_tool::library::LibraryTool;
 use swarf_toolpath::{Toolpath, motion_stats};
 
@@ -94,11 +95,12 @@ pub fn plan_model_toolpath(
     let post = Post::load(spec, job_dir)
         .map_err(|e| AppError::Message(format!("output.post = {:?}: {e}", excerpt(spec, 80))))?;
     let post = &post;
-    if job.strategy.kind == StrategyKind::Cleanup {
-        return cleanup_outputs(job, model, job_dir, (machine.as_ref(), post), out);
-    }
-    if job.strategy.kind == StrategyKind::DropSpin {
-        return drop_spin_outputs(job, model, (machine.as_ref(), post), out);
+    match &job.strategy {
+        Strategy::Cleanup(_) => {
+            return cleanup_outputs(job, model, job_dir, (machine.as_ref(), post), out);
+        }
+        Strategy::DropSpin(_) => return drop_spin_outputs(job, model, (machine.as_ref(), post), out),
+        _ => {}
     }
     let (name, mut plan) = match model {
         Model::Patches(part) => (part.name.clone(), plan(job, PlanInput::Part(part))?),
@@ -165,7 +167,7 @@ fn drop_spin_outputs(
     if let Some(rel) = &job.output.contacts {
         out.write(
             rel,
-            contacts_csv(&ds.passes.poses, job.strategy.faces.unwrap_or([0, 1])).as_bytes(),
+            contacts_csv(&ds.passes.poses, crate::drop_spin::params_of(job)?.faces).as_bytes(),
         )?;
     }
     let written = Written {
@@ -305,7 +307,7 @@ fn write_outputs(
     } = *written;
     let holder = match &job.library_tool {
         Some(tool) => {
-            let mesh = model.triangles(job.strategy.tolerance)?;
+            let mesh = model.triangles(job.tolerance())?;
             let name = job.name.as_deref().unwrap_or(part_name);
             let check = check_path(&mesh, &plan.toolpath, tool, name)?;
             Some((tool, mesh, check))
@@ -314,8 +316,7 @@ fn write_outputs(
     };
     let moves = plan.toolpath.moves();
     let stats = motion_stats(&moves, job.feeds.rapid);
-    let strategy = serde_json::to_value(job.strategy.kind)?;
-    let strategy = strategy.as_str().unwrap_or("?").to_string();
+    let strategy = job.strategy.kind().to_string();
     let comments = header_comments(job, plan, part_name, &strategy, notes);
     let (rotary, program) = write_program(job, plan, written, &moves, comments, out)?;
     if let Some((tool, mesh, check)) = &holder {
@@ -457,7 +458,7 @@ fn header_comments(
     if plan.toolpath.passes.is_empty() {
         comments.push("no passes: nothing to cut".into());
     }
-    if let Some(h) = job.strategy.scallop.or(plan.report.predicted_max_scallop) {
+    if let Some(h) = job.strategy.scallop().or(plan.report.predicted_max_scallop) {
         comments.push(format!("{SCALLOP_COMMENT}{h} mm"));
     }
     comments.extend(notes.iter().cloned());

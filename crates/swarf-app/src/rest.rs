@@ -6,7 +6,7 @@ use crate::cleanup::{
     boundaries_csv, detect_after, part_mesh, read_parent, rest_json, source_name,
 };
 use crate::error::{AppError, Context, Result, bail};
-use crate::job::RestSource;
+use swarf_rest::RestSource;
 use crate::model::{LoadOptions, load_model_with};
 use crate::outputs::Outputs;
 use crate::plan_job::part_arg;

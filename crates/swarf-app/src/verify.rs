@@ -158,12 +158,8 @@ pub fn parse_stock(text: &str) -> Result<StockSpec> {
         return Ok(StockSpec::Offset { allowance });
     }
     let path = Path::new(text);
-    match path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-    {
-        Some(e) if e == "stl" || e == "obj" => Ok(StockSpec::Mesh(swarf_io::read_mesh(path)?)),
+    match swarf_io::ModelFormat::of(path) {
+        f if f.is_mesh() => Ok(StockSpec::Mesh(swarf_io::read_mesh(path)?)),
         _ => bail!(
             "--stock {}: expected box, box:TOP, offset:ALLOWANCE or a .stl / .obj mesh",
             excerpt(text, 60)

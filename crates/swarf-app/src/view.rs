@@ -406,7 +406,7 @@ fn plan_job_input(
     let stem = path
         .file_stem()
         .map_or_else(|| "job".into(), |s| s.to_string_lossy().into_owned());
-    let five = job.positioning.is_some() || job.strategy.kind == swarf_path::StrategyKind::DropSpin;
+    let five = job.positioning.is_some() || job.strategy.tilted();
     let program_file = format!("{stem}.{}", if five { "cl" } else { "ngc" });
     job.output.gcode = (!five || job.output.machine.is_some()).then(|| format!("{stem}.ngc"));
     job.output.cl = five.then(|| program_file.clone());
@@ -421,10 +421,10 @@ fn plan_job_input(
     let model = crate::model::load_model_with(&part, &job.load_options())?;
     crate::plan_job::plan_model(&job, &model, job_dir, out, reporter)?;
     let program = out.read_program(&program_file)?;
-    let scallop = job.strategy.scallop.unwrap_or(0.0);
+    let scallop = job.strategy.scallop().unwrap_or(0.0);
     let mut opts = req
         .sim
-        .options(job.strategy.tolerance, scallop, job.feeds.rapid, true)?;
+        .options(job.tolerance(), scallop, job.feeds.rapid, true)?;
     if five {
         opts.cell = opts.cell.or(Some(crate::compare::FIVE_AXIS_CELL));
         opts.sample_tol = opts

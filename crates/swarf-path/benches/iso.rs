@@ -2,7 +2,7 @@
 //! included: paper 004's experiment (h = 0.15 mm, tolerance 0.01 mm) and a fine one
 //! (h = 0.01 mm, tolerance 0.001 mm; target under 3 s each on a 2-core machine).
 //!
-//! The pass bound of wave (`swarf_path::pass_bound`, computed by every iso plan) is
+//! The pass bound of wave (`swarf_path::strategy::iso::pass_bound`, computed by every iso plan) is
 //! timed on its own.
 //!
 //! `cargo bench -p swarf-path --bench iso` (criterion; 10 samples each).
@@ -12,8 +12,8 @@ use std::hint::black_box;
 use std::time::Duration;
 use swarf_app::{Job, PlanInput};
 use swarf_path::params::ParamDir;
-use swarf_path::pass_bound::{Feed, pass_bound};
-use swarf_path::side_step::SideStep;
+use swarf_path::strategy::iso::pass_bound::{Feed, pass_bound};
+use swarf_path::stepping::side_step::SideStep;
 
 fn job(kind: &str, h: f64, tol: f64) -> Job {
     let text = format!(

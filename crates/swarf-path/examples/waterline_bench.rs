@@ -10,7 +10,7 @@
 use std::io::Write;
 use std::time::Instant;
 use swarf_path::Finish;
-use swarf_path::waterline::{Milling, Waterline, WaterlineParams};
+use swarf_path::strategy::waterline::{Milling, Waterline, WaterlineParams};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();

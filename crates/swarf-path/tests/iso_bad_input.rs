@@ -17,13 +17,13 @@ type Spoil = fn(&mut Job);
 fn job_files_name_the_field() {
     for kind in KINDS {
         for (body, field) in [
-            ("scallop = 0", "strategy.scallop"),
-            ("scallop = -0.1", "strategy.scallop"),
-            ("scallop = 4", "strategy.scallop"),
-            ("scallop = 9", "strategy.scallop"),
-            ("scallop = 0.1\ntolerance = 0", "strategy.tolerance"),
-            ("scallop = 0.1\ntolerance = -1", "strategy.tolerance"),
-            ("scallop = 0.1\nangle = nan", "strategy.angle"),
+            ("scallop = 0", "scallop"),
+            ("scallop = -0.1", "scallop"),
+            ("scallop = 4", "scallop"),
+            ("scallop = 9", "scallop"),
+            ("scallop = 0.1\ntolerance = 0", "tolerance"),
+            ("scallop = 0.1\ntolerance = -1", "tolerance"),
+            ("scallop = 0.1\nangle = nan", "angle"),
             ("scallop = 0.1\ndirection = \"w\"", "line 6"),
         ] {
             let e = Job::parse(&job(kind, body), "job.toml")
@@ -41,13 +41,13 @@ fn jobs_built_in_code_are_checked_by_the_planners_too() {
     for kind in KINDS {
         let good = Job::parse(&job(kind, "scallop = 0.3"), "job").unwrap();
         let cases: [(Spoil, &str); 5] = [
-            (|j| j.strategy.scallop = None, "strategy.scallop"),
-            (|j| j.strategy.scallop = Some(f64::NAN), "strategy.scallop"),
-            (|j| j.strategy.scallop = Some(4.0), "strategy.scallop"),
-            (|j| j.strategy.tolerance = 0.0, "strategy.tolerance"),
+            (|j| j.strategy.scallop = None, "scallop"),
+            (|j| j.strategy.scallop = Some(f64::NAN), "scallop"),
+            (|j| j.strategy.scallop = Some(4.0), "scallop"),
+            (|j| j.strategy.tolerance = 0.0, "tolerance"),
             (
                 |j| j.strategy.tolerance = f64::INFINITY,
-                "strategy.tolerance",
+                "tolerance",
             ),
         ];
         for (spoil, field) in cases {

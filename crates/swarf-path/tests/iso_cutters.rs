@@ -113,7 +113,7 @@ fn the_swept_oracle_measures_closed_forms() {
 }
 
 /// Bull end mills: the three iso strategies keep the true scallop at most `h`
-/// (the corner radius across wave's convex ridge, `swarf_path::side_step`), and
+/// (the corner radius across wave's convex ridge, `swarf_path::stepping::side_step`), and
 /// neither beats the pass bound.
 #[test]
 fn bull_cutters_keep_the_scallop_below_h() {

@@ -1,10 +1,10 @@
-//! Iso-planar with a fixed cross feed (`strategy.stepover`, the "cross feed 3.5 mm" of
+//! Iso-planar with a fixed cross feed (`stepover`, the "cross feed 3.5 mm" of
 //! thesis 000 ch. 8): planes exactly the stepover apart, centred in the part, the
 //! closed-form ball scallop predicted; and pass ends without stubs.
 
 use swarf_app::Job;
 use swarf_geom::{Part, Patch};
-use swarf_path::iso_planar::plan;
+use swarf_path::strategy::iso::planar::plan;
 
 /// A fixed cross feed on a plane: drive planes exactly `s` apart and centred in the
 /// part, in start-side order, and the closed-form ball scallop predicted.
@@ -55,7 +55,7 @@ fn fixed_stepover_on_a_plane() {
         "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 1.5\nscallop = 0.1\n",
         "job.toml",
     );
-    assert!(both.unwrap_err().to_string().contains("strategy.stepover"));
+    assert!(both.unwrap_err().to_string().contains("stepover"));
 }
 
 /// Sections of the die end on its patch edges and corners, where the section

@@ -86,7 +86,7 @@ fn scallops_stay_below_h_and_iso_scallop_is_the_most_economical() {
             );
         }
     }
-    // The least count of full-length passes (swarf_path::pass_bound): iso-scallop
+    // The least count of full-length passes (swarf_path::strategy::iso::pass_bound): iso-scallop
     // needs exactly its next whole number, the others no fewer.
     let bound = &rows[2].plan.report.pass_bound[0];
     println!(

@@ -8,7 +8,7 @@
 use swarf_geom::Point3;
 use swarf_nc::read::Motion;
 use swarf_path::Finish;
-use swarf_path::roughing::{RoughingParams, RoughingStock, plan};
+use swarf_path::strategy::roughing::{RoughingParams, RoughingStock, plan};
 use swarf_sim::engagement::measure_engagement;
 use swarf_sim::progress::Quiet;
 use swarf_sim::simulate::SimOptions;
@@ -202,7 +202,7 @@ fn rough(case: &Case, adaptive: bool) -> Run {
     }
     // Entry motions (the ramps and their round at the level) are slots by design.
     let clearing: Vec<f64> = eng
-        .without(&swarf_path::roughing::entry_moves(&moves, &report))
+        .without(&swarf_path::strategy::roughing::entry_moves(&moves, &report))
         .cutting()
         .into_iter()
         .map(f64::to_degrees)

@@ -8,7 +8,7 @@
 
 use swarf_geom::TriMesh;
 use swarf_nc::read::{GcodeReadOptions, parse_gcode};
-use swarf_path::steep_shallow::{SteepShallowParams, plan};
+use swarf_path::strategy::steep_shallow::{SteepShallowParams, plan};
 use swarf_path::{Finish, RasterParams};
 use swarf_sim::{Design, Quiet, Verification, VerifyOptions, verify};
 use swarf_testkit::boss::reach;
@@ -59,7 +59,7 @@ fn wave_stays_within_the_scallop_where_the_raster_does_not() {
     // The flat-model raster at the same scallop leaves far more on the flanks.
     let mut raster = RasterParams::new(finish(&tool, TOL), 1.0);
     (raster.stepover, raster.scallop) = (None, Some(h));
-    let r = swarf_path::raster::plan(&mesh, &raster).unwrap();
+    let r = swarf_path::strategy::raster::plan(&mesh, &raster).unwrap();
     let vr = cut(&mesh, &r.toolpath, &tool, h, 0.1);
     let dr = &vr.deviation.summary;
     eprintln!(
@@ -96,9 +96,9 @@ fn one_and_two_threads_write_the_same_program() {
     let run = |threads: usize| {
         swarf_testkit::threads::on_threads(threads, || {
             let ss = plan(&mesh, &SteepShallowParams::new(finish(&tool, TOL), 0.1)).unwrap();
-            let mut wl = swarf_path::waterline::WaterlineParams::new(finish(&tool, TOL), 0.1);
+            let mut wl = swarf_path::strategy::waterline::WaterlineParams::new(finish(&tool, TOL), 0.1);
             wl.sampling = Some(0.7);
-            let w = swarf_path::waterline::plan(&mesh, &wl).unwrap();
+            let w = swarf_path::strategy::waterline::plan(&mesh, &wl).unwrap();
             [ss.toolpath, w.toolpath].map(|tp| {
                 swarf_nc::write_gcode(&tp.moves(), &tp.feeds, &Default::default()).unwrap()
             })

@@ -4,7 +4,7 @@
 
 use swarf_geom::{Point3, TriMesh};
 use swarf_path::Finish;
-use swarf_path::waterline::{Milling, Waterline, WaterlineParams, plan};
+use swarf_path::strategy::waterline::{Milling, Waterline, WaterlineParams, plan};
 use swarf_tool::Cutter;
 
 const HALF: f64 = 10.0;

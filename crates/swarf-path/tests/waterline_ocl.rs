@@ -14,7 +14,7 @@
 
 use std::path::{Path, PathBuf};
 use swarf_path::Finish;
-use swarf_path::waterline::{Milling, Waterline, WaterlineParams};
+use swarf_path::strategy::waterline::{Milling, Waterline, WaterlineParams};
 use swarf_testkit::ocl::ocl_drop;
 
 struct Reference {

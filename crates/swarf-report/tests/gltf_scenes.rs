@@ -6,7 +6,7 @@
 mod common;
 
 use swarf_geom::{Part, Patch, Point3, Vec3};
-use swarf_nc::read::{MotionKind, Program};
+use swarf_toolpath::{MotionKind, Program};
 use swarf_report::gltf::{StockMeshOptions, cutter_glb, part_glb, stock_glb, toolpath_glb};
 use swarf_report::picture::{deviation_colour, limits};
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};

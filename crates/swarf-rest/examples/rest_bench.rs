@@ -56,7 +56,7 @@ fn run(name: &str, mesh: &TriMesh) {
     let mut fp = RasterParams::new(Finish::new(ball), 1.0);
     (fp.stepover, fp.scallop) = (None, Some(0.01));
     let t = Instant::now();
-    let finish = swarf_path::raster::plan(mesh, &fp).unwrap();
+    let finish = swarf_path::strategy::raster::plan(mesh, &fp).unwrap();
     let finish_s = t.elapsed().as_secs_f64();
     let program = |tp: &swarf_toolpath::Toolpath, n: &str| {
         let text = swarf_nc::write_gcode(&tp.moves(), &tp.feeds, &Default::default()).unwrap();

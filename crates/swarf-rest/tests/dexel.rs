@@ -29,7 +29,7 @@ fn finish(mesh: &TriMesh, tool: &Cutter, h: f64) -> swarf_path::Plan {
     let mut p = RasterParams::new(Finish::new(*tool), 1.0);
     (p.stepover, p.scallop) = (None, Some(h));
     p.finish.tolerance = 0.5 * TOL;
-    swarf_path::raster::plan(mesh, &p).unwrap()
+    swarf_path::strategy::raster::plan(mesh, &p).unwrap()
 }
 
 /// A cut stock: heights after the programs, the design heights, normals and the

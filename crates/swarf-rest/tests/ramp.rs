@@ -12,7 +12,7 @@ fn a_ramp_limited_raster_leaves_ramp_rest_where_the_flanks_are_steeper() {
     let ball: Cutter = "ball:d=12".parse().unwrap();
     let mut params = RasterParams::new(Finish::new(ball), 2.0);
     params.max_ramp = Some(30f64.to_radians());
-    let plan = swarf_path::raster::plan(&mesh, &params).unwrap();
+    let plan = swarf_path::strategy::raster::plan(&mesh, &params).unwrap();
     let k = 30f64.to_radians().tan();
     let dropper = MeshDropper::new(&mesh, &ball);
     let mut s = DropScratch::default();
@@ -90,7 +90,7 @@ fn the_ramp_step_is_cut_at_the_limit_and_its_rest_found() {
     let ball: Cutter = "ball:d=10".parse().unwrap();
     let mut params = RasterParams::new(Finish::new(ball), 2.0);
     params.max_ramp = Some(20f64.to_radians());
-    let plan = swarf_path::raster::plan(&mesh, &params).unwrap();
+    let plan = swarf_path::strategy::raster::plan(&mesh, &params).unwrap();
     let k = 20f64.to_radians().tan();
     // Exact: the ball rolls off the edge (x = 40, z = 20) where its CL arc falls at
     // 20 degrees, 5 sin 20 past it.

@@ -3,7 +3,7 @@
 //! cut on our dexel stock.
 
 use swarf_nc::read::{GcodeReadOptions, parse_gcode};
-use swarf_path::waterline::WaterlineParams;
+use swarf_path::strategy::waterline::WaterlineParams;
 use swarf_path::{Finish, RasterParams};
 use swarf_rest::steep::steep_rest_angle;
 use swarf_rest::{RasterParent, SteepParams, plan_steep};
@@ -68,7 +68,7 @@ fn the_rest_angle_is_the_closed_form() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("strategy.threshold") && e.contains("level floor"),
+        e.contains("threshold") && e.contains("level floor"),
         "{e}"
     );
 }
@@ -136,7 +136,7 @@ fn the_cleanup_brings_the_walls_within_the_scallop() {
     let h = 0.01;
     let mut raster = RasterParams::new(finish(&tool), 1.0);
     (raster.stepover, raster.scallop) = (None, Some(h));
-    let rows = swarf_path::raster::plan(&mesh, &raster).unwrap();
+    let rows = swarf_path::strategy::raster::plan(&mesh, &raster).unwrap();
     let spacing = rows.report.side_step_range.unwrap()[0];
     let parent = RasterParent {
         spacing,

@@ -18,7 +18,7 @@ use crate::simulate::{SimOptions, SimReport, simulate_from};
 use crate::sweep::SimTool;
 use crate::verify::{ProgramStats, program_stats};
 use serde::Serialize;
-use swarf_nc::read::Program;
+use swarf_toolpath::Program;
 use swarf_tool::Cutter;
 
 /// One program and the cutter it runs with.

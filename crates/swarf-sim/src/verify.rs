@@ -20,7 +20,7 @@ use crate::sweep::SimTool;
 use serde::Serialize;
 use std::time::Instant;
 use swarf_geom::TriMesh;
-use swarf_nc::read::{MotionKind, Program};
+use swarf_toolpath::{MotionKind, Program};
 use swarf_tool::Cutter;
 
 /// Default cell size as a multiple of the tolerance.

@@ -1,7 +1,7 @@
 //! The simulation against closed forms at cell centres (issue 5, "Prove it").
 
 use swarf_geom::{Part, Patch, Point3};
-use swarf_nc::read::{Motion, MotionKind, Program};
+use swarf_toolpath::{Motion, MotionKind, Program};
 use swarf_sim::sweep::SimTool;
 use swarf_sim::{
     Design, Dexel, Grid, Quiet, SimOptions, StockInit, StockSpec, VerifyOptions, simulate, verify,

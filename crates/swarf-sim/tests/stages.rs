@@ -4,7 +4,7 @@
 //! determinism; one stage against the plain simulation.
 
 use swarf_geom::{Part, Patch, Point3};
-use swarf_nc::read::{Motion, MotionKind, Program};
+use swarf_toolpath::{Motion, MotionKind, Program};
 use swarf_sim::dexel::NO_MOTION;
 use swarf_sim::report::{ReportContext, flagged_csv, json_report, text_summary};
 use swarf_sim::{

@@ -286,7 +286,7 @@ mod tests {
             angle: 60f64.to_radians(),
             ..IsoParams::new(finish, 0.0)
         };
-        let plan = swarf_path::iso_planar::plan(&die(), &params).unwrap();
+        let plan = swarf_path::strategy::iso::planar::plan(&die(), &params).unwrap();
         let all = crate::cc_paths::cc_paths(&plan.toolpath);
         let mid = all.len() / 2;
         all[mid - 1..=mid + 1].to_vec()

@@ -17,7 +17,7 @@
 
 use crate::read::feed::BlockFeed;
 use crate::read::kinematics::{AxisPosition, Kinematics, arc_in_part_frame, home_position};
-use crate::read::program::{Motion, MotionKind};
+use swarf_toolpath::program::{Motion, MotionKind};
 use swarf_geom::Point3;
 use swarf_tool::Pose;
 

@@ -26,7 +26,7 @@
 use crate::read::codes::{Action, SpindleTurn};
 use crate::read::expr::integer;
 use crate::read::modal::{Interpreter, Pos};
-use crate::read::program::{Diagnostic, MotionKind};
+use swarf_toolpath::program::{Diagnostic, MotionKind};
 use crate::read::words::Words;
 
 /// Most holes one cycle block may make (`L`), and most pecks one hole may take.

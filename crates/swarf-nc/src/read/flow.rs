@@ -20,7 +20,7 @@
 use crate::read::lexer::{Line, Statement, Syntax, lex_line};
 use crate::read::modal::{Flow, Interpreter};
 use crate::read::oword::OState;
-use crate::read::program::Diagnostic;
+use swarf_toolpath::program::Diagnostic;
 use crate::read::source::Source;
 use crate::read::statement::Label;
 use crate::read::words::Word;

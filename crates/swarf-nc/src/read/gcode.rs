@@ -25,7 +25,7 @@ use crate::read::kinematics::{DEFAULT_KINEMATICS_TOL, Kinematics};
 use crate::read::lexer::{Syntax, lex_line};
 use crate::read::modal::{Interpreter, Setup};
 use crate::read::params::Params;
-use crate::read::program::{Diagnostic, Program};
+use swarf_toolpath::program::{Diagnostic, Program};
 use crate::read::source::Source;
 use crate::read::tooltable::ToolTable;
 use std::path::{Path, PathBuf};

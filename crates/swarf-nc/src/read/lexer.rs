@@ -21,7 +21,7 @@
 //! Columns are 1-based and count characters, as an editor shows them.
 
 use crate::read::expr::Expr;
-use crate::read::program::Diagnostic;
+use swarf_toolpath::program::Diagnostic;
 use crate::read::statement::{Control, FanucStatement, control, fanuc_statement};
 
 /// Which language the lexer reads.

@@ -12,7 +12,7 @@ use crate::read::arc::{ArcRequest, CenterWords, Plane, arc_center};
 use crate::read::codes::Action;
 use crate::read::feed::BlockFeed;
 use crate::read::modal::{Interpreter, MAX_TURNS, Pos};
-use crate::read::program::{Diagnostic, MotionKind};
+use swarf_toolpath::program::{Diagnostic, MotionKind};
 use crate::read::words::Words;
 use swarf_geom::{Point3, Vec3};
 

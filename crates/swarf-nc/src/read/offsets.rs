@@ -23,7 +23,7 @@
 use crate::read::codes::Action;
 use crate::read::kinematics::AxisPosition;
 use crate::read::modal::{Interpreter, Pos};
-use crate::read::program::Diagnostic;
+use swarf_toolpath::program::Diagnostic;
 use crate::read::words::Words;
 
 mod group_zero;

@@ -21,7 +21,7 @@
 //!   as LinuxCNC refuses it.
 
 use crate::read::flow::{Frame, MAX_CALL_DEPTH, Runner};
-use crate::read::program::Diagnostic;
+use swarf_toolpath::program::Diagnostic;
 use crate::read::source::Source;
 use crate::read::statement::{Control, Keyword, Label};
 use std::collections::HashMap;

@@ -11,7 +11,7 @@
 
 use crate::read::expr::Expr;
 use crate::read::lexer::{Assignment, Cursor, Syntax, assignment};
-use crate::read::program::Diagnostic;
+use swarf_toolpath::program::Diagnostic;
 use std::fmt;
 
 /// Most arguments an O-word call takes (#1 to #30).

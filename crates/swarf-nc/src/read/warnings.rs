@@ -2,7 +2,7 @@
 //! harmless unsupported word on every line gets the first few warnings about it and
 //! one summary with the count of the rest.
 
-use crate::read::program::Diagnostic;
+use swarf_toolpath::program::Diagnostic;
 use std::collections::HashMap;
 
 /// Warnings with the same message beyond this many are counted, not listed.

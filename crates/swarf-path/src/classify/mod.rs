@@ -40,7 +40,7 @@ mod board;
 mod regions;
 
 use crate::error::PathError;
-use crate::params::shown_degrees;
+use swarf_geom::units::shown_degrees;
 use geo::MultiPolygon;
 use rayon::prelude::*;
 use swarf_geom::{TriMesh, Vec3};

@@ -22,7 +22,7 @@ use crate::error::ReportError;
 use glb::Glb;
 pub use stock::{StockMesh, StockMeshOptions};
 use swarf_geom::TriMesh;
-use swarf_nc::read::Motion;
+use swarf_toolpath::Motion;
 use swarf_sim::Verification;
 use swarf_tool::{Cutter, Pose};
 

@@ -1,7 +1,7 @@
 //! Test programs shared by the report tests.
 
 use swarf_geom::Point3;
-use swarf_nc::read::{Motion, MotionKind, Program};
+use swarf_toolpath::{Motion, MotionKind, Program};
 use swarf_tool::Pose;
 
 /// Appends straight motions of a vertical tool from `at` through `points` (each with

@@ -4,7 +4,7 @@
 
 use anyhow::Result;
 use std::path::PathBuf;
-use swarf_app::job::RestSource;
+use swarf_rest::RestSource;
 use swarf_app::rest::{RestRequest, rest_request};
 use swarf_rest::RegionParams;
 

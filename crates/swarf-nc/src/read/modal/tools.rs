@@ -3,7 +3,7 @@
 
 use super::{Interpreter, Pos, whole};
 use crate::read::codes::Action;
-use crate::read::program::{Diagnostic, ToolUse};
+use swarf_toolpath::program::{Diagnostic, ToolUse};
 use crate::read::words::{Word, Words};
 
 impl Interpreter<'_> {

@@ -4,7 +4,7 @@
 use super::{minus, plus, rotate};
 use crate::read::codes::Action;
 use crate::read::modal::Interpreter;
-use crate::read::program::{Diagnostic, MotionKind};
+use swarf_toolpath::program::{Diagnostic, MotionKind};
 use crate::read::words::Words;
 
 impl Interpreter<'_> {

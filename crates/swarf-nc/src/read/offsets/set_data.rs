@@ -3,7 +3,7 @@
 
 use super::{minus, plus, rotate, system_base};
 use crate::read::modal::Interpreter;
-use crate::read::program::Diagnostic;
+use swarf_toolpath::program::Diagnostic;
 use crate::read::words::Words;
 
 impl Interpreter<'_> {
