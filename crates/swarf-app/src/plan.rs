@@ -1,14 +1,12 @@
 //! Planning a job: its strategy run on the part (or on its tessellation, for the
-//! strategies that plan on meshes: [`crate::strategy`]), its leads, the clearance
-//! plane above the planned path, and the pass bound of the iso strategies. The
-//! strategies' errors name fields inside their table; here they are placed in it
-//! (`strategy.scallop`, `linking.lead_radius`).
+//! strategies that plan on meshes: [`crate::strategy`]), its leads, and the
+//! clearance plane above the planned path. The strategies' errors name fields
+//! inside their table; here they are placed in it (`strategy.scallop`,
+//! `linking.lead_radius`).
 
 use crate::job::Job;
 use crate::strategy::place;
 use swarf_geom::{Part, TriMesh};
-use swarf_path::strategy::iso::pass_bound::{PassBound, pass_bound};
-use swarf_path::stepping::side_step::SideStep;
 use swarf_path::{PathError, Plan};
 
 /// What a job plans on.
@@ -29,18 +27,6 @@ pub fn in_table(table: &str, e: PathError) -> PathError {
             message,
         },
         other => other,
-    }
-}
-
-/// The pass bound of an iso job on `part` (empty for the other strategies, or
-/// without a usable scallop height: the strategy has already rejected those).
-fn bound_for(job: &Job, part: &Part) -> Vec<PassBound> {
-    let Some(feed) = job.strategy.pass_feed() else {
-        return Vec::new();
-    };
-    match job.strategy.scallop().map(|h| SideStep::new(&job.tool, h)) {
-        Some(Ok(side)) => pass_bound(part, &side, feed),
-        _ => Vec::new(),
     }
 }
 
@@ -86,9 +72,6 @@ pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
         .map_err(|e| in_table("strategy", e))?;
     add_job_leads(job, input, &mut plan).map_err(|e| in_table("linking", e))?;
     plan.report.lifted_points = plan.toolpath.lifted_count();
-    if let PlanInput::Part(part) = input {
-        plan.report.pass_bound = bound_for(job, part);
-    }
     plan.report.elapsed_s = start.elapsed().as_secs_f64();
     Ok(plan)
 }

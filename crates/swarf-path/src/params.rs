@@ -205,3 +205,39 @@ pub fn check_boundary(boundary: Option<[f64; 4]>) -> Result<(), PathError> {
         _ => Ok(()),
     }
 }
+
+/// A strategy's parameters with the cutting they are planned with, for the
+/// strategies' unit tests: the parameters are its fields through `Deref`.
+#[cfg(test)]
+pub(crate) struct TestJob<P> {
+    /// Tool, feeds, linking.
+    pub cut: Cutting,
+    /// The strategy's parameters.
+    pub params: P,
+}
+
+#[cfg(test)]
+impl<P> TestJob<P> {
+    /// `params` planned with the cutter `tool` (a spec) and default feeds.
+    pub fn new(tool: &str, params: P) -> TestJob<P> {
+        TestJob {
+            cut: Cutting::new(tool.parse().expect("a cutter spec")),
+            params,
+        }
+    }
+}
+
+#[cfg(test)]
+impl<P> std::ops::Deref for TestJob<P> {
+    type Target = P;
+    fn deref(&self) -> &P {
+        &self.params
+    }
+}
+
+#[cfg(test)]
+impl<P> std::ops::DerefMut for TestJob<P> {
+    fn deref_mut(&mut self) -> &mut P {
+        &mut self.params
+    }
+}

@@ -3,7 +3,6 @@
 use super::{FieldError, Kind};
 use crate::plan::PlanInput;
 use swarf_geom::Part;
-use swarf_path::strategy::iso::pass_bound::Feed;
 use swarf_path::strategy::iso::planar::IsoPlanarParams;
 use swarf_path::strategy::iso::{IsoParams, parametric, planar, scallop};
 use swarf_path::{Cutting, Finish, PathError, Plan};
@@ -41,10 +40,6 @@ impl Kind for IsoParametric {
     fn plan(p: &IsoParams, cutting: &Cutting, input: PlanInput<'_>) -> Result<Plan, PathError> {
         parametric::plan(patches(input, Self::KIND)?, cutting, p)
     }
-
-    fn pass_feed(p: &IsoParams) -> Option<Feed> {
-        Some(Feed::Param(p.direction))
-    }
 }
 
 /// Iso-planar finishing ([`planar`]).
@@ -73,10 +68,6 @@ impl Kind for IsoPlanar {
     ) -> Result<Plan, PathError> {
         planar::plan(patches(input, Self::KIND)?, cutting, p)
     }
-
-    fn pass_feed(p: &IsoPlanarParams) -> Option<Feed> {
-        Some(Feed::Plane(p.angle))
-    }
 }
 
 /// Iso-scallop finishing ([`scallop`]).
@@ -100,9 +91,5 @@ impl Kind for IsoScallop {
 
     fn plan(p: &IsoParams, cutting: &Cutting, input: PlanInput<'_>) -> Result<Plan, PathError> {
         scallop::plan(patches(input, Self::KIND)?, cutting, p)
-    }
-
-    fn pass_feed(p: &IsoParams) -> Option<Feed> {
-        Some(Feed::Param(p.direction))
     }
 }

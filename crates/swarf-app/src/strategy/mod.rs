@@ -18,16 +18,15 @@ mod drop_spin;
 mod iso;
 mod meshes;
 mod roughing;
-mod schema;
+pub(crate) mod schema;
 
 pub(crate) use schema::unknown_field_name;
 pub use schema::{fields_of, kinds_taking};
 
 use crate::plan::PlanInput;
 use serde::de::DeserializeOwned;
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use serde::Serialize;
 use std::fmt::Debug;
-use swarf_path::strategy::iso::pass_bound::Feed;
 use swarf_path::{Cutting, Finish, PathError, Plan};
 use swarf_tool::Cutter;
 
@@ -131,94 +130,99 @@ pub trait Kind {
     /// # Errors
     /// The strategy's errors, naming fields inside the table.
     fn plan(p: &Self::Params, cutting: &Cutting, input: PlanInput<'_>) -> Result<Plan, PathError>;
-
-    /// The feed direction of an iso strategy's passes, for the pass bound.
-    fn pass_feed(_p: &Self::Params) -> Option<Feed> {
-        None
-    }
 }
 
-/// The variant of [`Strategy`] per strategy, in the order the kinds are listed,
-/// with every dispatch over them.
+/// The enum of strategies `$name` with a variant per listed [`Kind`], its file
+/// syntax (serde), its schema (`$schema`, for the docs and the messages) and every
+/// dispatch over them. [`Strategy`] is the list of every strategy.
 macro_rules! strategies {
-    ($( $(#[$doc:meta])* $variant:ident => $kind:ty, )*) => {
-        /// A job's strategy and its parameters (module doc).
+    ($(#[$enum_doc:meta])* $vis:vis enum $name:ident, $schema:ident {
+        $( $(#[$doc:meta])* $variant:ident => $kind:ty, )*
+    }) => {
+        $(#[$enum_doc])*
         #[derive(Debug, Clone, PartialEq)]
-        pub enum Strategy {
-            $( $(#[$doc])* $variant(<$kind as Kind>::Params), )*
+        $vis enum $name {
+            $( $(#[$doc])* $variant(<$kind as $crate::strategy::Kind>::Params), )*
         }
 
-        impl Strategy {
+        impl $name {
             /// Every kind, as a job file names it.
-            pub const KINDS: &'static [&'static str] = &[$( <$kind as Kind>::KIND ),*];
+            pub const KINDS: &'static [&'static str] =
+                &[$( <$kind as $crate::strategy::Kind>::KIND ),*];
 
             /// The kind, as a job file names it.
             pub fn kind(&self) -> &'static str {
-                match self { $( Strategy::$variant(_) => <$kind as Kind>::KIND, )* }
+                match self { $( $name::$variant(_) => <$kind as $crate::strategy::Kind>::KIND, )* }
             }
 
             /// The variant's name (`IsoScallop`), as program comments and sequence
             /// reports write it.
             pub fn name(&self) -> &'static str {
-                match self { $( Strategy::$variant(_) => stringify!($variant), )* }
+                match self { $( $name::$variant(_) => stringify!($variant), )* }
             }
 
             /// The tolerance and zigzag.
-            pub fn finish(&self) -> &Finish {
-                match self { $( Strategy::$variant(p) => <$kind as Kind>::finish(p), )* }
+            pub fn finish(&self) -> &swarf_path::Finish {
+                match self { $( $name::$variant(p) => <$kind as $crate::strategy::Kind>::finish(p), )* }
             }
 
             /// The scallop height the strategy is planned for, mm, when it states one.
             pub fn scallop(&self) -> Option<f64> {
-                match self { $( Strategy::$variant(p) => <$kind as Kind>::scallop(p), )* }
+                match self { $( $name::$variant(p) => <$kind as $crate::strategy::Kind>::scallop(p), )* }
             }
 
             /// Whether the strategy places a tilted tool itself.
             pub fn tilted(&self) -> bool {
-                match self { $( Strategy::$variant(_) => <$kind as Kind>::TILTED, )* }
+                match self { $( $name::$variant(_) => <$kind as $crate::strategy::Kind>::TILTED, )* }
             }
 
             /// Whether the job's leads apply.
             pub fn leads(&self) -> bool {
-                match self { $( Strategy::$variant(_) => <$kind as Kind>::LEADS, )* }
+                match self { $( $name::$variant(_) => <$kind as $crate::strategy::Kind>::LEADS, )* }
             }
 
             /// Checks the parameters for `tool`.
             ///
             /// # Errors
             /// The field and what was expected.
-            pub fn validate(&self, tool: &Cutter) -> Result<(), FieldError> {
-                match self { $( Strategy::$variant(p) => <$kind as Kind>::validate(p, tool), )* }
+            pub fn validate(&self, tool: &swarf_tool::Cutter) -> Result<(), $crate::strategy::FieldError> {
+                match self { $( $name::$variant(p) => <$kind as $crate::strategy::Kind>::validate(p, tool), )* }
             }
 
             /// Plans the strategy with `cutting` on `input`.
             ///
             /// # Errors
             /// The strategy's, naming fields inside the table.
-            pub fn plan(&self, cutting: &Cutting, input: PlanInput<'_>) -> Result<Plan, PathError> {
-                match self { $( Strategy::$variant(p) => <$kind as Kind>::plan(p, cutting, input), )* }
+            pub fn plan(
+                &self,
+                cutting: &swarf_path::Cutting,
+                input: $crate::plan::PlanInput<'_>,
+            ) -> Result<swarf_path::Plan, swarf_path::PathError> {
+                match self { $( $name::$variant(p) => <$kind as $crate::strategy::Kind>::plan(p, cutting, input), )* }
             }
 
-            /// The feed of an iso strategy's passes, for the pass bound.
-            pub fn pass_feed(&self) -> Option<Feed> {
-                match self { $( Strategy::$variant(p) => <$kind as Kind>::pass_feed(p), )* }
+            /// The schema of every kind's table, as JSON.
+            pub fn schema() -> &'static serde_json::Value {
+                static SCHEMA: std::sync::OnceLock<serde_json::Value> = std::sync::OnceLock::new();
+                SCHEMA.get_or_init($crate::strategy::schema::generate::<$schema>)
             }
 
             /// The strategy of `kind` with the parameters in `table`.
             ///
             /// # Errors
             /// An unknown kind; the table's first bad field (`field: message`).
-            pub fn from_table(kind: &str, table: toml::Table) -> Result<Strategy, String> {
-                $( if kind == <$kind as Kind>::KIND {
-                    return schema::decode::<$kind>(table).map(Strategy::$variant);
+            pub fn from_table(kind: &str, table: toml::Table) -> Result<$name, String> {
+                $( if kind == <$kind as $crate::strategy::Kind>::KIND {
+                    return $crate::strategy::schema::decode::<$kind>(table, Self::schema())
+                        .map($name::$variant);
                 } )*
-                Err(schema::unknown_kind(kind))
+                Err($crate::strategy::schema::unknown_kind(kind, Self::KINDS))
             }
 
             /// The parameters as a table, `kind` first.
             fn to_table(&self) -> Result<toml::Table, String> {
                 let params = match self {
-                    $( Strategy::$variant(p) => toml::Table::try_from(p), )*
+                    $( $name::$variant(p) => toml::Table::try_from(p), )*
                 };
                 let mut table = toml::Table::new();
                 table.insert("kind".into(), toml::Value::String(self.kind().into()));
@@ -227,17 +231,48 @@ macro_rules! strategies {
             }
         }
 
-        /// The schema of every kind's table (what [`schema`] documents).
+        /// The schema of every kind's table.
         #[derive(schemars::JsonSchema)]
         #[serde(tag = "kind", rename_all = "kebab-case")]
         #[allow(dead_code)]
-        enum StrategySchema {
-            $( $(#[$doc])* $variant(<$kind as Kind>::Params), )*
+        enum $schema {
+            $( $(#[$doc])* $variant(<$kind as $crate::strategy::Kind>::Params), )*
+        }
+
+        impl<'de> serde::Deserialize<'de> for $name {
+            /// `kind`, then the rest of the table as that kind's parameters.
+            fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+                let table = toml::Table::deserialize(d)?;
+                $crate::strategy::schema::split_kind(table, Self::KINDS)
+                    .and_then(|(kind, table)| $name::from_table(&kind, table))
+                    .map_err(serde::de::Error::custom)
+            }
+        }
+
+        impl serde::Serialize for $name {
+            /// The table a job file writes: `kind` and the parameters.
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                self.to_table()
+                    .map_err(serde::ser::Error::custom)?
+                    .serialize(s)
+            }
+        }
+
+        impl schemars::JsonSchema for $name {
+            fn schema_name() -> std::borrow::Cow<'static, str> {
+                stringify!($name).into()
+            }
+
+            fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
+                $schema::json_schema(generator)
+            }
         }
     };
 }
 
 strategies! {
+    /// A job's strategy and its parameters (module doc).
+    pub enum Strategy, StrategySchema {
     /// Passes along constant-parameter curves of each patch (paper 004).
     IsoParametric => iso::IsoParametric,
     /// Sections of the part by parallel vertical drive planes (paper 004).
@@ -258,43 +293,6 @@ strategies! {
     /// Five-axis multipoint passes along the common edge of two faces, by drop and
     /// spin (paper 003).
     DropSpin => drop_spin::DropSpin,
-}
-
-impl<'de> Deserialize<'de> for Strategy {
-    /// `kind`, then the rest of the table as that kind's parameters (module doc).
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        use serde::de::Error;
-        let mut table = toml::Table::deserialize(d)?;
-        let kind = match table.remove("kind") {
-            Some(toml::Value::String(k)) => k,
-            Some(v) => {
-                return Err(D::Error::custom(format!(
-                    "kind: expected one of {}, found {v}",
-                    schema::kind_list()
-                )));
-            }
-            None => return Err(D::Error::custom("missing field `kind`")),
-        };
-        Strategy::from_table(&kind, table).map_err(D::Error::custom)
-    }
-}
-
-impl Serialize for Strategy {
-    /// The table a job file writes: `kind` and the parameters.
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        self.to_table()
-            .map_err(serde::ser::Error::custom)?
-            .serialize(s)
-    }
-}
-
-impl schemars::JsonSchema for Strategy {
-    fn schema_name() -> std::borrow::Cow<'static, str> {
-        "Strategy".into()
-    }
-
-    fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
-        StrategySchema::json_schema(generator)
     }
 }
 

@@ -3,60 +3,54 @@
 //! that take a field, and the messages for a table that names an unknown kind or a
 //! field its kind does not take.
 
-use super::{Kind, Strategy, StrategySchema};
-use std::sync::OnceLock;
+use super::{Kind, Strategy};
 
-/// The schema of every kind's table, as JSON.
-pub(crate) fn strategy_schema() -> &'static serde_json::Value {
-    static SCHEMA: OnceLock<serde_json::Value> = OnceLock::new();
-    SCHEMA.get_or_init(|| {
-        let schema = schemars::generate::SchemaSettings::draft2020_12()
-            .into_generator()
-            .into_root_schema_for::<StrategySchema>();
-        serde_json::to_value(schema).unwrap_or_default()
-    })
+/// The JSON schema of the strategy enum `S` (a `oneOf` per kind).
+pub(crate) fn generate<S: schemars::JsonSchema>() -> serde_json::Value {
+    let schema = schemars::generate::SchemaSettings::draft2020_12()
+        .into_generator()
+        .into_root_schema_for::<S>();
+    serde_json::to_value(schema).unwrap_or_default()
 }
 
-/// Each kind's table schema (its `kind` constant and properties), in the order of
-/// [`Strategy::KINDS`].
-pub(crate) fn kind_schemas() -> Vec<(&'static str, &'static serde_json::Value)> {
-    let variants = strategy_schema()["oneOf"].as_array();
-    Strategy::KINDS
-        .iter()
-        .map(|&kind| {
-            let schema = variants
-                .into_iter()
-                .flatten()
-                .find(|v| v["properties"]["kind"]["const"] == kind)
-                .unwrap_or(&serde_json::Value::Null);
-            (kind, schema)
-        })
-        .collect()
-}
-
-/// The fields a `kind`'s table takes besides `kind`, sorted.
-pub fn fields_of(kind: &str) -> Vec<String> {
-    kind_schemas()
+/// The table schema of `kind` in `schema` (its `kind` constant and properties).
+pub(crate) fn kind_schema<'a>(schema: &'a serde_json::Value, kind: &str) -> &'a serde_json::Value {
+    schema["oneOf"]
+        .as_array()
         .into_iter()
-        .filter(|(k, _)| *k == kind)
-        .flat_map(|(_, s)| s["properties"].as_object().into_iter().flatten())
+        .flatten()
+        .find(|v| v["properties"]["kind"]["const"] == kind)
+        .unwrap_or(&serde_json::Value::Null)
+}
+
+/// The fields `kind`'s table takes in `schema`, besides `kind`, sorted.
+fn fields_in(schema: &serde_json::Value, kind: &str) -> Vec<String> {
+    kind_schema(schema, kind)["properties"]
+        .as_object()
+        .into_iter()
+        .flatten()
         .map(|(name, _)| name.clone())
         .filter(|name| name != "kind")
         .collect()
 }
 
-/// The kinds whose tables take `field`, in the order of [`Strategy::KINDS`].
-pub fn kinds_taking(field: &str) -> Vec<&'static str> {
-    Strategy::KINDS
-        .iter()
-        .copied()
-        .filter(|kind| fields_of(kind).iter().any(|f| f == field))
-        .collect()
+/// The fields a strategy `kind`'s table takes besides `kind`, sorted.
+pub fn fields_of(kind: &str) -> Vec<String> {
+    fields_in(Strategy::schema(), kind)
 }
 
-/// Every kind, quoted, for a message.
-pub(super) fn kind_list() -> String {
-    quoted(Strategy::KINDS)
+/// The strategy kinds whose tables take `field`, in the order of
+/// [`Strategy::KINDS`].
+pub fn kinds_taking(field: &str) -> Vec<&'static str> {
+    taking(Strategy::schema(), Strategy::KINDS, field)
+}
+
+fn taking<'a>(schema: &serde_json::Value, kinds: &[&'a str], field: &str) -> Vec<&'a str> {
+    kinds
+        .iter()
+        .copied()
+        .filter(|kind| fields_in(schema, kind).iter().any(|f| f == field))
+        .collect()
 }
 
 fn quoted(names: &[&str]) -> String {
@@ -67,21 +61,39 @@ fn quoted(names: &[&str]) -> String {
         .join(", ")
 }
 
+/// `table`'s `kind` and the rest of it.
+///
+/// # Errors
+/// No kind, or one that is not text, as `kind: ...`.
+pub(crate) fn split_kind(
+    mut table: toml::Table,
+    kinds: &[&str],
+) -> Result<(String, toml::Table), String> {
+    match table.remove("kind") {
+        Some(toml::Value::String(k)) => Ok((k, table)),
+        Some(v) => Err(format!(
+            "kind: expected one of {}, found {v}",
+            quoted(kinds)
+        )),
+        None => Err("missing field `kind`".into()),
+    }
+}
+
 /// The message for an unknown `kind`.
-pub(super) fn unknown_kind(kind: &str) -> String {
+pub(crate) fn unknown_kind(kind: &str, kinds: &[&str]) -> String {
     format!(
         "kind: unknown variant `{}`, expected one of {}",
         swarf_geom::domain::excerpt(kind, 40),
-        kind_list()
+        quoted(kinds)
     )
 }
 
 /// The message for `field`, which `kind`'s table does not take: the fields it takes
 /// and the kinds that do take it.
-pub(super) fn misplaced(kind: &str, field: &str) -> String {
-    let takes = fields_of(kind);
+fn misplaced(schema: &serde_json::Value, kinds: &[&str], kind: &str, field: &str) -> String {
+    let takes = fields_in(schema, kind);
     let takes: Vec<&str> = takes.iter().map(String::as_str).collect();
-    let others = kinds_taking(field);
+    let others = taking(schema, kinds, field);
     let elsewhere = if others.is_empty() {
         "no strategy takes it".to_string()
     } else {
@@ -93,17 +105,27 @@ pub(super) fn misplaced(kind: &str, field: &str) -> String {
     )
 }
 
-/// The parameters of `K` read from `table` (without `kind`).
+/// The parameters of `K` read from `table` (without `kind`); `schema` is the
+/// strategies' schema, for a misplaced field's message.
 ///
 /// # Errors
 /// The first bad field as `field: message` (its path inside the table); a field
-/// the kind does not take as [`misplaced`].
-pub(super) fn decode<K: Kind>(table: toml::Table) -> Result<K::Params, String> {
+/// the kind does not take, with the kinds that do.
+pub(crate) fn decode<K: Kind>(
+    table: toml::Table,
+    schema: &serde_json::Value,
+) -> Result<K::Params, String> {
     serde_path_to_error::deserialize::<_, K::Params>(toml::Value::Table(table)).map_err(|e| {
         let message = e.inner().message().trim().to_string();
         let path = e.path().to_string();
+        let kinds: Vec<&str> = schema["oneOf"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(|v| v["properties"]["kind"]["const"].as_str())
+            .collect();
         match unknown_field_name(&message) {
-            Some(field) if path == "." => misplaced(K::KIND, field),
+            Some(field) if path == "." => misplaced(schema, &kinds, K::KIND, field),
             _ if path == "." => message,
             _ => format!("{path}: {message}"),
         }

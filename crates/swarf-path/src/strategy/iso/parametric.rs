@@ -30,6 +30,7 @@ use crate::stepping::forward_step::{Sample, sample_curve};
 use crate::strategy::iso::setup::{IsoSetup, SideGeom, fit_interval};
 use crate::ordering::Row;
 use super::IsoParams;
+use super::pass_bound::Feed;
 use crate::params::{Cutting, ParamDir, StartSide};
 use crate::plan::{Plan, PlanReport, Uncovered};
 use crate::stepping::side_step::corners_face;
@@ -64,7 +65,9 @@ pub fn plan(part: &Part, cutting: &Cutting, params: &IsoParams) -> Result<Plan, 
         IsoParam::new(&setup, face).plan(&mut rows, &mut figures, &mut report);
     }
     figures.write(&mut report);
-    setup.finish(rows, report)
+    let mut plan = setup.finish(rows, report)?;
+    plan.report.pass_bound = setup.pass_bound(Feed::Param(params.direction));
+    Ok(plan)
 }
 
 /// Scallop and side-step figures gathered while planning.
@@ -296,13 +299,17 @@ fn to_row(runs: &[Vec<Sample>]) -> Row {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::params::Finish;
+    use crate::params::TestJob;
     use crate::stepping::side_step::ball_scallop;
     use swarf_geom::Point3;
     use swarf_toolpath::PathPoint;
 
-    fn job(h: f64) -> IsoParams {
-        IsoParams::new(Finish::new("ball:d=8".parse().unwrap()), h)
+    fn job(h: f64) -> TestJob<IsoParams> {
+        TestJob::new("ball:d=8", IsoParams::new(h))
+    }
+
+    fn plan(part: &Part, j: &TestJob<IsoParams>) -> Result<Plan, PathError> {
+        super::plan(part, &j.cut, &j.params)
     }
 
     /// The CC point of the pass at its smallest x (passes alternate direction).

@@ -170,7 +170,9 @@ pub fn plan(part: &Part, cutting: &Cutting, params: &IsoPlanarParams) -> Result<
         )));
     }
     figures.write(&mut report);
-    setup.finish(rows, report)
+    let mut plan = setup.finish(rows, report)?;
+    plan.report.pass_bound = setup.pass_bound(super::pass_bound::Feed::Plane(params.angle));
+    Ok(plan)
 }
 
 /// One sample of a section, for the plane spacing.
@@ -528,14 +530,17 @@ struct Crossing {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::params::Finish;
+    use crate::params::TestJob;
 
     /// Planes at `angle_deg` from +X, spaced for a scallop of 0.3 mm by a ball d = 8.
-    fn job(angle_deg: f64) -> IsoParams {
-        IsoParams {
-            angle: angle_deg.to_radians(),
-            ..IsoParams::new(Finish::new("ball:d=8".parse().unwrap()), 0.3)
-        }
+    fn job(angle_deg: f64) -> TestJob<IsoPlanarParams> {
+        let mut j = TestJob::new("ball:d=8", IsoPlanarParams::new(0.3));
+        j.angle = angle_deg.to_radians();
+        j
+    }
+
+    fn plan(part: &Part, j: &TestJob<IsoPlanarParams>) -> Result<Plan, PathError> {
+        super::plan(part, &j.cut, &j.params)
     }
 
     /// Height of `patch` over `(x, y)` by Newton on the XY map from the best node of a
@@ -622,10 +627,8 @@ mod tests {
     #[test]
     fn start_side_and_bad_angle() {
         let part = swarf_io::builtin_part("wave").unwrap();
-        let max = IsoParams {
-            start: StartSide::Max,
-            ..job(0.0)
-        };
+        let mut max = job(0.0);
+        max.start = StartSide::Max;
         let a = plan(&part, &max).unwrap();
         let first = a.toolpath.passes[0].points[0].contact.unwrap().point;
         assert!(first.y > 99.0, "{first:?}");

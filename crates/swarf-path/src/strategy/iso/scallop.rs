@@ -60,6 +60,7 @@ use crate::strategy::iso::parametric::Figures;
 use crate::strategy::iso::setup::IsoSetup;
 use crate::ordering::Row;
 use super::IsoParams;
+use super::pass_bound::Feed;
 use crate::params::{Cutting, ParamDir, StartSide};
 use crate::plan::{Plan, PlanReport, Uncovered};
 use crate::stepping::scallop_step::{Next, NextPoint, Station, next_point, point_at_offset};
@@ -93,7 +94,9 @@ pub fn plan(part: &Part, cutting: &Cutting, params: &IsoParams) -> Result<Plan, 
         IsoScallop::new(&setup, face).plan(&mut rows, &mut figures, &mut report);
     }
     figures.write(&mut report);
-    setup.finish(rows, report)
+    let mut plan = setup.finish(rows, report)?;
+    plan.report.pass_bound = setup.pass_bound(Feed::Param(params.direction));
+    Ok(plan)
 }
 
 /// A CC path: a polyline in the parameter plane and its forward-stepped samples
@@ -426,11 +429,15 @@ fn max_tilt(patch: &swarf_geom::Patch) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::params::Finish;
+    use crate::params::TestJob;
     use crate::stepping::side_step::ball_step;
 
-    fn job(tool: &str, h: f64) -> IsoParams {
-        IsoParams::new(Finish::new(tool.parse().unwrap()), h)
+    fn job(tool: &str, h: f64) -> TestJob<IsoParams> {
+        TestJob::new(tool, IsoParams::new(h))
+    }
+
+    fn plan(part: &Part, j: &TestJob<IsoParams>) -> Result<Plan, PathError> {
+        super::plan(part, &j.cut, &j.params)
     }
 
     /// Angle (degrees) of the CC points of a pass around the cylinder axis.

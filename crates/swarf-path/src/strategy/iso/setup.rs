@@ -145,6 +145,16 @@ impl<'a> IsoSetup<'a> {
         })
     }
 
+    /// The least number of full-length passes any family along `feed` needs on each
+    /// patch at the scallop limit ([`super::pass_bound`]; none for a fixed
+    /// stepover).
+    pub fn pass_bound(&self, feed: super::pass_bound::Feed) -> Vec<super::pass_bound::PassBound> {
+        match self.params.scallop {
+            Some(_) => super::pass_bound::pass_bound(self.part, &self.side, feed),
+            None => Vec::new(),
+        }
+    }
+
     /// The CC -> CL map of patch `face`.
     pub fn cl_map(&self, face: usize) -> ClMap<'a> {
         ClMap::new(&self.part.patches[face], face, &self.params.cutting.tool)

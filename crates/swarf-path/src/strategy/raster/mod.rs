@@ -285,31 +285,30 @@ pub fn crease_scan(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::params::{Finish, StartSide};
+    use crate::params::{StartSide, TestJob};
     use swarf_geom::Point3;
     use swarf_tool::drop::triangle_drop;
 
     /// Raster parameters for the cutter `tool` with the defaults of a job file and
     /// no spacing yet.
-    fn raster(tool: &str) -> RasterParams {
-        RasterParams {
-            stepover: None,
-            ..RasterParams::new(Finish::new(tool.parse().unwrap()), 1.0)
-        }
+    fn raster(tool: &str) -> TestJob<RasterParams> {
+        TestJob::new(tool, RasterParams::default())
     }
 
-    fn scallop(tool: &str, h: f64) -> RasterParams {
-        RasterParams {
-            scallop: Some(h),
-            ..raster(tool)
-        }
+    fn scallop(tool: &str, h: f64) -> TestJob<RasterParams> {
+        let mut j = raster(tool);
+        j.scallop = Some(h);
+        j
     }
 
-    fn stepover(tool: &str, s: f64) -> RasterParams {
-        RasterParams {
-            stepover: Some(s),
-            ..raster(tool)
-        }
+    fn stepover(tool: &str, s: f64) -> TestJob<RasterParams> {
+        let mut j = raster(tool);
+        j.stepover = Some(s);
+        j
+    }
+
+    fn plan(mesh: &TriMesh, j: &TestJob<RasterParams>) -> Result<Plan, PathError> {
+        super::plan(mesh, &j.cut, &j.params)
     }
 
     fn grid(nx: usize, ny: usize, step: f64, z: impl Fn(f64, f64) -> f64) -> TriMesh {
@@ -329,8 +328,8 @@ mod tests {
 
     /// Every CL point (drops and staircase corners) against every triangle, without
     /// the index: no triangle reaches above it by more than 1e-9.
-    fn assert_gouge_free(mesh: &TriMesh, params: &RasterParams, plan: &Plan) {
-        let tool = swarf_tool::drop::DropCutter::new(&params.finish.tool);
+    fn assert_gouge_free(mesh: &TriMesh, j: &TestJob<RasterParams>, plan: &Plan) {
+        let tool = swarf_tool::drop::DropCutter::new(&j.cut.tool);
         let r = tool.radius();
         for p in plan.toolpath.passes.iter().flat_map(|p| &p.points) {
             let cl = p.pose.cl;
@@ -389,12 +388,10 @@ mod tests {
     #[test]
     fn boundary_angle_start_and_one_way() {
         let mesh = grid(20, 20, 1.0, |x, y| (0.3 * x).sin() + 0.2 * y);
-        let mut j = RasterParams {
-            angle: 90f64.to_radians(),
-            start: StartSide::Max,
-            boundary: Some([5.0, 4.0, 12.0, 15.0]),
-            ..stepover("bull:d=6,r=1", 1.5)
-        };
+        let mut j = stepover("bull:d=6,r=1", 1.5);
+        j.angle = 90f64.to_radians();
+        j.start = StartSide::Max;
+        j.boundary = Some([5.0, 4.0, 12.0, 15.0]);
         j.finish.zigzag = false;
         let plan = plan(&mesh, &j).unwrap();
         let passes = &plan.toolpath.passes;
@@ -479,10 +476,8 @@ mod tests {
         ));
         let mesh = TriMesh::from_triangles(&soup);
         for start in [0.0, 0.013, 0.31] {
-            let j = RasterParams {
-                boundary: Some([start, 0.0, 20.0, 4.0]),
-                ..stepover("flat:d=4", 1.3)
-            };
+            let mut j = stepover("flat:d=4", 1.3);
+            j.boundary = Some([start, 0.0, 20.0, 4.0]);
             let plan = plan(&mesh, &j).unwrap();
             for pass in &plan.toolpath.passes {
                 for w in pass.points.windows(2) {
@@ -514,11 +509,9 @@ mod tests {
         );
         // Passes across the groove find its crease: one double contact each, at its
         // bottom, where the path now goes down to.
-        let across = RasterParams {
-            angle: 90f64.to_radians(),
-            ..stepover("ball:d=6", 2.0)
-        };
-        let cross = super::plan(&mesh, &across).unwrap();
+        let mut across = stepover("ball:d=6", 2.0);
+        across.angle = 90f64.to_radians();
+        let cross = super::plan(&mesh, &across.cut, &across.params).unwrap();
         let crossings = cross.toolpath.passes.len();
         assert!(
             cross.double_contacts.len() >= crossings,
@@ -557,14 +550,9 @@ mod tests {
         let mesh = grid(4, 4, 1.0, |_, _| 0.0);
         let e = plan(&mesh, &stepover("ball:d=8", 9.0)).unwrap_err();
         assert!(e.to_string().contains("stepover"), "{e}");
-        let e = plan(
-            &mesh,
-            &RasterParams {
-                boundary: Some([100.0, 100.0, 110.0, 110.0]),
-                ..stepover("ball:d=8", 1.0)
-            },
-        )
-        .unwrap_err();
+        let mut off = stepover("ball:d=8", 1.0);
+        off.boundary = Some([100.0, 100.0, 110.0, 110.0]);
+        let e = plan(&mesh, &off).unwrap_err();
         assert!(e.to_string().contains("nowhere"), "{e}");
         // A tool much larger than the mesh still plans.
         let big = plan(&mesh, &stepover("flat:d=40", 2.0)).unwrap();
@@ -579,10 +567,8 @@ mod tests {
     #[test]
     fn plans_are_identical_for_any_thread_count() {
         let mesh = grid(30, 20, 0.7, |x, y| (0.2 * x).sin() * (0.3 * y).cos() * 3.0);
-        let j = RasterParams {
-            angle: 30f64.to_radians(),
-            ..scallop("bull:d=6,r=1.5", 0.05)
-        };
+        let mut j = scallop("bull:d=6,r=1.5", 0.05);
+        j.angle = 30f64.to_radians();
         let run = |n: usize| {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(n)

@@ -493,12 +493,13 @@ mod tests {
             top: 10.0,
             material: &material,
         };
-        let params = RoughingParams::new(Finish::new(Cutter::flat(10.0, None).unwrap()));
-        assert!(check(&params, &stock).is_ok());
-        let message = |p: RoughingParams| check(&p, &stock).unwrap_err().to_string();
+        let tool = Cutter::flat(10.0, None).unwrap();
+        let params = RoughingParams::default();
+        assert!(check(&params, &tool, &stock).is_ok());
+        let message = |p: RoughingParams| check(&p, &tool, &stock).unwrap_err().to_string();
         let e = message(RoughingParams {
             step_down: 1e300,
-            ..params.clone()
+            ..params
         });
         assert!(
             e.contains("step_down") && e.contains("1e300 mm"),
@@ -506,7 +507,7 @@ mod tests {
         );
         let e = message(RoughingParams {
             max_engagement: 95f64.to_radians(),
-            ..params.clone()
+            ..params
         });
         assert!(
             e.contains("max_engagement") && e.contains("95 degrees"),
@@ -514,7 +515,7 @@ mod tests {
         );
         let e = message(RoughingParams {
             corner_radius: Some(0.1),
-            ..params.clone()
+            ..params
         });
         assert!(
             e.contains("corner_radius") && e.contains("0.25 to 500 mm"),
@@ -522,7 +523,7 @@ mod tests {
         );
         let e = message(RoughingParams {
             ramp_angle: f64::NAN,
-            ..params.clone()
+            ..params
         });
         assert!(
             e.contains("ramp_angle") && e.contains("NaN degrees"),
@@ -532,7 +533,7 @@ mod tests {
             max: [0.0, 10.0],
             ..stock
         };
-        let e = check(&params, &flat).unwrap_err().to_string();
+        let e = check(&params, &tool, &flat).unwrap_err().to_string();
         assert!(e.contains("stock") && e.contains("min below max"), "{e}");
     }
 }

@@ -72,8 +72,8 @@ fn example_jobs_run_in_rs274_and_reproduce_the_csv() {
         let job = Job::parse(&text, &path.display().to_string()).unwrap();
         assert_eq!(job.part, "builtin:wave");
         assert_eq!(job.tool.to_string(), "ball:d=8");
-        assert_eq!(job.strategy.scallop, Some(0.15));
-        assert_eq!(job.strategy.tolerance, 0.01);
+        assert_eq!(job.strategy.scallop(), Some(0.15));
+        assert_eq!(job.tolerance(), 0.01);
         assert_eq!((job.feeds.feed, job.feeds.spindle), (300.0, 1500.0));
         let part = swarf_io::builtin_part("wave").unwrap();
         let plan = swarf_app::plan(&job, PlanInput::Part(&part)).unwrap();
