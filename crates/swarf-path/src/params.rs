@@ -70,7 +70,7 @@ impl Finish {
 
 /// Which parameter a pass follows (iso-parametric) or which boundary the first pass
 /// starts on (iso-scallop).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ParamDir {
     /// Passes run along u (v constant on each pass).
@@ -78,6 +78,31 @@ pub enum ParamDir {
     U,
     /// Passes run along v (u constant on each pass).
     V,
+}
+
+impl std::str::FromStr for ParamDir {
+    type Err = String;
+
+    /// `u` or `v`; a milling direction (`climb`, `conventional`) is named as one.
+    fn from_str(s: &str) -> Result<ParamDir, String> {
+        match s {
+            "u" => Ok(ParamDir::U),
+            "v" => Ok(ParamDir::V),
+            "climb" | "conventional" => Err(format!(
+                "\"{s}\" is a milling direction (waterline, steep-shallow, steep cleanup); this strategy takes \"u\" or \"v\""
+            )),
+            other => Err(format!(
+                "unknown variant `{}`, expected `u` or `v`",
+                swarf_geom::domain::excerpt(other, 40)
+            )),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for ParamDir {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<ParamDir, D::Error> {
+        String::deserialize(d)?.parse().map_err(serde::de::Error::custom)
+    }
 }
 
 /// Which end of the side-step range the first pass is on.

@@ -78,8 +78,8 @@ pub struct CleanupParams {
     pub chain: Vec<Cutter>,
     /// The rest to clean up.
     pub restmaterial: Vec<RestMaterial>,
-    /// Steep rest: the milling direction of its Z-levels.
-    pub direction: Milling,
+    /// Steep rest: the milling direction of its Z-levels (climb unless given).
+    pub direction: Option<Milling>,
     /// Steep rest: the Go-board cell and the levels' drop-field step, mm (default:
     /// a quarter of the tool radius).
     #[schemars(extend("unit" = "mm", "domain" = SAMPLE.to_string()))]
@@ -104,7 +104,7 @@ impl Default for CleanupParams {
             smoothness: regions.smoothness,
             chain: Vec::new(),
             restmaterial: vec![RestMaterial::Valley, RestMaterial::Ramp],
-            direction: Milling::default(),
+            direction: None,
             sampling: None,
         }
     }
@@ -155,6 +155,17 @@ impl CleanupParams {
             });
         }
         self.validate_restmaterial()?;
+        if let Some(d) = self.direction
+            && !self.restmaterial.contains(&RestMaterial::Steep)
+        {
+            return Err(RestError::Parameter {
+                field: "direction".into(),
+                message: format!(
+                    "\"{}\" is a milling direction for the Z-levels of steep rest; without \"steep\" in restmaterial a cleanup takes none",
+                    d.name()
+                ),
+            });
+        }
         self.regions().validate()
     }
 

@@ -334,7 +334,7 @@ fn add_steep(job: &Job, parent: &Job, mesh: &TriMesh, stage: &mut CleanupStage) 
     let params = SteepParams {
         waterline: WaterlineParams {
             finish: c.finish,
-            direction: c.direction,
+            direction: c.direction.unwrap_or_default(),
             sampling: c.sampling,
             ..WaterlineParams::new(c.scallop.unwrap_or(threshold))
         },

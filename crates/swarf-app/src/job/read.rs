@@ -125,11 +125,16 @@ fn locate(path: &serde_path_to_error::Path, message: &str) -> Located {
     let in_strategy = matches!(keys.last(), Some(Key::Name(n)) if n == "strategy");
     if in_strategy && let Some((field, rest)) = message.split_once(": ") {
         if is_field_path(field) {
-            keys.extend(field.split('.').map(|f| Key::Name(f.to_string())));
-            message = rest.to_string();
+            // Further lines name further fields of the table: placed as the first.
+            let table = dotted(&keys);
+            let mut lines = rest.split('\n');
+            let mut placed = lines.next().unwrap_or_default().to_string();
+            for line in lines {
+                placed += &format!("; {table}.{line}");
+            }
+            keys.extend(field_keys(field));
+            message = placed;
         }
-    } else if let Some(field) = crate::strategy::unknown_field_name(&message) {
-        keys.push(Key::Name(field.to_string()));
     }
     Located {
         path: keys,
@@ -138,11 +143,32 @@ fn locate(path: &serde_path_to_error::Path, message: &str) -> Located {
     }
 }
 
-/// Whether `s` reads as a path of field names (`scallop`, `a.b`).
+/// Whether `s` reads as a path of field names and indices (`scallop`, `a.b`,
+/// `chain[1]`).
 fn is_field_path(s: &str) -> bool {
     !s.is_empty()
-        && s.split('.')
-            .all(|p| !p.is_empty() && p.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
+        && s.split('.').all(|p| {
+            !p.is_empty()
+                && p.chars()
+                    .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '[' | ']'))
+        })
+}
+
+/// The keys of a field path (`chain[1].d`: `chain`, 1, `d`).
+fn field_keys(path: &str) -> Vec<Key> {
+    let mut keys = Vec::new();
+    for part in path.split('.') {
+        let mut pieces = part.split('[');
+        if let Some(name) = pieces.next().filter(|n| !n.is_empty()) {
+            keys.push(Key::Name(name.to_string()));
+        }
+        for index in pieces {
+            if let Ok(i) = index.trim_end_matches(']').parse() {
+                keys.push(Key::Index(i));
+            }
+        }
+    }
+    keys
 }
 
 /// The byte offset of the deepest key of `path` found in `doc`.

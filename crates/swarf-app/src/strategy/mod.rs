@@ -20,7 +20,6 @@ mod meshes;
 mod roughing;
 pub(crate) mod schema;
 
-pub(crate) use schema::unknown_field_name;
 pub use schema::{fields_of, kinds_taking};
 
 use crate::plan::PlanInput;

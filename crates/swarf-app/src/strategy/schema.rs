@@ -88,21 +88,24 @@ pub(crate) fn unknown_kind(kind: &str, kinds: &[&str]) -> String {
     )
 }
 
-/// The message for `field`, which `kind`'s table does not take: the fields it takes
-/// and the kinds that do take it.
-fn misplaced(schema: &serde_json::Value, kinds: &[&str], kind: &str, field: &str) -> String {
+/// The message for the `fields` `kind`'s table does not take, a line each (`field:
+/// message`): the kinds that do take it, and the fields `kind` takes.
+fn misplaced(schema: &serde_json::Value, kinds: &[&str], kind: &str, fields: &[&str]) -> String {
     let takes = fields_in(schema, kind);
     let takes: Vec<&str> = takes.iter().map(String::as_str).collect();
-    let others = taking(schema, kinds, field);
-    let elsewhere = if others.is_empty() {
-        "no strategy takes it".to_string()
-    } else {
-        format!("it is a field of {}", quoted(&others))
-    };
-    format!(
-        "{field}: unknown field `{field}` for kind `{kind}` ({elsewhere}); `{kind}` takes {}",
-        quoted(&takes)
-    )
+    let lines: Vec<String> = fields
+        .iter()
+        .map(|field| {
+            let others = taking(schema, kinds, field);
+            let elsewhere = if others.is_empty() {
+                "no strategy takes it".to_string()
+            } else {
+                format!("it is a field of {}", quoted(&others))
+            };
+            format!("{field}: unknown field `{field}` for kind `{kind}` ({elsewhere})")
+        })
+        .collect();
+    format!("{}; `{kind}` takes {}", lines.join("\n"), quoted(&takes))
 }
 
 /// The parameters of `K` read from `table` (without `kind`); `schema` is the
@@ -115,25 +118,28 @@ pub(crate) fn decode<K: Kind>(
     table: toml::Table,
     schema: &serde_json::Value,
 ) -> Result<K::Params, String> {
-    serde_path_to_error::deserialize::<_, K::Params>(toml::Value::Table(table)).map_err(|e| {
-        let message = e.inner().message().trim().to_string();
-        let path = e.path().to_string();
+    let takes = fields_in(schema, K::KIND);
+    let unknown: Vec<&str> = table
+        .keys()
+        .map(String::as_str)
+        .filter(|k| !takes.iter().any(|t| t == k))
+        .collect();
+    if !unknown.is_empty() {
         let kinds: Vec<&str> = schema["oneOf"]
             .as_array()
             .into_iter()
             .flatten()
             .filter_map(|v| v["properties"]["kind"]["const"].as_str())
             .collect();
-        match unknown_field_name(&message) {
-            Some(field) if path == "." => misplaced(schema, &kinds, K::KIND, field),
-            _ if path == "." => message,
-            _ => format!("{path}: {message}"),
+        return Err(misplaced(schema, &kinds, K::KIND, &unknown));
+    }
+    serde_path_to_error::deserialize::<_, K::Params>(toml::Value::Table(table)).map_err(|e| {
+        let message = e.inner().message().trim().to_string();
+        let path = e.path().to_string();
+        if path == "." {
+            message
+        } else {
+            format!("{path}: {message}")
         }
     })
-}
-
-/// The field a serde "unknown field `x`" message names.
-pub(crate) fn unknown_field_name(message: &str) -> Option<&str> {
-    let rest = message.strip_prefix("unknown field `")?;
-    rest.split('`').next()
 }

@@ -134,9 +134,12 @@ fn bad_values_name_their_field_and_domain() {
     );
     let e = Strategy::from_table("raster", toml::from_str("scallop = \"x\"").unwrap()).unwrap_err();
     assert!(e.starts_with("scallop: invalid type: string \"x\""), "{e}");
-    let e = Strategy::from_table("waterline", toml::from_str("direction = \"u\"").unwrap())
+    let e = Strategy::from_table("waterline", toml::from_str("direction = \"up\"").unwrap())
         .unwrap_err();
     assert!(e.contains("expected `climb` or `conventional`"), "{e}");
+    let e = Strategy::from_table("waterline", toml::from_str("direction = \"u\"").unwrap())
+        .unwrap_err();
+    assert!(e.contains("\"u\" is a parameter direction"), "{e}");
 }
 
 /// The schema's fields of every kind are what serde reads: every field serde

@@ -50,7 +50,7 @@ pub use field::MAX_FIELD_NODES;
 pub use probe::{ROOT_TOL, Z_EPS};
 
 /// Which side of the tool the material is on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Milling {
     /// Material on the right of travel (down milling with a clockwise spindle).
@@ -58,6 +58,41 @@ pub enum Milling {
     Climb,
     /// Material on the left of travel (up milling).
     Conventional,
+}
+
+impl Milling {
+    /// The name a job file gives it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Milling::Climb => "climb",
+            Milling::Conventional => "conventional",
+        }
+    }
+}
+
+impl std::str::FromStr for Milling {
+    type Err = String;
+
+    /// `climb` or `conventional`; a parameter direction (`u`, `v`) is named as one.
+    fn from_str(s: &str) -> Result<Milling, String> {
+        match s {
+            "climb" => Ok(Milling::Climb),
+            "conventional" => Ok(Milling::Conventional),
+            "u" | "v" => Err(format!(
+                "\"{s}\" is a parameter direction (iso-parametric, iso-scallop); this strategy takes \"climb\" or \"conventional\""
+            )),
+            other => Err(format!(
+                "unknown variant `{}`, expected `climb` or `conventional`",
+                swarf_geom::domain::excerpt(other, 40)
+            )),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Milling {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Milling, D::Error> {
+        String::deserialize(d)?.parse().map_err(serde::de::Error::custom)
+    }
 }
 
 /// Parameters of waterline finishing.
