@@ -23,6 +23,7 @@ pub mod model;
 pub mod outputs;
 pub mod plan;
 pub mod plan_job;
+pub mod plan_record;
 pub mod programs;
 pub mod report;
 pub mod rest;

@@ -9,10 +9,11 @@ use crate::error::{AppError, Result, bail};
 use crate::five_axis::{position_plan, write_job_gcode};
 use crate::holder::HolderCheck;
 use crate::holder::path::{check_path, gcode_line, refusal};
-use crate::job::Job;
+use crate::job::{Job, Output};
 use crate::model::{Model, load_model_with};
 use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
+use crate::plan_record::{OperationRecord, PlanRecord, ToolRecord, record_name};
 use crate::programs::SCALLOP_COMMENT;
 use crate::report::Reporter;
 use std::path::Path;
@@ -333,6 +334,7 @@ fn write_outputs(
     if let (Some(rel), Some(text)) = (&job.output.double_contacts, plan.double_contacts_csv()) {
         out.write(rel, text.as_bytes())?;
     }
+    write_records(&job_record(job, plan, written), &job.output, out)?;
     let numbers = [
         stats.cutting_length,
         stats.approach_length,
@@ -371,6 +373,65 @@ fn write_outputs(
         out.write_json(rel, &summary)?;
     }
     Ok(summary)
+}
+
+/// The plan record of `job`'s program (`crate::plan_record`): its tool, what it was
+/// planned for, the machine and the post.
+fn job_record(job: &Job, plan: &Plan, written: &Written<'_>) -> PlanRecord {
+    let number = job.library_tool.as_ref().map_or(1, |t| t.number);
+    let tool = ToolRecord {
+        number,
+        cutter: job.tool.to_string(),
+        name: job.library_tool.as_ref().map(|t| t.name.clone()),
+    };
+    let op = OperationRecord {
+        name: job.name.clone().unwrap_or_else(|| written.part_name.to_string()),
+        strategy: job.strategy.kind().into(),
+        tool: number,
+        scallop: planned_scallop(job, plan),
+        tolerance: job.tolerance(),
+    };
+    let mut record = PlanRecord::new(
+        &job.part,
+        job.output.units,
+        vec![tool],
+        vec![op],
+        job.output.post_spec(),
+    );
+    record.machine = written.machine.and(job.output.machine.clone());
+    record.tool_length = job.output.tool_length;
+    record
+}
+
+/// The scallop a job's program is planned for, mm: the job's limit, else what its
+/// strategy predicts.
+fn planned_scallop(job: &Job, plan: &Plan) -> Option<f64> {
+    job.strategy.scallop().or(plan.report.predicted_max_scallop)
+}
+
+/// Writes `record` beside each program `output` names (one record for the programs
+/// that share a stem), listing them.
+///
+/// # Errors
+/// A record that cannot be staged.
+pub(crate) fn write_records(record: &PlanRecord, output: &Output, out: &mut Outputs) -> Result<()> {
+    let programs: Vec<&String> = [&output.gcode, &output.cl, &output.csv]
+        .into_iter()
+        .flatten()
+        .collect();
+    let mut names: Vec<String> = programs.iter().map(|p| record_name(p)).collect();
+    names.sort();
+    names.dedup();
+    for name in names {
+        let mut r = record.clone();
+        r.programs = programs
+            .iter()
+            .filter(|p| record_name(p) == name)
+            .map(|p| p.to_string())
+            .collect();
+        out.write_json(&name, &r)?;
+    }
+    Ok(())
 }
 
 /// The ranges of a five-axis program's two rotary axes, radians.
@@ -458,7 +519,7 @@ fn header_comments(
     if plan.toolpath.passes.is_empty() {
         comments.push("no passes: nothing to cut".into());
     }
-    if let Some(h) = job.strategy.scallop().or(plan.report.predicted_max_scallop) {
+    if let Some(h) = planned_scallop(job, plan) {
         comments.push(format!("{SCALLOP_COMMENT}{h} mm"));
     }
     comments.extend(notes.iter().cloned());

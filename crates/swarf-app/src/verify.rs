@@ -17,7 +17,7 @@ use crate::error::{AppError, Result, bail};
 use crate::model::{Model, load_model};
 use crate::outputs::Outputs;
 pub use crate::programs::{GcodeSetup, machine_arg, parse_tools, read_with_machine, stage_cutters};
-use crate::programs::{planned_scallop, read_programs};
+use crate::programs::{Planned, planned, read_programs};
 use std::path::{Path, PathBuf};
 use swarf_geom::domain::excerpt;
 use swarf_nc::read::{Motion, Program};
@@ -65,7 +65,26 @@ impl Default for SimSettings {
     }
 }
 
+/// Tolerance of a verification when neither `--tol` nor a plan record gives one, mm.
+pub const DEFAULT_TOL: f64 = 0.01;
+
 impl SimSettings {
+    /// The options of verifying programs planned as `planned` says: each flag
+    /// given, else what the plan records (or the G-code headers) say, else the
+    /// defaults ([`DEFAULT_TOL`], no excess allowed, the default rapid rate,
+    /// measured along the normals).
+    ///
+    /// # Errors
+    /// As [`SimSettings::options`].
+    pub fn program_options(&self, planned: &Planned) -> Result<VerifyOptions> {
+        self.options(
+            planned.tolerance.unwrap_or(DEFAULT_TOL),
+            planned.scallop.unwrap_or(0.0),
+            swarf_toolpath::Feeds::default().rapid,
+            true,
+        )
+    }
+
     /// Defaults with cell size `cell` (mm), measuring along the normals.
     pub fn normal_with_cell(cell: f64) -> SimSettings {
         SimSettings {
@@ -324,26 +343,35 @@ where
     }
     let model = load_model(req.part)?;
     model.check_covers_xy(req.part)?;
-    let planned = match req.sim.scallop {
-        Some(_) => None,
-        None => planned_scallop(req.programs),
+    let planned = planned(req.programs)?;
+    let opts = req.sim.program_options(&planned)?;
+    let (machine, tool_length) = match (req.machine, &planned.machine) {
+        (Some(m), _) => (Some(m), req.tool_length),
+        (None, Some((m, l))) => (Some(m.as_str()), req.tool_length.or(*l)),
+        (None, None) => (None, req.tool_length),
     };
-    let opts = req
-        .sim
-        .options(0.01, planned.unwrap_or(0.0), 5000.0, true)?;
-    let sample_tol = opts.sample_tol.unwrap_or(0.25 * opts.tol);
     let (programs, mut notes) = read_programs(
         req.programs,
         req.gcode,
-        req.machine,
-        req.tool_length,
-        sample_tol,
+        machine,
+        tool_length,
+        opts.sample_tol(),
     )?;
-    let (mut programs, tools) = split_by_tool(programs, req.tools)?;
-    match (req.sim.scallop, planned) {
+    let specs = if req.tools.is_empty() {
+        &planned.tools
+    } else {
+        req.tools
+    };
+    let (mut programs, tools) = split_by_tool(programs, specs)?;
+    let stated = if planned.records > 0 {
+        "its plan record states"
+    } else {
+        "the program states"
+    };
+    match (req.sim.scallop, planned.scallop) {
         (Some(_), _) => {}
         (None, Some(h)) => notes.push(format!(
-            "note: scallop allowance {h} mm, as the program states it was planned (--scallop to change)"
+            "note: scallop allowance {h} mm, as {stated} it was planned (--scallop to change)"
         )),
         (None, None) => notes.push(
             "note: no --scallop and no planned scallop in the program: any material more than \

@@ -78,6 +78,9 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
     report.program = whole_program(&shop, &all_moves, motions_before)?;
     if let Some(file) = &seq.output.gcode {
         out.write(file, report.program.as_bytes())?;
+        let mut record = sequence_record(seq);
+        record.programs = vec![file.clone()];
+        out.write_json(crate::plan_record::record_name(file), &record)?;
     }
     if let Some(limit) = report.operations.last().map(|o| o.rest_limit_mm) {
         report.rest = rest_cells(&dexel, &shop.design, limit);
@@ -86,6 +89,39 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
         out.write_json(file, &report)?;
     }
     Ok(report)
+}
+
+/// The plan record of the sequence's program (`crate::plan_record`): every
+/// operation's tool and what it was planned for.
+fn sequence_record(seq: &Sequence) -> crate::plan_record::PlanRecord {
+    use crate::plan_record::{OperationRecord, PlanRecord, ToolRecord};
+    let tools = seq
+        .operations
+        .iter()
+        .map(|op| ToolRecord {
+            number: op.number,
+            cutter: op.job.tool.to_string(),
+            name: op.job.library_tool.as_ref().map(|t| t.name.clone()),
+        })
+        .collect();
+    let operations = seq
+        .operations
+        .iter()
+        .map(|op| OperationRecord {
+            name: op.name.clone(),
+            strategy: op.job.strategy.kind().into(),
+            tool: op.number,
+            scallop: op.job.strategy.scallop(),
+            tolerance: op.job.tolerance(),
+        })
+        .collect();
+    PlanRecord::new(
+        &seq.part,
+        seq.output.units,
+        tools,
+        operations,
+        seq.output.post.as_deref().unwrap_or("linuxcnc"),
+    )
 }
 
 /// The part, the design over the stock's grid, the post, and the stock.
@@ -429,7 +465,7 @@ fn measure_roughing(
 
 fn sim_options(op: &Operation) -> SimOptions {
     SimOptions {
-        sample_tol: 0.25 * op.job.tolerance(),
+        sample_tol: swarf_sim::verify::default_sample_tol(op.job.tolerance()),
         known_start: false,
     }
 }
