@@ -19,6 +19,7 @@ pub mod five_axis;
 pub mod holder;
 pub mod inspect;
 pub mod job;
+pub mod job_reference;
 pub mod model;
 pub mod outputs;
 pub mod plan;
