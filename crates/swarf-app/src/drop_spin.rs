@@ -22,13 +22,13 @@
 //! With a machine, a pass whose side the rotary limits do not reach is cut with the
 //! other side (and the summary says so).
 
+use crate::error::AppError;
 use crate::error::{Result, bail};
 use crate::five_axis::post_options;
-use crate::error::AppError;
 use crate::job::Job;
 use crate::strategy::Strategy;
-use swarf_fiveaxis::dsm::{DropSpinParams, MAX_DROP_SPIN_PASSES, SpinChoice, ZoneChoice};
 use swarf_fiveaxis::FiveAxisError;
+use swarf_fiveaxis::dsm::{DropSpinParams, MAX_DROP_SPIN_PASSES, SpinChoice, ZoneChoice};
 use swarf_fiveaxis::dsm::{Dsm, EdgePasses, EdgePose, PassParams, Reachable, Side};
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::machine::joints::solve_pass;

@@ -35,7 +35,11 @@ pub fn job_reference() -> String {
         page += &table(resolve(&job, &job["properties"][name]), &job);
     }
     page += "\n### `positioning` (five-axis jobs)\n\n";
-    page += &variants(resolve(&job, &job["properties"]["positioning"]), &job, "method");
+    page += &variants(
+        resolve(&job, &job["properties"]["positioning"]),
+        &job,
+        "method",
+    );
     page += "\n## Strategies (`[strategy]`, by `kind`)\n\n";
     page += &format!(
         "Kinds: {}. Each kind takes only its own fields; a field of another kind is \
@@ -104,8 +108,9 @@ fn variants(s: &Value, root: &Value, tag: &str) -> String {
 
 /// The fields of the object schema `s` as a Markdown table.
 fn table(s: &Value, root: &Value) -> String {
-    let mut out =
-        String::from("| field | type | unit | default | domain | what |\n|---|---|---|---|---|---|\n");
+    let mut out = String::from(
+        "| field | type | unit | default | domain | what |\n|---|---|---|---|---|---|\n",
+    );
     let required: Vec<&str> = s["required"]
         .as_array()
         .into_iter()
@@ -202,8 +207,7 @@ mod tests {
                 assert!(page.contains(&format!("| `{f}` |")), "{kind}.{f}");
             }
         }
-        let path =
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/jobs.md");
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/jobs.md");
         if std::env::var_os("SWARF_WRITE_DOCS").is_some() {
             std::fs::write(&path, &page).unwrap();
         }

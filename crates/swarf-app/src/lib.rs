@@ -38,6 +38,6 @@ pub use job::Job;
 pub use model::{FaceRef, LoadOptions, Model, load_model, load_model_with, load_part};
 pub use outputs::Outputs;
 pub use plan::{PlanInput, plan};
-pub use strategy::Strategy;
 pub use plan_job::{Planned, plan_job, plan_model_toolpath};
 pub use report::Reporter;
+pub use strategy::Strategy;

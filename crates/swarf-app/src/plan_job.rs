@@ -16,6 +16,7 @@ use crate::plan::{PlanInput, plan};
 use crate::plan_record::{OperationRecord, PlanRecord, ToolRecord, record_name};
 use crate::programs::SCALLOP_COMMENT;
 use crate::report::Reporter;
+use crate::strategy::Strategy;
 use std::path::Path;
 use swarf_fiveaxis::machine::{Machine, load_machine};
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport};
@@ -23,7 +24,6 @@ use swarf_geom::TriMesh;
 use swarf_geom::domain::excerpt;
 use swarf_nc::read::GcodeReadOptions;
 use swarf_nc::{GcodeOptions, Post};
-use crate::strategy::Strategy;
 use swarf_path::Plan;
 use swarf_tool::library::LibraryTool;
 use swarf_toolpath::{Toolpath, motion_stats};
@@ -100,7 +100,9 @@ pub fn plan_model_toolpath(
         Strategy::Cleanup(_) => {
             return cleanup_outputs(job, model, job_dir, (machine.as_ref(), post), out);
         }
-        Strategy::DropSpin(_) => return drop_spin_outputs(job, model, (machine.as_ref(), post), out),
+        Strategy::DropSpin(_) => {
+            return drop_spin_outputs(job, model, (machine.as_ref(), post), out);
+        }
         _ => {}
     }
     let (name, mut plan) = match model {
@@ -385,7 +387,10 @@ fn job_record(job: &Job, plan: &Plan, written: &Written<'_>) -> PlanRecord {
         name: job.library_tool.as_ref().map(|t| t.name.clone()),
     };
     let op = OperationRecord {
-        name: job.name.clone().unwrap_or_else(|| written.part_name.to_string()),
+        name: job
+            .name
+            .clone()
+            .unwrap_or_else(|| written.part_name.to_string()),
         strategy: job.strategy.kind().into(),
         tool: number,
         scallop: planned_scallop(job, plan),

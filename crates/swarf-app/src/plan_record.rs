@@ -130,7 +130,10 @@ impl PlanRecord {
     /// A message naming the field.
     fn check(&self) -> std::result::Result<(), String> {
         if self.format != FORMAT {
-            return Err(format!("format: expected {FORMAT:?}, found {:?}", self.format));
+            return Err(format!(
+                "format: expected {FORMAT:?}, found {:?}",
+                self.format
+            ));
         }
         if self.version != VERSION {
             return Err(format!(
@@ -232,9 +235,16 @@ mod tests {
         assert_eq!(read_record(&program).unwrap(), Some(r.clone()));
         assert_eq!((r.scallop(), r.tolerance()), (Some(0.15), Some(0.01)));
         let future = PlanRecord { version: 99, ..r };
-        std::fs::write(record_path(&program), serde_json::to_string(&future).unwrap()).unwrap();
+        std::fs::write(
+            record_path(&program),
+            serde_json::to_string(&future).unwrap(),
+        )
+        .unwrap();
         let e = read_record(&program).unwrap_err().to_string();
-        assert!(e.contains("a.plan.json") && e.contains("version: 99"), "{e}");
+        assert!(
+            e.contains("a.plan.json") && e.contains("version: 99"),
+            "{e}"
+        );
         std::fs::remove_dir_all(&dir).ok();
         assert_eq!(record_name("out/part.ngc"), "out/part.plan.json");
     }

@@ -431,14 +431,14 @@ where
     };
     let (mut programs, tools) = split_by_tool(programs, specs)?;
     let stated = if planned.records > 0 {
-        "its plan record states"
+        "its plan record"
     } else {
-        "the program states"
+        "its header"
     };
     match (req.sim.scallop, planned.scallop) {
         (Some(_), _) => {}
         (None, Some(h)) => notes.push(format!(
-            "note: scallop allowance {h} mm, as {stated} it was planned (--scallop to change)"
+            "note: scallop allowance {h} mm, as the program states it was planned ({stated}; --scallop to change)"
         )),
         (None, None) => notes.push(
             "note: no --scallop and no planned scallop in the program: any material more than \

@@ -39,6 +39,9 @@ fn meshes_are_refused_by_the_iso_strategies() {
     for kind in KINDS {
         let j = Job::parse(&job(kind, "scallop = 0.3"), "job").unwrap();
         let e = swarf_app::plan(&j, swarf_app::PlanInput::Mesh(&mesh)).unwrap_err();
-        assert!(matches!(e, swarf_path::PathError::NoPath(_)), "{kind}: {e:?}");
+        assert!(
+            matches!(e, swarf_path::PathError::NoPath(_)),
+            "{kind}: {e:?}"
+        );
     }
 }

@@ -88,7 +88,6 @@ impl CadPart {
     }
 }
 
-
 /// Reads a STEP or IGES file, by its extension ([`crate::read_step`],
 /// [`crate::read_iges`]).
 ///

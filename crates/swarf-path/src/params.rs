@@ -101,7 +101,9 @@ impl std::str::FromStr for ParamDir {
 
 impl<'de> Deserialize<'de> for ParamDir {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<ParamDir, D::Error> {
-        String::deserialize(d)?.parse().map_err(serde::de::Error::custom)
+        String::deserialize(d)?
+            .parse()
+            .map_err(serde::de::Error::custom)
     }
 }
 

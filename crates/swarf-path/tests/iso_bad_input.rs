@@ -21,10 +21,7 @@ fn jobs_built_in_code_are_checked_by_the_planners_too() {
             (|j| *j.scallop_mut() = Some(f64::NAN), "scallop"),
             (|j| *j.scallop_mut() = Some(4.0), "scallop"),
             (|j| j.finish_mut().tolerance = 0.0, "tolerance"),
-            (
-                |j| j.finish_mut().tolerance = f64::INFINITY,
-                "tolerance",
-            ),
+            (|j| j.finish_mut().tolerance = f64::INFINITY, "tolerance"),
         ];
         for (spoil, field) in cases {
             let mut j = good.clone();

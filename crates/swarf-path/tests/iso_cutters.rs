@@ -23,7 +23,11 @@ const SLACK: f64 = 1.02;
 const SPACING: f64 = 8.0;
 
 fn wave_plan(kind: &str, tool: &str, extra: &str) -> Plan {
-    let job = iso_job(kind, tool, &format!("scallop = {H}\ntolerance = {TOL}\n{extra}\n"));
+    let job = iso_job(
+        kind,
+        tool,
+        &format!("scallop = {H}\ntolerance = {TOL}\n{extra}\n"),
+    );
     job.plan(&wave()).expect(kind)
 }
 

@@ -11,7 +11,11 @@ use iso_support::{IsoJob, dense_points, iso_job, max_penetration, wave, wave_job
 const TOL: f64 = 0.01;
 
 fn job(kind: &str, tool: &str, extra: &str) -> IsoJob {
-    iso_job(kind, tool, &format!("scallop = 0.3\ntolerance = {TOL}\n{extra}\n"))
+    iso_job(
+        kind,
+        tool,
+        &format!("scallop = 0.3\ntolerance = {TOL}\n{extra}\n"),
+    )
 }
 
 #[test]

@@ -10,7 +10,9 @@
 mod iso_support;
 
 use iso_support::swept::{Swept, residuals};
-use iso_support::{IsoJob, dense_face_frames, dense_points, iso_job, max_penetration, max_residual};
+use iso_support::{
+    IsoJob, dense_face_frames, dense_points, iso_job, max_penetration, max_residual,
+};
 use swarf_geom::part::Face;
 use swarf_geom::trim::Trim;
 use swarf_geom::{Part, Patch, Point3};

@@ -202,7 +202,9 @@ fn rough(case: &Case, adaptive: bool) -> Run {
     }
     // Entry motions (the ramps and their round at the level) are slots by design.
     let clearing: Vec<f64> = eng
-        .without(&swarf_path::strategy::roughing::entry_moves(&moves, &report))
+        .without(&swarf_path::strategy::roughing::entry_moves(
+            &moves, &report,
+        ))
         .cutting()
         .into_iter()
         .map(f64::to_degrees)

@@ -21,8 +21,8 @@
 use std::f64::consts::FRAC_PI_2;
 use swarf_geom::{Point3, TriMesh};
 use swarf_nc::read::{Motion, MotionKind};
-use swarf_path::stepping::slope_step::{raster_spacing, zlevel_spacing};
 use swarf_path::Cutting;
+use swarf_path::stepping::slope_step::{raster_spacing, zlevel_spacing};
 use swarf_path::strategy::raster::RasterParams;
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, SimTool, StockInit, simulate};
 use swarf_tool::Cutter;

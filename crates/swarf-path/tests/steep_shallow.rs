@@ -8,8 +8,8 @@
 
 use swarf_geom::TriMesh;
 use swarf_nc::read::{GcodeReadOptions, parse_gcode};
-use swarf_path::strategy::steep_shallow::{SteepShallowParams, plan};
 use swarf_path::strategy::raster::RasterParams;
+use swarf_path::strategy::steep_shallow::{SteepShallowParams, plan};
 use swarf_path::{Cutting, Finish};
 use swarf_sim::{Design, Quiet, Verification, VerifyOptions, verify};
 use swarf_testkit::boss::reach;

@@ -3,8 +3,8 @@
 //! on the cutter and the level only (rounded corners of that radius).
 
 use swarf_geom::{Point3, TriMesh};
-use swarf_path::{Cutting, Finish};
 use swarf_path::strategy::waterline::{Milling, Waterline, WaterlineParams, plan};
+use swarf_path::{Cutting, Finish};
 
 const HALF: f64 = 10.0;
 const OUTER: f64 = 40.0;

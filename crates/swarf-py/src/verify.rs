@@ -116,7 +116,10 @@ pub fn verify(
         rapid,
         sample_tol,
         max_memory,
-        deviation: deviation.map(|d| d.parse()).transpose().map_err(swarf_err)?,
+        deviation: deviation
+            .map(|d| d.parse())
+            .transpose()
+            .map_err(swarf_err)?,
     };
     if let Some(l) = tool_length {
         swarf_geom::domain::TOOL_LENGTH

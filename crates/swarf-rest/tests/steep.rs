@@ -3,9 +3,9 @@
 //! cut on our dexel stock.
 
 use swarf_nc::read::{GcodeReadOptions, parse_gcode};
+use swarf_path::strategy::raster::RasterParams;
 use swarf_path::strategy::waterline::WaterlineParams;
 use swarf_path::{Cutting, Finish};
-use swarf_path::strategy::raster::RasterParams;
 use swarf_rest::steep::steep_rest_angle;
 use swarf_rest::{RasterParent, SteepParams, plan_steep};
 use swarf_sim::{Design, Quiet, Stage, VerifyOptions, verify_stages};
@@ -77,10 +77,7 @@ fn the_rest_angle_is_the_closed_form() {
     let e = steep_rest_angle(&boss_parent(0.0), 0.005)
         .unwrap_err()
         .to_string();
-    assert!(
-        e.contains("threshold") && e.contains("level floor"),
-        "{e}"
-    );
+    assert!(e.contains("threshold") && e.contains("level floor"), "{e}");
 }
 
 #[test]
@@ -92,7 +89,8 @@ fn the_boss_rest_is_the_walls_above_the_angle() {
         (0.06, &[80.0, 90.0][..]),
         (0.015, &[45.0, 65.0, 80.0, 90.0]),
     ] {
-        let (rest, passes) = plan_steep(&mesh, &boss_parent(0.0), &ball10(), &steep(t, 0.01)).unwrap();
+        let (rest, passes) =
+            plan_steep(&mesh, &boss_parent(0.0), &ball10(), &steep(t, 0.01)).unwrap();
         let surface: f64 = walls
             .iter()
             .map(|a: &f64| 1600.0 / a.to_radians().sin())

@@ -37,9 +37,9 @@ use crate::sweep_linear::{LinearSweep, RowCut};
 use crate::sweep_tilted::ToolInstance;
 use swarf_geom::tol::LENGTH_EPS;
 use swarf_geom::{Point3, Vec3};
-use swarf_toolpath::{Motion, MotionKind};
 use swarf_tool::drop::Envelope;
 use swarf_tool::{Cutter, Profile};
+use swarf_toolpath::{Motion, MotionKind};
 
 /// Sampling tolerance for five-axis rapids, mm (at least this coarse).
 pub const RAPID_SAMPLE: f64 = 0.1;

@@ -20,8 +20,8 @@ use crate::sweep::SimTool;
 use serde::Serialize;
 use std::time::Instant;
 use swarf_geom::TriMesh;
-use swarf_toolpath::{MotionKind, Program};
 use swarf_tool::Cutter;
+use swarf_toolpath::{MotionKind, Program};
 
 /// Default cell size as a multiple of the tolerance.
 pub const CELL_PER_TOL: f64 = 5.0;
@@ -241,8 +241,7 @@ fn check_settings(
     SimError::check_non_negative("allowed excess", opts.allowed_excess)?;
     SimError::check_positive("rapid rate", opts.rapid_rate)?;
     let cell = SimError::check_positive("cell size", opts.cell.unwrap_or(CELL_PER_TOL * tol))?;
-    let sample_tol =
-        SimError::check_positive("sample tolerance", opts.sample_tol())?;
+    let sample_tol = SimError::check_positive("sample tolerance", opts.sample_tol())?;
     let tools = stages
         .iter()
         .map(|s| SimTool::new(s.cutter))

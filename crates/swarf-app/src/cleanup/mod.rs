@@ -37,11 +37,10 @@
 
 use crate::error::{AppError, Context, Result, bail};
 use crate::job::Job;
-use crate::strategy::Strategy;
-use swarf_rest::{RestMaterial, RestSource};
 use crate::model::Model;
 use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
+use crate::strategy::Strategy;
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use swarf_geom::TriMesh;
@@ -49,9 +48,10 @@ use swarf_path::strategy::waterline::WaterlineParams;
 use swarf_path::{Plan, PlanReport};
 use swarf_rest::steep::SteepRest;
 use swarf_rest::{
-    Detection, RasterParent, RegionParams, RestKind, Source, SteepParams, detect,
-    plan_cleanup, plan_steep,
+    Detection, RasterParent, RegionParams, RestKind, Source, SteepParams, detect, plan_cleanup,
+    plan_steep,
 };
+use swarf_rest::{RestMaterial, RestSource};
 use swarf_sim::{Design, Quiet, StockSpec, VerifyOptions};
 use swarf_tool::Cutter;
 use swarf_toolpath::top_z;
@@ -222,7 +222,12 @@ pub fn plan_cleanup_job(
             reference,
             source: "raster",
             detection: Detection::default(),
-            plan: Plan::from_passes(Vec::new(), &job.cutting(), PlanReport::default(), Vec::new()),
+            plan: Plan::from_passes(
+                Vec::new(),
+                &job.cutting(),
+                PlanReport::default(),
+                Vec::new(),
+            ),
             steep: None,
             notes: Vec::new(),
         }]

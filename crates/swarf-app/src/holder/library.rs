@@ -9,7 +9,10 @@ use swarf_tool::library::{LibraryTool, ToolLibrary};
 /// # Errors
 /// A key without a library (`tool: ... no `tools` library`), or a key the library
 /// lacks (its error lists the library's tools), as `tool: ...`.
-pub fn named_tool<'l>(library: Option<&'l ToolLibrary>, key: &str) -> Result<&'l LibraryTool, String> {
+pub fn named_tool<'l>(
+    library: Option<&'l ToolLibrary>,
+    key: &str,
+) -> Result<&'l LibraryTool, String> {
     let Some(library) = library else {
         return Err(format!(
             "tool: {key:?} names a library tool, but no `tools` library is given (add \

@@ -231,7 +231,6 @@ pub fn program_poses(program: &Program, spacing: f64) -> Vec<(swarf_tool::Pose, 
     out
 }
 
-
 /// The collisions of poses tagged `tag` (a line, or an index the caller maps),
 /// in tag order, the least clearance over all, and the vertical poses' report.
 pub(crate) struct PoseCheck {

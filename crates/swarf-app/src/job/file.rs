@@ -143,7 +143,10 @@ impl FeedsSpec {
             feed: self.feed.or(from_tool(|t| t.feed)).unwrap_or(d.feed),
             plunge: self.plunge.or(from_tool(|t| t.plunge)).unwrap_or(d.plunge),
             rapid: self.rapid.unwrap_or(d.rapid),
-            spindle: self.spindle.or(from_tool(|t| t.spindle)).unwrap_or(d.spindle),
+            spindle: self
+                .spindle
+                .or(from_tool(|t| t.spindle))
+                .unwrap_or(d.spindle),
         }
     }
 }

@@ -165,7 +165,6 @@ pub enum UnsupportedChoice {
     Refuse,
 }
 
-
 impl Job {
     /// How the job's part is read: its `[import]` table and `faces`.
     pub fn load_options(&self) -> LoadOptions {
@@ -231,7 +230,11 @@ impl Job {
     /// # Errors
     /// As [`Job::parse_in`], naming the value's path (`strategy.scallop`) instead of
     /// a line.
-    pub fn from_value(value: toml::Value, source: &str, dir: &std::path::Path) -> Result<Job, AppError> {
+    pub fn from_value(
+        value: toml::Value,
+        source: &str,
+        dir: &std::path::Path,
+    ) -> Result<Job, AppError> {
         let err = |message: String| AppError::Job {
             file: source.to_string(),
             message,

@@ -395,3 +395,44 @@ fn arcs_are_asked_for_with_a_checked_tolerance() {
         assert!(e.contains(message), "{bad}: {e}");
     }
 }
+
+#[test]
+fn misplaced_fields_and_bad_choices_name_field_place_and_domain() {
+    let e = Job::parse(
+        &GOOD.replace("tolerance = 0.01", "tolerance = 0.01\noverlap = 2"),
+        "job.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.starts_with("job.toml: line 8: strategy.overlap: unknown field `overlap` for kind `iso-scallop` (it is a field of `steep-shallow`, `cleanup`)"),
+        "{e}"
+    );
+    let e = Job::parse(
+        &GOOD.replace(
+            "tolerance = 0.01",
+            "tolerance = 0.01\ndirection = \"climb\"",
+        ),
+        "job.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("line 8: strategy.direction: \"climb\" is a milling direction")
+            && e.contains("takes \"u\" or \"v\""),
+        "{e}"
+    );
+    // A dict (Python's) names the path instead of the line.
+    let mut value: toml::Value = toml::from_str(GOOD).unwrap();
+    value["strategy"]
+        .as_table_mut()
+        .unwrap()
+        .insert("scallop".into(), toml::Value::String("fine".into()));
+    let e = Job::from_value(value, "job dict", std::path::Path::new("."))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("job dict: strategy.scallop: invalid type: string \"fine\", expected f64"),
+        "{e}"
+    );
+}

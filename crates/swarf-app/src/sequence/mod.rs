@@ -261,8 +261,8 @@ impl Sequence {
             file: source.to_string(),
             message,
         };
-        let file: SequenceFile = crate::job::read::from_text(text)
-            .map_err(|e| err(misplaced(e).in_file()))?;
+        let file: SequenceFile =
+            crate::job::read::from_text(text).map_err(|e| err(misplaced(e).in_file()))?;
         file.resolve(dir).map_err(err)
     }
 
@@ -368,9 +368,11 @@ impl SequenceFile {
         };
         let parent = match (&op.strategy, prev) {
             (Strategy::Cleanup(_), None) => {
-                return Err("strategy.kind: a cleanup cannot be the first operation: it cleans \
+                return Err(
+                    "strategy.kind: a cleanup cannot be the first operation: it cleans \
                             up after the operation before it"
-                    .into());
+                        .into(),
+                );
             }
             (Strategy::Cleanup(_), Some(p)) => Some(Parent {
                 job: None,

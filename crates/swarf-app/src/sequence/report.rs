@@ -3,8 +3,8 @@
 
 use super::Operation;
 use crate::holder::HolderSummary;
-use serde::Serialize;
 use crate::strategy::Strategy;
+use serde::Serialize;
 use swarf_sim::Dexel;
 
 /// Engagement of a roughing operation, measured on the stock.

@@ -12,11 +12,13 @@ use crate::model::{Model, load_model_with};
 use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
 use crate::plan_job::part_arg;
+use crate::strategy::Strategy;
 use std::path::Path;
 use swarf_geom::TriMesh;
 use swarf_nc::read::{GcodeReadOptions, Motion, Program, parse_gcode};
-use swarf_path::strategy::roughing::{RoughingReport, RoughingStock, entry_moves, plan as plan_roughing};
-use crate::strategy::Strategy;
+use swarf_path::strategy::roughing::{
+    RoughingReport, RoughingStock, entry_moves, plan as plan_roughing,
+};
 use swarf_path::{Plan, PlanReport};
 use swarf_rest::{Source, detect, plan_cleanup};
 use swarf_sim::engagement::measure_engagement;

@@ -23,8 +23,8 @@ pub(crate) mod schema;
 pub use schema::{fields_of, kinds_taking};
 
 use crate::plan::PlanInput;
-use serde::de::DeserializeOwned;
 use serde::Serialize;
+use serde::de::DeserializeOwned;
 use std::fmt::Debug;
 use swarf_path::{Cutting, Finish, PathError, Plan};
 use swarf_tool::Cutter;
@@ -101,7 +101,13 @@ impl From<swarf_fiveaxis::FiveAxisError> for FieldError {
 /// the strategy table; the caller places them.
 pub trait Kind {
     /// The parameters: the strategy table's fields (less `kind`).
-    type Params: Clone + PartialEq + Debug + Default + Serialize + DeserializeOwned + schemars::JsonSchema;
+    type Params: Clone
+        + PartialEq
+        + Debug
+        + Default
+        + Serialize
+        + DeserializeOwned
+        + schemars::JsonSchema;
     /// The `kind` a job file names it by.
     const KIND: &'static str;
     /// Whether the strategy places a tilted tool itself (no positioning, a machine

@@ -115,13 +115,25 @@ fn misplaced_fields_name_the_kinds_that_take_them() {
         toml::from_str("scallop = 0.1\noverlap = 2").unwrap(),
     )
     .unwrap_err();
-    assert!(e.starts_with("overlap: unknown field `overlap` for kind `iso-scallop`"), "{e}");
-    assert!(e.contains("it is a field of `steep-shallow`, `cleanup`"), "{e}");
-    assert!(e.contains("`iso-scallop` takes `direction`, `scallop`, `start`, `tolerance`, `zigzag`"), "{e}");
+    assert!(
+        e.starts_with("overlap: unknown field `overlap` for kind `iso-scallop`"),
+        "{e}"
+    );
+    assert!(
+        e.contains("it is a field of `steep-shallow`, `cleanup`"),
+        "{e}"
+    );
+    assert!(
+        e.contains("`iso-scallop` takes `direction`, `scallop`, `start`, `tolerance`, `zigzag`"),
+        "{e}"
+    );
     let e = Strategy::from_table("raster", toml::from_str("spiral = 1").unwrap()).unwrap_err();
     assert!(e.contains("no strategy takes it"), "{e}");
     let e = Strategy::from_table("spiral", toml::Table::new()).unwrap_err();
-    assert!(e.starts_with("kind: unknown variant `spiral`, expected one of `iso-parametric`"), "{e}");
+    assert!(
+        e.starts_with("kind: unknown variant `spiral`, expected one of `iso-parametric`"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -164,7 +176,10 @@ fn the_schema_lists_what_serde_reads() {
         let listed = super::fields_of(kind);
         let table = toml::Table::try_from(&s).unwrap();
         for key in table.keys().filter(|k| *k != "kind") {
-            assert!(listed.contains(key), "{kind}: {key} is written but not listed");
+            assert!(
+                listed.contains(key),
+                "{kind}: {key} is written but not listed"
+            );
         }
         for field in &listed {
             let samples = [

@@ -128,7 +128,8 @@ impl DropSpinParams {
         if self.zone == ZoneChoice::Full && self.passes == 0 && self.stepover.is_none() {
             return Err(bad(
                 "passes",
-                "drop-spin over the full zone needs `passes` (across the zone) or `stepover` (mm)".into(),
+                "drop-spin over the full zone needs `passes` (across the zone) or `stepover` (mm)"
+                    .into(),
             ));
         }
         if self.passes > MAX_DROP_SPIN_PASSES {

@@ -34,12 +34,12 @@ use crate::read::cycle::CycleState;
 use crate::read::kinematics::DEFAULT_KINEMATICS_TOL;
 use crate::read::offsets::Offsets;
 use crate::read::params::Params;
-use swarf_toolpath::program::{Diagnostic, Motion};
 use crate::read::tooltable::ToolTable;
 use crate::read::warnings::Warnings;
 use crate::read::words::{Word, Words};
 use swarf_geom::units::MM_PER_INCH;
 use swarf_tool::Pose;
+use swarf_toolpath::program::{Diagnostic, Motion};
 
 mod queries;
 mod tools;

@@ -29,8 +29,8 @@
 //! patch from edge to edge).
 
 use crate::cl_curve::tool_side_normal;
-use crate::stepping::scallop_crest::{alone, scallop};
 use crate::section_point::{Edge, PlaneEq, Solved, on_edge, two_planes};
+use crate::stepping::scallop_crest::{alone, scallop};
 use crate::stepping::side_step::SideStep;
 use swarf_geom::{Patch, Point3, SurfaceDerivs, Vec3};
 

@@ -55,9 +55,9 @@
 //! holds the scallop to about `1e-5 h` in the tests).
 
 use crate::error::PathError;
-use swarf_geom::units::shown_degrees;
 use crate::stepping::side_step::{self, SideStep, ball_step, check_scallop};
 use std::f64::consts::FRAC_PI_2;
+use swarf_geom::units::shown_degrees;
 use swarf_tool::Cutter;
 
 /// Slopes sampled over a range by the general-cutter spacings and by

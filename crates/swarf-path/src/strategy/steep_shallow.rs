@@ -23,15 +23,17 @@
 
 use crate::classify::{ClassGrid, ClassifyParams, SurfaceClass, classify};
 use crate::error::PathError;
-use crate::params::{Cutting, Finish, StartSide, check_angle, check_open_angle, check_scallop, in_domain};
+use crate::params::{
+    Cutting, Finish, StartSide, check_angle, check_open_angle, check_scallop, in_domain,
+};
 use crate::plan::{Plan, PlanReport};
 use crate::strategy::raster::RasterParams;
 use crate::strategy::waterline::{Milling, WaterlineParams};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
+use swarf_geom::TriMesh;
 use swarf_geom::domain::{ALLOWANCE, SAMPLE, SCALLOP};
 use swarf_tool::Cutter;
-use swarf_geom::TriMesh;
 use swarf_toolpath::{Pass, PathPoint};
 
 /// Parameters of steep-and-shallow finishing.

@@ -119,7 +119,11 @@ pub fn iso_job(kind: &str, tool: &str, table: &str) -> IsoJob {
 
 /// A job on wave for `kind` with scallop `h` and tolerance `tol`, ball d = 8.
 pub fn wave_job(kind: &str, h: f64, tol: f64) -> IsoJob {
-    iso_job(kind, "ball:d=8", &format!("scallop = {h}\ntolerance = {tol}\n"))
+    iso_job(
+        kind,
+        "ball:d=8",
+        &format!("scallop = {h}\ntolerance = {tol}\n"),
+    )
 }
 
 /// How far along the normal the oracle looks for the tool, in ball radii: material

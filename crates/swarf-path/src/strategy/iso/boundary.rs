@@ -17,10 +17,10 @@
 //! skipped. On a trimmed face the edges are its trimming loops instead of the patch
 //! rectangle's sides ([`crate::strategy::iso::boundary_edges`]).
 
-use crate::strategy::iso::boundary_edges::face_edges;
-use crate::stepping::forward_step::sample_curve;
-use crate::strategy::iso::setup::IsoSetup;
 use crate::ordering::Row;
+use crate::stepping::forward_step::sample_curve;
+use crate::strategy::iso::boundary_edges::face_edges;
+use crate::strategy::iso::setup::IsoSetup;
 use rayon::prelude::*;
 use swarf_geom::math::ray_capsule;
 use swarf_geom::solve::golden_max;

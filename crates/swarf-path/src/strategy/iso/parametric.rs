@@ -25,15 +25,15 @@
 //! before already leave at most `h` all along it (`IsoSetup::covers`). On a part of several patches each patch is planned in turn and
 //! CC points under another patch are skipped ([`crate::envelope`]).
 
-use crate::error::PathError;
-use crate::stepping::forward_step::{Sample, sample_curve};
-use crate::strategy::iso::setup::{IsoSetup, SideGeom, fit_interval};
-use crate::ordering::Row;
 use super::IsoParams;
 use super::pass_bound::Feed;
+use crate::error::PathError;
+use crate::ordering::Row;
 use crate::params::{Cutting, ParamDir, StartSide};
 use crate::plan::{Plan, PlanReport, Uncovered};
+use crate::stepping::forward_step::{Sample, sample_curve};
 use crate::stepping::side_step::corners_face;
+use crate::strategy::iso::setup::{IsoSetup, SideGeom, fit_interval};
 use swarf_geom::{Part, Point3, Vec3};
 use swarf_toolpath::Pass;
 

@@ -46,21 +46,21 @@
 //! passes.
 
 use crate::error::PathError;
-use crate::stepping::forward_step::{Sample, sample_curve};
-use crate::strategy::iso::parametric::Figures;
-use crate::strategy::iso::setup::{IsoSetup, fit_interval};
 use crate::ordering::Row;
 use crate::params::{
     Cutting, Finish, ParamDir, StartSide, check_angle, check_scallop, check_stepover,
     require_spacing,
 };
+use crate::plan::{Plan, PlanReport};
+use crate::section_point::{PlaneEq, Solved, two_planes};
+use crate::stepping::forward_step::{Sample, sample_curve};
+use crate::stepping::side_step::corners_face;
+use crate::strategy::iso::parametric::Figures;
 use crate::strategy::iso::setup::IsoJob;
+use crate::strategy::iso::setup::{IsoSetup, fit_interval};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use swarf_geom::domain::{SCALLOP, STEP};
-use crate::plan::{Plan, PlanReport};
-use crate::section_point::{PlaneEq, Solved, two_planes};
-use crate::stepping::side_step::corners_face;
 use swarf_geom::math::point_segment_distance;
 use swarf_geom::{Part, Patch, Plane, SectionCurve, Vec3};
 use swarf_toolpath::{Pass, PathPoint};

@@ -53,18 +53,18 @@
 //! on its own; CC points under another patch are left out of the passes but still
 //! carry the paths across ([`crate::envelope`]).
 
-use crate::cl_curve::{ClMap, tool_side_curvature, tool_side_normal};
-use crate::error::PathError;
-use crate::stepping::forward_step::{Sample, sample_curve};
-use crate::strategy::iso::parametric::Figures;
-use crate::strategy::iso::setup::IsoSetup;
-use crate::ordering::Row;
 use super::IsoParams;
 use super::pass_bound::Feed;
+use crate::cl_curve::{ClMap, tool_side_curvature, tool_side_normal};
+use crate::error::PathError;
+use crate::ordering::Row;
 use crate::params::{Cutting, ParamDir, StartSide};
 use crate::plan::{Plan, PlanReport, Uncovered};
+use crate::stepping::forward_step::{Sample, sample_curve};
 use crate::stepping::scallop_step::{Next, NextPoint, Station, next_point, point_at_offset};
 use crate::stepping::side_step::corners_face;
+use crate::strategy::iso::parametric::Figures;
+use crate::strategy::iso::setup::IsoSetup;
 use rayon::prelude::*;
 use swarf_geom::{Part, Point3};
 use swarf_toolpath::Pass;
@@ -481,7 +481,8 @@ mod tests {
         let bull = plan(&part, &job("bull:d=10,r=2", h)).unwrap();
         // The cylinder tilts up to 30 degrees: the least effective radius up to there,
         // used as a ball on the convex radius 60, sets the interior side step.
-        let side = crate::stepping::side_step::SideStep::new(&"bull:d=10,r=2".parse().unwrap(), h).unwrap();
+        let side = crate::stepping::side_step::SideStep::new(&"bull:d=10,r=2".parse().unwrap(), h)
+            .unwrap();
         let re = side.least_radius_up_to(max_tilt(&part.patches[0]));
         assert!(re < 4.0, "{re}");
         let want = side.step_for_radius(re, -1.0 / 60.0);

@@ -15,16 +15,16 @@
 //! ([`crate::stepping::side_step`]) and the tilt of `N` from the tool axis seen in the section
 //! normal to `T`, `atan2(|B.z|, N.z)`.
 
-use crate::strategy::iso::boundary::boundary_passes;
 use crate::cl_curve::{ClMap, tool_side_curvature, tool_side_normal};
 use crate::envelope::Envelope;
 use crate::error::PathError;
-use crate::stepping::forward_step::{OUTPUT_ROUNDING, StepOptions};
 use crate::gouge::GougeCheck;
 use crate::ordering::{Joining, Row, order_rows};
 use crate::params::{Cutting, Finish, ParamDir, StartSide};
 use crate::plan::{Plan, PlanReport};
+use crate::stepping::forward_step::{OUTPUT_ROUNDING, StepOptions};
 use crate::stepping::side_step::SideStep;
+use crate::strategy::iso::boundary::boundary_passes;
 use crate::strategy::iso::trim_clip::{clip_rows, inside};
 use crate::uncovered::{Marked, regions};
 use swarf_geom::{Part, Point3, SurfaceDerivs, Vec3};

@@ -12,8 +12,8 @@
 //! parts plan exactly as before. The trim boundary itself is then covered by the
 //! boundary passes ([`crate::strategy::iso::boundary`]), as patch edges are.
 
-use crate::strategy::iso::setup::IsoSetup;
 use crate::ordering::Row;
+use crate::strategy::iso::setup::IsoSetup;
 use swarf_geom::Part;
 use swarf_toolpath::{Pass, PathPoint};
 

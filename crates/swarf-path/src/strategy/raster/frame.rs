@@ -3,13 +3,13 @@
 
 use crate::error::PathError;
 use crate::params::StartSide;
-use crate::strategy::raster::RasterParams;
-use swarf_tool::Cutter;
-use crate::strategy::raster::pass::{Line, PassOut, Sampler};
 use crate::stepping::raster_step::stepover_for_scallop;
 use crate::stepping::slope_step::{check_slope, raster_spacing};
+use crate::strategy::raster::RasterParams;
+use crate::strategy::raster::pass::{Line, PassOut, Sampler};
 use rayon::prelude::*;
 use swarf_geom::TriMesh;
+use swarf_tool::Cutter;
 use swarf_tool::drop::DropScratch;
 
 /// A given boundary is widened by this (relative to its largest coordinate) so that

@@ -42,17 +42,17 @@ use crate::params::{
     Cutting, Finish, StartSide, check_angle, check_boundary, check_open_angle, check_scallop,
     check_stepover, require_spacing,
 };
-use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
-use swarf_geom::domain::{SCALLOP, STEP};
-use swarf_tool::Cutter;
 use crate::plan::{DoubleContact, Plan, PlanReport};
 use crate::ramp::limit_ramp;
-use crate::strategy::raster::frame::Frame;
-use crate::strategy::raster::pass::Sampler;
 use crate::stepping::raster_step::flat_scallop;
 use crate::stepping::slope_step::raster_max_scallop;
+use crate::strategy::raster::frame::Frame;
+use crate::strategy::raster::pass::Sampler;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 use swarf_geom::TriMesh;
+use swarf_geom::domain::{SCALLOP, STEP};
+use swarf_tool::Cutter;
 use swarf_tool::drop::MeshDropper;
 use swarf_toolpath::Pass;
 

@@ -24,8 +24,8 @@
 //! valley's reachable bottom, and the double contact there is recorded.
 
 use crate::plan::DoubleContact;
-use crate::strategy::raster::{DOUBLE_SEPARATION_RADII, INIT_STEP_RADII, MIN_STEP_FLOOR};
 use crate::strategy::raster::double::{TOP_TOL, cliff_contact, double_contact, same_plane};
+use crate::strategy::raster::{DOUBLE_SEPARATION_RADII, INIT_STEP_RADII, MIN_STEP_FLOOR};
 use swarf_geom::{Point3, TriMesh, Vec3};
 use swarf_tool::Pose;
 use swarf_tool::drop::{DropResult, DropScratch, MeshDropper};

@@ -43,13 +43,13 @@ mod regions;
 
 use crate::error::PathError;
 use crate::params::{Cutting, Finish};
-use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
-use swarf_geom::domain::SAMPLE;
 use crate::plan::{Plan, PlanReport};
 use crate::strategy::waterline::{Milling, Waterline, WaterlineParams};
 use cut::cut_level;
 use regions::{Region, Ring, link_parents};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use swarf_geom::domain::SAMPLE;
 use swarf_geom::domain::show;
 use swarf_geom::{Point3, TriMesh};
 use swarf_tool::{Cutter, Pose};
@@ -501,10 +501,7 @@ mod tests {
             step_down: 1e300,
             ..params
         });
-        assert!(
-            e.contains("step_down") && e.contains("1e300 mm"),
-            "{e}"
-        );
+        assert!(e.contains("step_down") && e.contains("1e300 mm"), "{e}");
         let e = message(RoughingParams {
             max_engagement: 95f64.to_radians(),
             ..params
@@ -525,10 +522,7 @@ mod tests {
             ramp_angle: f64::NAN,
             ..params
         });
-        assert!(
-            e.contains("ramp_angle") && e.contains("NaN degrees"),
-            "{e}"
-        );
+        assert!(e.contains("ramp_angle") && e.contains("NaN degrees"), "{e}");
         let flat = RoughingStock {
             max: [0.0, 10.0],
             ..stock

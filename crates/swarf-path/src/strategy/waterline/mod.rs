@@ -28,21 +28,19 @@ mod passes;
 mod probe;
 
 use crate::error::PathError;
-use crate::params::{
-    Cutting, Finish, check_open_angle, check_scallop, in_domain, require_spacing,
-};
-use schemars::JsonSchema;
-use swarf_geom::domain::{SAMPLE, SCALLOP, STEP};
-use swarf_tool::Cutter;
+use crate::params::{Cutting, Finish, check_open_angle, check_scallop, in_domain, require_spacing};
 use crate::plan::{Plan, PlanReport};
-use crate::strategy::raster::pass::drop_point;
 use crate::stepping::side_step::SideStep;
 use crate::stepping::slope_step::zlevel_spacing;
+use crate::strategy::raster::pass::drop_point;
 use contour::{Loop, level_loops};
 use field::DropField;
 use probe::Probe;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use swarf_geom::TriMesh;
+use swarf_geom::domain::{SAMPLE, SCALLOP, STEP};
+use swarf_tool::Cutter;
 use swarf_tool::drop::MeshDropper;
 use swarf_toolpath::PathPoint;
 
@@ -91,7 +89,9 @@ impl std::str::FromStr for Milling {
 
 impl<'de> Deserialize<'de> for Milling {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Milling, D::Error> {
-        String::deserialize(d)?.parse().map_err(serde::de::Error::custom)
+        String::deserialize(d)?
+            .parse()
+            .map_err(serde::de::Error::custom)
     }
 }
 
