@@ -90,7 +90,7 @@ fn main() {
     }
 
     let sim = SimSettings {
-        stock: "offset:2".into(),
+        stock: swarf_app::verify::StockChoice::Offset { allowance: 2.0 },
         cell: Some(0.25),
         tol: Some(0.05),
         ..SimSettings::default()

@@ -68,7 +68,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     let start = Instant::now();
-    let mesh = part.tessellate(job.strategy.tolerance)?;
+    let mesh = part.tessellate(job.tolerance())?;
     let sizes = [
         part_glb(&mesh)?.len(),
         toolpath_glb(&program.motions, &job.tool)?.len(),
@@ -81,7 +81,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let cutter = cutter_glb(&job.tool, &first)?.len();
     println!(
         "design (tessellated within {} mm) {:.1} MB, tool path {:.2} MB, cutter {:.3} MB: {:.2} s",
-        job.strategy.tolerance,
+        job.tolerance(),
         sizes[0] as f64 / 1e6,
         sizes[1] as f64 / 1e6,
         cutter as f64 / 1e6,

@@ -80,8 +80,8 @@ pub fn classify_json(c: &Classification, req: &ClassifyRequest<'_>) -> serde_jso
     json!({
         "part": req.part,
         "parameters": {
-            "steep_angle_deg": swarf_path::params::degrees(p.steep_angle),
-            "flat_angle_deg": swarf_path::params::degrees(p.flat_angle),
+            "steep_angle_deg": swarf_geom::units::degrees(p.steep_angle),
+            "flat_angle_deg": swarf_geom::units::degrees(p.flat_angle),
             "cell_mm": p.cell,
         },
         "triangles": c.triangle_classes.len(),
@@ -109,8 +109,8 @@ fn picture(c: &Classification, req: &ClassifyRequest<'_>, mesh: &TriMesh) -> Res
     let p = &req.params;
     let title = format!(
         "steep above {} deg, horizontal below {} deg: {}",
-        swarf_path::params::degrees(p.steep_angle),
-        swarf_path::params::degrees(p.flat_angle),
+        swarf_geom::units::degrees(p.steep_angle),
+        swarf_geom::units::degrees(p.flat_angle),
         req.part
     );
     let footer: Vec<String> = SurfaceClass::ALL

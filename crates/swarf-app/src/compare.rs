@@ -218,7 +218,7 @@ fn check_one(
     let job_dir = path.parent().unwrap_or(Path::new("."));
     // Five-axis programs are verified through their APT CL (part-frame poses), so
     // the verifier needs no machine.
-    let five = job.positioning.is_some() || job.strategy.kind == swarf_path::StrategyKind::DropSpin;
+    let five = job.positioning.is_some() || job.strategy.tilted();
     let program_file = format!("{stem}.{}", if five { "cl" } else { "ngc" });
     job.output.gcode = (!five || job.output.machine.is_some()).then(|| format!("{stem}.ngc"));
     job.output.cl = five.then(|| program_file.clone());
@@ -233,8 +233,8 @@ fn check_one(
     let summary = plan_model(&job, &model, job_dir, out, reporter)?;
     let planning_s = start.elapsed().as_secs_f64();
     let program = out.read_program(&program_file)?;
-    let scallop = job.strategy.scallop.unwrap_or(0.0);
-    let mut opts = sim.options(job.strategy.tolerance, scallop, job.feeds.rapid, true)?;
+    let scallop = job.strategy.scallop().unwrap_or(0.0);
+    let mut opts = sim.options(job.tolerance(), scallop, job.feeds.rapid, true)?;
     if five {
         opts.cell = opts.cell.or(Some(FIVE_AXIS_CELL));
         opts.sample_tol = opts.sample_tol.or(Some(FIVE_AXIS_SAMPLE_TOL));
@@ -250,7 +250,7 @@ fn check_one(
     if views {
         let input = crate::view::ViewInput {
             model: &model,
-            tol: job.strategy.tolerance,
+            tol: job.tolerance(),
             program: &program,
             cutter: &job.tool,
             verification: &v,

@@ -22,11 +22,13 @@
 //! With a machine, a pass whose side the rotary limits do not reach is cut with the
 //! other side (and the summary says so).
 
+use crate::error::AppError;
 use crate::error::{Result, bail};
 use crate::five_axis::post_options;
-use crate::job::MAX_DROP_SPIN_PASSES;
-use crate::job::{Job, SpinChoice, ZoneChoice};
+use crate::job::Job;
+use crate::strategy::Strategy;
 use swarf_fiveaxis::FiveAxisError;
+use swarf_fiveaxis::dsm::{DropSpinParams, MAX_DROP_SPIN_PASSES, SpinChoice, ZoneChoice};
 use swarf_fiveaxis::dsm::{Dsm, EdgePasses, EdgePose, PassParams, Reachable, Side};
 use swarf_fiveaxis::machine::Machine;
 use swarf_fiveaxis::machine::joints::solve_pass;
@@ -50,7 +52,7 @@ pub struct DropSpinPlan {
 
 /// The stations of `dsm`'s faces along `along`, `step` apart, a tool radius in from
 /// the ends of their common extent.
-fn stations(job: &Job, dsm: &Dsm, along: Vec3) -> Result<Vec<f64>> {
+fn stations(job: &Job, s: &DropSpinParams, dsm: &Dsm, along: Vec3) -> Result<Vec<f64>> {
     let (a, b) = (dsm.span(0, along), dsm.span(1, along));
     let r = job.tool.radius();
     let (lo, hi) = (a[0].max(b[0]) + r, a[1].min(b[1]) - r);
@@ -60,7 +62,7 @@ fn stations(job: &Job, dsm: &Dsm, along: Vec3) -> Result<Vec<f64>> {
             hi - lo + 2.0 * r
         );
     }
-    let step = job.strategy.step.unwrap_or(0.5 * r);
+    let step = s.step.unwrap_or(0.5 * r);
     let n = ((hi - lo) / step).ceil();
     if n > MAX_STATIONS as f64 {
         bail!(
@@ -107,12 +109,11 @@ fn reach_on<'a>(
 /// no pass at all (the first station report says why).
 pub fn plan_drop_spin(job: &Job, part: &Part, machine: Option<&Machine>) -> Result<DropSpinPlan> {
     let start = std::time::Instant::now();
-    let s = &job.strategy;
-    let faces = s.faces.unwrap_or([0, 1]);
-    let a = job.angle_rad();
+    let s = params_of(job)?;
+    let a = s.angle;
     let along = Vec3::new(a.cos(), a.sin(), 0.0);
-    let dsm = Dsm::new(part, faces, &job.tool, along)?;
-    let stations = stations(job, &dsm, along)?;
+    let dsm = Dsm::new(part, s.faces, &job.tool, along)?;
+    let stations = stations(job, s, &dsm, along)?;
     let fractions: Vec<f64> = match s.zone {
         ZoneChoice::Snug => vec![1.0],
         ZoneChoice::Full => {
@@ -167,8 +168,22 @@ pub fn plan_drop_spin(job: &Job, part: &Part, machine: Option<&Machine>) -> Resu
         elapsed_s: start.elapsed().as_secs_f64(),
         ..PlanReport::default()
     };
-    let plan = Plan::from_passes(all.passes.clone(), &job.finish(), report, Vec::new());
+    let plan = Plan::from_passes(all.passes.clone(), &job.cutting(), report, Vec::new());
     Ok(DropSpinPlan { plan, passes: all })
+}
+
+/// The drop-spin parameters of `job`.
+///
+/// # Errors
+/// A job whose strategy is not drop-spin.
+pub fn params_of(job: &Job) -> Result<&DropSpinParams> {
+    match &job.strategy {
+        Strategy::DropSpin(s) => Ok(s),
+        other => Err(AppError::Message(format!(
+            "strategy.kind: {:?} is not drop-spin",
+            other.kind()
+        ))),
+    }
 }
 
 /// Where the cutter has no zone at station `s` in `band`: the largest cutter of its

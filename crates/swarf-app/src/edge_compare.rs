@@ -25,8 +25,10 @@
 
 use crate::drop_spin::plan_drop_spin;
 use crate::error::{Context, Result, bail};
-use crate::job::{Job, ZoneChoice};
+use crate::job::Job;
+use crate::strategy::Strategy;
 use serde::Serialize;
+use swarf_fiveaxis::dsm::ZoneChoice;
 use swarf_fiveaxis::dsm::{Dsm, Station};
 use swarf_fiveaxis::inclined::{Inclination, inclined_pose};
 use swarf_geom::solve::illinois;
@@ -83,11 +85,13 @@ pub struct EdgeComparison {
 /// errors.
 pub fn compare_edge(job: &Job, part: &Part) -> Result<EdgeComparison> {
     let mut job = job.clone();
-    job.strategy.zone = ZoneChoice::Snug;
+    let mut params = *crate::drop_spin::params_of(&job)?;
+    params.zone = ZoneChoice::Snug;
+    job.strategy = Strategy::DropSpin(params);
     let snug = plan_drop_spin(&job, part, None)?;
-    let a = job.angle_rad();
+    let a = params.angle;
     let along = Vec3::new(a.cos(), a.sin(), 0.0);
-    let dsm = Dsm::new(part, job.strategy.faces.unwrap_or([0, 1]), &job.tool, along)?;
+    let dsm = Dsm::new(part, params.faces, &job.tool, along)?;
     let zones: Vec<(f64, f64)> = snug
         .passes
         .zones
@@ -247,7 +251,7 @@ fn measure(
     at: &[Station],
 ) -> Result<EdgeRow> {
     let n = passes.len();
-    let plan = Plan::from_passes(passes, &job.finish(), PlanReport::default(), Vec::new());
+    let plan = Plan::from_passes(passes, &job.cutting(), PlanReport::default(), Vec::new());
     let tp = &plan.toolpath;
     let text = swarf_nc::write_cl(
         &tp.moves(),
@@ -259,7 +263,7 @@ fn measure(
     let program = swarf_nc::read::parse_cl(&text, "edge.cl")?;
     let opts = VerifyOptions {
         cell: Some(CELL),
-        tol: job.strategy.tolerance,
+        tol: job.tolerance(),
         stock: StockSpec::Box { top: None },
         sample_tol: Some(SAMPLE_TOL),
         window: Some(window),

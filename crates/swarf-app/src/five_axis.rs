@@ -65,14 +65,8 @@ pub fn position_plan(
             "the strategy gave no pass with two or more contact points to position",
         ));
     }
-    let (passes, report) = position_with_progress(
-        &job.tool,
-        part,
-        &cc,
-        positioning,
-        job.strategy.tolerance,
-        progress,
-    )?;
+    let (passes, report) =
+        position_with_progress(&job.tool, part, &cc, positioning, job.tolerance(), progress)?;
     plan.toolpath.linking = linking(&job.linking, &job.tool, part, &passes);
     plan.toolpath.passes = passes;
     plan.report.lifted_points = 0;
@@ -109,7 +103,7 @@ pub fn post_options(
         comments,
         feed_mode: job.output.feed_mode,
         tool_length,
-        path_tol: job.strategy.tolerance,
+        path_tol: job.tolerance(),
         ..PostOptions::default()
     })
 }

@@ -9,7 +9,7 @@ use swarf_io::CadOptions;
 
 /// A face as a job names it: its index (as `swarf inspect` lists it) or its name in
 /// the CAD file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(untagged)]
 pub enum FaceRef {
     /// The face's index, from 0.
@@ -181,14 +181,8 @@ fn read_model(arg: &str, cad: &CadOptions) -> Result<Model> {
             );
         }
     }
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or_default()
-        .to_ascii_lowercase();
-    match ext.as_str() {
-        "stl" | "obj" => {
-            let mesh = swarf_io::read_mesh(path)?;
+    match swarf_io::read_model(path, cad)? {
+        swarf_io::ModelFile::Mesh(mesh) => {
             if !(0..mesh.len()).any(|t| mesh.usable(t)) {
                 bail!(
                     "{arg}: the mesh has no triangle with all corners finite and within \
@@ -201,14 +195,12 @@ fn read_model(arg: &str, cad: &CadOptions) -> Result<Model> {
                 .map_or_else(|| arg.to_string(), |s| s.to_string_lossy().into_owned());
             Ok(Model::Mesh { name, mesh })
         }
-        "step" | "stp" | "igs" | "iges" => {
-            let cad = swarf_io::read_cad(path, cad)?;
+        swarf_io::ModelFile::Patches(cad) => {
             for w in &cad.warnings {
                 eprintln!("warning: {arg}: {w}");
             }
             Ok(Model::Patches(cad.part))
         }
-        _ => Ok(Model::Patches(swarf_io::read_part(path)?)),
     }
 }
 

@@ -9,12 +9,14 @@ use crate::error::{AppError, Result, bail};
 use crate::five_axis::{position_plan, write_job_gcode};
 use crate::holder::HolderCheck;
 use crate::holder::path::{check_path, gcode_line, refusal};
-use crate::job::Job;
+use crate::job::{Job, Output};
 use crate::model::{Model, load_model_with};
 use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
+use crate::plan_record::{OperationRecord, PlanRecord, ToolRecord, record_name};
 use crate::programs::SCALLOP_COMMENT;
 use crate::report::Reporter;
+use crate::strategy::Strategy;
 use std::path::Path;
 use swarf_fiveaxis::machine::{Machine, load_machine};
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport};
@@ -22,7 +24,7 @@ use swarf_geom::TriMesh;
 use swarf_geom::domain::excerpt;
 use swarf_nc::read::GcodeReadOptions;
 use swarf_nc::{GcodeOptions, Post};
-use swarf_path::{Plan, StrategyKind};
+use swarf_path::Plan;
 use swarf_tool::library::LibraryTool;
 use swarf_toolpath::{Toolpath, motion_stats};
 
@@ -94,11 +96,14 @@ pub fn plan_model_toolpath(
     let post = Post::load(spec, job_dir)
         .map_err(|e| AppError::Message(format!("output.post = {:?}: {e}", excerpt(spec, 80))))?;
     let post = &post;
-    if job.strategy.kind == StrategyKind::Cleanup {
-        return cleanup_outputs(job, model, job_dir, (machine.as_ref(), post), out);
-    }
-    if job.strategy.kind == StrategyKind::DropSpin {
-        return drop_spin_outputs(job, model, (machine.as_ref(), post), out);
+    match &job.strategy {
+        Strategy::Cleanup(_) => {
+            return cleanup_outputs(job, model, job_dir, (machine.as_ref(), post), out);
+        }
+        Strategy::DropSpin(_) => {
+            return drop_spin_outputs(job, model, (machine.as_ref(), post), out);
+        }
+        _ => {}
     }
     let (name, mut plan) = match model {
         Model::Patches(part) => (part.name.clone(), plan(job, PlanInput::Part(part))?),
@@ -165,7 +170,7 @@ fn drop_spin_outputs(
     if let Some(rel) = &job.output.contacts {
         out.write(
             rel,
-            contacts_csv(&ds.passes.poses, job.strategy.faces.unwrap_or([0, 1])).as_bytes(),
+            contacts_csv(&ds.passes.poses, crate::drop_spin::params_of(job)?.faces).as_bytes(),
         )?;
     }
     let written = Written {
@@ -305,7 +310,7 @@ fn write_outputs(
     } = *written;
     let holder = match &job.library_tool {
         Some(tool) => {
-            let mesh = model.triangles(job.strategy.tolerance)?;
+            let mesh = model.triangles(job.tolerance())?;
             let name = job.name.as_deref().unwrap_or(part_name);
             let check = check_path(&mesh, &plan.toolpath, tool, name)?;
             Some((tool, mesh, check))
@@ -314,8 +319,7 @@ fn write_outputs(
     };
     let moves = plan.toolpath.moves();
     let stats = motion_stats(&moves, job.feeds.rapid);
-    let strategy = serde_json::to_value(job.strategy.kind)?;
-    let strategy = strategy.as_str().unwrap_or("?").to_string();
+    let strategy = job.strategy.kind().to_string();
     let comments = header_comments(job, plan, part_name, &strategy, notes);
     let (rotary, program) = write_program(job, plan, written, &moves, comments, out)?;
     if let Some((tool, mesh, check)) = &holder {
@@ -332,6 +336,7 @@ fn write_outputs(
     if let (Some(rel), Some(text)) = (&job.output.double_contacts, plan.double_contacts_csv()) {
         out.write(rel, text.as_bytes())?;
     }
+    write_records(&job_record(job, plan, written), &job.output, out)?;
     let numbers = [
         stats.cutting_length,
         stats.approach_length,
@@ -370,6 +375,68 @@ fn write_outputs(
         out.write_json(rel, &summary)?;
     }
     Ok(summary)
+}
+
+/// The plan record of `job`'s program (`crate::plan_record`): its tool, what it was
+/// planned for, the machine and the post.
+fn job_record(job: &Job, plan: &Plan, written: &Written<'_>) -> PlanRecord {
+    let number = job.library_tool.as_ref().map_or(1, |t| t.number);
+    let tool = ToolRecord {
+        number,
+        cutter: job.tool.to_string(),
+        name: job.library_tool.as_ref().map(|t| t.name.clone()),
+    };
+    let op = OperationRecord {
+        name: job
+            .name
+            .clone()
+            .unwrap_or_else(|| written.part_name.to_string()),
+        strategy: job.strategy.kind().into(),
+        tool: number,
+        scallop: planned_scallop(job, plan),
+        tolerance: job.tolerance(),
+    };
+    let mut record = PlanRecord::new(
+        &job.part,
+        job.output.units,
+        vec![tool],
+        vec![op],
+        job.output.post_spec(),
+    );
+    record.machine = written.machine.and(job.output.machine.clone());
+    record.tool_length = job.output.tool_length;
+    record
+}
+
+/// The scallop a job's program is planned for, mm: the job's limit, else what its
+/// strategy predicts.
+fn planned_scallop(job: &Job, plan: &Plan) -> Option<f64> {
+    job.strategy.scallop().or(plan.report.predicted_max_scallop)
+}
+
+/// Writes `record` beside each program `output` names (one record for the programs
+/// that share a stem), listing them.
+///
+/// # Errors
+/// A record that cannot be staged.
+pub(crate) fn write_records(record: &PlanRecord, output: &Output, out: &mut Outputs) -> Result<()> {
+    let programs: Vec<&String> = [&output.gcode, &output.cl, &output.csv]
+        .into_iter()
+        .flatten()
+        .collect();
+    let mut names: Vec<String> = programs.iter().map(|p| record_name(p)).collect();
+    names.sort();
+    names.dedup();
+    for name in names {
+        let mut r = record.clone();
+        r.programs = programs
+            .iter()
+            .filter(|p| record_name(p) == name)
+            .map(|p| p.to_string())
+            .collect();
+        out.write_json(&name, &r)?;
+    }
+    Ok(())
 }
 
 /// The ranges of a five-axis program's two rotary axes, radians.
@@ -457,7 +524,7 @@ fn header_comments(
     if plan.toolpath.passes.is_empty() {
         comments.push("no passes: nothing to cut".into());
     }
-    if let Some(h) = job.strategy.scallop.or(plan.report.predicted_max_scallop) {
+    if let Some(h) = planned_scallop(job, plan) {
         comments.push(format!("{SCALLOP_COMMENT}{h} mm"));
     }
     comments.extend(notes.iter().cloned());

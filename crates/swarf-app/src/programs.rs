@@ -252,7 +252,7 @@ pub const SCALLOP_COMMENT: &str = "scallop limit ";
 /// ([`SCALLOP_COMMENT`], in the first [`MAX_HEADER_LINES`] lines, read alone);
 /// `None` where none states one or a program cannot be read (reading it reports
 /// that).
-pub fn planned_scallop(paths: &[PathBuf]) -> Option<f64> {
+fn header_scallop(paths: &[PathBuf]) -> Option<f64> {
     paths
         .iter()
         .filter(|p| ProgramFormat::of(p) == Some(ProgramFormat::Gcode))
@@ -268,6 +268,59 @@ pub fn planned_scallop(paths: &[PathBuf]) -> Option<f64> {
                 .filter(|h| h.is_finite() && *h >= 0.0)
         })
         .reduce(f64::max)
+}
+
+/// What programs say they were planned for: their plan records
+/// ([`crate::plan_record`]), else, for a G-code program without one, the scallop its
+/// header states ([`SCALLOP_COMMENT`]). The defaults of a verification of them.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Planned {
+    /// The largest scallop any of them was planned for, mm.
+    pub scallop: Option<f64>,
+    /// The smallest tolerance they were planned with, mm (records only).
+    pub tolerance: Option<f64>,
+    /// Their tools in program order, when every program has a record.
+    pub tools: Vec<String>,
+    /// The machine of the first record that names one, and its tool length.
+    pub machine: Option<(String, Option<f64>)>,
+    /// How many programs have a record.
+    pub records: usize,
+}
+
+/// What `paths` say they were planned for ([`Planned`]).
+///
+/// # Errors
+/// A record that cannot be read.
+pub fn planned(paths: &[PathBuf]) -> Result<Planned> {
+    let mut p = Planned::default();
+    let mut tools = Vec::new();
+    for path in paths {
+        let Some(r) = crate::plan_record::read_record(path)? else {
+            p.scallop = max(p.scallop, header_scallop(std::slice::from_ref(path)));
+            continue;
+        };
+        p.records += 1;
+        p.scallop = max(p.scallop, r.scallop());
+        p.tolerance = match (p.tolerance, r.tolerance()) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        tools.extend(r.tool_specs());
+        if p.machine.is_none() {
+            p.machine = r.machine.map(|m| (m, r.tool_length));
+        }
+    }
+    if p.records == paths.len() {
+        p.tools = tools;
+    }
+    Ok(p)
+}
+
+fn max(a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some(a.max(b)),
+        (a, b) => a.or(b),
+    }
 }
 
 /// Header lines searched for [`SCALLOP_COMMENT`].

@@ -6,13 +6,13 @@ use crate::cleanup::{
     boundaries_csv, detect_after, part_mesh, read_parent, rest_json, source_name,
 };
 use crate::error::{AppError, Context, Result, bail};
-use crate::job::RestSource;
 use crate::model::{LoadOptions, load_model_with};
 use crate::outputs::Outputs;
 use crate::plan_job::part_arg;
 use std::path::Path;
 use swarf_geom::domain::excerpt;
 use swarf_report::rest_picture::{RegionOutline, rest_png};
+use swarf_rest::RestSource;
 use swarf_rest::{Detection, RegionParams, Source, detect};
 use swarf_sim::{Design, DesignSurface, Grid, Quiet};
 use swarf_tool::Cutter;

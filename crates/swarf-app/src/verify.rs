@@ -17,7 +17,7 @@ use crate::error::{AppError, Result, bail};
 use crate::model::{Model, load_model};
 use crate::outputs::Outputs;
 pub use crate::programs::{GcodeSetup, machine_arg, parse_tools, read_with_machine, stage_cutters};
-use crate::programs::{planned_scallop, read_programs};
+use crate::programs::{Planned, planned, read_programs};
 use std::path::{Path, PathBuf};
 use swarf_geom::domain::excerpt;
 use swarf_nc::read::{Motion, Program};
@@ -30,7 +30,7 @@ use swarf_tool::Cutter;
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimSettings {
     /// Stock: box, box:TOP, offset:ALLOWANCE (mm above the design) or a mesh file.
-    pub stock: String,
+    pub stock: StockChoice,
     /// Cell size, mm (default: 5 x the tolerance).
     pub cell: Option<f64>,
     /// Gouge / excess tolerance, mm (compare: default from each job).
@@ -44,16 +44,15 @@ pub struct SimSettings {
     pub sample_tol: Option<f64>,
     /// Memory limit for the grid, MiB.
     pub max_memory: u64,
-    /// How deviation is measured: `vertical` (along z) or `normal` (along the design
-    /// normals, "mow the grass"; the scallop height of paper 004; the default).
-    pub deviation: Option<String>,
+    /// How deviation is measured (default: along the normals).
+    pub deviation: Option<Deviation>,
 }
 
 impl Default for SimSettings {
     /// The command-line defaults (for callers such as `swarf demo`).
     fn default() -> Self {
         SimSettings {
-            stock: "offset:0.5".into(),
+            stock: StockChoice::Offset { allowance: 0.5 },
             cell: None,
             tol: None,
             scallop: None,
@@ -65,12 +64,31 @@ impl Default for SimSettings {
     }
 }
 
+/// Tolerance of a verification when neither `--tol` nor a plan record gives one, mm.
+pub const DEFAULT_TOL: f64 = 0.01;
+
 impl SimSettings {
+    /// The options of verifying programs planned as `planned` says: each flag
+    /// given, else what the plan records (or the G-code headers) say, else the
+    /// defaults ([`DEFAULT_TOL`], no excess allowed, the default rapid rate,
+    /// measured along the normals).
+    ///
+    /// # Errors
+    /// As [`SimSettings::options`].
+    pub fn program_options(&self, planned: &Planned) -> Result<VerifyOptions> {
+        self.options(
+            planned.tolerance.unwrap_or(DEFAULT_TOL),
+            planned.scallop.unwrap_or(0.0),
+            swarf_toolpath::Feeds::default().rapid,
+            true,
+        )
+    }
+
     /// Defaults with cell size `cell` (mm), measuring along the normals.
     pub fn normal_with_cell(cell: f64) -> SimSettings {
         SimSettings {
             cell: Some(cell),
-            deviation: Some("normal".into()),
+            deviation: Some(Deviation::Normal),
             ..SimSettings::default()
         }
     }
@@ -115,59 +133,123 @@ impl SimSettings {
             cell: self.cell,
             tol: self.tol.unwrap_or(tol),
             allowed_excess: self.scallop.unwrap_or(scallop),
-            stock: parse_stock(&self.stock)?,
+            stock: self.stock.load()?,
             max_bytes: self.max_memory.saturating_mul(1 << 20),
             sample_tol: self.sample_tol,
             rapid_rate: self.rapid.unwrap_or(rapid),
             along_normals: self
                 .deviation
-                .as_deref()
-                .map_or(along_normals, |d| d == "normal"),
+                .map_or(along_normals, |d| d == Deviation::Normal),
             ..VerifyOptions::default()
         })
     }
 }
 
-/// Parses `--stock`: `box`, `box:TOP`, `offset:ALLOWANCE` or a mesh file.
+/// The stock a verification starts from, as a user names it: `box`, `box:TOP`,
+/// `offset:ALLOWANCE` (mm above the design) or a mesh file (read when the
+/// verification starts, [`StockChoice::load`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum StockChoice {
+    /// A block over the design, its top at `top` (default: above the program).
+    Box {
+        /// The block's top, mm.
+        top: Option<f64>,
+    },
+    /// The design raised by an allowance.
+    Offset {
+        /// Material above the design, mm.
+        allowance: f64,
+    },
+    /// A mesh's upper envelope (STL or OBJ).
+    Mesh(PathBuf),
+}
+
+impl std::str::FromStr for StockChoice {
+    type Err = AppError;
+
+    /// `box`, `box:TOP`, `offset:ALLOWANCE` or a `.stl` / `.obj` file.
+    fn from_str(text: &str) -> Result<StockChoice> {
+        let number = |s: &str, what: &str, domain: swarf_geom::domain::Domain| -> Result<f64> {
+            let v: f64 = s.trim().parse().map_err(|_| {
+                AppError::Message(format!(
+                    "--stock {}: {what} {:?} is not a number",
+                    excerpt(text, 60),
+                    excerpt(s, 40)
+                ))
+            })?;
+            domain
+                .check(v)
+                .map_err(|m| AppError::Message(format!("--stock: {what}: {m}")))
+        };
+        if text == "box" {
+            return Ok(StockChoice::Box { top: None });
+        }
+        if let Some(top) = text.strip_prefix("box:") {
+            return Ok(StockChoice::Box {
+                top: Some(number(top, "top", swarf_geom::domain::COORDINATE)?),
+            });
+        }
+        if let Some(a) = text.strip_prefix("offset:") {
+            let allowance = number(a, "allowance", swarf_geom::domain::ALLOWANCE)?;
+            return Ok(StockChoice::Offset { allowance });
+        }
+        let path = Path::new(text);
+        match swarf_io::ModelFormat::of(path) {
+            f if f.is_mesh() => Ok(StockChoice::Mesh(path.to_path_buf())),
+            _ => bail!(
+                "--stock {}: expected box, box:TOP, offset:ALLOWANCE or a .stl / .obj mesh",
+                excerpt(text, 60)
+            ),
+        }
+    }
+}
+
+impl StockChoice {
+    /// The stock the simulator starts from (a mesh read now).
+    ///
+    /// # Errors
+    /// A mesh file that cannot be read.
+    pub fn load(&self) -> Result<StockSpec> {
+        Ok(match self {
+            StockChoice::Box { top } => StockSpec::Box { top: *top },
+            StockChoice::Offset { allowance } => StockSpec::Offset {
+                allowance: *allowance,
+            },
+            StockChoice::Mesh(path) => StockSpec::Mesh(swarf_io::read_mesh(path)?),
+        })
+    }
+}
+
+/// Parses `--stock` and reads its mesh ([`StockChoice`]).
 ///
 /// # Errors
-/// Anything else, naming `--stock`.
+/// Anything else, naming `--stock`; a mesh that cannot be read.
 pub fn parse_stock(text: &str) -> Result<StockSpec> {
-    let number = |s: &str, what: &str, domain: swarf_geom::domain::Domain| -> Result<f64> {
-        let v: f64 = s.trim().parse().map_err(|_| {
-            AppError::Message(format!(
-                "--stock {}: {what} {:?} is not a number",
-                excerpt(text, 60),
-                excerpt(s, 40)
-            ))
-        })?;
-        domain
-            .check(v)
-            .map_err(|m| AppError::Message(format!("--stock: {what}: {m}")))
-    };
-    if text == "box" {
-        return Ok(StockSpec::Box { top: None });
-    }
-    if let Some(top) = text.strip_prefix("box:") {
-        return Ok(StockSpec::Box {
-            top: Some(number(top, "top", swarf_geom::domain::COORDINATE)?),
-        });
-    }
-    if let Some(a) = text.strip_prefix("offset:") {
-        let allowance = number(a, "allowance", swarf_geom::domain::ALLOWANCE)?;
-        return Ok(StockSpec::Offset { allowance });
-    }
-    let path = Path::new(text);
-    match path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-    {
-        Some(e) if e == "stl" || e == "obj" => Ok(StockSpec::Mesh(swarf_io::read_mesh(path)?)),
-        _ => bail!(
-            "--stock {}: expected box, box:TOP, offset:ALLOWANCE or a .stl / .obj mesh",
-            excerpt(text, 60)
-        ),
+    text.parse::<StockChoice>()?.load()
+}
+
+/// How deviation is measured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Deviation {
+    /// Along z.
+    Vertical,
+    /// Along the design normals ("mow the grass"; the scallop height of paper 004).
+    Normal,
+}
+
+impl std::str::FromStr for Deviation {
+    type Err = AppError;
+
+    /// `vertical` or `normal`.
+    fn from_str(s: &str) -> Result<Deviation> {
+        match s {
+            "vertical" => Ok(Deviation::Vertical),
+            "normal" => Ok(Deviation::Normal),
+            other => bail!(
+                "--deviation {}: expected normal or vertical",
+                excerpt(other, 40)
+            ),
+        }
     }
 }
 
@@ -328,26 +410,35 @@ where
     }
     let model = load_model(req.part)?;
     model.check_covers_xy(req.part)?;
-    let planned = match req.sim.scallop {
-        Some(_) => None,
-        None => planned_scallop(req.programs),
+    let planned = planned(req.programs)?;
+    let opts = req.sim.program_options(&planned)?;
+    let (machine, tool_length) = match (req.machine, &planned.machine) {
+        (Some(m), _) => (Some(m), req.tool_length),
+        (None, Some((m, l))) => (Some(m.as_str()), req.tool_length.or(*l)),
+        (None, None) => (None, req.tool_length),
     };
-    let opts = req
-        .sim
-        .options(0.01, planned.unwrap_or(0.0), 5000.0, true)?;
-    let sample_tol = opts.sample_tol.unwrap_or(0.25 * opts.tol);
     let (programs, mut notes) = read_programs(
         req.programs,
         req.gcode,
-        req.machine,
-        req.tool_length,
-        sample_tol,
+        machine,
+        tool_length,
+        opts.sample_tol(),
     )?;
-    let (mut programs, tools) = split_by_tool(programs, req.tools)?;
-    match (req.sim.scallop, planned) {
+    let specs = if req.tools.is_empty() {
+        &planned.tools
+    } else {
+        req.tools
+    };
+    let (mut programs, tools) = split_by_tool(programs, specs)?;
+    let stated = if planned.records > 0 {
+        "its plan record"
+    } else {
+        "its header"
+    };
+    match (req.sim.scallop, planned.scallop) {
         (Some(_), _) => {}
         (None, Some(h)) => notes.push(format!(
-            "note: scallop allowance {h} mm, as the program states it was planned (--scallop to change)"
+            "note: scallop allowance {h} mm, as the program states it was planned ({stated}; --scallop to change)"
         )),
         (None, None) => notes.push(
             "note: no --scallop and no planned scallop in the program: any material more than \

@@ -374,19 +374,19 @@ fn read_program_input(
     tool: Option<&str>,
     machine: Option<&str>,
 ) -> Result<Inputs> {
-    let tools: Vec<String> = tool.map(str::to_string).into_iter().collect();
-    let tools = crate::programs::parse_tools(&tools, 1)?;
     let model = crate::model::load_model(part)?;
     model.check_covers_xy(part)?;
     let paths = [program.to_path_buf()];
-    let planned = crate::programs::planned_scallop(&paths);
-    let opts = req
-        .sim
-        .options(0.01, planned.unwrap_or(0.0), 5000.0, true)?;
-    let sample_tol = opts.sample_tol.unwrap_or(0.25 * opts.tol);
+    let planned = crate::programs::planned(&paths)?;
+    let tools: Vec<String> = match tool {
+        Some(t) => vec![t.to_string()],
+        None => planned.tools.iter().take(1).cloned().collect(),
+    };
+    let tools = crate::programs::parse_tools(&tools, 1)?;
+    let opts = req.sim.program_options(&planned)?;
     let gcode = crate::programs::GcodeSetup::default();
     let (mut programs, notes) =
-        crate::programs::read_programs(&paths, &gcode, machine, None, sample_tol)?;
+        crate::programs::read_programs(&paths, &gcode, machine, None, opts.sample_tol())?;
     let cutter = crate::programs::stage_cutters(&tools, &programs)?[0];
     let program = programs.remove(0);
     Ok((model, program, cutter, opts, notes))
@@ -406,7 +406,7 @@ fn plan_job_input(
     let stem = path
         .file_stem()
         .map_or_else(|| "job".into(), |s| s.to_string_lossy().into_owned());
-    let five = job.positioning.is_some() || job.strategy.kind == swarf_path::StrategyKind::DropSpin;
+    let five = job.positioning.is_some() || job.strategy.tilted();
     let program_file = format!("{stem}.{}", if five { "cl" } else { "ngc" });
     job.output.gcode = (!five || job.output.machine.is_some()).then(|| format!("{stem}.ngc"));
     job.output.cl = five.then(|| program_file.clone());
@@ -421,10 +421,10 @@ fn plan_job_input(
     let model = crate::model::load_model_with(&part, &job.load_options())?;
     crate::plan_job::plan_model(&job, &model, job_dir, out, reporter)?;
     let program = out.read_program(&program_file)?;
-    let scallop = job.strategy.scallop.unwrap_or(0.0);
+    let scallop = job.strategy.scallop().unwrap_or(0.0);
     let mut opts = req
         .sim
-        .options(job.strategy.tolerance, scallop, job.feeds.rapid, true)?;
+        .options(job.tolerance(), scallop, job.feeds.rapid, true)?;
     if five {
         opts.cell = opts.cell.or(Some(crate::compare::FIVE_AXIS_CELL));
         opts.sample_tol = opts

@@ -6,8 +6,9 @@
 //! finite (a coordinate of 1e308 mm makes lengths of `inf`; a tolerance of 5e-324 mm
 //! makes a sample count that cannot be allocated).
 //!
-//! [`show`] writes a number as a person reads it in a message, and [`excerpt`]
-//! shortens a token quoted in a message.
+//! [`show`] writes a number as a person reads it in a message, [`excerpt`]
+//! shortens a token quoted in a message, and [`line_of`] and [`at_line`] place a
+//! message on a line of the text it is about.
 
 use std::fmt;
 
@@ -116,6 +117,31 @@ impl fmt::Display for Domain {
 /// unusable, and they are skipped and reported like those with NaN corners.
 pub fn usable_point(p: &crate::Point3) -> bool {
     p.coords.iter().all(|&c| COORDINATE.contains(c))
+}
+
+/// 1-based line of byte `offset` in `text` (offsets past the end give the last line).
+///
+/// ```
+/// use swarf_geom::domain::line_of;
+/// assert_eq!(line_of("a = 1\nb = 2\n", 6), 2);
+/// ```
+pub fn line_of(text: &str, offset: usize) -> usize {
+    let end = offset.min(text.len());
+    text.as_bytes()[..end]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
+/// A parser's `message` about `text` as "line N: message" when it knows the byte
+/// `offset` it is about (readers of TOML files prefix the file name themselves).
+pub fn at_line(text: &str, offset: Option<usize>, message: &str) -> String {
+    let message = message.trim();
+    match offset {
+        Some(offset) => format!("line {}: {message}", line_of(text, offset)),
+        None => message.to_string(),
+    }
 }
 
 /// `value` as a person reads it: the shortest decimal for ordinary magnitudes,

@@ -88,38 +88,16 @@ impl CadPart {
     }
 }
 
-/// Whether `path` names a CAD file by its extension (`.step`, `.stp`, `.igs`,
-/// `.iges`, any case).
-pub fn is_cad_file(path: &std::path::Path) -> bool {
-    cad_kind(path).is_some()
-}
-
-/// The reader an extension asks for.
-#[derive(Clone, Copy)]
-enum CadKind {
-    Step,
-    Iges,
-}
-
-fn cad_kind(path: &std::path::Path) -> Option<CadKind> {
-    let ext = path.extension()?.to_str()?.to_ascii_lowercase();
-    match ext.as_str() {
-        "step" | "stp" => Some(CadKind::Step),
-        "igs" | "iges" => Some(CadKind::Iges),
-        _ => None,
-    }
-}
-
 /// Reads a STEP or IGES file, by its extension ([`crate::read_step`],
 /// [`crate::read_iges`]).
 ///
 /// # Errors
 /// As the reader; [`IoError::Format`](crate::IoError) for another extension.
 pub fn read_cad(path: &std::path::Path, opts: &CadOptions) -> Result<CadPart, crate::IoError> {
-    match cad_kind(path) {
-        Some(CadKind::Step) => crate::read_step(path, opts),
-        Some(CadKind::Iges) => crate::read_iges(path, opts),
-        None => Err(crate::IoError::format(
+    match crate::ModelFormat::of(path) {
+        crate::ModelFormat::Step => crate::read_step(path, opts),
+        crate::ModelFormat::Iges => crate::read_iges(path, opts),
+        _ => Err(crate::IoError::format(
             &path.display().to_string(),
             crate::At::File,
             "expected a .step, .stp, .igs or .iges file",

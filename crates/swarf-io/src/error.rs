@@ -114,26 +114,14 @@ impl IoError {
     }
 }
 
-/// 1-based line of byte `offset` in `text` (offsets past the end give the last line).
-pub fn line_of(text: &str, offset: usize) -> usize {
-    let end = offset.min(text.len());
-    text.as_bytes()[..end]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
-}
+pub use swarf_geom::domain::line_of;
 
 pub(crate) use swarf_geom::domain::excerpt;
 
 /// A TOML parse error of `text` as "line N: message", for readers of TOML files
 /// (jobs, machines) that prefix the file name themselves.
 pub fn toml_message(text: &str, e: &toml::de::Error) -> String {
-    let msg = e.message().trim().to_string();
-    match e.span() {
-        Some(span) => format!("line {}: {msg}", line_of(text, span.start)),
-        None => msg,
-    }
+    swarf_geom::domain::at_line(text, e.span().map(|s| s.start), e.message())
 }
 
 #[cfg(test)]

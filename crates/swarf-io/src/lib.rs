@@ -3,6 +3,8 @@
 //! - [`part`]: part files (TOML patches, `parts/README.md`), and [`builtin`] copies of
 //!   the shared test parts embedded in the binary;
 //! - [`stl`], [`obj`], [`mesh_file`]: triangle meshes;
+//! - [`model_file`]: a design in any of these formats, chosen by extension in one
+//!   place;
 //! - [`rest_parts`]: built-in mesh parts for rest-material detection, built in code;
 //! - [`step`]: STEP (ISO 10303-21) B-rep parts as trimmed NURBS faces;
 //! - [`iges`]: IGES 5.3 trimmed NURBS faces ([`cad`] options and result, and
@@ -24,6 +26,7 @@ pub mod iges;
 pub mod input;
 pub mod json;
 pub mod mesh_file;
+pub mod model_file;
 pub mod obj;
 pub mod output_set;
 pub mod part;
@@ -33,12 +36,13 @@ pub mod stl;
 
 pub use atomic::{write_atomic, write_atomic_with};
 pub use builtin::{builtin_part, builtin_parts, project_parts};
-pub use cad::{CadOptions, CadPart, Unsupported, is_cad_file, read_cad};
+pub use cad::{CadOptions, CadPart, Unsupported, read_cad};
 pub use csv::{parse_xy_points, read_xy_points};
 pub use error::{At, IoError};
 pub use iges::{parse_iges, read_iges};
 pub use input::{checked_open, max_input_bytes, read_input, read_input_text, track_inputs};
 pub use mesh_file::read_mesh;
+pub use model_file::{ModelFile, ModelFormat, read_model};
 pub use obj::{parse_obj, read_obj};
 pub use output_set::OutputSet;
 pub use part::{parse_part, read_part};

@@ -1,6 +1,8 @@
-//! Reading a mesh file of any supported format, chosen by its extension.
+//! Reading a mesh file of any supported format, chosen by its extension
+//! ([`ModelFormat::of`]).
 
 use crate::error::{At, IoError};
+use crate::model_file::ModelFormat;
 use crate::obj::read_obj;
 use crate::stl::read_stl;
 use std::path::Path;
@@ -23,16 +25,14 @@ use swarf_geom::TriMesh;
 /// assert_eq!(e.to_string(), "part.ply: unsupported mesh file type \".ply\"; expected .stl or .obj");
 /// ```
 pub fn read_mesh(path: &Path) -> Result<TriMesh, IoError> {
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    let (mesh, element) = match ext.as_deref() {
-        Some("stl") => (read_stl(path)?, "`facet`"),
-        Some("obj") => (read_obj(path)?, "`f` face line"),
-        other => {
+    let (mesh, element) = match ModelFormat::of(path) {
+        ModelFormat::Stl => (read_stl(path)?, "`facet`"),
+        ModelFormat::Obj => (read_obj(path)?, "`f` face line"),
+        _ => {
+            let ext = path.extension().map(|e| e.to_string_lossy());
             return Err(IoError::UnsupportedFormat {
                 file: path.display().to_string(),
-                found: other.map_or("no extension".to_owned(), |e| format!(".{e}")),
+                found: ext.map_or("no extension".to_owned(), |e| format!(".{e}")),
             });
         }
     };

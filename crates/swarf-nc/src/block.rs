@@ -26,7 +26,9 @@ pub mod arc;
 pub use arc::ArcBlock;
 
 /// How feeds are written.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum FeedMode {
     /// G93: `F` is the inverse of each move's time.

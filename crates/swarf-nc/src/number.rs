@@ -10,7 +10,9 @@ use swarf_geom::domain::{COORDINATE, Domain, RATE};
 use swarf_geom::units::MM_PER_INCH;
 
 /// Length units of an output program.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum Units {
     /// Millimetres (G21).

@@ -10,7 +10,7 @@
 use std::io::Write;
 use std::time::Instant;
 use swarf_path::Finish;
-use swarf_path::waterline::{Milling, Waterline, WaterlineParams};
+use swarf_path::strategy::waterline::{Milling, Waterline, WaterlineParams};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -20,10 +20,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let t0 = Instant::now();
     let mesh = swarf_io::stl::read_stl(std::path::Path::new(&args[0]))?;
     let read_s = t0.elapsed().as_secs_f64();
-    let mut finish = Finish::new(args[1].parse()?);
-    finish.tolerance = args[3].parse()?;
-    let mut params = WaterlineParams::new(finish, 0.01);
-    params.sampling = Some(args[2].parse()?);
+    let tool: swarf_tool::Cutter = args[1].parse()?;
+    let params = WaterlineParams {
+        finish: Finish {
+            tolerance: args[3].parse()?,
+            ..Finish::default()
+        },
+        sampling: Some(args[2].parse()?),
+        ..WaterlineParams::new(0.01)
+    };
     let threads: usize = args[4].parse()?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -36,7 +41,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     writeln!(out, "z,loop,x,y")?;
     let result = pool.install(|| -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
         let t1 = Instant::now();
-        let wl = Waterline::new(&mesh, &params)?;
+        let wl = Waterline::new(&mesh, &tool, &params)?;
         println!(
             "triangles {} read {read_s:.3} s prepare {:.3} s",
             mesh.len(),

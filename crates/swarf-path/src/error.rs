@@ -8,7 +8,7 @@ pub enum PathError {
     /// A planning parameter is out of range.
     #[error("{field}: {message}")]
     InvalidParameter {
-        /// The parameter as the user knows it (e.g. `strategy.scallop`).
+        /// The parameter as the user knows it (e.g. `scallop`).
         field: String,
         /// What was expected.
         message: String,

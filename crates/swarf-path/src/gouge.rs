@@ -84,12 +84,12 @@ impl GougeCheck {
     /// mm.
     ///
     /// # Errors
-    /// [`PathError::InvalidParameter`] on `strategy.tolerance` when it is not finite
+    /// [`PathError::InvalidParameter`] on `tolerance` when it is not finite
     /// and > 0; [`PathError::Geom`] when the part cannot be tessellated.
     pub fn new(part: &Part, cutter: &Cutter, tolerance: f64) -> Result<GougeCheck, PathError> {
         if !(tolerance.is_finite() && tolerance > 0.0) {
             return Err(PathError::InvalidParameter {
-                field: "strategy.tolerance".into(),
+                field: "tolerance".into(),
                 message: format!("expected a finite number > 0, found {tolerance}"),
             });
         }
@@ -253,7 +253,7 @@ mod tests {
         let e2 = GougeCheck::new(&valley(), &ball, f64::NAN)
             .unwrap_err()
             .to_string();
-        assert!(e2.starts_with("strategy.tolerance"), "{e2}");
-        assert!(e.starts_with("strategy.tolerance"), "{e}");
+        assert!(e2.starts_with("tolerance"), "{e2}");
+        assert!(e.starts_with("tolerance"), "{e}");
     }
 }

@@ -43,14 +43,14 @@ impl Leads {
     /// Checks the domains: radius 0.01 to 1000 mm, angle 0.5 to 60 degrees.
     ///
     /// # Errors
-    /// [`PathError::InvalidParameter`] naming `linking.lead_radius` or
-    /// `linking.ramp_angle`.
+    /// [`PathError::InvalidParameter`] naming `lead_radius` or
+    /// `ramp_angle`.
     pub fn check(&self) -> Result<(), PathError> {
         if let Some(r) = self.arc_radius
             && !(0.01..=1000.0).contains(&r)
         {
             return Err(PathError::InvalidParameter {
-                field: "linking.lead_radius".into(),
+                field: "lead_radius".into(),
                 message: format!("{r} mm: expected 0.01 to 1000 mm"),
             });
         }
@@ -58,10 +58,10 @@ impl Leads {
             && !(0.5f64.to_radians()..=60f64.to_radians()).contains(&a)
         {
             return Err(PathError::InvalidParameter {
-                field: "linking.ramp_angle".into(),
+                field: "ramp_angle".into(),
                 message: format!(
                     "{} degrees: expected 0.5 to 60 degrees",
-                    crate::params::shown_degrees(a)
+                    swarf_geom::units::shown_degrees(a)
                 ),
             });
         }
@@ -84,7 +84,7 @@ pub fn add_leads(
     }
     let mut scratch = DropScratch::default();
     for pass in passes.iter_mut() {
-        let vertical = pass.points.iter().all(|p| p.pose.axis.z > 1.0 - 1e-12);
+        let vertical = pass.points.iter().all(|p| p.pose.is_vertical());
         if pass.points.len() < 2 || !vertical {
             continue;
         }

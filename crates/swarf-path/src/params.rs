@@ -1,43 +1,76 @@
-//! The strategies' parameters: what each finishing strategy needs, and nothing of
-//! the job file around it (the TOML schema lives in the application layer, which
-//! fills these from a job). Lengths in mm, angles in radians.
+//! What every strategy shares: the job's [`Cutting`] (its tool, feeds and linking,
+//! from the job's own tables), the [`Finish`] part that every strategy table
+//! flattens in (tolerance, zigzag), and the side and direction choices. Each
+//! strategy's own parameters are defined beside it ([`crate::strategy`]), with
+//! serde for the job file (lengths mm, angles degrees there, radians here) and a
+//! `validate` that names its own field (`scallop`, not `scallop`: the
+//! application adds the table and the place).
 
+use crate::error::PathError;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
-use swarf_geom::domain::show;
-use swarf_geom::math::display_degrees;
+use swarf_geom::domain::{COORDINATE, Domain, SCALLOP, STEP, TOLERANCE, show};
+use swarf_geom::units::shown_degrees;
 use swarf_tool::Cutter;
 use swarf_toolpath::{Feeds, LinkingSpec};
 
-/// The finishing strategies.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum StrategyKind {
-    /// Passes along constant-parameter curves of each patch (paper 004).
-    IsoParametric,
-    /// Passes are sections of the part by parallel vertical drive planes (paper 004).
-    IsoPlanar,
-    /// Each pass is placed so that the scallop to the previous one equals h (paper 004).
-    IsoScallop,
-    /// Drop-cutter raster on a triangle mesh (iso-planar for meshes).
-    Raster,
-    /// Cleanup of the rest material a parent job leaves (planned by swarf-rest).
-    Cleanup,
-    /// Closed passes at constant heights around the part ([`crate::waterline`]).
-    Waterline,
-    /// Raster on the shallow areas, waterline on the steep ones
-    /// ([`crate::steep_shallow`]).
-    SteepShallow,
-    /// Five-axis multipoint passes along the common edge of two faces, by drop and
-    /// spin (paper 003; planned by `swarf_fiveaxis::dsm`).
-    DropSpin,
-    /// Z-level roughing from a box stock down to the part plus an allowance
-    /// ([`crate::roughing`]).
-    Roughing,
+/// What every strategy cuts with: the job's tool, feeds and linking.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cutting {
+    /// The cutter.
+    pub tool: Cutter,
+    /// Feeds and speeds.
+    pub feeds: Feeds,
+    /// Clearance plane and approach.
+    pub linking: LinkingSpec,
+}
+
+impl Cutting {
+    /// `tool` with default feeds and linking.
+    pub fn new(tool: Cutter) -> Cutting {
+        Cutting {
+            tool,
+            feeds: Feeds::default(),
+            linking: LinkingSpec::default(),
+        }
+    }
+}
+
+/// The part of every strategy's table that every strategy takes: the chordal
+/// tolerance along its passes and whether consecutive passes alternate.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(default)]
+pub struct Finish {
+    /// Chordal tolerance along a pass (and gouge tolerance), mm.
+    #[schemars(extend("unit" = "mm", "domain" = TOLERANCE.to_string()))]
+    pub tolerance: f64,
+    /// Alternate the cutting direction of consecutive passes.
+    pub zigzag: bool,
+}
+
+impl Default for Finish {
+    /// A tolerance of 0.01 mm, zigzag passes.
+    fn default() -> Self {
+        Finish {
+            tolerance: 0.01,
+            zigzag: true,
+        }
+    }
+}
+
+impl Finish {
+    /// Checks the tolerance.
+    ///
+    /// # Errors
+    /// [`PathError::InvalidParameter`] on `tolerance` outside [`TOLERANCE`].
+    pub fn validate(&self) -> Result<(), PathError> {
+        in_domain("tolerance", Some(self.tolerance), TOLERANCE)
+    }
 }
 
 /// Which parameter a pass follows (iso-parametric) or which boundary the first pass
 /// starts on (iso-scallop).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ParamDir {
     /// Passes run along u (v constant on each pass).
@@ -47,8 +80,35 @@ pub enum ParamDir {
     V,
 }
 
+impl std::str::FromStr for ParamDir {
+    type Err = String;
+
+    /// `u` or `v`; a milling direction (`climb`, `conventional`) is named as one.
+    fn from_str(s: &str) -> Result<ParamDir, String> {
+        match s {
+            "u" => Ok(ParamDir::U),
+            "v" => Ok(ParamDir::V),
+            "climb" | "conventional" => Err(format!(
+                "\"{s}\" is a milling direction (waterline, steep-shallow, steep cleanup); this strategy takes \"u\" or \"v\""
+            )),
+            other => Err(format!(
+                "unknown variant `{}`, expected `u` or `v`",
+                swarf_geom::domain::excerpt(other, 40)
+            )),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for ParamDir {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<ParamDir, D::Error> {
+        String::deserialize(d)?
+            .parse()
+            .map_err(serde::de::Error::custom)
+    }
+}
+
 /// Which end of the side-step range the first pass is on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum StartSide {
     /// Start at the low end (smallest v, or the lowest drive plane offset).
@@ -58,118 +118,153 @@ pub enum StartSide {
     Max,
 }
 
-/// What every finishing strategy takes: the cutter, the chordal tolerance, the
-/// cutting direction of consecutive passes, feeds and the linking rule.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Finish {
-    /// The cutter.
-    pub tool: Cutter,
-    /// Chordal tolerance along a pass (and gouge tolerance), mm.
-    pub tolerance: f64,
-    /// Alternate the cutting direction of consecutive passes.
-    pub zigzag: bool,
-    /// Feeds and speeds.
-    pub feeds: Feeds,
-    /// Clearance plane and approach.
-    pub linking: LinkingSpec,
+/// `v`, when given, in `domain`; the error names `field`.
+///
+/// # Errors
+/// [`PathError::InvalidParameter`] on `field` outside `domain`.
+pub fn in_domain(field: &str, v: Option<f64>, domain: Domain) -> Result<(), PathError> {
+    match v {
+        Some(x) => domain
+            .check(x)
+            .map(|_| ())
+            .map_err(|message| PathError::InvalidParameter {
+                field: field.into(),
+                message,
+            }),
+        None => Ok(()),
+    }
 }
 
-impl Finish {
-    /// `tool` with a chordal tolerance of 0.01 mm, zigzag passes, default feeds and
-    /// linking.
-    pub fn new(tool: Cutter) -> Finish {
-        Finish {
-            tool,
-            tolerance: 0.01,
-            zigzag: true,
-            feeds: Feeds::default(),
-            linking: LinkingSpec::default(),
+/// A scallop height limit `scallop` (when given) for `tool`: in [`SCALLOP`] and
+/// below the tool's radius.
+///
+/// # Errors
+/// [`PathError::InvalidParameter`] on `scallop`.
+pub fn check_scallop(scallop: Option<f64>, tool: &Cutter) -> Result<(), PathError> {
+    in_domain("scallop", scallop, SCALLOP)?;
+    if let Some(h) = scallop {
+        let r = tool.radius();
+        if h >= r {
+            return Err(PathError::InvalidParameter {
+                field: "scallop".into(),
+                message: format!(
+                    "{h} mm is not smaller than the tool radius {r} mm; expected 0 < scallop < tool radius"
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// A fixed stepover (when given) in [`STEP`].
+///
+/// # Errors
+/// [`PathError::InvalidParameter`] on `stepover`.
+pub fn check_stepover(stepover: Option<f64>) -> Result<(), PathError> {
+    in_domain("stepover", stepover, STEP)
+}
+
+/// The spacing a strategy needs: a scallop limit or a fixed stepover.
+///
+/// # Errors
+/// [`PathError::InvalidParameter`] on the table itself (`field` empty) when both
+/// are absent.
+pub fn require_spacing(scallop: Option<f64>, stepover: Option<f64>) -> Result<(), PathError> {
+    if scallop.is_none() && stepover.is_none() {
+        return Err(PathError::InvalidParameter {
+            field: String::new(),
+            message: "expected `scallop` (scallop height limit, mm) or `stepover` (mm)".into(),
+        });
+    }
+    Ok(())
+}
+
+/// A feed direction `angle` (radians): finite.
+///
+/// # Errors
+/// [`PathError::InvalidParameter`] on `angle`.
+pub fn check_angle(angle: f64) -> Result<(), PathError> {
+    if angle.is_finite() {
+        return Ok(());
+    }
+    Err(PathError::InvalidParameter {
+        field: "angle".into(),
+        message: "expected a finite angle in degrees".into(),
+    })
+}
+
+/// An optional angle `field` (radians) strictly between 0 and 90 degrees; `what`
+/// names it in the message (`an angle`, `a slope`).
+///
+/// # Errors
+/// [`PathError::InvalidParameter`] on `field`.
+pub fn check_open_angle(field: &str, angle: Option<f64>, what: &str) -> Result<(), PathError> {
+    match angle {
+        Some(a) if !(a > 0.0 && a < std::f64::consts::FRAC_PI_2) => {
+            Err(PathError::InvalidParameter {
+                field: field.into(),
+                message: format!(
+                    "{} degrees: expected {what} between 0 and 90 degrees",
+                    shown_degrees(a)
+                ),
+            })
+        }
+        _ => Ok(()),
+    }
+}
+
+/// A rectangle `[xmin, ymin, xmax, ymax]` (when given) of coordinates, with
+/// `xmin < xmax` and `ymin < ymax`.
+///
+/// # Errors
+/// [`PathError::InvalidParameter`] on `boundary`.
+pub fn check_boundary(boundary: Option<[f64; 4]>) -> Result<(), PathError> {
+    match boundary {
+        Some(b) if !(b.iter().all(|&x| COORDINATE.contains(x)) && b[0] < b[2] && b[1] < b[3]) => {
+            Err(PathError::InvalidParameter {
+                field: "boundary".into(),
+                message: format!(
+                    "expected [xmin, ymin, xmax, ymax] with xmin < xmax and ymin < ymax, found [{}]",
+                    b.map(show).join(", ")
+                ),
+            })
+        }
+        _ => Ok(()),
+    }
+}
+
+/// A strategy's parameters with the cutting they are planned with, for the
+/// strategies' unit tests: the parameters are its fields through `Deref`.
+#[cfg(test)]
+pub(crate) struct TestJob<P> {
+    /// Tool, feeds, linking.
+    pub cut: Cutting,
+    /// The strategy's parameters.
+    pub params: P,
+}
+
+#[cfg(test)]
+impl<P> TestJob<P> {
+    /// `params` planned with the cutter `tool` (a spec) and default feeds.
+    pub fn new(tool: &str, params: P) -> TestJob<P> {
+        TestJob {
+            cut: Cutting::new(tool.parse().expect("a cutter spec")),
+            params,
         }
     }
 }
 
-/// Parameters of the iso strategies (iso-parametric, iso-planar, iso-scallop).
-#[derive(Debug, Clone, PartialEq)]
-pub struct IsoParams {
-    /// Cutter, tolerance, feeds, linking.
-    pub finish: Finish,
-    /// Scallop height limit h, mm (the side step follows from it). Required unless
-    /// `stepover` is given (iso-planar only).
-    pub scallop: Option<f64>,
-    /// Fixed distance between iso-planar drive planes ("cross feed", thesis 000 ch.
-    /// 8), mm; then no boundary passes are added.
-    pub stepover: Option<f64>,
-    /// Feed direction along a parameter (iso-parametric, iso-scallop).
-    pub direction: ParamDir,
-    /// Feed direction in the XY plane from +X, radians (iso-planar).
-    pub angle: f64,
-    /// Side the first pass starts on.
-    pub start: StartSide,
-}
-
-impl IsoParams {
-    /// Passes spaced by the scallop limit `scallop` (mm), along u from the low end,
-    /// iso-planar planes along +X.
-    pub fn new(finish: Finish, scallop: f64) -> IsoParams {
-        IsoParams {
-            finish,
-            scallop: Some(scallop),
-            stepover: None,
-            direction: ParamDir::U,
-            angle: 0.0,
-            start: StartSide::Min,
-        }
+#[cfg(test)]
+impl<P> std::ops::Deref for TestJob<P> {
+    type Target = P;
+    fn deref(&self) -> &P {
+        &self.params
     }
 }
 
-/// Parameters of the drop-cutter raster.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RasterParams {
-    /// Cutter, tolerance, feeds, linking.
-    pub finish: Finish,
-    /// Scallop height limit on a flat floor, mm (the line spacing follows from it).
-    pub scallop: Option<f64>,
-    /// Fixed distance between raster lines, mm (wins over `scallop`).
-    pub stepover: Option<f64>,
-    /// Feed direction in the XY plane from +X, radians.
-    pub angle: f64,
-    /// Side the first line is on.
-    pub start: StartSide,
-    /// Raster boundary `[xmin, ymin, xmax, ymax]`, mm (default: the mesh outline).
-    pub boundary: Option<[f64; 4]>,
-    /// Ramp angle limit, radians in `(0, pi/2)`: passes climb and descend no steeper
-    /// (thesis 002 §3.1.3, [`crate::ramp`]); none by default.
-    pub max_ramp: Option<f64>,
-    /// Steepest slope across the passes on which the scallop limit must hold,
-    /// radians in `(0, pi/2)`: with `scallop`, the stepover is the slope-aware
-    /// spacing of [`crate::slope_step::raster_spacing`] and the predicted scallop
-    /// the largest over slopes up to it; none by default (a level floor).
-    pub max_slope: Option<f64>,
-}
-
-impl RasterParams {
-    /// Lines `stepover` mm apart along +X over the whole mesh.
-    pub fn new(finish: Finish, stepover: f64) -> RasterParams {
-        RasterParams {
-            finish,
-            scallop: None,
-            stepover: Some(stepover),
-            angle: 0.0,
-            start: StartSide::Min,
-            boundary: None,
-            max_ramp: None,
-            max_slope: None,
-        }
+#[cfg(test)]
+impl<P> std::ops::DerefMut for TestJob<P> {
+    fn deref_mut(&mut self) -> &mut P {
+        &mut self.params
     }
-}
-
-/// An angle in radians as the degrees a user gave ([`display_degrees`]: a plane at
-/// 60 degrees reads 60 again in messages after the conversion to radians).
-pub fn degrees(angle: f64) -> f64 {
-    display_degrees(angle.to_degrees(), angle, f64::to_radians)
-}
-
-/// [`degrees`] for a message ([`show`]: no hundreds of digits for an absurd value).
-pub fn shown_degrees(angle: f64) -> String {
-    show(degrees(angle))
 }

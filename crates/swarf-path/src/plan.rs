@@ -1,7 +1,7 @@
 //! What a strategy gives: the tool path and the figures it reports beside it.
 
-use crate::params::Finish;
-use crate::pass_bound::PassBound;
+use crate::params::Cutting;
+use crate::strategy::iso::pass_bound::PassBound;
 use serde::{Deserialize, Serialize};
 use swarf_geom::{Point3, Vec3};
 use swarf_toolpath::{Pass, Toolpath, top_z};
@@ -52,7 +52,7 @@ pub struct PlanReport {
     pub uncovered: Vec<Uncovered>,
     /// Iso strategies: per patch, the least number of full-length passes any pass
     /// family along the job's feed direction needs at its scallop height, and the
-    /// column that needs them ([`crate::pass_bound`]).
+    /// column that needs them ([`crate::strategy::iso::pass_bound`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pass_bound: Vec<PassBound>,
     /// Planning wall time, s (not part of deterministic outputs).
@@ -85,19 +85,19 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// The plan of `passes` cut with `finish`'s feeds, linked above their highest
-    /// point by `finish`'s linking rule.
+    /// The plan of `passes` cut with `cutting`'s feeds, linked above their highest
+    /// point by `cutting`'s linking rule.
     pub fn from_passes(
         passes: Vec<Pass>,
-        finish: &Finish,
+        cutting: &Cutting,
         report: PlanReport,
         double_contacts: Vec<DoubleContact>,
     ) -> Plan {
-        let linking = finish.linking.for_top(top_z(&passes));
+        let linking = cutting.linking.for_top(top_z(&passes));
         Plan {
             toolpath: Toolpath {
                 passes,
-                feeds: finish.feeds,
+                feeds: cutting.feeds,
                 linking,
             },
             report,

@@ -5,7 +5,7 @@
 //! rings, offset pencil passes) are tracks dropped onto the part this way.
 
 use crate::plan::DoubleContact;
-use crate::raster_pass::{Along, Sampler};
+use crate::strategy::raster::pass::{Along, Sampler};
 use swarf_geom::TriMesh;
 use swarf_tool::drop::{DropScratch, MeshDropper};
 use swarf_toolpath::PathPoint;

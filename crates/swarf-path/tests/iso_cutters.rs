@@ -8,8 +8,7 @@
 mod iso_support;
 
 use iso_support::swept::Swept;
-use iso_support::{crests, crests_by, wave};
-use swarf_app::PlanInput;
+use iso_support::{crests, crests_by, iso_job, wave};
 use swarf_geom::{Patch, Point3, Vec3};
 use swarf_path::Plan;
 use swarf_tool::Cutter;
@@ -24,11 +23,12 @@ const SLACK: f64 = 1.02;
 const SPACING: f64 = 8.0;
 
 fn wave_plan(kind: &str, tool: &str, extra: &str) -> Plan {
-    let text = format!(
-        "part = \"builtin:wave\"\ntool = \"{tool}\"\n[strategy]\nkind = \"{kind}\"\nscallop = {H}\ntolerance = {TOL}\n{extra}\n"
+    let job = iso_job(
+        kind,
+        tool,
+        &format!("scallop = {H}\ntolerance = {TOL}\n{extra}\n"),
     );
-    let job = swarf_app::Job::parse(&text, "test job").expect("valid job");
-    swarf_app::plan(&job, PlanInput::Part(&wave())).expect(kind)
+    job.plan(&wave()).expect(kind)
 }
 
 /// Largest crest between adjacent passes of `plan` on wave for `cutter`.
@@ -113,7 +113,7 @@ fn the_swept_oracle_measures_closed_forms() {
 }
 
 /// Bull end mills: the three iso strategies keep the true scallop at most `h`
-/// (the corner radius across wave's convex ridge, `swarf_path::side_step`), and
+/// (the corner radius across wave's convex ridge, `swarf_path::stepping::side_step`), and
 /// neither beats the pass bound.
 #[test]
 fn bull_cutters_keep_the_scallop_below_h() {

@@ -6,16 +6,16 @@
 
 mod iso_support;
 
-use iso_support::{dense_points, max_penetration, wave, wave_job};
-use swarf_app::{Job, PlanInput};
+use iso_support::{IsoJob, dense_points, iso_job, max_penetration, wave, wave_job};
 
 const TOL: f64 = 0.01;
 
-fn job(kind: &str, tool: &str, extra: &str) -> Job {
-    let text = format!(
-        "part = \"x\"\ntool = \"{tool}\"\n[strategy]\nkind = \"{kind}\"\nscallop = 0.3\ntolerance = {TOL}\n{extra}\n"
-    );
-    Job::parse(&text, "job").unwrap()
+fn job(kind: &str, tool: &str, extra: &str) -> IsoJob {
+    iso_job(
+        kind,
+        tool,
+        &format!("scallop = 0.3\ntolerance = {TOL}\n{extra}\n"),
+    )
 }
 
 #[test]
@@ -24,7 +24,7 @@ fn wave_paths_do_not_gouge() {
     let points = dense_points(&part, 0.3);
     for kind in ["iso-parametric", "iso-planar", "iso-scallop"] {
         let job = wave_job(kind, 0.15, TOL);
-        let plan = swarf_app::plan(&job, PlanInput::Part(&part)).unwrap();
+        let plan = job.plan(&part).unwrap();
         let depth = max_penetration(&plan, &job.tool, &points);
         assert!(depth <= TOL, "{kind}: enters wave by {depth} mm");
     }
@@ -42,7 +42,7 @@ fn valley_of_two_patches_is_lifted_out_of() {
     ] {
         for tool in ["ball:d=8", "bull:d=10,r=2"] {
             let job = job(kind, tool, extra);
-            let plan = swarf_app::plan(&job, PlanInput::Part(&part)).unwrap();
+            let plan = job.plan(&part).unwrap();
             let depth = max_penetration(&plan, &job.tool, &points);
             assert!(depth <= TOL, "{kind} {extra} {tool}: enters by {depth} mm");
             assert!(

@@ -1,10 +1,22 @@
-//! Iso-planar with a fixed cross feed (`strategy.stepover`, the "cross feed 3.5 mm" of
+//! Iso-planar with a fixed cross feed (`stepover`, the "cross feed 3.5 mm" of
 //! thesis 000 ch. 8): planes exactly the stepover apart, centred in the part, the
 //! closed-form ball scallop predicted; and pass ends without stubs.
 
-use swarf_app::Job;
 use swarf_geom::{Part, Patch};
-use swarf_path::iso_planar::plan;
+use swarf_path::Cutting;
+use swarf_path::strategy::iso::planar::{IsoPlanarParams, plan};
+
+/// Iso-planar parameters read from their strategy table (TOML, without `kind`),
+/// checked for `tool`.
+fn params(table: &str, tool: &Cutting) -> Result<IsoPlanarParams, String> {
+    let p: IsoPlanarParams = toml::from_str(table).map_err(|e| e.to_string())?;
+    p.validate(&tool.tool).map_err(|e| e.to_string())?;
+    Ok(p)
+}
+
+fn cutting(tool: &str) -> Cutting {
+    Cutting::new(tool.parse().unwrap())
+}
 
 /// A fixed cross feed on a plane: drive planes exactly `s` apart and centred in the
 /// part, in start-side order, and the closed-form ball scallop predicted.
@@ -17,17 +29,16 @@ fn fixed_stepover_on_a_plane() {
     )
     .unwrap();
     let part = Part::new("plane", vec![plane]);
+    let ball = cutting("ball:d=8");
     let with = |extra: &str| {
-        Job::parse(
-            &format!(
-                "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 1.5\ntolerance = 0.01\nangle = 0\n{extra}\n"
-            ),
-            "job.toml",
+        params(
+            &format!("stepover = 1.5\ntolerance = 0.01\nangle = 0\n{extra}\n"),
+            &ball,
         )
         .unwrap()
     };
     for (extra, first) in [("", 0.5), ("start = \"max\"", 9.5)] {
-        let plan = plan(&part, &with(extra).iso_params()).unwrap();
+        let plan = plan(&part, &ball, &with(extra)).unwrap();
         let ys: Vec<f64> = plan
             .toolpath
             .passes
@@ -51,11 +62,8 @@ fn fixed_stepover_on_a_plane() {
         let [a, b] = plan.report.side_step_range.unwrap();
         assert!((a - 1.5).abs() < 1e-9 && (b - 1.5).abs() < 1e-9);
     }
-    let both = Job::parse(
-        "part = \"x\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 1.5\nscallop = 0.1\n",
-        "job.toml",
-    );
-    assert!(both.unwrap_err().to_string().contains("strategy.stepover"));
+    let both = params("stepover = 1.5\nscallop = 0.1\n", &ball);
+    assert!(both.unwrap_err().to_string().contains("stepover"));
 }
 
 /// Sections of the die end on its patch edges and corners, where the section
@@ -63,12 +71,9 @@ fn fixed_stepover_on_a_plane() {
 #[test]
 fn pass_ends_have_no_stubs() {
     let part = swarf_io::builtin_part("die").unwrap();
-    let job = Job::parse(
-        "part = \"x\"\ntool = \"bull:d=38.1,r=6.35\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 10\nangle = 60\n",
-        "job.toml",
-    )
-    .unwrap();
-    let plan = plan(&part, &job.iso_params()).unwrap();
+    let bull = cutting("bull:d=38.1,r=6.35");
+    let job = params("stepover = 10\nangle = 60\n", &bull).unwrap();
+    let plan = plan(&part, &bull, &job).unwrap();
     assert!(plan.toolpath.passes.len() > 10);
     for pass in &plan.toolpath.passes {
         for w in pass.points.windows(2) {
@@ -85,12 +90,9 @@ fn pass_ends_have_no_stubs() {
 #[test]
 fn die_drive_planes_at_the_thesis_cross_feed() {
     let part = swarf_io::builtin_part("die").unwrap();
-    let job = Job::parse(
-        "part = \"x\"\ntool = \"bull:d=38.1,r=6.35\"\n[strategy]\nkind = \"iso-planar\"\nstepover = 3.5\nangle = 60\n",
-        "job.toml",
-    )
-    .unwrap();
-    let plan = plan(&part, &job.iso_params()).unwrap();
+    let bull = cutting("bull:d=38.1,r=6.35");
+    let job = params("stepover = 3.5\nangle = 60\n", &bull).unwrap();
+    let plan = plan(&part, &bull, &job).unwrap();
     let passes = &plan.toolpath.passes;
     assert!(passes.len() > 30, "{}", passes.len());
     let a = 60f64.to_radians();

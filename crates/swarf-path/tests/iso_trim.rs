@@ -10,8 +10,9 @@
 mod iso_support;
 
 use iso_support::swept::{Swept, residuals};
-use iso_support::{dense_face_frames, dense_points, max_penetration, max_residual};
-use swarf_app::{Job, PlanInput};
+use iso_support::{
+    IsoJob, dense_face_frames, dense_points, iso_job, max_penetration, max_residual,
+};
 use swarf_geom::part::Face;
 use swarf_geom::trim::Trim;
 use swarf_geom::{Part, Patch, Point3};
@@ -64,11 +65,8 @@ fn trimmed() -> Part {
     part
 }
 
-fn job(kind: &str, tool: &str) -> Job {
-    let text = format!(
-        "part = \"x\"\ntool = \"{tool}\"\n[strategy]\nkind = \"{kind}\"\nscallop = {H}\ntolerance = {TOL}\n"
-    );
-    Job::parse(&text, "job").unwrap()
+fn job(kind: &str, tool: &str) -> IsoJob {
+    iso_job(kind, tool, &format!("scallop = {H}\ntolerance = {TOL}\n"))
 }
 
 /// Distance in uv from `uv` to the nearest trimming loop.
@@ -98,7 +96,7 @@ fn iso_paths_stay_on_the_trimmed_face_and_meet_h_without_gouging() {
     let inscribed = HOLE_R * (std::f64::consts::PI / HOLE_N as f64).cos();
     for kind in ["iso-parametric", "iso-planar", "iso-scallop"] {
         let job = job(kind, "ball:d=8");
-        let plan = swarf_app::plan(&job, PlanInput::Part(&part)).unwrap();
+        let plan = job.plan(&part).unwrap();
         let mut near_hole = 0;
         for pass in &plan.toolpath.passes {
             let cc: Vec<[f64; 2]> = pass
@@ -156,7 +154,7 @@ fn iso_paths_stay_on_the_trimmed_face_and_meet_h_without_gouging() {
 fn iso_scallop_with_a_bull_meets_h_on_the_trimmed_face() {
     let part = trimmed();
     let job = job("iso-scallop", "bull:d=10,r=2");
-    let plan = swarf_app::plan(&job, PlanInput::Part(&part)).unwrap();
+    let plan = job.plan(&part).unwrap();
     let swept = Swept::new(&plan, &job.tool);
     let frames = dense_face_frames(&part, 0.6);
     let left = residuals(&swept, &frames).into_iter().fold(0.0, f64::max);
@@ -189,7 +187,7 @@ fn the_scallop_oracle_sees_the_trimmed_off_region() {
     let part = trimmed();
     let whole = Part::new("bump", vec![bump()]);
     let job = job("iso-parametric", "ball:d=8");
-    let plan = swarf_app::plan(&job, PlanInput::Part(&part)).unwrap();
+    let plan = job.plan(&part).unwrap();
     let (left, _) = max_residual(&plan, &whole, 4.0, 1.0);
     assert!(left > 10.0 * H, "{left}");
 }

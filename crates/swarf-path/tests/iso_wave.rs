@@ -7,8 +7,7 @@
 
 mod iso_support;
 
-use iso_support::{crests, max_residual, wave, wave_job};
-use swarf_app::PlanInput;
+use iso_support::{Iso, crests, max_residual, wave, wave_job};
 use swarf_path::Plan;
 use swarf_toolpath::motion_stats;
 
@@ -27,8 +26,8 @@ struct Row {
 fn run(kind: &'static str) -> Row {
     let part = wave();
     let job = wave_job(kind, H, TOL);
-    let plan = swarf_app::plan(&job, PlanInput::Part(&part)).expect(kind);
-    let stats = motion_stats(&plan.toolpath.moves(), job.feeds.rapid);
+    let plan = job.plan(&part).expect(kind);
+    let stats = motion_stats(&plan.toolpath.moves(), job.cut.feeds.rapid);
     Row {
         name: kind,
         plan,
@@ -86,7 +85,7 @@ fn scallops_stay_below_h_and_iso_scallop_is_the_most_economical() {
             );
         }
     }
-    // The least count of full-length passes (swarf_path::pass_bound): iso-scallop
+    // The least count of full-length passes (swarf_path::strategy::iso::pass_bound): iso-scallop
     // needs exactly its next whole number, the others no fewer.
     let bound = &rows[2].plan.report.pass_bound[0];
     println!(
@@ -183,8 +182,10 @@ fn the_scallop_oracle_measures_the_closed_form() {
 fn oblique_drive_planes_leave_no_corner_uncovered() {
     let part = wave();
     let mut job = wave_job("iso-planar", H, TOL);
-    job.strategy.angle = 30.0;
-    let plan = swarf_app::plan(&job, PlanInput::Part(&part)).unwrap();
+    if let Iso::Planar(p) = &mut job.iso {
+        p.angle = 30f64.to_radians();
+    }
+    let plan = job.plan(&part).unwrap();
     let (anywhere, at) = max_residual(&plan, &part, 4.0, 0.5);
     assert!(anywhere <= SLACK * H, "{anywhere} left at {at:?}");
     let c = crests(&plan, &part.patches[0], 4.0, 2.0, 16, 4.0);

@@ -4,29 +4,21 @@
 //! to the end with every feed move. Without `rs274` the second check is skipped,
 //! unless `SWARF_REQUIRE_REFERENCES=1`.
 
-use swarf_app::Job;
-use swarf_app::{PlanInput, plan};
-use swarf_path::Plan;
+use swarf_path::strategy::raster::{RasterParams, plan};
+use swarf_path::{Cutting, Plan};
 use swarf_tool::drop::{DropCutter, triangle_drop};
 use swarf_toolpath::MoveKind;
 
-fn wave_plan() -> (swarf_geom::TriMesh, Job, Plan) {
+fn wave_plan() -> (swarf_geom::TriMesh, Cutting, Plan) {
     let part = swarf_io::builtin_part("wave").unwrap();
     let mesh = part.tessellate(0.01).unwrap();
-    let text = r#"
-part = "builtin:wave"
-tool = "ball:d=8"
-[strategy]
-kind = "raster"
-scallop = 0.15
-tolerance = 0.01
-boundary = [70, 20, 110, 55]
-[feeds]
-feed = 300
-spindle = 1500
-"#;
-    let job = Job::parse(text, "wave-raster.toml").unwrap();
-    let p = plan(&job, PlanInput::Mesh(&mesh)).unwrap();
+    let params = RasterParams {
+        scallop: Some(0.15),
+        boundary: Some([70.0, 20.0, 110.0, 55.0]),
+        ..RasterParams::default()
+    };
+    let job = Cutting::new("ball:d=8".parse().unwrap());
+    let p = plan(&mesh, &job, &params).unwrap();
     (mesh, job, p)
 }
 

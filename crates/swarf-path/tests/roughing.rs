@@ -7,8 +7,8 @@
 
 use swarf_geom::Point3;
 use swarf_nc::read::Motion;
-use swarf_path::Finish;
-use swarf_path::roughing::{RoughingParams, RoughingStock, plan};
+use swarf_path::Cutting;
+use swarf_path::strategy::roughing::{RoughingParams, RoughingStock, plan};
 use swarf_sim::engagement::measure_engagement;
 use swarf_sim::progress::Quiet;
 use swarf_sim::simulate::SimOptions;
@@ -156,7 +156,7 @@ fn ribs_standing_in_a_larger_box_are_islands() {
 fn rough(case: &Case, adaptive: bool) -> Run {
     let mesh = swarf_io::builtin_mesh(case.part).unwrap();
     let tool = Cutter::flat(10.0, None).unwrap();
-    let mut params = RoughingParams::new(Finish::new(tool));
+    let mut params = RoughingParams::default();
     params.step_down = 4.0;
     params.allowance = 0.5;
     params.max_engagement = 60f64.to_radians();
@@ -175,7 +175,7 @@ fn rough(case: &Case, adaptive: bool) -> Run {
         top,
         material: &box_top,
     };
-    let (plan, report) = plan(&mesh, &stock, &params).unwrap();
+    let (plan, report) = plan(&mesh, &stock, &Cutting::new(tool), &params).unwrap();
     let moves = plan.toolpath.moves();
     let motions = Motion::of_moves(&moves, Pose::vertical(Point3::new(0.0, 0.0, 100.0)));
     let grid = Grid::covering(lo, hi, 0.2, 1 << 30).unwrap();
@@ -202,7 +202,9 @@ fn rough(case: &Case, adaptive: bool) -> Run {
     }
     // Entry motions (the ramps and their round at the level) are slots by design.
     let clearing: Vec<f64> = eng
-        .without(&swarf_path::roughing::entry_moves(&moves, &report))
+        .without(&swarf_path::strategy::roughing::entry_moves(
+            &moves, &report,
+        ))
         .cutting()
         .into_iter()
         .map(f64::to_degrees)

@@ -2,13 +2,13 @@
 //! ball, a flat end and a bull against the dexel figure.
 //!
 //! A plane `z = y tan(theta)` rises across raster passes along X. Each case plans
-//! the raster with a spacing (fixed, or from [`swarf_path::slope_step`] for a
+//! the raster with a spacing (fixed, or from [`swarf_path::stepping::slope_step`] for a
 //! scallop `h`), cuts it on a Z-map stock covering the passes between the second
 //! and the last but one contact, and takes the largest deviation from the plane
 //! along its normal (the vertical deviation times `cos(theta)`, exact on a plane).
 //! On this plane each raster pass runs along the strike at constant height, so it
 //! is also a Z-level pass with `dz = s tan(theta)`: the Z-level cases plan the
-//! spacing of [`swarf_path::slope_step::zlevel_spacing`] that way.
+//! spacing of [`swarf_path::stepping::slope_step::zlevel_spacing`] that way.
 //!
 //! The closed forms are written here from the geometry of the section, without the
 //! crate's helpers: two circles for a ball while the cusp stays on the sphere (past
@@ -21,8 +21,9 @@
 use std::f64::consts::FRAC_PI_2;
 use swarf_geom::{Point3, TriMesh};
 use swarf_nc::read::{Motion, MotionKind};
-use swarf_path::slope_step::{raster_spacing, zlevel_spacing};
-use swarf_path::{Finish, RasterParams};
+use swarf_path::Cutting;
+use swarf_path::stepping::slope_step::{raster_spacing, zlevel_spacing};
+use swarf_path::strategy::raster::RasterParams;
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, SimTool, StockInit, simulate};
 use swarf_tool::Cutter;
 
@@ -145,7 +146,8 @@ struct Figure {
 /// Plans, cuts and measures one case.
 fn measure(shape: Shape, deg: f64, spacing: Spacing) -> Figure {
     let (tool, t) = (shape.cutter(), deg.to_radians());
-    let mut params = RasterParams::new(Finish::new(tool), 1.0);
+    let cut = Cutting::new(tool);
+    let mut params = RasterParams::new(1.0);
     let s = match spacing {
         Spacing::Fixed(s) => s,
         Spacing::Raster(h) => {
@@ -162,7 +164,7 @@ fn measure(shape: Shape, deg: f64, spacing: Spacing) -> Figure {
     let width = PASSES as f64 * s * (1.0 - 1e-9);
     params.boundary = Some([0.0, 0.0, 4.0, width]);
     let mesh = plane(t, [-30.0, 34.0], [-30.0, width + 30.0]);
-    let plan = swarf_path::raster::plan(&mesh, &params).unwrap();
+    let plan = swarf_path::strategy::raster::plan(&mesh, &cut, &params).unwrap();
     let step = plan.report.side_step_range.unwrap()[0];
     assert!((step - s).abs() < 1e-6 * s, "{step} vs {s}");
     let motions: Vec<Motion> = plan
@@ -294,22 +296,23 @@ fn bull_scallop_on_inclined_planes_matches_the_dexel() {
 fn slope_limits_are_checked() {
     let mesh = plane(0.3, [0.0, 10.0], [0.0, 10.0]);
     for bad in [0.0, -0.2, FRAC_PI_2, f64::NAN] {
-        let mut params = RasterParams::new(Finish::new("ball:d=6".parse().unwrap()), 1.0);
+        let cut = Cutting::new("ball:d=6".parse().unwrap());
+        let mut params = RasterParams::new(1.0);
         (params.stepover, params.scallop, params.max_slope) = (None, Some(0.1), Some(bad));
-        let e = swarf_path::raster::plan(&mesh, &params).unwrap_err();
-        assert!(e.to_string().starts_with("strategy.max_slope"), "{e}");
+        let e = swarf_path::strategy::raster::plan(&mesh, &cut, &params).unwrap_err();
+        assert!(e.to_string().starts_with("max_slope"), "{e}");
         params.stepover = Some(1.0);
-        assert!(swarf_path::raster::plan(&mesh, &params).is_err());
+        assert!(swarf_path::strategy::raster::plan(&mesh, &cut, &params).is_err());
     }
 }
 
 /// The spacings against the exact forward model of every shape (the 2D section of
-/// [`swarf_path::side_step::plane_scallop`]), sampled finer than the spacings' own
+/// [`swarf_path::stepping::side_step::plane_scallop`]), sampled finer than the spacings' own
 /// slope grid: the scallop stays within `h` on every slope of the range, and comes
 /// close to it where the cusp stays on the ball or the corner arcs at the limit.
 #[test]
 fn spacings_hold_on_every_slope_of_their_range() {
-    use swarf_path::slope_step::{raster_max_scallop, raster_scallop, zlevel_scallop};
+    use swarf_path::stepping::slope_step::{raster_max_scallop, raster_scallop, zlevel_scallop};
     let specs = [
         "ball:d=10",
         "flat:d=10",

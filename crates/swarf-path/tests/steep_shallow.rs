@@ -8,8 +8,9 @@
 
 use swarf_geom::TriMesh;
 use swarf_nc::read::{GcodeReadOptions, parse_gcode};
-use swarf_path::steep_shallow::{SteepShallowParams, plan};
-use swarf_path::{Finish, RasterParams};
+use swarf_path::strategy::raster::RasterParams;
+use swarf_path::strategy::steep_shallow::{SteepShallowParams, plan};
+use swarf_path::{Cutting, Finish};
 use swarf_sim::{Design, Quiet, Verification, VerifyOptions, verify};
 use swarf_testkit::boss::reach;
 use swarf_tool::Cutter;
@@ -30,10 +31,19 @@ fn cut(mesh: &TriMesh, tp: &Toolpath, tool: &Cutter, h: f64, cell: f64) -> Verif
     verify(Design::Mesh(mesh), &program, tool, &opts, &Quiet).unwrap()
 }
 
-fn finish(tool: &Cutter, tol: f64) -> Finish {
-    let mut f = Finish::new(*tool);
-    f.tolerance = tol;
-    f
+fn finish(tol: f64) -> Finish {
+    Finish {
+        tolerance: tol,
+        ..Finish::default()
+    }
+}
+
+/// Steep-and-shallow at scallop `h` and tolerance `tol` with the defaults.
+fn steep_shallow(h: f64, tol: f64) -> SteepShallowParams {
+    SteepShallowParams {
+        finish: finish(tol),
+        ..SteepShallowParams::new(h)
+    }
 }
 
 #[test]
@@ -42,7 +52,7 @@ fn wave_stays_within_the_scallop_where_the_raster_does_not() {
     let mesh = part.tessellate(0.001).unwrap();
     let tool: Cutter = "ball:d=8".parse().unwrap();
     let h = 0.15;
-    let ss = plan(&mesh, &SteepShallowParams::new(finish(&tool, TOL), h)).unwrap();
+    let ss = plan(&mesh, &Cutting::new(tool), &steep_shallow(h, TOL)).unwrap();
     let v = cut(&mesh, &ss.toolpath, &tool, h, 0.05);
     let d = &v.deviation.summary;
     eprintln!(
@@ -57,9 +67,12 @@ fn wave_stays_within_the_scallop_where_the_raster_does_not() {
     );
     assert!(d.measured_cells > 7_000_000);
     // The flat-model raster at the same scallop leaves far more on the flanks.
-    let mut raster = RasterParams::new(finish(&tool, TOL), 1.0);
-    (raster.stepover, raster.scallop) = (None, Some(h));
-    let r = swarf_path::raster::plan(&mesh, &raster).unwrap();
+    let raster = RasterParams {
+        finish: finish(TOL),
+        scallop: Some(h),
+        ..RasterParams::default()
+    };
+    let r = swarf_path::strategy::raster::plan(&mesh, &Cutting::new(tool), &raster).unwrap();
     let vr = cut(&mesh, &r.toolpath, &tool, h, 0.1);
     let dr = &vr.deviation.summary;
     eprintln!(
@@ -74,7 +87,7 @@ fn boss_stays_within_the_scallop_wherever_the_ball_reaches() {
     let mesh = swarf_io::builtin_mesh("boss").unwrap();
     let tool: Cutter = "ball:d=10".parse().unwrap();
     let h = 0.01;
-    let ss = plan(&mesh, &SteepShallowParams::new(finish(&tool, 0.005), h)).unwrap();
+    let ss = plan(&mesh, &Cutting::new(tool), &steep_shallow(h, 0.005)).unwrap();
     let v = cut(&mesh, &ss.toolpath, &tool, h, 0.05);
     let g = &v.grid;
     let r = reach(&v.deviation.values, |k| [g.x(k % g.nx), g.y(k / g.nx)], 5.0);
@@ -95,10 +108,14 @@ fn one_and_two_threads_write_the_same_program() {
     let tool: Cutter = "ball:d=8".parse().unwrap();
     let run = |threads: usize| {
         swarf_testkit::threads::on_threads(threads, || {
-            let ss = plan(&mesh, &SteepShallowParams::new(finish(&tool, TOL), 0.1)).unwrap();
-            let mut wl = swarf_path::waterline::WaterlineParams::new(finish(&tool, TOL), 0.1);
-            wl.sampling = Some(0.7);
-            let w = swarf_path::waterline::plan(&mesh, &wl).unwrap();
+            let cut = Cutting::new(tool);
+            let ss = plan(&mesh, &cut, &steep_shallow(0.1, TOL)).unwrap();
+            let wl = swarf_path::strategy::waterline::WaterlineParams {
+                finish: finish(TOL),
+                sampling: Some(0.7),
+                ..swarf_path::strategy::waterline::WaterlineParams::new(0.1)
+            };
+            let w = swarf_path::strategy::waterline::plan(&mesh, &cut, &wl).unwrap();
             [ss.toolpath, w.toolpath].map(|tp| {
                 swarf_nc::write_gcode(&tp.moves(), &tp.feeds, &Default::default()).unwrap()
             })

@@ -3,9 +3,8 @@
 //! on the cutter and the level only (rounded corners of that radius).
 
 use swarf_geom::{Point3, TriMesh};
-use swarf_path::Finish;
-use swarf_path::waterline::{Milling, Waterline, WaterlineParams, plan};
-use swarf_tool::Cutter;
+use swarf_path::strategy::waterline::{Milling, Waterline, WaterlineParams, plan};
+use swarf_path::{Cutting, Finish};
 
 const HALF: f64 = 10.0;
 const OUTER: f64 = 40.0;
@@ -34,11 +33,18 @@ fn square_distance(q: [f64; 2]) -> f64 {
     dx.hypot(dy)
 }
 
-fn params(tool: &str) -> WaterlineParams {
-    let cutter: Cutter = tool.parse().unwrap();
-    let mut finish = Finish::new(cutter);
-    finish.tolerance = 0.001;
-    WaterlineParams::new(finish, 0.05)
+fn params() -> WaterlineParams {
+    WaterlineParams {
+        finish: Finish {
+            tolerance: 0.001,
+            ..Finish::default()
+        },
+        ..WaterlineParams::new(0.05)
+    }
+}
+
+fn cutting(tool: &str) -> Cutting {
+    Cutting::new(tool.parse().unwrap())
 }
 
 /// Signed area (positive counter-clockwise).
@@ -84,7 +90,7 @@ fn offset(tool: &str, z: f64) -> f64 {
 fn boss_contours_are_the_exact_offsets() {
     let mesh = boss();
     for tool in ["ball:d=10", "flat:d=10", "bull:d=10,r=2"] {
-        let wl = Waterline::new(&mesh, &params(tool)).unwrap();
+        let wl = Waterline::new(&mesh, &cutting(tool).tool, &params()).unwrap();
         for z in [1.0, 5.0, 6.5, 8.0, 9.5] {
             let level = wl.level(z, Milling::Climb);
             assert_eq!(
@@ -120,7 +126,7 @@ fn boss_contours_are_the_exact_offsets() {
 #[test]
 fn plan_levels_cover_the_walls_from_the_top_down() {
     let mesh = boss();
-    let plan = plan(&mesh, &params("ball:d=10")).unwrap();
+    let plan = plan(&mesh, &cutting("ball:d=10"), &params()).unwrap();
     let zs: Vec<f64> = plan
         .toolpath
         .passes

@@ -14,7 +14,7 @@
 
 use std::path::{Path, PathBuf};
 use swarf_path::Finish;
-use swarf_path::waterline::{Milling, Waterline, WaterlineParams};
+use swarf_path::strategy::waterline::{Milling, Waterline, WaterlineParams};
 use swarf_testkit::ocl::ocl_drop;
 
 struct Reference {
@@ -99,9 +99,14 @@ fn loops_match_opencamlib_waterline() {
     for path in files {
         let r = read(&path);
         let mesh = swarf_io::stl::read_stl(&mesh_path(&r.mesh)).unwrap();
-        let mut finish = Finish::new(r.spec.parse().unwrap());
-        finish.tolerance = 0.01;
-        let wl = Waterline::new(&mesh, &WaterlineParams::new(finish, 0.05)).unwrap();
+        let params = WaterlineParams {
+            finish: Finish {
+                tolerance: 0.01,
+                ..Finish::default()
+            },
+            ..WaterlineParams::new(0.05)
+        };
+        let wl = Waterline::new(&mesh, &r.spec.parse().unwrap(), &params).unwrap();
         let level = wl.level(r.z, Milling::Climb);
         let ours: Vec<Vec<[f64; 2]>> = level
             .loops

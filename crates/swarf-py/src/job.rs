@@ -1,7 +1,8 @@
 //! Job files from Python: a path, TOML text, or a dict in the job file's schema
 //! ([`swarf_app::job`]). A dict (and the keyword arguments of the strategy
-//! functions) becomes TOML text, parsed and validated by the same code as a job file;
-//! its errors name the dict's keys (`strategy.scallop`) instead of lines.
+//! functions) becomes TOML values, read into the typed job by the same code as a
+//! job file ([`swarf_app::Job::from_value`]); its errors name the dict's keys
+//! (`strategy.scallop`) instead of lines.
 
 use crate::errors::{swarf_err, swarf_msg};
 use crate::model::path_text;
@@ -9,7 +10,6 @@ use crate::tool::Tool;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::path::{Path, PathBuf};
-use swarf_app::AppError;
 
 /// Converts a Python value to TOML, naming `path` (the dotted key) in errors.
 /// `None` values of a dict are left out (TOML has no null); a [`Tool`] becomes its
@@ -73,52 +73,6 @@ pub fn to_toml(path: &str, obj: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
         "{path}: a {} cannot be written in a job (expected a number, str, bool, list or dict)",
         obj.get_type().name()?
     )))
-}
-
-/// The dotted key on line `line` (1-based) of TOML text written by `toml`: the key
-/// of that line under the last `[table]` header above it.
-fn key_at(text: &str, line: usize) -> Option<String> {
-    let mut table = String::new();
-    for (k, l) in text.lines().enumerate() {
-        let l = l.trim();
-        if let Some(h) = l.strip_prefix('[').and_then(|h| h.strip_suffix(']')) {
-            table = h.trim_matches(['[', ']']).to_string();
-        }
-        if k + 1 == line {
-            let key = l.split('=').next()?.trim();
-            return Some(match (table.is_empty(), key.starts_with('[')) {
-                (_, true) => table,
-                (true, false) => key.to_string(),
-                (false, false) => format!("{table}.{key}"),
-            });
-        }
-    }
-    None
-}
-
-/// Parses generated TOML `text` as a job named `source`; a parse error names the key
-/// instead of the line of the generated text.
-fn parse_generated(text: &str, source: &str) -> PyResult<swarf_app::Job> {
-    single_job(text, source)?;
-    swarf_app::Job::parse(text, source).map_err(|e| keyed_error(text, e))
-}
-
-/// An error parsing generated TOML `text` as a Python error: a message naming a line
-/// of `text` names the key on that line instead.
-pub fn keyed_error(text: &str, e: AppError) -> PyErr {
-    match e {
-        AppError::Job { file, message } => {
-            let lined = message
-                .strip_prefix("line ")
-                .and_then(|m| m.split_once(": "))
-                .and_then(|(n, rest)| Some((n.parse::<usize>().ok()?, rest)));
-            match lined.and_then(|(n, rest)| Some((key_at(text, n)?, rest))) {
-                Some((key, rest)) => swarf_msg(format!("{file}: {key}: {rest}")),
-                None => swarf_msg(format!("{file}: {message}")),
-            }
-        }
-        other => swarf_err(other),
-    }
 }
 
 /// A job (the job file schema: part, tool, strategy, feeds, linking, output), with
@@ -210,10 +164,7 @@ impl Job {
     /// The strategy's kind (`"raster"`, `"iso-scallop"`, ...).
     #[getter]
     fn kind(&self) -> String {
-        serde_json::to_value(self.job.strategy.kind)
-            .ok()
-            .and_then(|v| v.as_str().map(str::to_string))
-            .unwrap_or_default()
+        self.job.strategy.kind().to_string()
     }
 
     /// The folder relative paths in the job start from.
@@ -222,7 +173,7 @@ impl Job {
         self.dir.display().to_string()
     }
 
-    /// The job as TOML text.
+    /// The job as TOML text (a dict's job as TOML, for reading).
     #[getter]
     fn toml(&self) -> String {
         self.text.clone()
@@ -273,8 +224,14 @@ fn base_dir_arg(base_dir: Option<&Bound<'_, PyAny>>) -> PyResult<PathBuf> {
 /// `SwarfError` naming the key for a value TOML cannot hold or a bad job.
 pub fn job_from_dict(job: &Bound<'_, PyDict>, dir: PathBuf, source: &str) -> PyResult<Job> {
     let value = to_toml("", job.as_any())?;
+    if value.get("operation").is_some() {
+        return Err(swarf_msg(format!(
+            "{source}: a sequence job ([[operation]] tables): a Job holds a single job; \
+             swarf.plan takes a sequence as a path, TOML text or a dict"
+        )));
+    }
     let text = toml::to_string(&value).map_err(|e| swarf_msg(format!("{source}: {e}")))?;
-    let parsed = parse_generated(&text, source)?;
+    let parsed = swarf_app::Job::from_value(value, source, &dir).map_err(swarf_err)?;
     Ok(Job {
         job: parsed,
         dir,
@@ -312,20 +269,4 @@ pub fn job_arg(obj: &Bound<'_, PyAny>) -> PyResult<Job> {
         "job: expected a Job, a dict, TOML text or a path, found {}",
         obj.get_type().name()?
     )))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::key_at;
-
-    #[test]
-    fn keys_of_generated_toml_lines() {
-        let text = "part = \"builtin:wave\"\ntool = \"ball:d=8\"\n\n[strategy]\nkind = \"raster\"\n\
-                    foo = 1\n\n[[chain]]\nd = 3\n";
-        assert_eq!(key_at(text, 1).as_deref(), Some("part"));
-        assert_eq!(key_at(text, 6).as_deref(), Some("strategy.foo"));
-        assert_eq!(key_at(text, 4).as_deref(), Some("strategy"));
-        assert_eq!(key_at(text, 9).as_deref(), Some("chain.d"));
-        assert_eq!(key_at(text, 99), None);
-    }
 }

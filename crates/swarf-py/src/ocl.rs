@@ -3,7 +3,7 @@
 //! give it.
 //!
 //! - [`OclWaterline`]: the loops of one level of swarf's waterline
-//!   ([`swarf_path::waterline`]: the contour `drop(x, y) = z` of the exact drop
+//!   ([`swarf_path::strategy::waterline`]: the contour `drop(x, y) = z` of the exact drop
 //!   height, every loop point found by root finding on it). The drop field is sampled
 //!   once when the object is made and serves every level, so OpenCAMLib's pattern of
 //!   `setZ`, `run`, `getLoops` per level pays for a level's contour only.
@@ -22,7 +22,7 @@ use numpy::PyArray2;
 use pyo3::prelude::*;
 use swarf_geom::Point3;
 use swarf_path::Finish;
-use swarf_path::waterline::{Milling, Waterline, WaterlineParams};
+use swarf_path::strategy::waterline::{Milling, Waterline, WaterlineParams};
 use swarf_tool::drop::{
     DropCutter, TriContact, edge_drop, facet_drop, triangle_drop, vertex_drop, with_threads,
 };
@@ -62,13 +62,17 @@ impl OclWaterline {
                 )));
             }
         }
-        let mut finish = Finish::new(cutter);
-        finish.tolerance = tolerance;
-        let mut params = WaterlineParams::new(finish, tolerance);
-        params.sampling = Some(sampling);
+        let params = WaterlineParams {
+            finish: Finish {
+                tolerance,
+                ..Finish::default()
+            },
+            sampling: Some(sampling),
+            ..WaterlineParams::default()
+        };
         let mesh = mesh.mesh().clone();
         let wl = detached(py, || {
-            with_threads(threads, || Waterline::owned(mesh, &params))
+            with_threads(threads, || Waterline::owned(mesh, &cutter, &params))
                 .0
                 .map_err(swarf_err)
         })?;

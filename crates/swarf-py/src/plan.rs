@@ -96,8 +96,7 @@ fn plan_job_values(job: &Job, out: Option<&Path>) -> PyResult<Planned> {
             let o = &mut j.output;
             // A tilted path is written as G-code only for a machine (the job schema's
             // rule, `output.machine`).
-            let tilted =
-                j.positioning.is_some() || j.strategy.kind == swarf_path::StrategyKind::DropSpin;
+            let tilted = j.positioning.is_some() || j.strategy.tilted();
             o.gcode = (!tilted || o.machine.is_some()).then(|| "plan.ngc".to_string());
             o.cl = Some("plan.cl".to_string());
             (o.csv, o.summary, o.double_contacts, o.contacts) = (None, None, None, None);

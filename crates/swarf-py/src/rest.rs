@@ -10,9 +10,9 @@ use crate::tool::cutter_arg;
 use pyo3::prelude::*;
 use pyo3::types::PyList;
 use std::path::PathBuf;
-use swarf_app::job::RestSource;
 use swarf_app::rest::{RestRequest, polygon_rings, rest_detect, rest_report, write_rest};
 use swarf_rest::RegionParams;
+use swarf_rest::RestSource;
 
 /// The rest material a finishing tool or job leaves, as `swarf rest` finds it.
 ///

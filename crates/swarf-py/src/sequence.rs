@@ -4,12 +4,12 @@
 //! whole program's G-code, the report's lines and the rest cells as an array.
 //!
 //! `swarf.plan` takes a sequence as a path, TOML text or a dict with an `operation`
-//! list (written as TOML and parsed by [`Sequence::parse`], as a file is; errors name
+//! list (read into the typed sequence by [`Sequence::from_value`], as a file is; errors name
 //! the dict's keys). A `Job` holds a single job, never a sequence.
 
 use crate::arrays::rows_out;
 use crate::errors::{chain, swarf_err, swarf_msg};
-use crate::job::{Job, keyed_error, to_toml};
+use crate::job::{Job, to_toml};
 use crate::model::path_text;
 use crate::plan::{json_to_py, output_dir, write_text};
 use numpy::PyArray2;
@@ -44,9 +44,8 @@ pub fn sequence_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<SequenceJob>> {
             return Ok(None);
         }
         let source = "job dict";
-        let text = toml::to_string(&to_toml("", d.as_any())?)
-            .map_err(|e| swarf_msg(format!("{source}: {e}")))?;
-        let seq = Sequence::parse(&text, source, &here).map_err(|e| keyed_error(&text, e))?;
+        let value = to_toml("", d.as_any())?;
+        let seq = Sequence::from_value(value, source, &here).map_err(swarf_err)?;
         return Ok(Some(SequenceJob {
             seq,
             dir: here,

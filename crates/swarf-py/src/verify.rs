@@ -109,23 +109,18 @@ pub fn verify(
     let programs = paths_arg("program", program)?;
     let tools = tools_arg(tool)?;
     let sim = SimSettings {
-        stock,
+        stock: stock.parse().map_err(swarf_err)?,
         cell,
         tol,
         scallop,
         rapid,
         sample_tol,
         max_memory,
-        deviation,
+        deviation: deviation
+            .map(|d| d.parse())
+            .transpose()
+            .map_err(swarf_err)?,
     };
-    if let Some(d) = sim.deviation.as_deref()
-        && d != "normal"
-        && d != "vertical"
-    {
-        return Err(swarf_msg(format!(
-            "--deviation {d}: expected normal or vertical"
-        )));
-    }
     if let Some(l) = tool_length {
         swarf_geom::domain::TOOL_LENGTH
             .check_named("--tool-length", l)

@@ -16,10 +16,10 @@ use crate::error::ReportError;
 use crate::page::map::Map;
 use crate::page::text::SCALE;
 use crate::page::{Bar, Cells, Legend, Page};
-use swarf_nc::read::{Motion, MotionKind};
 use swarf_sim::Grid;
 use swarf_sim::report::count;
 use swarf_sim::verify::Verification;
+use swarf_toolpath::{Motion, MotionKind};
 
 const BLACK: Rgb = [0, 0, 0];
 const WHITE: Rgb = [255, 255, 255];

@@ -6,11 +6,11 @@
 mod common;
 
 use swarf_geom::{Part, Patch, Point3, Vec3};
-use swarf_nc::read::{MotionKind, Program};
 use swarf_report::gltf::{StockMeshOptions, cutter_glb, part_glb, stock_glb, toolpath_glb};
 use swarf_report::picture::{deviation_colour, limits};
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::{MotionKind, Program};
 
 /// A ball-tip raster along x over [0, 40] x [0, 20] on the dome ([`dome`]), stepover 1.5,
 /// each pass plunged (a link) and left by rapids, one point pushed 0.05 mm down.

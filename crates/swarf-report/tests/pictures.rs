@@ -7,11 +7,11 @@ mod common;
 
 use std::io::Cursor;
 use swarf_geom::{Part, Patch, Point3};
-use swarf_nc::read::{MotionKind, Program};
 use swarf_report::picture::{deviation_png, toolpath_png};
 use swarf_sim::report::{ReportContext, text_summary};
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};
 use swarf_tool::Cutter;
+use swarf_toolpath::{MotionKind, Program};
 
 /// Width of the canvas band that must stay white, px.
 const BAND: usize = 4;

@@ -6,7 +6,8 @@
 
 use std::time::Instant;
 use swarf_geom::{Point3, TriMesh};
-use swarf_path::{Finish, RasterParams};
+use swarf_path::Cutting;
+use swarf_path::strategy::raster::RasterParams;
 use swarf_rest::{CleanupParams, Pattern, RegionParams, Source, detect, plan_cleanup};
 use swarf_sim::{Design, StockSpec, VerifyOptions};
 use swarf_tool::Cutter;
@@ -45,18 +46,20 @@ fn run(name: &str, mesh: &TriMesh) {
     .unwrap();
     let detect_s = t.elapsed().as_secs_f64();
     let t = Instant::now();
+    let cut = Cutting::new(small);
     let params = CleanupParams {
-        finish: Finish::new(small),
         pattern: Pattern::FollowPocket,
         passes: 0,
-        scallop: 0.01,
+        ..CleanupParams::new(0.01)
     };
-    let clean = plan_cleanup(mesh, &det.regions, &ball, &params).unwrap();
+    let clean = plan_cleanup(mesh, &det.regions, &ball, &cut, &params).unwrap();
     let clean_s = t.elapsed().as_secs_f64();
-    let mut fp = RasterParams::new(Finish::new(ball), 1.0);
-    (fp.stepover, fp.scallop) = (None, Some(0.01));
+    let fp = RasterParams {
+        scallop: Some(0.01),
+        ..RasterParams::default()
+    };
     let t = Instant::now();
-    let finish = swarf_path::raster::plan(mesh, &fp).unwrap();
+    let finish = swarf_path::strategy::raster::plan(mesh, &Cutting::new(ball), &fp).unwrap();
     let finish_s = t.elapsed().as_secs_f64();
     let program = |tp: &swarf_toolpath::Toolpath, n: &str| {
         let text = swarf_nc::write_gcode(&tp.moves(), &tp.feeds, &Default::default()).unwrap();

@@ -6,7 +6,7 @@
 //!   XY stop up to a step short of the valley's bottom, where the contact jumps from
 //!   one side to the other, and the pencil pass is exactly there. The stepover
 //!   follows from the scallop height as for the raster
-//!   ([`swarf_path::raster_step::stepover_for_scallop`]).
+//!   ([`swarf_path::stepping::raster_step::stepover_for_scallop`]).
 //! - **Order**: regions greedily, each next the one whose first pass starts nearest
 //!   (in XY) to where the previous ended, starting with the first region; inside a
 //!   region the pattern's own order.
@@ -29,14 +29,16 @@ use crate::directory::group;
 use crate::error::RestError;
 use crate::order::{chains, open_path};
 use crate::pair::{DepthProbe, RestPair};
+use crate::params::CleanupParams;
 use crate::pencil::Pencil;
 use crate::pocket::follow_pocket;
 use crate::region::{LINK_PITCHES, RestRegion};
 use geo::{Contains, Point};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use swarf_geom::TriMesh;
-use swarf_path::Finish;
-use swarf_path::raster_step::stepover_for_scallop;
+use swarf_path::Cutting;
+use swarf_path::stepping::raster_step::stepover_for_scallop;
 use swarf_tool::Cutter;
 use swarf_tool::drop::{DropScratch, MeshDropper};
 use swarf_toolpath::{Pass, Toolpath, top_z};
@@ -49,7 +51,7 @@ pub const SAME_POINT: f64 = 1e-4;
 pub const SKIM_MARGIN: f64 = 1.0;
 
 /// The cleanup cut patterns.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Pattern {
     /// Passes along the cleanup tool's bitangency curves.
@@ -59,20 +61,8 @@ pub enum Pattern {
     FollowPocket,
 }
 
-/// Parameters of a cleanup path.
-#[derive(Debug, Clone, PartialEq)]
-pub struct CleanupParams {
-    /// The cleanup tool, tolerance, feeds and linking.
-    pub finish: Finish,
-    /// The cut pattern.
-    pub pattern: Pattern,
-    /// Flow-cut: parallel passes on each side of the pencil pass.
-    pub passes: usize,
-    /// Scallop height between parallel passes and rings, mm.
-    pub scallop: f64,
-}
-
-/// Plans the cleanup of `regions` on `mesh`, left by `reference` (module doc).
+/// Plans the cleanup of `regions` on `mesh`, left by `reference`, with `cutting`'s
+/// tool (module doc).
 ///
 /// # Errors
 /// [`RestError::ToolNotSmaller`] for a cleanup tool wider than the reference tool;
@@ -82,17 +72,18 @@ pub fn plan_cleanup(
     mesh: &TriMesh,
     regions: &[RestRegion],
     reference: &Cutter,
+    cutting: &Cutting,
     params: &CleanupParams,
 ) -> Result<Toolpath, RestError> {
-    let tool = &params.finish.tool;
+    let tool = &cutting.tool;
     if tool.radius() > reference.radius() {
         return Err(RestError::ToolNotSmaller {
             cleanup: tool.to_string(),
             reference: reference.to_string(),
         });
     }
-    RestError::check("strategy.scallop", params.scallop, false)?;
-    let stepover = stepover_for_scallop(tool, params.scallop)?;
+    let scallop = RestError::check("scallop", params.scallop_mm(), false)?;
+    let stepover = stepover_for_scallop(tool, scallop)?;
     let tol = params.finish.tolerance;
     let chord = CHORD_FRACTION * tol;
     let dropper = MeshDropper::new(mesh, tool);
@@ -123,11 +114,11 @@ pub fn plan_cleanup(
         per_region.push(passes);
     }
     let mut passes = order_regions(per_region);
-    let linking = params.finish.linking.for_top(top_z(&passes));
+    let linking = cutting.linking.for_top(top_z(&passes));
     add_skims(&dropper, &mut passes, linking.clearance);
     Ok(Toolpath {
         passes,
-        feeds: params.finish.feeds,
+        feeds: cutting.feeds,
         linking,
     })
 }

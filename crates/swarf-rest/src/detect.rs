@@ -5,7 +5,7 @@
 //!   planned (§5.1.1: no extra simulation). A parent whose passes run along a valley
 //!   records none there.
 //! - *reference tool*: contact-only crease scans of the part with the parent's tool
-//!   ([`swarf_path::raster::crease_scan`]) along X and along Y every quarter tool
+//!   ([`swarf_path::strategy::raster::crease_scan`]) along X and along Y every quarter tool
 //!   radius, so that a valley in any direction is crossed by one family of lines.
 //! - *stock*: the in-process model after the parent program(s) minus the design
 //!   ([`crate::stock`]).
@@ -21,7 +21,7 @@ use crate::stock::pieces_from_excess;
 use rayon::prelude::*;
 use swarf_geom::TriMesh;
 use swarf_path::DoubleContact;
-use swarf_path::raster::crease_scan;
+use swarf_path::strategy::raster::crease_scan;
 use swarf_sim::Grid;
 use swarf_tool::Cutter;
 use swarf_tool::drop::MeshDropper;

@@ -9,12 +9,20 @@ pub enum RestError {
     /// A parameter is out of its domain.
     #[error("{field} = {value}: expected {expected}")]
     InvalidParameter {
-        /// The parameter as a job names it (`strategy.merge`, ...).
+        /// The parameter as a job names it (`merge`, ...).
         field: String,
         /// The value given, as written.
         value: String,
         /// What was expected instead.
         expected: String,
+    },
+    /// A parameter is missing, or does not fit the others.
+    #[error("{field}: {message}")]
+    Parameter {
+        /// The parameter as a job names it (`scallop`, `restmaterial`, ...).
+        field: String,
+        /// What is wrong.
+        message: String,
     },
     /// The cleanup tool cannot do what the reference tool could not.
     #[error("the cleanup tool {cleanup} is not smaller than the reference tool {reference}")]
@@ -30,6 +38,23 @@ pub enum RestError {
 }
 
 impl RestError {
+    /// The parameter the error is about and what is wrong with it, for a caller
+    /// that places it (`None` for errors about no one parameter).
+    pub fn field(&self) -> Option<(&str, String)> {
+        match self {
+            RestError::InvalidParameter {
+                field,
+                value,
+                expected,
+            } => Some((field, format!("{value}: expected {expected}"))),
+            RestError::Parameter { field, message }
+            | RestError::Path(PathError::InvalidParameter { field, message }) => {
+                Some((field, message.clone()))
+            }
+            _ => None,
+        }
+    }
+
     /// Checks that `value` is finite and `> 0` (`allow_zero`: `>= 0`).
     ///
     /// # Errors

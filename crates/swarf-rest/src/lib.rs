@@ -11,6 +11,7 @@
 //! - [`cleanup`]: the cleanup tool path, with the patterns [`pencil`] (flow-cut) and
 //!   [`pocket`] (follow-pocket) (§5.4), their offsets at a constant stepover along
 //!   the surface ([`stepping`]).
+//! - [`params`]: a cleanup job's parameters, as its strategy table gives them.
 //! - [`steep`]: the walls a raster leaves too much on, cleaned up by Z-level passes
 //!   (§3.1.2, §6.2.2).
 //!
@@ -22,6 +23,7 @@ pub mod directory;
 pub mod error;
 pub mod order;
 pub mod pair;
+pub mod params;
 pub mod pencil;
 pub mod pocket;
 pub mod region;
@@ -29,9 +31,10 @@ pub mod steep;
 pub mod stepping;
 pub mod stock;
 
-pub use cleanup::{CleanupParams, Pattern, plan_cleanup};
+pub use cleanup::{Pattern, plan_cleanup};
 pub use detect::{Detection, Source, detect};
 pub use error::RestError;
 pub use pair::{RestKind, RestPair};
+pub use params::{CleanupParams, RestMaterial, RestSource};
 pub use region::{RegionParams, RestRegion};
 pub use steep::{RasterParent, SteepParams, SteepRest, plan_steep};

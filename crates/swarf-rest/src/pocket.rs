@@ -42,7 +42,7 @@ pub fn follow_pocket(
     let rings = (0.5 * b.width().min(b.height()) / min_step).ceil() + 2.0;
     if rings.is_nan() || rings > MAX_RINGS as f64 {
         return Err(RestError::InvalidParameter {
-            field: "strategy.scallop".into(),
+            field: "scallop".into(),
             value: format!("{stepover} mm stepover"),
             expected: format!(
                 "a stepover giving at most {MAX_RINGS} rings across the region \

@@ -91,7 +91,7 @@ pub const MIN_AREA: Domain = Domain::new(1e-6, 1e12, "mm²", "a least region are
 pub const SMOOTHNESS: Domain = Domain::new(0.0, 1000.0, "mm", "a corner radius");
 
 impl RegionParams {
-    /// The parameters with their names (`strategy.<name>` as a job names them) and
+    /// The parameters with their names (as the job's strategy table names them) and
     /// domains.
     pub fn domains(&self) -> [(&'static str, f64, Domain); 5] {
         [
@@ -106,13 +106,13 @@ impl RegionParams {
     /// Checks every domain (see the fields and [`RegionParams::domains`]).
     ///
     /// # Errors
-    /// [`RestError::InvalidParameter`] naming the field (as `strategy.<name>`).
+    /// [`RestError::InvalidParameter`] naming the field.
     pub fn validate(&self) -> Result<(), RestError> {
         for (name, value, domain) in self.domains() {
             domain
                 .check(value)
                 .map_err(|expected| RestError::InvalidParameter {
-                    field: format!("strategy.{name}"),
+                    field: name.to_string(),
                     value: swarf_geom::domain::show(value),
                     expected: expected
                         .strip_prefix("expected ")
@@ -420,6 +420,6 @@ mod tests {
             },
         )
         .unwrap_err();
-        assert!(e.to_string().contains("strategy.overlap"), "{e}");
+        assert!(e.to_string().contains("overlap"), "{e}");
     }
 }

@@ -12,7 +12,7 @@
 //!
 //! **Cleanup.** The facets are classified on the Go board with `s*` as the steep
 //! angle and the parent's feed angle; the cleanup tool's waterline levels, spaced
-//! for every slope from `s*` up ([`swarf_path::slope_step::zlevel_spacing`]), are
+//! for every slope from `s*` up ([`swarf_path::stepping::slope_step::zlevel_spacing`]), are
 //! kept where their contacts lie in the steep cells grown by the overlap
 //! ([`steep_levels`]). A facet's steepest slope is at least its slope across the
 //! passes, so the levels keep the scallop within the cleanup's on all of it.
@@ -22,10 +22,11 @@
 
 use crate::error::RestError;
 use swarf_geom::TriMesh;
+use swarf_path::Cutting;
 use swarf_path::classify::{ClassRegion, ClassifyParams, classify};
-use swarf_path::slope_step::raster_scallop;
-use swarf_path::steep_shallow::steep_levels;
-use swarf_path::waterline::WaterlineParams;
+use swarf_path::stepping::slope_step::raster_scallop;
+use swarf_path::strategy::steep_shallow::steep_levels;
+use swarf_path::strategy::waterline::WaterlineParams;
 use swarf_tool::Cutter;
 use swarf_toolpath::Pass;
 
@@ -47,8 +48,8 @@ pub struct RasterParent {
 /// Parameters of a steep cleanup.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SteepParams {
-    /// The cleanup levels: tool, scallop, milling direction, sampling (the Go-board
-    /// cell too). Their steep and flat angles are set from the steep rest angle.
+    /// The cleanup levels: scallop, milling direction, sampling (the Go-board cell
+    /// too). Their steep and flat angles are set from the steep rest angle.
     pub waterline: WaterlineParams,
     /// Scallop the parent may leave, mm: thicker is steep rest.
     pub threshold: f64,
@@ -71,17 +72,17 @@ pub struct SteepRest {
 /// `threshold` (module doc).
 ///
 /// # Errors
-/// [`RestError::InvalidParameter`] on `strategy.threshold` when it is not a
+/// [`RestError::InvalidParameter`] on `threshold` when it is not a
 /// finite length above 0 or when the parent already leaves more than it on a
 /// level floor; on `parent.spacing` for a spacing that is not above 0.
 pub fn steep_rest_angle(parent: &RasterParent, threshold: f64) -> Result<f64, RestError> {
-    RestError::check("strategy.threshold", threshold, false)?;
+    RestError::check("threshold", threshold, false)?;
     RestError::check("parent.spacing", parent.spacing, false)?;
     let leaves =
         |s: f64| raster_scallop(&parent.tool, parent.spacing, s).is_none_or(|h| h > threshold);
     if leaves(0.0) {
         return Err(RestError::InvalidParameter {
-            field: "strategy.threshold".into(),
+            field: "threshold".into(),
             value: threshold.to_string(),
             expected: format!(
                 "a scallop above the {} mm the parent's passes {} mm apart leave on a level floor \
@@ -104,21 +105,23 @@ pub fn steep_rest_angle(parent: &RasterParent, threshold: f64) -> Result<f64, Re
     Ok(hi)
 }
 
-/// The steep rest `parent` leaves on `mesh` and the Z-level passes that clean it up,
-/// top level first (module doc; none where there is no steep rest).
+/// The steep rest `parent` leaves on `mesh` and the Z-level passes of `cutting`'s
+/// tool that clean it up, top level first (module doc; none where there is no steep
+/// rest).
 ///
 /// # Errors
-/// As [`steep_rest_angle`]; [`RestError::InvalidParameter`] on `strategy.overlap`
+/// As [`steep_rest_angle`]; [`RestError::InvalidParameter`] on `overlap`
 /// when it is negative; the classification's and the waterline's errors.
 pub fn plan_steep(
     mesh: &TriMesh,
     parent: &RasterParent,
+    cutting: &Cutting,
     params: &SteepParams,
 ) -> Result<(SteepRest, Vec<Pass>), RestError> {
-    RestError::check("strategy.overlap", params.overlap, true)?;
+    RestError::check("overlap", params.overlap, true)?;
     let angle = steep_rest_angle(parent, params.threshold)?;
     let wl = &params.waterline;
-    let cell = wl.sampling.unwrap_or(0.25 * wl.finish.tool.radius());
+    let cell = wl.sampling.unwrap_or(0.25 * cutting.tool.radius());
     let classes = classify(
         mesh,
         &ClassifyParams {
@@ -134,9 +137,9 @@ pub fn plan_steep(
             flat_angle: 0.5 * angle,
             adaptive: false,
             sampling: Some(cell),
-            ..wl.clone()
+            ..*wl
         };
-        steep_levels(mesh, &classes.grid, &levels, params.overlap)?
+        steep_levels(mesh, &classes.grid, cutting, &levels, params.overlap)?
     } else {
         (Vec::new(), None)
     };

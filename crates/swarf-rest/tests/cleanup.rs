@@ -2,7 +2,7 @@
 //! merging on the short grooves, bad input.
 
 use swarf_geom::{Point3, TriMesh, Vec3};
-use swarf_path::Finish;
+use swarf_path::Cutting;
 use swarf_rest::{CleanupParams, Pattern, RegionParams, RestError, Source, detect, plan_cleanup};
 use swarf_tool::Cutter;
 use swarf_toolpath::Toolpath;
@@ -23,13 +23,13 @@ fn cleanup(mesh: &TriMesh, reference: &str, tool: &str, pattern: Pattern) -> Too
         &RegionParams::default(),
     )
     .unwrap();
+    let cut = Cutting::new(cutter(tool));
     let params = CleanupParams {
-        finish: Finish::new(cutter(tool)),
         pattern,
         passes: 3,
-        scallop: TOL,
+        ..CleanupParams::new(TOL)
     };
-    plan_cleanup(mesh, &det.regions, &reference, &params).unwrap()
+    plan_cleanup(mesh, &det.regions, &reference, &cut, &params).unwrap()
 }
 
 /// The point of triangle `t` closest to `p` (Ericson, Real-Time Collision
@@ -169,13 +169,13 @@ fn bad_input_is_an_error_or_an_empty_path() {
         &RegionParams::default(),
     )
     .unwrap();
+    let cut = Cutting::new(cutter("ball:d=8"));
     let params = CleanupParams {
-        finish: Finish::new(cutter("ball:d=8")),
         pattern: Pattern::FlowCut,
         passes: 0,
-        scallop: TOL,
+        ..CleanupParams::new(TOL)
     };
-    let e = plan_cleanup(&mesh, &det.regions, &ball, &params).unwrap_err();
+    let e = plan_cleanup(&mesh, &det.regions, &ball, &cut, &params).unwrap_err();
     assert!(matches!(e, RestError::ToolNotSmaller { .. }), "{e}");
     // Zero or negative merge, overlap, min_area; a NaN threshold.
     for (field, p) in [
@@ -226,12 +226,9 @@ fn bad_input_is_an_error_or_an_empty_path() {
     )
     .unwrap();
     assert!(det.regions.is_empty());
-    let params = CleanupParams {
-        finish: Finish::new(cutter("ball:d=4")),
-        ..params
-    };
+    let cut = Cutting::new(cutter("ball:d=4"));
     assert!(
-        plan_cleanup(&flat, &det.regions, &ball, &params)
+        plan_cleanup(&flat, &det.regions, &ball, &cut, &params)
             .unwrap()
             .passes
             .is_empty()

@@ -5,7 +5,8 @@
 use geo::{Contains, Point};
 use swarf_geom::TriMesh;
 use swarf_nc::read::{GcodeReadOptions, parse_gcode};
-use swarf_path::{Finish, RasterParams};
+use swarf_path::Cutting;
+use swarf_path::strategy::raster::RasterParams;
 use swarf_rest::{CleanupParams, Pattern, RegionParams, RestRegion, Source, detect, plan_cleanup};
 use swarf_sim::deviation::vertical_deviation;
 use swarf_sim::mow::normal_deviation;
@@ -26,10 +27,12 @@ fn cutter(s: &str) -> Cutter {
 /// quarter more than it measures: at the full tolerance the grooves' top edges show
 /// 0.0125 mm gouges).
 fn finish(mesh: &TriMesh, tool: &Cutter, h: f64) -> swarf_path::Plan {
-    let mut p = RasterParams::new(Finish::new(*tool), 1.0);
-    (p.stepover, p.scallop) = (None, Some(h));
+    let mut p = RasterParams {
+        scallop: Some(h),
+        ..RasterParams::default()
+    };
     p.finish.tolerance = 0.5 * TOL;
-    swarf_path::raster::plan(mesh, &p).unwrap()
+    swarf_path::strategy::raster::plan(mesh, &Cutting::new(*tool), &p).unwrap()
 }
 
 /// A cut stock: heights after the programs, the design heights, normals and the
@@ -206,13 +209,13 @@ fn cleanup_leaves_no_more_than_the_ideal(pattern: Pattern, passes: usize) {
         &RegionParams::default(),
     )
     .unwrap();
+    let cutting = Cutting::new(small);
     let params = CleanupParams {
-        finish: Finish::new(small),
         pattern,
         passes,
-        scallop: TOL,
+        ..CleanupParams::new(TOL)
     };
-    let clean = plan_cleanup(&mesh, &det.regions, &ball, &params).unwrap();
+    let clean = plan_cleanup(&mesh, &det.regions, &ball, &cutting, &params).unwrap();
     let g = grid([0.0, 140.0], [28.0, 32.0], 0.1);
     let c = cut(&mesh, g, 10.5, &[(&plan.toolpath, &ball), (&clean, &small)]);
     let xs: Vec<f64> = (0..c.grid.nx).map(|i| c.grid.x(i)).collect();
@@ -286,13 +289,13 @@ fn fillet_pocket_rest_and_its_follow_pocket_cleanup() {
         );
     }
     let plan = finish(&mesh, &ball, TOL);
+    let cutting = Cutting::new(small);
     let params = CleanupParams {
-        finish: Finish::new(small),
         pattern: Pattern::FollowPocket,
         passes: 0,
-        scallop: TOL,
+        ..CleanupParams::new(TOL)
     };
-    let clean = plan_cleanup(&mesh, &det.regions, &ball, &params).unwrap();
+    let clean = plan_cleanup(&mesh, &det.regions, &ball, &cutting, &params).unwrap();
     // A window across the floor, the fillet and the wall x = 20, which the raster
     // passes (along X) cross: there the finishing ball reaches its bitangent
     // position (passes along a wall stop up to a stepover short of it).

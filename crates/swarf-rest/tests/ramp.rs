@@ -1,7 +1,8 @@
 //! Ramp rest (thesis 002 §3.1.3): a raster finish with a ramp angle limit across the
 //! V-grooves, its ramp points, the ramp regions and their closed form.
 
-use swarf_path::{Finish, RasterParams};
+use swarf_path::Cutting;
+use swarf_path::strategy::raster::RasterParams;
 use swarf_rest::{RegionParams, RestKind, Source, detect};
 use swarf_tool::Cutter;
 use swarf_tool::drop::{DropScratch, MeshDropper};
@@ -10,9 +11,9 @@ use swarf_tool::drop::{DropScratch, MeshDropper};
 fn a_ramp_limited_raster_leaves_ramp_rest_where_the_flanks_are_steeper() {
     let mesh = swarf_io::builtin_mesh("v-grooves").unwrap();
     let ball: Cutter = "ball:d=12".parse().unwrap();
-    let mut params = RasterParams::new(Finish::new(ball), 2.0);
+    let mut params = RasterParams::new(2.0);
     params.max_ramp = Some(30f64.to_radians());
-    let plan = swarf_path::raster::plan(&mesh, &params).unwrap();
+    let plan = swarf_path::strategy::raster::plan(&mesh, &Cutting::new(ball), &params).unwrap();
     let k = 30f64.to_radians().tan();
     let dropper = MeshDropper::new(&mesh, &ball);
     let mut s = DropScratch::default();
@@ -88,9 +89,9 @@ fn a_ramp_limited_raster_leaves_ramp_rest_where_the_flanks_are_steeper() {
 fn the_ramp_step_is_cut_at_the_limit_and_its_rest_found() {
     let mesh = swarf_io::builtin_mesh("ramp-step").unwrap();
     let ball: Cutter = "ball:d=10".parse().unwrap();
-    let mut params = RasterParams::new(Finish::new(ball), 2.0);
+    let mut params = RasterParams::new(2.0);
     params.max_ramp = Some(20f64.to_radians());
-    let plan = swarf_path::raster::plan(&mesh, &params).unwrap();
+    let plan = swarf_path::strategy::raster::plan(&mesh, &Cutting::new(ball), &params).unwrap();
     let k = 20f64.to_radians().tan();
     // Exact: the ball rolls off the edge (x = 40, z = 20) where its CL arc falls at
     // 20 degrees, 5 sin 20 past it.

@@ -3,8 +3,9 @@
 //! cut on our dexel stock.
 
 use swarf_nc::read::{GcodeReadOptions, parse_gcode};
-use swarf_path::waterline::WaterlineParams;
-use swarf_path::{Finish, RasterParams};
+use swarf_path::strategy::raster::RasterParams;
+use swarf_path::strategy::waterline::WaterlineParams;
+use swarf_path::{Cutting, Finish};
 use swarf_rest::steep::steep_rest_angle;
 use swarf_rest::{RasterParent, SteepParams, plan_steep};
 use swarf_sim::{Design, Quiet, Stage, VerifyOptions, verify_stages};
@@ -18,10 +19,11 @@ fn cutter(s: &str) -> Cutter {
     s.parse().unwrap()
 }
 
-fn finish(tool: &Cutter) -> Finish {
-    let mut f = Finish::new(*tool);
-    f.tolerance = TOL;
-    f
+fn finish() -> Finish {
+    Finish {
+        tolerance: TOL,
+        ..Finish::default()
+    }
 }
 
 /// The boss's raster along x with ball d = 10 at the flat-model step for 0.01 mm
@@ -34,9 +36,17 @@ fn boss_parent(feed_angle: f64) -> RasterParent {
     }
 }
 
+/// The steep cleanup's tool.
+fn ball10() -> Cutting {
+    Cutting::new(cutter("ball:d=10"))
+}
+
 fn steep(threshold: f64, h: f64) -> SteepParams {
     SteepParams {
-        waterline: WaterlineParams::new(finish(&cutter("ball:d=10")), h),
+        waterline: WaterlineParams {
+            finish: finish(),
+            ..WaterlineParams::new(h)
+        },
         threshold,
         overlap: 1.0,
     }
@@ -67,10 +77,7 @@ fn the_rest_angle_is_the_closed_form() {
     let e = steep_rest_angle(&boss_parent(0.0), 0.005)
         .unwrap_err()
         .to_string();
-    assert!(
-        e.contains("strategy.threshold") && e.contains("level floor"),
-        "{e}"
-    );
+    assert!(e.contains("threshold") && e.contains("level floor"), "{e}");
 }
 
 #[test]
@@ -82,7 +89,8 @@ fn the_boss_rest_is_the_walls_above_the_angle() {
         (0.06, &[80.0, 90.0][..]),
         (0.015, &[45.0, 65.0, 80.0, 90.0]),
     ] {
-        let (rest, passes) = plan_steep(&mesh, &boss_parent(0.0), &steep(t, 0.01)).unwrap();
+        let (rest, passes) =
+            plan_steep(&mesh, &boss_parent(0.0), &ball10(), &steep(t, 0.01)).unwrap();
         let surface: f64 = walls
             .iter()
             .map(|a: &f64| 1600.0 / a.to_radians().sin())
@@ -116,7 +124,7 @@ fn the_boss_rest_is_the_walls_above_the_angle() {
 fn passes_running_down_the_walls_leave_no_steep_rest() {
     let mesh = swarf_io::builtin_mesh("boss").unwrap();
     let parent = boss_parent(90f64.to_radians());
-    let (rest, passes) = plan_steep(&mesh, &parent, &steep(0.015, 0.01)).unwrap();
+    let (rest, passes) = plan_steep(&mesh, &parent, &ball10(), &steep(0.015, 0.01)).unwrap();
     assert_eq!((rest.region.cells, passes.len()), (0, 0));
     assert!(rest.level_step.is_none());
 }
@@ -134,15 +142,18 @@ fn the_cleanup_brings_the_walls_within_the_scallop() {
     let mesh = swarf_io::builtin_mesh("boss").unwrap();
     let tool = cutter("ball:d=10");
     let h = 0.01;
-    let mut raster = RasterParams::new(finish(&tool), 1.0);
-    (raster.stepover, raster.scallop) = (None, Some(h));
-    let rows = swarf_path::raster::plan(&mesh, &raster).unwrap();
+    let raster = RasterParams {
+        finish: finish(),
+        scallop: Some(h),
+        ..RasterParams::default()
+    };
+    let rows = swarf_path::strategy::raster::plan(&mesh, &Cutting::new(tool), &raster).unwrap();
     let spacing = rows.report.side_step_range.unwrap()[0];
     let parent = RasterParent {
         spacing,
         ..boss_parent(0.0)
     };
-    let (rest, passes) = plan_steep(&mesh, &parent, &steep(0.015, h)).unwrap();
+    let (rest, passes) = plan_steep(&mesh, &parent, &ball10(), &steep(0.015, h)).unwrap();
     assert!(rest.region.cells > 0);
     let cleanup = Toolpath {
         linking: rows.toolpath.linking,

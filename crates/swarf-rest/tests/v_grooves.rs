@@ -1,7 +1,7 @@
 //! Rest in V-grooves against the closed forms of thesis 002 §1.1.
 
 use swarf_geom::TriMesh;
-use swarf_path::Finish;
+use swarf_path::Cutting;
 use swarf_rest::{CleanupParams, Pattern, RegionParams, Source, detect, plan_cleanup};
 use swarf_tool::Cutter;
 use swarf_tool::drop::{DropScratch, MeshDropper};
@@ -71,13 +71,13 @@ fn pencil_points_lie_on_the_bisector_at_the_closed_form_height() {
     )
     .unwrap();
     let tool: Cutter = "ball:d=4".parse().unwrap();
+    let cut = Cutting::new(tool);
     let params = CleanupParams {
-        finish: Finish::new(tool),
         pattern: Pattern::FlowCut,
         passes: 0,
-        scallop: 0.01,
+        ..CleanupParams::new(0.01)
     };
-    let tp = plan_cleanup(&mesh, &det.regions, &reference, &params).unwrap();
+    let tp = plan_cleanup(&mesh, &det.regions, &reference, &cut, &params).unwrap();
     assert!(tp.passes.len() >= 3, "{}", tp.passes.len());
     let dropper = MeshDropper::new(&mesh, &tool);
     let mut scratch = DropScratch::default();

@@ -6,10 +6,10 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
 use swarf_geom::Point3;
-use swarf_nc::read::{Motion, MotionKind};
 use swarf_sim::sweep::SimTool;
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, StockInit, simulate};
 use swarf_tool::Pose;
+use swarf_toolpath::{Motion, MotionKind};
 
 fn raster() -> Vec<Motion> {
     let mut out = Vec::new();

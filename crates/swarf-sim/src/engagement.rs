@@ -20,7 +20,7 @@ use crate::progress::Progress;
 use crate::simulate::{SimOptions, simulate_from};
 use crate::sweep::SimTool;
 use serde::Serialize;
-use swarf_nc::read::{Motion, MotionKind};
+use swarf_toolpath::{Motion, MotionKind};
 
 /// Spacing of the measured positions along a motion, as a fraction of the radius.
 pub const STEP_FRACTION: f64 = 0.05;
@@ -124,8 +124,8 @@ pub fn measure_engagement(
 fn is_level_cut(m: &Motion) -> bool {
     matches!(m.kind, MotionKind::Linear)
         && (m.end.cl.z - m.start.cl.z).abs() < LEVEL_TOL
-        && m.start.axis.z > 1.0 - 1e-12
-        && m.end.axis.z > 1.0 - 1e-12
+        && m.start.is_vertical()
+        && m.end.is_vertical()
 }
 
 /// The largest engagement along `m` on the stock as it stands.

@@ -20,7 +20,7 @@ use crate::sweep::{Primitive, RowJob, SimTool, sweep_motion};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use swarf_nc::read::{Motion, MotionKind};
+use swarf_toolpath::{Motion, MotionKind};
 
 /// Most primitives held at once.
 pub const CHUNK_PRIMITIVES: usize = 1 << 18;

@@ -18,8 +18,8 @@ use crate::simulate::{SimOptions, SimReport, simulate_from};
 use crate::sweep::SimTool;
 use crate::verify::{ProgramStats, program_stats};
 use serde::Serialize;
-use swarf_nc::read::Program;
 use swarf_tool::Cutter;
+use swarf_toolpath::Program;
 
 /// One program and the cutter it runs with.
 #[derive(Debug, Clone, Copy)]

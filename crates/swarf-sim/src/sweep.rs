@@ -35,11 +35,11 @@ use crate::error::SimError;
 use crate::grid::Grid;
 use crate::sweep_linear::{LinearSweep, RowCut};
 use crate::sweep_tilted::ToolInstance;
-use swarf_geom::tol::{LENGTH_EPS, PARALLEL_COS};
+use swarf_geom::tol::LENGTH_EPS;
 use swarf_geom::{Point3, Vec3};
-use swarf_nc::read::{Motion, MotionKind};
 use swarf_tool::drop::Envelope;
 use swarf_tool::{Cutter, Profile};
+use swarf_toolpath::{Motion, MotionKind};
 
 /// Sampling tolerance for five-axis rapids, mm (at least this coarse).
 pub const RAPID_SAMPLE: f64 = 0.1;
@@ -211,10 +211,6 @@ pub struct MotionSweep {
     pub bound: f64,
 }
 
-fn vertical(a: &Vec3) -> bool {
-    a.z >= 1.0 - PARALLEL_COS
-}
-
 /// Radii, swept angle and rise of an arc motion: `(r1, r2, theta, h)`.
 fn arc_shape(m: &Motion, center: &Point3, normal: &Vec3) -> Option<(f64, f64, f64, f64)> {
     let n = normal.try_normalize(LENGTH_EPS)?;
@@ -249,7 +245,7 @@ pub(crate) fn sweep_plan(tool: &SimTool, m: &Motion, sample_tol: f64) -> (SweepP
         MotionKind::Arc { center, normal, .. } => arc_shape(m, &center, &normal),
         _ => None,
     };
-    let upright = vertical(&m.start.axis) && vertical(&m.end.axis);
+    let upright = m.start.is_vertical() && m.end.is_vertical();
     if upright && (straight || arc.is_none()) {
         return (SweepPlan::Exact, 1.0);
     }

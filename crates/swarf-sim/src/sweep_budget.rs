@@ -14,7 +14,7 @@
 
 use crate::error::SimError;
 use crate::sweep::{SimTool, SweepPlan, sweep_plan};
-use swarf_nc::read::Motion;
+use swarf_toolpath::Motion;
 
 /// Most samples one motion may be swept with.
 pub const MAX_MOTION_SAMPLES: f64 = 2_000_000.0;

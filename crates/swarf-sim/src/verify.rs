@@ -20,8 +20,8 @@ use crate::sweep::SimTool;
 use serde::Serialize;
 use std::time::Instant;
 use swarf_geom::TriMesh;
-use swarf_nc::read::{MotionKind, Program};
 use swarf_tool::Cutter;
+use swarf_toolpath::{MotionKind, Program};
 
 /// Default cell size as a multiple of the tolerance.
 pub const CELL_PER_TOL: f64 = 5.0;
@@ -68,7 +68,8 @@ pub struct VerifyOptions {
     pub stock: StockSpec,
     /// Memory limit for the grid, bytes.
     pub max_bytes: u64,
-    /// Sampling bound for arcs and five-axis motions, mm (default: tol / 4).
+    /// Sampling bound for arcs and five-axis motions, mm (default:
+    /// [`default_sample_tol`] of the tolerance).
     pub sample_tol: Option<f64>,
     /// Machine rapid rate for the time estimate, mm/min.
     pub rapid_rate: f64,
@@ -80,6 +81,19 @@ pub struct VerifyOptions {
     /// Verify only inside this XY rectangle `[min, max]`, mm, clipped to the design's
     /// box (default: the whole design).
     pub window: Option<[[f64; 2]; 2]>,
+}
+
+/// The sampling bound of arcs and five-axis motions for a verification tolerance
+/// `tol`, mm, when none is given: a quarter of it.
+pub fn default_sample_tol(tol: f64) -> f64 {
+    0.25 * tol
+}
+
+impl VerifyOptions {
+    /// The sampling bound: given, else [`default_sample_tol`] of the tolerance, mm.
+    pub fn sample_tol(&self) -> f64 {
+        self.sample_tol.unwrap_or(default_sample_tol(self.tol))
+    }
 }
 
 impl Default for VerifyOptions {
@@ -227,8 +241,7 @@ fn check_settings(
     SimError::check_non_negative("allowed excess", opts.allowed_excess)?;
     SimError::check_positive("rapid rate", opts.rapid_rate)?;
     let cell = SimError::check_positive("cell size", opts.cell.unwrap_or(CELL_PER_TOL * tol))?;
-    let sample_tol =
-        SimError::check_positive("sample tolerance", opts.sample_tol.unwrap_or(0.25 * tol))?;
+    let sample_tol = SimError::check_positive("sample tolerance", opts.sample_tol())?;
     let tools = stages
         .iter()
         .map(|s| SimTool::new(s.cutter))

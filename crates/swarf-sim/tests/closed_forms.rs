@@ -1,12 +1,12 @@
 //! The simulation against closed forms at cell centres (issue 5, "Prove it").
 
 use swarf_geom::{Part, Patch, Point3};
-use swarf_nc::read::{Motion, MotionKind, Program};
 use swarf_sim::sweep::SimTool;
 use swarf_sim::{
     Design, Dexel, Grid, Quiet, SimOptions, StockInit, StockSpec, VerifyOptions, simulate, verify,
 };
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::{Motion, MotionKind, Program};
 
 fn mv(kind: MotionKind, a: [f64; 3], b: [f64; 3], line: usize) -> Motion {
     Motion {

@@ -4,7 +4,6 @@
 //! determinism; one stage against the plain simulation.
 
 use swarf_geom::{Part, Patch, Point3};
-use swarf_nc::read::{Motion, MotionKind, Program};
 use swarf_sim::dexel::NO_MOTION;
 use swarf_sim::report::{ReportContext, flagged_csv, json_report, text_summary};
 use swarf_sim::{
@@ -12,6 +11,7 @@ use swarf_sim::{
     VerifyOptions, simulate, verify, verify_stages,
 };
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::{Motion, MotionKind, Program};
 
 /// Stock allowance over the plane, mm.
 const ALLOWANCE: f64 = 0.5;

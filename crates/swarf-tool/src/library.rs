@@ -257,13 +257,13 @@ impl ToolLibrary {
         let raw: RawLibrary = toml::from_str(text).map_err(|e| ToolError::Library {
             file: source.to_string(),
             place: "TOML".into(),
-            message: swarf_io::error::toml_message(text, &e),
+            message: swarf_geom::domain::at_line(text, e.span().map(|s| s.start), e.message()),
         })?;
         let mut tools: Vec<LibraryTool> = Vec::with_capacity(raw.tool.len());
         for (index, spanned) in raw.tool.into_iter().enumerate() {
             let rest = text.get(spanned.span().start..).unwrap_or_default();
             let start = text.len() - rest.trim_start().len();
-            let line = swarf_io::error::line_of(text, start);
+            let line = swarf_geom::domain::line_of(text, start);
             let entry = spanned.into_inner();
             let name = entry.name.clone();
             let place = Place {

@@ -11,6 +11,11 @@
 use serde::{Deserialize, Serialize};
 use swarf_geom::{Point3, Vec3};
 
+/// `1 - cos` of the largest angle between a tool axis and `+z` at which the tool
+/// counts as vertical ([`Pose::is_vertical`]): about 1.4e-6 rad, below the output
+/// precision of any program's axis words.
+pub const VERTICAL_EPS: f64 = 1e-12;
+
 /// A tool pose: CL point = tool tip on the axis + unit tool axis (tip -> shank).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Pose {
@@ -34,6 +39,12 @@ impl Pose {
             cl,
             axis: Vec3::z(),
         }
+    }
+
+    /// Whether the tool axis is `+z` within [`VERTICAL_EPS`]: the one test of a
+    /// three-axis pose for the simulator, the holder check and the leads.
+    pub fn is_vertical(&self) -> bool {
+        self.axis.z >= 1.0 - VERTICAL_EPS
     }
 
     /// The reference directions `(b1, b2)` around this pose's axis (see the module

@@ -238,6 +238,20 @@ impl FromStr for Cutter {
     }
 }
 
+impl schemars::JsonSchema for Cutter {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "Cutter".into()
+    }
+
+    /// A spec string (module doc) or a table of the same keys with `shape`.
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        schemars::json_schema!({
+            "description": "A cutter: a spec string `shape:key=value,...` (flat, ball, bull, cone, taperball, apt; lengths mm, angles degrees), or a table { shape = \"bull\", d = 10, r = 2 }",
+            "type": ["string", "object"]
+        })
+    }
+}
+
 impl fmt::Display for Cutter {
     /// The canonical spec string.
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {

@@ -34,17 +34,17 @@ fn the_snug_passes_leave_less_than_three_axes_and_gouge_nothing() {
             );
         }
         assert!(
-            snug.gouge_mm <= job.strategy.tolerance,
+            snug.gouge_mm <= job.tolerance(),
             "{name}: gouge {}",
             snug.gouge_mm
         );
         assert!(
-            three.gouge_mm <= job.strategy.tolerance,
+            three.gouge_mm <= job.tolerance(),
             "{name}: gouge {}",
             three.gouge_mm
         );
         assert!(
-            inclined.gouge_mm <= job.strategy.tolerance,
+            inclined.gouge_mm <= job.tolerance(),
             "{name}: gouge {}",
             inclined.gouge_mm
         );

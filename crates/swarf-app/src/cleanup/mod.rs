@@ -36,20 +36,22 @@
 //! writes the same files with `.k` before the extension.
 
 use crate::error::{AppError, Context, Result, bail};
-use crate::job::{Job, RestMaterial, RestSource};
+use crate::job::Job;
 use crate::model::Model;
 use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
+use crate::strategy::Strategy;
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use swarf_geom::TriMesh;
-use swarf_path::waterline::WaterlineParams;
-use swarf_path::{Plan, PlanReport, StrategyKind};
+use swarf_path::strategy::waterline::WaterlineParams;
+use swarf_path::{Plan, PlanReport};
 use swarf_rest::steep::SteepRest;
 use swarf_rest::{
-    CleanupParams, Detection, RasterParent, RegionParams, RestKind, Source, SteepParams, detect,
-    plan_cleanup, plan_steep,
+    Detection, RasterParent, RegionParams, RestKind, Source, SteepParams, detect, plan_cleanup,
+    plan_steep,
 };
+use swarf_rest::{RestMaterial, RestSource};
 use swarf_sim::{Design, Quiet, StockSpec, VerifyOptions};
 use swarf_tool::Cutter;
 use swarf_toolpath::top_z;
@@ -97,7 +99,7 @@ pub fn read_parent(rel: &str, job_dir: &Path, staged: Option<&Outputs>) -> Resul
         )
         .with_context(|| format!("parent.job: {}: cannot read the parent job", path.display()))?;
     let parent = Job::parse(&text, &path.display().to_string())?;
-    if parent.strategy.kind == StrategyKind::Cleanup {
+    if matches!(parent.strategy, Strategy::Cleanup(_)) {
         bail!(
             "parent.job: {}: the parent is a cleanup job; name the finishing job it cleans up after (or list the tools in strategy.chain)",
             path.display()
@@ -127,10 +129,10 @@ pub fn detect_after(
     Ok(match source {
         RestSource::Reference => detect(mesh, &parent.tool, Source::Reference, tol, params)?,
         RestSource::Contacts => {
-            if parent.strategy.kind != StrategyKind::Raster {
+            if !matches!(parent.strategy, Strategy::Raster(_)) {
                 bail!(
                     "strategy.source: \"contacts\" needs a raster parent (the {:?} strategy records no double contacts); use source = \"reference\"",
-                    parent.strategy.kind
+                    parent.strategy.kind()
                 );
             }
             let p = parent_plan(PlanInput::Mesh(mesh))?;
@@ -200,7 +202,8 @@ pub fn plan_cleanup_job(
     let Some(parent_spec) = &job.parent else {
         bail!("parent: a cleanup job needs a [parent] table");
     };
-    let mesh = part_mesh(model, job.strategy.tolerance)?;
+    let c = params_of(job)?;
+    let mesh = part_mesh(model, job.tolerance())?;
     let parent = match (&parent_spec.job, parent_spec.tool) {
         (Some(rel), _) => Some(read_parent(rel, job_dir, staged)?.0),
         (None, _) => None,
@@ -210,7 +213,7 @@ pub fn plan_cleanup_job(
         .map(|p| p.tool)
         .or(parent_spec.tool)
         .with_context(|| "parent: expected `job` or `tool`".into())?;
-    let kinds = &job.strategy.restmaterial;
+    let kinds = &c.restmaterial;
     let mut stages = if kinds.iter().any(|k| *k != RestMaterial::Steep) {
         region_stages(job, parent.as_ref(), model, &mesh, reference)?
     } else {
@@ -219,7 +222,12 @@ pub fn plan_cleanup_job(
             reference,
             source: "raster",
             detection: Detection::default(),
-            plan: Plan::from_passes(Vec::new(), &job.finish(), PlanReport::default(), Vec::new()),
+            plan: Plan::from_passes(
+                Vec::new(),
+                &job.cutting(),
+                PlanReport::default(),
+                Vec::new(),
+            ),
             steep: None,
             notes: Vec::new(),
         }]
@@ -234,6 +242,17 @@ pub fn plan_cleanup_job(
     Ok(stages)
 }
 
+/// The cleanup parameters of `job`.
+///
+/// # Errors
+/// A job whose strategy is not a cleanup.
+pub fn params_of(job: &Job) -> Result<&swarf_rest::CleanupParams> {
+    match &job.strategy {
+        Strategy::Cleanup(c) => Ok(c),
+        other => bail!("strategy.kind: {:?} is not a cleanup", other.kind()),
+    }
+}
+
 /// The stages that clean up the rest regions (valley and ramp rest): the job's chain
 /// of tools, then its own.
 fn region_stages(
@@ -243,14 +262,9 @@ fn region_stages(
     mesh: &TriMesh,
     mut reference: Cutter,
 ) -> Result<Vec<CleanupStage>> {
-    let tools: Vec<Cutter> = job
-        .strategy
-        .chain
-        .iter()
-        .copied()
-        .chain([job.tool])
-        .collect();
-    let kinds = &job.strategy.restmaterial;
+    let c = params_of(job)?;
+    let tools: Vec<Cutter> = c.chain.iter().copied().chain([job.tool]).collect();
+    let kinds = &c.restmaterial;
     let wanted = |k: &RestKind| match k {
         RestKind::Valley => kinds.contains(&RestMaterial::Valley),
         RestKind::Ramp => kinds.contains(&RestMaterial::Ramp),
@@ -259,11 +273,11 @@ fn region_stages(
     let mut stages = Vec::with_capacity(tools.len());
     for (k, tool) in tools.into_iter().enumerate() {
         let start = std::time::Instant::now();
-        let settings = (job.strategy.tolerance, &job.region_params());
+        let settings = (job.tolerance(), &c.regions());
         let (mut detection, source) = match (parent, k) {
             (Some(p), 0) => {
-                let d = detect_after(p, model, mesh, job.strategy.source, settings)?;
-                (d, source_name(job.strategy.source))
+                let d = detect_after(p, model, mesh, c.source, settings)?;
+                (d, source_name(c.source))
             }
             _ => (
                 detect(mesh, &reference, Source::Reference, settings.0, settings.1)?,
@@ -271,17 +285,12 @@ fn region_stages(
             ),
         };
         detection.regions.retain(|r| r.kinds.iter().any(wanted));
-        let params = CleanupParams {
-            finish: swarf_path::Finish {
-                tool,
-                ..job.finish()
-            },
-            pattern: job.strategy.pattern,
-            passes: job.strategy.passes,
-            scallop: job.strategy.scallop.unwrap_or(job.strategy.tolerance),
+        let cutting = swarf_path::Cutting {
+            tool,
+            ..job.cutting()
         };
         let toolpath =
-            plan_cleanup(mesh, &detection.regions, &reference, &params).map_err(|e| {
+            plan_cleanup(mesh, &detection.regions, &reference, &cutting, c).map_err(|e| {
                 AppError::Message(format!("stage {} ({tool} after {reference}): {e}", k + 1))
             })?;
         let report = PlanReport {
@@ -311,34 +320,33 @@ fn region_stages(
 /// none.
 fn add_steep(job: &Job, parent: &Job, mesh: &TriMesh, stage: &mut CleanupStage) -> Result<()> {
     let start = std::time::Instant::now();
-    if parent.strategy.kind != StrategyKind::Raster {
+    let Strategy::Raster(parent_raster) = &parent.strategy else {
         bail!(
-            "strategy.restmaterial: \"steep\" is the rest a raster leaves on walls, but the parent job is {}; use a raster parent or leave \"steep\" out",
-            serde_json::to_value(parent.strategy.kind)?
+            "strategy.restmaterial: \"steep\" is the rest a raster leaves on walls, but the parent job is {:?}; use a raster parent or leave \"steep\" out",
+            parent.strategy.kind()
         );
-    }
-    let spacing = swarf_path::raster::spacing(mesh, &parent.raster_params())
+    };
+    let c = params_of(job)?;
+    let spacing = swarf_path::strategy::raster::spacing(mesh, &parent.tool, parent_raster)
         .map_err(|e| AppError::Message(format!("parent.job: the parent job fails: {e}")))?;
     let raster = RasterParent {
         tool: parent.tool,
         spacing,
-        feed_angle: parent.angle_rad(),
+        feed_angle: parent_raster.angle,
     };
-    let finish = swarf_path::Finish {
-        tool: job.tool,
-        ..job.finish()
-    };
-    let threshold = job.region_params().threshold;
+    let cutting = job.cutting();
+    let threshold = c.regions().threshold;
     let params = SteepParams {
         waterline: WaterlineParams {
-            direction: job.milling(),
-            sampling: job.strategy.sampling,
-            ..WaterlineParams::new(finish.clone(), job.strategy.scallop.unwrap_or(threshold))
+            finish: c.finish,
+            direction: c.direction.unwrap_or_default(),
+            sampling: c.sampling,
+            ..WaterlineParams::new(c.scallop.unwrap_or(threshold))
         },
         threshold,
-        overlap: job.strategy.overlap,
+        overlap: c.overlap,
     };
-    let (rest, passes) = plan_steep(mesh, &raster, &params)?;
+    let (rest, passes) = plan_steep(mesh, &raster, &cutting, &params)?;
     if rest.region.cells == 0 {
         stage.notes.push(format!(
             "no steep rest: passes {spacing:.4} mm apart leave more than {threshold} mm only on slopes above {:.2} degrees across them, and the part has none",
@@ -347,7 +355,7 @@ fn add_steep(job: &Job, parent: &Job, mesh: &TriMesh, stage: &mut CleanupStage) 
     }
     let tp = &mut stage.plan.toolpath;
     tp.passes.extend(passes);
-    tp.linking = finish.linking.for_top(top_z(&tp.passes));
+    tp.linking = cutting.linking.for_top(top_z(&tp.passes));
     stage.plan.report.elapsed_s += start.elapsed().as_secs_f64();
     stage.steep = Some(rest);
     Ok(())

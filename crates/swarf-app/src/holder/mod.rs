@@ -29,9 +29,6 @@ use swarf_tool::holder::tilted::{Views, shortest_stick_out_posed};
 use swarf_tool::holder::vertical::{CONTACT_EPS, HolderReport, StickOut, check_vertical};
 use swarf_tool::library::{LibraryTool, ToolLibrary};
 
-/// An axis within this of +z (in each component) is vertical.
-const VERTICAL_EPS: f64 = 1e-9;
-
 /// Distance between checked poses along a motion for `swarf verify`, mm.
 pub const POSE_SPACING: f64 = 1.0;
 
@@ -234,10 +231,6 @@ pub fn program_poses(program: &Program, spacing: f64) -> Vec<(swarf_tool::Pose, 
     out
 }
 
-fn is_vertical(axis: &Vec3) -> bool {
-    axis.x.abs() <= VERTICAL_EPS && axis.y.abs() <= VERTICAL_EPS && axis.z > 0.0
-}
-
 /// The collisions of poses tagged `tag` (a line, or an index the caller maps),
 /// in tag order, the least clearance over all, and the vertical poses' report.
 pub(crate) struct PoseCheck {
@@ -287,7 +280,7 @@ pub(crate) fn check_poses(
     let a = &tool.assembly;
     type Sample<'p> = &'p (swarf_tool::Pose, usize);
     let (vertical, tilted): (Vec<Sample>, Vec<Sample>) =
-        poses.iter().partition(|p| is_vertical(&p.0.axis));
+        poses.iter().partition(|p| p.0.is_vertical());
     let cls: Vec<Point3> = vertical.iter().map(|p| p.0.cl).collect();
     let dropper = MeshDropper::new(mesh, &a.cutter);
     let report = check_vertical(a, &dropper, &cls)?;
@@ -327,7 +320,7 @@ pub(crate) fn check_poses(
         report.shortest
     } else {
         let all: Vec<swarf_tool::Pose> = poses.iter().map(|p| p.0).collect();
-        shortest_stick_out_posed(a, &dropper, &mut views, &all, is_vertical)?
+        shortest_stick_out_posed(a, &dropper, &mut views, &all)?
     };
     Ok(PoseCheck {
         collisions,

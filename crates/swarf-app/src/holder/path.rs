@@ -135,7 +135,12 @@ pub fn refusal(
     let Some(first) = check.collisions.first() else {
         return Ok(s);
     };
-    if super::is_vertical(&first.axis) {
+    if (swarf_tool::Pose {
+        cl: first.cl,
+        axis: first.axis,
+    })
+    .is_vertical()
+    {
         return Ok(s);
     }
     let search = TiltSearch::default();

@@ -85,64 +85,58 @@
 
 use crate::error::AppError;
 use crate::model::{FaceRef, LoadOptions};
+use crate::strategy::Strategy;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use swarf_fiveaxis::positioning::Positioning;
 use swarf_fiveaxis::post::FeedMode;
-use swarf_io::error::toml_message;
 use swarf_nc::Units;
-use swarf_path::params::{StartSide, StrategyKind};
-use swarf_rest::{Pattern, RegionParams};
+use swarf_path::Cutting;
 use swarf_tool::Cutter;
 use swarf_toolpath::{Feeds, LinkingSpec};
 
-/// A planning job.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+pub(crate) mod file;
+pub(crate) mod read;
+mod validate;
+
+pub use file::{FeedsSpec, JobFile, ToolRef};
+pub(crate) use validate::{check_arcs, output_file};
+
+/// A planning job, as read and checked: the file's tables, its tool resolved
+/// (from the library when it names one) and its feeds filled in.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Job {
     /// Free-text name for reports.
-    #[serde(default)]
     pub name: Option<String>,
-    /// Part file (`.toml` patches, or `.stl`/`.obj` mesh), relative to the job file,
-    /// or `builtin:NAME` for a shared part embedded in swarf.
+    /// Part file (`.toml` patches, `.stl`/`.obj` mesh, `.step`/`.iges`), relative to
+    /// the job file, or `builtin:NAME` for a shared part embedded in swarf.
     pub part: String,
-    /// The faces of the part to machine, by index (as `swarf inspect` lists them) or
-    /// by name (STEP and IGES names); all faces when absent.
-    #[serde(default)]
+    /// The faces of the part to machine (all when absent).
     pub faces: Option<Vec<FaceRef>>,
     /// How a STEP or IGES part is read.
-    #[serde(default)]
     pub import: Import,
-    /// The tool library the job's `tool` may name (a file relative to the job file):
-    /// a T number or name gives the cutter, the T number and default feeds, and the
-    /// shank and holder are checked at every pose of the plan.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// The tool library the job's `tool` may name, relative to the job file.
     pub tools: Option<String>,
     /// The cutter.
     pub tool: Cutter,
-    /// The library tool `tool` names (set by [`Job::parse_in`]).
-    #[serde(skip)]
+    /// The library tool `tool` names, if it names one.
     pub library_tool: Option<swarf_tool::library::LibraryTool>,
     /// Strategy and its parameters.
-    pub strategy: StrategyParams,
+    pub strategy: Strategy,
     /// Five-axis positioning of the strategy's CC paths (none: a vertical tool).
-    #[serde(default)]
     pub positioning: Option<Positioning>,
     /// Feeds and speeds.
-    #[serde(default)]
     pub feeds: Feeds,
     /// Linking between passes.
-    #[serde(default)]
     pub linking: LinkingSpec,
     /// Output files.
-    #[serde(default)]
     pub output: Output,
     /// What a cleanup job cleans up after (`kind = "cleanup"` only).
-    #[serde(default)]
     pub parent: Option<Parent>,
 }
 
 /// How a STEP or IGES part is read (`[import]`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Import {
     /// An entity the reader does not support: `"warn"` skips its face with a warning,
@@ -162,7 +156,7 @@ impl Default for Import {
 }
 
 /// `import.unsupported`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum UnsupportedChoice {
     /// Skip the face with a warning.
@@ -185,10 +179,73 @@ impl Job {
             faces: self.faces.clone(),
         }
     }
+
+    /// What every strategy cuts with: the tool, feeds and linking.
+    pub fn cutting(&self) -> Cutting {
+        Cutting {
+            tool: self.tool,
+            feeds: self.feeds,
+            linking: self.linking,
+        }
+    }
+
+    /// The chordal (and gouge) tolerance of the strategy, mm.
+    pub fn tolerance(&self) -> f64 {
+        self.strategy.finish().tolerance
+    }
+
+    /// Parses and validates a job from TOML text; `source` names the file in errors,
+    /// and a tool library (`tools`) is read relative to its directory.
+    ///
+    /// # Errors
+    /// As [`Job::parse_in`].
+    pub fn parse(text: &str, source: &str) -> Result<Job, AppError> {
+        let dir = std::path::Path::new(source)
+            .parent()
+            .unwrap_or(std::path::Path::new(""));
+        Job::parse_in(text, source, dir)
+    }
+
+    /// Parses and validates a job from TOML text; `source` names the file in errors,
+    /// `dir` is where its tool library (`tools`) is relative to.
+    ///
+    /// # Errors
+    /// [`AppError::Job`] with the file, line and field for malformed TOML, unknown
+    /// keys, bad tools, and out-of-range parameters; a library that cannot be read
+    /// (`tools`), a library key without a library or missing from it (`tool`, with
+    /// the library's tools).
+    pub fn parse_in(text: &str, source: &str, dir: &std::path::Path) -> Result<Job, AppError> {
+        let err = |message: String| AppError::Job {
+            file: source.to_string(),
+            message,
+        };
+        let file: JobFile = read::from_text(text).map_err(|e| err(e.in_file()))?;
+        file.resolve(dir).map_err(err)
+    }
+
+    /// A job from a value in the job file's schema (a Python dict turned into TOML
+    /// values); `source` names it in errors (`job dict`), `dir` is where its paths
+    /// are relative to.
+    ///
+    /// # Errors
+    /// As [`Job::parse_in`], naming the value's path (`strategy.scallop`) instead of
+    /// a line.
+    pub fn from_value(
+        value: toml::Value,
+        source: &str,
+        dir: &std::path::Path,
+    ) -> Result<Job, AppError> {
+        let err = |message: String| AppError::Job {
+            file: source.to_string(),
+            message,
+        };
+        let file: JobFile = read::from_value(value).map_err(|e| err(e.in_value()))?;
+        file.resolve(dir).map_err(err)
+    }
 }
 
 /// The parent of a cleanup job: a finishing job, or just the tool that finished.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Parent {
     /// The parent job file, relative to this job's file.
@@ -199,257 +256,8 @@ pub struct Parent {
     pub tool: Option<Cutter>,
 }
 
-/// Where a cleanup job takes its rest from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum RestSource {
-    /// Crease scans of the part with the parent's tool (any parent).
-    #[default]
-    Reference,
-    /// The double contacts the parent raster job records while it is planned.
-    Contacts,
-    /// The dexel stock after the parent job's program, minus the design.
-    Stock,
-}
-
-/// Strategy parameters. Fields not used by a strategy are ignored by it.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StrategyParams {
-    /// Which strategy.
-    pub kind: StrategyKind,
-    /// Scallop height limit h, mm (side step from it). Required unless `stepover` is given.
-    #[serde(default)]
-    pub scallop: Option<f64>,
-    /// Fixed side step instead of a scallop limit, mm: the distance between raster
-    /// lines, or between the drive planes of iso-planar (the "cross feed" of thesis
-    /// 000 ch. 8; then the planes are not spaced by a scallop limit).
-    #[serde(default)]
-    pub stepover: Option<f64>,
-    /// Chordal tolerance along a pass (and gouge tolerance), mm.
-    #[serde(default = "default_tolerance")]
-    pub tolerance: f64,
-    /// Feed direction along a parameter (`u` or `v`: iso-parametric, iso-scallop),
-    /// or the milling direction (`climb` or `conventional`: waterline,
-    /// steep-shallow).
-    #[serde(default)]
-    pub direction: Option<Direction>,
-    /// Feed direction in the XY plane, degrees from +X (iso-planar, raster; the
-    /// edge's overall direction for drop-spin).
-    #[serde(default)]
-    pub angle: f64,
-    /// Side the first pass starts on.
-    #[serde(default)]
-    pub start: StartSide,
-    /// Alternate the cutting direction of consecutive passes.
-    #[serde(default = "default_true")]
-    pub zigzag: bool,
-    /// Raster boundary `[xmin, ymin, xmax, ymax]`, mm (default: the mesh outline).
-    #[serde(default)]
-    pub boundary: Option<[f64; 4]>,
-    /// Raster: ramp angle limit, degrees in `(0, 90)` (passes climb and descend no
-    /// steeper; the rest it leaves is ramp rest for a cleanup job).
-    #[serde(default)]
-    pub max_ramp: Option<f64>,
-    /// Waterline, steep-shallow: the scallop limit holds on walls this steep and
-    /// steeper with the base level spacing; steep-shallow: walls this steep are
-    /// steep. Degrees in `(0, 90)`.
-    #[serde(default)]
-    pub steep_angle: Option<f64>,
-    /// Waterline: adaptive levels stop at walls this flat; steep-shallow: areas this
-    /// flat are horizontal. Degrees in `(0, steep_angle)`.
-    #[serde(default)]
-    pub flat_angle: Option<f64>,
-    /// Waterline: fixed level spacing, mm (no adaptive levels).
-    #[serde(default)]
-    pub level_step: Option<f64>,
-    /// Waterline: add levels where walls flatten.
-    #[serde(default = "default_true")]
-    pub adaptive: bool,
-    /// Waterline: drop-field grid step, mm (default: a quarter of the tool radius).
-    #[serde(default)]
-    pub sampling: Option<f64>,
-    /// Raster: steepest slope across the passes on which `scallop` must hold,
-    /// degrees in `(0, 90)`: the stepover then keeps the scallop within it on every
-    /// plane sloping up to this angle (default: a level floor).
-    #[serde(default)]
-    pub max_slope: Option<f64>,
-    /// Cleanup: the cut pattern (`flow-cut` or `follow-pocket`).
-    #[serde(default)]
-    pub pattern: Pattern,
-    /// Cleanup, flow-cut: parallel passes on each side of the pencil pass.
-    /// Drop-spin: passes across the spin zone (or `stepover`).
-    #[serde(default)]
-    pub passes: usize,
-    /// Cleanup: where the rest comes from.
-    #[serde(default)]
-    pub source: RestSource,
-    /// Cleanup: rest thinner than this is left, mm (default: the tolerance plus the
-    /// scallop height).
-    #[serde(default)]
-    pub threshold: Option<f64>,
-    /// Cleanup: regions closer than this are merged, mm.
-    #[serde(default = "default_merge")]
-    pub merge: f64,
-    /// Cleanup: outward offset of the regions, mm.
-    #[serde(default = "default_overlap")]
-    pub overlap: f64,
-    /// Cleanup: regions with a smaller raw area are dropped, mm².
-    #[serde(default = "default_min_area")]
-    pub min_area: f64,
-    /// Cleanup: concave corners of the boundaries are rounded to at least this
-    /// radius, mm.
-    #[serde(default = "default_smoothness")]
-    pub smoothness: f64,
-    /// Cleanup: intermediate tools, largest first, each cleaning up after the one
-    /// before it (the parent's tool first); the job's tool cleans up last.
-    #[serde(default)]
-    pub chain: Vec<Cutter>,
-    /// Cleanup: the rest to clean up (default `["valley", "ramp"]`).
-    #[serde(default = "default_restmaterial")]
-    pub restmaterial: Vec<RestMaterial>,
-    /// Drop-spin: the two faces (patch indices), dropped on the first and spun onto
-    /// the second (default `[0, 1]`).
-    #[serde(default)]
-    pub faces: Option<[usize; 2]>,
-    /// Drop-spin: spacing of the stations along the edge, mm (default: half the
-    /// tool radius).
-    #[serde(default)]
-    pub step: Option<f64>,
-    /// Drop-spin: which side of the tool cuts the second face.
-    #[serde(default)]
-    pub spin: SpinChoice,
-    /// Drop-spin: the whole zone, or only its snug limit.
-    #[serde(default)]
-    pub zone: ZoneChoice,
-    /// Drop-spin: the faces dropped on (the bands of the valley).
-    #[serde(default)]
-    pub bands: BandChoice,
-    /// Roughing: material left on the part, mm (default 0.5).
-    #[serde(default)]
-    pub allowance: Option<f64>,
-    /// Roughing: largest depth of one level, mm (default 2).
-    #[serde(default)]
-    pub step_down: Option<f64>,
-    /// Roughing: largest radial engagement on straight stretches, degrees (default
-    /// 60); sets the stepover.
-    #[serde(default)]
-    pub max_engagement: Option<f64>,
-    /// Roughing: ramp angle of the entries, degrees (default 3).
-    #[serde(default)]
-    pub ramp_angle: Option<f64>,
-    /// Roughing: top of the box stock, mm (default 1 mm above the part); the box
-    /// covers the part's XY extent.
-    #[serde(default)]
-    pub stock_top: Option<f64>,
-}
-
-/// The bands of drop-spin passes: which faces the tool is dropped on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum BandChoice {
-    /// Dropped on the first face, spun onto the second: the second face's band.
-    First,
-    /// Dropped on the second, spun onto the first.
-    Second,
-    /// Both, the first's passes first: the whole valley.
-    #[default]
-    Both,
-}
-
-impl BandChoice {
-    /// The faces dropped on (0 for the first), in cutting order.
-    pub fn faces(self) -> Vec<usize> {
-        match self {
-            BandChoice::First => vec![0],
-            BandChoice::Second => vec![1],
-            BandChoice::Both => vec![0, 1],
-        }
-    }
-}
-
-/// The cutting side of drop-spin passes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum SpinChoice {
-    /// The second contact ahead of the axis along the feed.
-    #[default]
-    Leading,
-    /// Behind it.
-    Trailing,
-    /// Both, leading passes first.
-    Both,
-}
-
-/// Which passes of the spin zone a drop-spin job cuts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ZoneChoice {
-    /// Passes across the zone, the last at its limit.
-    #[default]
-    Full,
-    /// The one pass at the zone's limit, nearest the edge on the second face.
-    Snug,
-}
-
-/// A kind of rest a cleanup job cleans up.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum RestMaterial {
-    /// Valleys the parent's tool touched on two sides at once (regions from the
-    /// source; regions found on the stock count as valley and ramp rest).
-    Valley,
-    /// Where the parent's ramp limit held its tool above the part (regions).
-    Ramp,
-    /// Walls whose slope across a parent raster's passes leaves a scallop above the
-    /// threshold, cleaned up by Z-levels ([`swarf_rest::steep`]).
-    Steep,
-}
-
-fn default_restmaterial() -> Vec<RestMaterial> {
-    vec![RestMaterial::Valley, RestMaterial::Ramp]
-}
-
-/// A feed direction along a parameter, or a milling direction.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Direction {
-    /// Passes along u (iso-parametric, iso-scallop).
-    U,
-    /// Passes along v (iso-parametric, iso-scallop).
-    V,
-    /// Climb milling: the material on the right of travel (waterline).
-    Climb,
-    /// Conventional milling: the material on the left (waterline).
-    Conventional,
-}
-
-fn default_merge() -> f64 {
-    RegionParams::default().merge
-}
-
-fn default_overlap() -> f64 {
-    RegionParams::default().overlap
-}
-
-fn default_min_area() -> f64 {
-    RegionParams::default().min_area
-}
-
-fn default_smoothness() -> f64 {
-    RegionParams::default().smoothness
-}
-
-fn default_tolerance() -> f64 {
-    0.01
-}
-
-fn default_true() -> bool {
-    true
-}
-
 /// Output files of a job, relative to the job file. Each is optional.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Output {
     /// RS274/NGC G-code.
@@ -516,34 +324,11 @@ impl Output {
     }
 }
 
-impl Job {
-    /// Parses and validates a job from TOML text naming no library tool; `source`
-    /// names the file in errors.
-    fn parse_plain(text: &str, source: &str) -> Result<Job, AppError> {
-        let job: Job = toml::from_str(text).map_err(|e| AppError::Job {
-            file: source.to_string(),
-            message: toml_message(text, &e),
-        })?;
-        job.validate().map_err(|message| AppError::Job {
-            file: source.to_string(),
-            message,
-        })?;
-        Ok(job)
-    }
-}
-
-mod params;
-mod tools;
-mod validate;
-pub use validate::MAX_DROP_SPIN_PASSES;
-pub(crate) use validate::check_arcs;
-
 /// The arc tolerance of an output with `arcs` and `arc_tolerance`, mm: `None`
 /// without arcs.
 pub(crate) fn arc_tolerance_mm(arcs: bool, arc_tolerance: Option<f64>) -> Option<f64> {
     arcs.then(|| arc_tolerance.unwrap_or(swarf_nc::DEFAULT_ARC_TOLERANCE_MM))
 }
-pub(crate) use validate::output_file;
 
 #[cfg(test)]
 mod tests;

@@ -1,6 +1,8 @@
 //! Tests of job parsing and validation.
 
 use super::*;
+use crate::strategy::Strategy;
+use swarf_fiveaxis::dsm::{BandChoice, SpinChoice, ZoneChoice};
 
 const GOOD: &str = r#"
 part = "builtin:wave"
@@ -21,11 +23,11 @@ gcode = "a.ngc"
 #[test]
 fn parses_a_good_job() {
     let job = Job::parse(GOOD, "job.toml").unwrap();
-    assert_eq!(job.strategy.kind, StrategyKind::IsoScallop);
-    assert_eq!(job.strategy.scallop, Some(0.15));
+    assert!(matches!(job.strategy, Strategy::IsoScallop(_)));
+    assert_eq!(job.strategy.scallop(), Some(0.15));
     assert_eq!(job.feeds.feed, 300.0);
     assert_eq!(job.feeds.plunge, Feeds::default().plunge);
-    assert!(job.strategy.zigzag);
+    assert!(job.strategy.finish().zigzag);
     assert_eq!(job.output.gcode.as_deref(), Some("a.ngc"));
 }
 
@@ -69,7 +71,9 @@ fn raster_max_slope_is_degrees_in_the_file() {
         .replace("iso-scallop", "raster")
         .replace("scallop = 0.15", "scallop = 0.15\nmax_slope = 60");
     let job = Job::parse(&text, "job.toml").unwrap();
-    let params = job.raster_params();
+    let Strategy::Raster(params) = &job.strategy else {
+        panic!("{:?}", job.strategy)
+    };
     assert_eq!(params.max_slope, Some(60f64.to_radians()));
     // The stepover it gives: a ball's 2 cos(60) sqrt(2Rh - h^2), half the level one.
     let mesh = swarf_io::builtin_mesh("v-grooves").unwrap();
@@ -119,7 +123,10 @@ cl = "die.cl"
                 sections: 1.0
             })
         );
-        assert_eq!(job.strategy.stepover, Some(3.5));
+        let Strategy::IsoPlanar(planar) = &job.strategy else {
+            panic!("{:?}", job.strategy)
+        };
+        assert_eq!(planar.stepover, Some(3.5));
         assert_eq!(
             job.output.machine.as_deref(),
             Some("builtin:xyzac-trunnion")
@@ -251,13 +258,12 @@ cl = "die.cl"
 fn drop_spin_jobs_name_the_field() {
     let good = include_str!("../../../../jobs/edge-concave-drop-spin.toml");
     let job = Job::parse(good, "ds.toml").unwrap();
-    assert_eq!(job.strategy.kind, StrategyKind::DropSpin);
-    assert_eq!(job.strategy.faces, Some([0, 1]));
-    assert_eq!(
-        (job.strategy.spin, job.strategy.zone),
-        (SpinChoice::Leading, ZoneChoice::Full)
-    );
-    assert_eq!(job.strategy.bands, BandChoice::Both);
+    let Strategy::DropSpin(ds) = &job.strategy else {
+        panic!("{:?}", job.strategy)
+    };
+    assert_eq!(ds.faces, [0, 1]);
+    assert_eq!((ds.spin, ds.zone), (SpinChoice::Leading, ZoneChoice::Full));
+    assert_eq!(ds.bands, BandChoice::Both);
     assert_eq!(BandChoice::default().faces(), vec![0, 1]);
     let cases = [
         (good.replace("step = 5 ", "step = 0 "), "strategy.step"),
@@ -388,4 +394,45 @@ fn arcs_are_asked_for_with_a_checked_tolerance() {
         let e = Job::parse(&with(bad), "job.toml").unwrap_err().to_string();
         assert!(e.contains(message), "{bad}: {e}");
     }
+}
+
+#[test]
+fn misplaced_fields_and_bad_choices_name_field_place_and_domain() {
+    let e = Job::parse(
+        &GOOD.replace("tolerance = 0.01", "tolerance = 0.01\noverlap = 2"),
+        "job.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.starts_with("job.toml: line 8: strategy.overlap: unknown field `overlap` for kind `iso-scallop` (it is a field of `steep-shallow`, `cleanup`)"),
+        "{e}"
+    );
+    let e = Job::parse(
+        &GOOD.replace(
+            "tolerance = 0.01",
+            "tolerance = 0.01\ndirection = \"climb\"",
+        ),
+        "job.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("line 8: strategy.direction: \"climb\" is a milling direction")
+            && e.contains("takes \"u\" or \"v\""),
+        "{e}"
+    );
+    // A dict (Python's) names the path instead of the line.
+    let mut value: toml::Value = toml::from_str(GOOD).unwrap();
+    value["strategy"]
+        .as_table_mut()
+        .unwrap()
+        .insert("scallop".into(), toml::Value::String("fine".into()));
+    let e = Job::from_value(value, "job dict", std::path::Path::new("."))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("job dict: strategy.scallop: invalid type: string \"fine\", expected f64"),
+        "{e}"
+    );
 }

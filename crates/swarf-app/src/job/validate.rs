@@ -1,21 +1,23 @@
-//! Checks of a job's parameter ranges that the TOML types cannot express: the
-//! strategy, feeds and linking, a cleanup job's parent and regions, and what a
-//! five-axis job can write.
+//! Checks of a job that the types cannot express: the strategy's own checks (its
+//! [`crate::strategy::Kind::validate`], placed in `strategy.`), then what concerns
+//! the job as a whole: feeds and linking, a cleanup job's parent, what a five-axis
+//! job can write.
 
-use super::{Direction, Job, RestMaterial, RestSource, ZoneChoice};
-use swarf_geom::domain::{COORDINATE, Domain, RATE, SAMPLE, SCALLOP, STEP, TOLERANCE, TOOL_LENGTH};
+use super::Job;
+use crate::strategy::Strategy;
+use swarf_geom::domain::{COORDINATE, Domain, RATE, STEP, TOOL_LENGTH};
+use swarf_rest::{RestMaterial, RestSource};
 
 /// Spindle speeds, rev/min.
 const SPINDLE: Domain = Domain::new(1e-3, 1e6, "rev/min", "a spindle speed");
 
-/// Most drop-spin passes across a zone.
-pub const MAX_DROP_SPIN_PASSES: usize = 1000;
-use swarf_path::StrategyKind;
-
 impl Job {
-    /// Checks parameter ranges that the TOML types cannot express.
-    pub(super) fn validate(&self) -> Result<(), String> {
-        let s = &self.strategy;
+    /// Checks what the types cannot express (module doc).
+    ///
+    /// # Errors
+    /// The first field out of its domain or inconsistent with the job, as
+    /// `field: message` (`strategy.scallop: ...`).
+    pub(crate) fn validate(&self) -> Result<(), String> {
         if self.part.trim().is_empty() {
             return Err(
                 "part: expected a part file, a mesh or builtin:NAME, found an empty name".into(),
@@ -31,32 +33,9 @@ impl Job {
                 swarf_io::cad::MAX_TRIM_CHORD
             ));
         }
-        self.validate_spacing()?;
-        if let Some(a) = s.max_ramp
-            && (a.is_nan() || a <= 0.0 || a >= 90.0)
-        {
-            return Err(format!(
-                "strategy.max_ramp: {a} degrees: expected an angle between 0 and 90 degrees"
-            ));
-        }
-        if let Some(a) = s.max_slope
-            && (a.is_nan() || a <= 0.0 || a >= 90.0)
-        {
-            return Err(format!(
-                "strategy.max_slope: {a} degrees: expected a slope between 0 and 90 degrees"
-            ));
-        }
-        if !s.angle.is_finite() {
-            return Err("strategy.angle: expected a finite angle in degrees".into());
-        }
-        if let Some(b) = s.boundary
-            && !(b.iter().all(|&x| COORDINATE.contains(x)) && b[0] < b[2] && b[1] < b[3])
-        {
-            return Err(format!(
-                "strategy.boundary: expected [xmin, ymin, xmax, ymax] with xmin < xmax and ymin < ymax, found {b:?}"
-            ));
-        }
-        self.validate_slopes()?;
+        self.strategy
+            .validate(&self.tool)
+            .map_err(|e| e.in_table("strategy"))?;
         self.validate_cleanup()?;
         let f = &self.feeds;
         for (name, v) in [
@@ -72,202 +51,36 @@ impl Job {
         self.validate_five_axis()
     }
 
-    /// Tolerance, scallop, stepover and level step, and which strategy takes which.
-    fn validate_spacing(&self) -> Result<(), String> {
-        let s = &self.strategy;
-        in_domain("strategy.tolerance", Some(s.tolerance), TOLERANCE)?;
-        in_domain("strategy.scallop", s.scallop, SCALLOP)?;
-        in_domain("strategy.stepover", s.stepover, STEP)?;
-        in_domain("strategy.level_step", s.level_step, STEP)?;
-        in_domain("strategy.sampling", s.sampling, SAMPLE)?;
-        let waterline = s.kind == StrategyKind::Waterline && s.level_step.is_some();
-        let drop_spin = s.kind == StrategyKind::DropSpin;
-        let roughing = s.kind == StrategyKind::Roughing;
-        if s.scallop.is_none() && s.stepover.is_none() && !waterline && !drop_spin && !roughing {
-            return Err(
-                "strategy: expected `scallop` (scallop height limit, mm) or `stepover` (mm)".into(),
-            );
-        }
-        match (s.kind, s.scallop, s.stepover) {
-            (
-                StrategyKind::Raster
-                | StrategyKind::Cleanup
-                | StrategyKind::SteepShallow
-                | StrategyKind::DropSpin
-                | StrategyKind::Roughing,
-                _,
-                _,
-            )
-            | (_, _, None) => {}
-            (StrategyKind::IsoPlanar, Some(_), Some(_)) => {
-                return Err(
-                    "strategy.stepover: give either `scallop` (plane spacing from a scallop limit) or `stepover` (a fixed cross feed), not both"
-                        .into(),
-                );
-            }
-            (StrategyKind::IsoPlanar, None, Some(step)) => {
-                let d = 2.0 * self.tool.radius();
-                if step >= d {
-                    return Err(format!(
-                        "strategy.stepover: {step} mm is not smaller than the tool diameter {d} mm"
-                    ));
-                }
-            }
-            (_, _, Some(_)) => {
-                return Err(
-                    "strategy.stepover: only the raster, steep-shallow and iso-planar strategies take a fixed stepover; use `scallop`"
-                        .into(),
-                );
-            }
-        }
-        if let Some(h) = s.scallop {
-            let r = self.tool.radius();
-            if h >= r {
-                return Err(format!(
-                    "strategy.scallop: {h} mm is not smaller than the tool radius {r} mm; expected 0 < scallop < tool radius"
-                ));
-            }
-        }
-        Ok(())
-    }
-
-    /// Steep and flat angles, and the direction each strategy takes.
-    fn validate_slopes(&self) -> Result<(), String> {
-        let s = &self.strategy;
-        for (name, a) in [
-            ("strategy.steep_angle", s.steep_angle),
-            ("strategy.flat_angle", s.flat_angle),
-        ] {
-            if let Some(a) = a
-                && !(a > 0.0 && a < 90.0)
-            {
-                return Err(format!(
-                    "{name}: {a} degrees: expected an angle between 0 and 90 degrees"
-                ));
-            }
-        }
-        let (steep, flat) = (s.steep_angle.unwrap_or(45.0), s.flat_angle.unwrap_or(15.0));
-        if flat >= steep {
-            return Err(format!(
-                "strategy.steep_angle: {steep} degrees is not above strategy.flat_angle ({flat} degrees): expected flat_angle < steep_angle"
-            ));
-        }
-        if s.kind == StrategyKind::SteepShallow && s.scallop.is_none() {
-            return Err("strategy.scallop: steep-shallow needs the scallop height limit, mm (both spacings follow from it)".into());
-        }
-        let milling = matches!(s.kind, StrategyKind::Waterline | StrategyKind::SteepShallow)
-            || (s.kind == StrategyKind::Cleanup && s.restmaterial.contains(&RestMaterial::Steep));
-        match s.direction {
-            Some(d @ (Direction::U | Direction::V)) if milling => Err(format!(
-                "strategy.direction: \"{}\" is a parameter direction; the {} strategy takes \"climb\" or \"conventional\"",
-                file_name(d),
-                file_name(s.kind)
-            )),
-            Some(d @ (Direction::Climb | Direction::Conventional)) if !milling => Err(format!(
-                "strategy.direction: \"{}\" is a milling direction for waterline, steep-shallow and steep cleanup; the {} strategy takes \"u\" or \"v\"",
-                file_name(d),
-                file_name(s.kind)
-            )),
-            _ => Ok(()),
-        }
-    }
-
-    /// A cleanup job's parent and region parameters; other jobs have no parent.
+    /// A cleanup job's parent and its rest source; other jobs have no parent.
     fn validate_cleanup(&self) -> Result<(), String> {
-        let s = &self.strategy;
-        let Some(parent) = &self.parent else {
-            if s.kind == StrategyKind::Cleanup {
-                return Err("parent: a cleanup job needs a [parent] table with `job` (a finishing job file) or `tool` (a reference tool)".into());
+        let Strategy::Cleanup(c) = &self.strategy else {
+            if self.parent.is_some() {
+                return Err(
+                    "parent: only a cleanup job (strategy.kind = \"cleanup\") has a parent".into(),
+                );
             }
             return Ok(());
         };
-        if s.kind != StrategyKind::Cleanup {
-            return Err(
-                "parent: only a cleanup job (strategy.kind = \"cleanup\") has a parent".into(),
-            );
-        }
+        let Some(parent) = &self.parent else {
+            return Err("parent: a cleanup job needs a [parent] table with `job` (a finishing job file) or `tool` (a reference tool)".into());
+        };
         match (&parent.job, &parent.tool) {
             (Some(_), Some(_)) | (None, None) => {
                 return Err("parent: expected exactly one of `job` (a finishing job file) and `tool` (a reference tool)".into());
             }
-            (None, Some(_)) if s.source != RestSource::Reference => {
+            (None, Some(_)) if c.source != RestSource::Reference => {
                 return Err(format!(
                     "strategy.source: {:?} needs a parent job (parent.job); a reference tool gives source = \"reference\" only",
-                    s.source
+                    c.source
                 ));
+            }
+            (None, Some(_)) if c.restmaterial.contains(&RestMaterial::Steep) => {
+                return Err("strategy.restmaterial: \"steep\" needs a parent raster job (parent.job): its stepover and feed direction decide where its scallop is too high".into());
             }
             _ => {}
         }
-        if s.scallop.is_none() {
-            return Err(
-                "strategy.scallop: a cleanup job needs the scallop height of its passes, mm".into(),
-            );
-        }
         if self.positioning.is_some() {
             return Err("positioning: cleanup paths are three-axis".into());
-        }
-        self.validate_restmaterial()?;
-        self.region_params().validate().map_err(|e| e.to_string())
-    }
-
-    /// The rest kinds a cleanup job names: some, each once; steep rest needs a
-    /// parent job and is cleaned up by the job's tool alone.
-    fn validate_restmaterial(&self) -> Result<(), String> {
-        let s = &self.strategy;
-        let kinds = &s.restmaterial;
-        if kinds.is_empty() {
-            return Err(
-                "strategy.restmaterial: expected one or more of \"valley\", \"ramp\" and \"steep\""
-                    .into(),
-            );
-        }
-        if let Some(k) = kinds
-            .iter()
-            .enumerate()
-            .find(|(i, k)| kinds[..*i].contains(k))
-        {
-            return Err(format!(
-                "strategy.restmaterial: \"{}\" is listed twice",
-                file_name(*k.1)
-            ));
-        }
-        if !kinds.contains(&RestMaterial::Steep) {
-            return Ok(());
-        }
-        if self.parent.as_ref().is_some_and(|p| p.job.is_none()) {
-            return Err("strategy.restmaterial: \"steep\" needs a parent raster job (parent.job): its stepover and feed direction decide where its scallop is too high".into());
-        }
-        if kinds.len() == 1 && !s.chain.is_empty() {
-            return Err("strategy.chain: steep rest alone is cleaned up by the job's tool in one stage; add \"valley\" or \"ramp\" to strategy.restmaterial for a chain".into());
-        }
-        Ok(())
-    }
-
-    /// A drop-spin job's stations, passes and faces.
-    fn validate_drop_spin(&self) -> Result<(), String> {
-        let s = &self.strategy;
-        in_domain("strategy.step", s.step, STEP)?;
-        if self.positioning.is_some() {
-            return Err(
-                "positioning: drop-spin places the tool itself; leave out the positioning table"
-                    .into(),
-            );
-        }
-        if s.zone == ZoneChoice::Full && s.passes == 0 && s.stepover.is_none() {
-            return Err("strategy.passes: drop-spin over the full zone needs `passes` (across the zone) or `stepover` (mm)".into());
-        }
-        if s.passes > MAX_DROP_SPIN_PASSES {
-            return Err(format!(
-                "strategy.passes: {}: expected at most {MAX_DROP_SPIN_PASSES} passes across the zone",
-                s.passes
-            ));
-        }
-        if let Some([a, b]) = s.faces
-            && a == b
-        {
-            return Err(format!(
-                "strategy.faces: [{a}, {b}]: expected two different faces"
-            ));
         }
         Ok(())
     }
@@ -275,6 +88,12 @@ impl Job {
     /// The positioning's ranges and the outputs a five-axis job can write.
     fn validate_five_axis(&self) -> Result<(), String> {
         if let Some(p) = &self.positioning {
+            if self.strategy.tilted() {
+                return Err(format!(
+                    "positioning: {} places the tool itself; leave out the positioning table",
+                    self.strategy.kind()
+                ));
+            }
             p.validate()
                 .map_err(|(field, message)| format!("{field}: {message}"))?;
         }
@@ -291,10 +110,7 @@ impl Job {
                 output_file(name, f)?;
             }
         }
-        if self.strategy.kind == StrategyKind::DropSpin {
-            self.validate_drop_spin()?;
-        }
-        let tilted = self.positioning.is_some() || self.strategy.kind == StrategyKind::DropSpin;
+        let tilted = self.positioning.is_some() || self.strategy.tilted();
         if tilted && o.gcode.is_some() && o.machine.is_none() {
             return Err(
                 "output.machine: a tilted tool path needs a machine file for G-code (e.g. machine = \"builtin:xyzac-trunnion\"); or drop output.gcode (output.cl and output.csv carry the tool axis)"
@@ -356,12 +172,4 @@ pub(crate) fn output_file(name: &str, file: &str) -> Result<(), String> {
         ));
     }
     Ok(())
-}
-
-/// A value's name as a job file writes it.
-fn file_name<T: serde::Serialize + std::fmt::Debug>(value: T) -> String {
-    serde_json::to_value(&value)
-        .ok()
-        .and_then(|v| v.as_str().map(str::to_string))
-        .unwrap_or_else(|| format!("{value:?}"))
 }

@@ -57,41 +57,85 @@ mod report;
 mod run;
 
 use crate::error::AppError;
-use crate::holder::library::{default_feeds, named_tool};
-use crate::job::Job;
+use crate::job::read::{Key, Located};
+use crate::job::{FeedsSpec, Import, Job, Output, Parent, ToolRef};
 use crate::model::FaceRef;
+use crate::strategy::Strategy;
+use schemars::JsonSchema;
 use serde::Deserialize;
 use std::path::Path;
 use swarf_geom::domain::show;
-use swarf_io::error::toml_message;
 use swarf_tool::library::ToolLibrary;
+use swarf_toolpath::LinkingSpec;
 
 pub use crate::holder::HolderSummary;
 pub use report::{EngagementSummary, OperationReport, SequenceReport};
 pub use run::plan_sequence;
 
-/// A sequence job as read (module doc).
-#[derive(Debug, Clone, Deserialize)]
+/// A sequence job as its file states it (module doc).
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
-struct SequenceRepr {
+pub struct SequenceFile {
+    /// Free-text name for reports.
     #[serde(default)]
-    name: Option<String>,
-    part: String,
+    pub name: Option<String>,
+    /// The part, as a job names it.
+    pub part: String,
+    /// The faces of the part to machine (all when absent).
     #[serde(default)]
-    faces: Option<Vec<FaceRef>>,
+    pub faces: Option<Vec<FaceRef>>,
+    /// How a STEP or IGES part is read.
     #[serde(default)]
-    import: Option<toml::Table>,
+    pub import: Import,
+    /// The tool library the operations' `tool` may name, relative to the job file.
     #[serde(default)]
-    tools: Option<String>,
+    pub tools: Option<String>,
+    /// The stock.
     #[serde(default)]
-    stock: Stock,
-    operation: Vec<toml::Table>,
+    pub stock: Stock,
+    /// The operations, in order.
+    pub operation: Vec<OperationFile>,
+    /// Outputs.
     #[serde(default)]
-    output: SequenceOutput,
+    pub output: SequenceOutput,
 }
 
+/// One `[[operation]]` table: a job's tool, strategy, feeds and linking.
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OperationFile {
+    /// Name (default `operation[k]`).
+    #[serde(default)]
+    pub name: Option<String>,
+    /// T word, 1 to 99999 (default: the operation's place, from 1; a library tool's
+    /// own number).
+    #[serde(default)]
+    pub number: Option<i64>,
+    /// The cutter, or a library tool's T number or name.
+    pub tool: ToolRef,
+    /// Strategy and its parameters.
+    pub strategy: Strategy,
+    /// Feeds and speeds.
+    #[serde(default)]
+    pub feeds: FeedsSpec,
+    /// Linking between passes.
+    #[serde(default)]
+    pub linking: LinkingSpec,
+}
+
+/// The keys of a job that a sequence gives, not its operations.
+const SEQUENCE_KEYS: [&str; 7] = [
+    "part",
+    "faces",
+    "import",
+    "output",
+    "parent",
+    "positioning",
+    "tools",
+];
+
 /// The stock a sequence starts from.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Stock {
     /// `box`, `offset` or `mesh`.
@@ -125,7 +169,7 @@ impl Default for Stock {
 }
 
 /// How the stock is made.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum StockKind {
     /// A block over the part's XY extent.
@@ -138,7 +182,7 @@ pub enum StockKind {
 }
 
 /// Outputs of a sequence.
-#[derive(Debug, Clone, Default, Deserialize)]
+#[derive(Debug, Clone, Default, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SequenceOutput {
     /// The one program, a tool change per operation.
@@ -217,148 +261,147 @@ impl Sequence {
             file: source.to_string(),
             message,
         };
-        let repr: SequenceRepr = toml::from_str(text).map_err(|e| err(toml_message(text, &e)))?;
-        check_stock(&repr.stock).map_err(err)?;
-        crate::job::check_arcs(repr.output.arcs, repr.output.arc_tolerance).map_err(err)?;
+        let file: SequenceFile =
+            crate::job::read::from_text(text).map_err(|e| err(misplaced(e).in_file()))?;
+        file.resolve(dir).map_err(err)
+    }
+
+    /// A sequence from a value in the sequence file's schema (a Python dict turned
+    /// into TOML values); `source` names it in errors.
+    ///
+    /// # Errors
+    /// As [`Sequence::parse`], naming the value's path instead of a line.
+    pub fn from_value(value: toml::Value, source: &str, dir: &Path) -> Result<Sequence, AppError> {
+        let err = |message: String| AppError::Job {
+            file: source.to_string(),
+            message,
+        };
+        let file: SequenceFile =
+            crate::job::read::from_value(value).map_err(|e| err(misplaced(e).in_value()))?;
+        file.resolve(dir).map_err(err)
+    }
+}
+
+/// An error about a job's key given in an operation, said so.
+fn misplaced(mut e: Located) -> Located {
+    if let [Key::Name(op), Key::Index(_), Key::Name(key)] = e.path.as_slice()
+        && op == "operation"
+        && SEQUENCE_KEYS.contains(&key.as_str())
+        && e.message.starts_with("unknown field")
+    {
+        e.message = format!(
+            "{key}: not an operation's key (the sequence gives part, faces, import, tools \
+             and output; operations are three-axis)"
+        );
+        e.path.pop();
+    }
+    e
+}
+
+impl SequenceFile {
+    /// The sequence this file states, its library read relative to `dir`, checked.
+    ///
+    /// # Errors
+    /// A bad stock or output, a library that cannot be read, and every error of an
+    /// operation, as `operation[k]: field: message`.
+    pub fn resolve(self, dir: &Path) -> Result<Sequence, String> {
+        check_stock(&self.stock)?;
+        crate::job::check_arcs(self.output.arcs, self.output.arc_tolerance)?;
         for (name, file) in [
-            ("output.gcode", &repr.output.gcode),
-            ("output.summary", &repr.output.summary),
+            ("output.gcode", &self.output.gcode),
+            ("output.summary", &self.output.summary),
         ] {
             if let Some(f) = file {
-                crate::job::output_file(name, f).map_err(err)?;
+                crate::job::output_file(name, f)?;
             }
         }
-        if repr.operation.is_empty() || repr.operation.len() > MAX_OPERATIONS {
-            return Err(err(format!(
+        if self.operation.is_empty() || self.operation.len() > MAX_OPERATIONS {
+            return Err(format!(
                 "operation: expected 1 to {MAX_OPERATIONS} [[operation]] tables, found {}",
-                repr.operation.len()
-            )));
+                self.operation.len()
+            ));
         }
-        let library = match &repr.tools {
-            Some(file) => {
-                Some(ToolLibrary::read(&dir.join(file)).map_err(|e| err(format!("tools: {e}")))?)
-            }
-            None => None,
-        };
-        let mut operations = Vec::with_capacity(repr.operation.len());
-        for (k, table) in repr.operation.iter().enumerate() {
-            let op = operation(&repr, library.as_ref(), k, table, operations.last())
-                .map_err(|m| err(format!("operation[{k}]: {m}")))?;
+        let library = crate::job::file::read_library(self.tools.as_deref(), dir)?;
+        let mut operations: Vec<Operation> = Vec::with_capacity(self.operation.len());
+        for (k, op) in self.operation.iter().enumerate() {
+            let op = self
+                .operation_job(library.as_ref(), k, op, operations.last())
+                .map_err(|m| format!("operation[{k}]: {m}"))?;
             operations.push(op);
         }
         Ok(Sequence {
-            name: repr.name,
-            part: repr.part,
-            stock: repr.stock,
+            name: self.name,
+            part: self.part,
+            stock: self.stock,
             operations,
-            output: repr.output,
+            output: self.output,
         })
     }
-}
 
-/// Operation `k` as a job: its own table with the sequence's part, faces and import,
-/// its tool from the library when it names one.
-fn operation(
-    repr: &SequenceRepr,
-    library: Option<&ToolLibrary>,
-    k: usize,
-    table: &toml::Table,
-    prev: Option<&Operation>,
-) -> Result<Operation, String> {
-    let mut t = table.clone();
-    let library_tool = named_tool(library, t.get("tool"))?.cloned();
-    if let Some(lt) = &library_tool {
-        let spec = toml::Value::String(lt.assembly.cutter.to_string());
-        t.insert("tool".into(), spec);
-    }
-    let name = match t.remove("name") {
-        Some(toml::Value::String(s)) => s,
-        Some(v) => return Err(format!("name: expected text, found {v}")),
-        None => format!("operation[{k}]"),
-    };
-    let number = match (t.remove("number"), &library_tool) {
-        (Some(v), Some(lt)) => {
-            return Err(format!(
-                "number: {v} given for the library's tool T{} \"{}\": the library gives its \
-                 number",
-                lt.number, lt.name
-            ));
-        }
-        (Some(toml::Value::Integer(n)), None) if (1..=99_999).contains(&n) => n as u32,
-        (Some(v), None) => {
-            return Err(format!(
-                "number: expected a tool number from 1 to 99999, found {v}"
-            ));
-        }
-        (None, Some(lt)) => lt.number,
-        (None, None) => k as u32 + 1,
-    };
-    for key in [
-        "part",
-        "faces",
-        "import",
-        "output",
-        "parent",
-        "positioning",
-        "tools",
-    ] {
-        if t.contains_key(key) {
-            return Err(format!(
-                "{key}: not an operation's key (the sequence gives part, faces, import, tools \
-                 and output; operations are three-axis)"
-            ));
-        }
-    }
-    t.insert("part".into(), toml::Value::String(repr.part.clone()));
-    // A cleanup cleans up after the operation before it (its tool is the reference).
-    let prev_tool = prev.map(|p| toml::Value::String(p.job.tool.to_string()));
-    let is_cleanup = t
-        .get("strategy")
-        .and_then(|s| s.get("kind"))
-        .and_then(toml::Value::as_str)
-        == Some("cleanup");
-    if is_cleanup && k == 0 {
-        return Err(
-            "strategy.kind: a cleanup cannot be the first operation: it cleans up \
-                    after the operation before it"
-                .into(),
-        );
-    }
-    if is_cleanup && let Some(tool) = prev_tool {
-        let mut parent = toml::Table::new();
-        parent.insert("tool".into(), tool);
-        t.insert("parent".into(), toml::Value::Table(parent));
-    }
-    if let Some(faces) = &repr.faces {
-        let v = toml::Value::try_from(faces).map_err(|e| e.to_string())?;
-        t.insert("faces".into(), v);
-    }
-    if let Some(import) = &repr.import {
-        t.insert("import".into(), toml::Value::Table(import.clone()));
-    }
-    let text = toml::to_string(&t).map_err(|e| e.to_string())?;
-    // The table was written out again: a line number in a message would be of that
-    // text, not of the file, so it is dropped.
-    let mut job = Job::parse(&text, "").map_err(|e| match e {
-        AppError::Job { message, .. } => without_line(&message).to_string(),
-        other => other.to_string(),
-    })?;
-    if let Some(lt) = &library_tool {
-        default_feeds(lt, table.get("feeds"), &mut job.feeds);
-    }
-    job.library_tool = library_tool;
-    Ok(Operation { name, number, job })
-}
-
-/// `message` without a leading `line N: `.
-fn without_line(message: &str) -> &str {
-    message
-        .strip_prefix("line ")
-        .and_then(|rest| {
-            let (n, tail) = rest.split_once(": ")?;
-            n.chars().all(|c| c.is_ascii_digit()).then_some(tail)
+    /// Operation `k` as a job on the sequence's part, faces and import, its tool
+    /// from the library when it names one; a cleanup cleans up after the operation
+    /// before it (its tool is the reference).
+    fn operation_job(
+        &self,
+        library: Option<&ToolLibrary>,
+        k: usize,
+        op: &OperationFile,
+        prev: Option<&Operation>,
+    ) -> Result<Operation, String> {
+        let (tool, library_tool) = op.tool.resolve(library)?;
+        let number = match (op.number, &library_tool) {
+            (Some(v), Some(lt)) => {
+                return Err(format!(
+                    "number: {v} given for the library's tool T{} \"{}\": the library gives its \
+                     number",
+                    lt.number, lt.name
+                ));
+            }
+            (Some(n), None) if (1..=99_999).contains(&n) => n as u32,
+            (Some(v), None) => {
+                return Err(format!(
+                    "number: expected a tool number from 1 to 99999, found {v}"
+                ));
+            }
+            (None, Some(lt)) => lt.number,
+            (None, None) => k as u32 + 1,
+        };
+        let parent = match (&op.strategy, prev) {
+            (Strategy::Cleanup(_), None) => {
+                return Err(
+                    "strategy.kind: a cleanup cannot be the first operation: it cleans \
+                            up after the operation before it"
+                        .into(),
+                );
+            }
+            (Strategy::Cleanup(_), Some(p)) => Some(Parent {
+                job: None,
+                tool: Some(p.job.tool),
+            }),
+            _ => None,
+        };
+        let job = Job {
+            name: None,
+            part: self.part.clone(),
+            faces: self.faces.clone(),
+            import: self.import,
+            tools: None,
+            tool,
+            feeds: op.feeds.resolve(library_tool.as_ref()),
+            library_tool,
+            strategy: op.strategy.clone(),
+            positioning: None,
+            linking: op.linking,
+            output: Output::default(),
+            parent,
+        };
+        job.validate()?;
+        Ok(Operation {
+            name: op.name.clone().unwrap_or_else(|| format!("operation[{k}]")),
+            number,
+            job,
         })
-        .unwrap_or(message)
+    }
 }
 
 fn check_stock(s: &Stock) -> Result<(), String> {

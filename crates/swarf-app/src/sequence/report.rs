@@ -3,8 +3,8 @@
 
 use super::Operation;
 use crate::holder::HolderSummary;
+use crate::strategy::Strategy;
 use serde::Serialize;
-use swarf_path::StrategyKind;
 use swarf_sim::Dexel;
 
 /// Engagement of a roughing operation, measured on the stock.
@@ -147,7 +147,7 @@ pub(super) fn op_report(
         name: op.name.clone(),
         number: op.number,
         tool: job.tool.to_string(),
-        strategy: format!("{:?}", job.strategy.kind).to_lowercase(),
+        strategy: job.strategy.name().to_lowercase(),
         motions: 0,
         cutting_length_mm,
         time_s,
@@ -172,9 +172,9 @@ pub(super) fn deviation(
     r: &mut OperationReport,
 ) {
     let s = &op.job.strategy;
-    let leave = match s.kind {
-        StrategyKind::Roughing => op.job.roughing_params().allowance,
-        _ => s.scallop.unwrap_or(0.0),
+    let leave = match s {
+        Strategy::Roughing(r) => r.allowance,
+        _ => s.scallop().unwrap_or(0.0),
     };
     r.rest_limit_mm = leave + tol;
     for (h, d) in dexel.heights().iter().zip(design) {

@@ -12,12 +12,15 @@ use crate::model::{Model, load_model_with};
 use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
 use crate::plan_job::part_arg;
+use crate::strategy::Strategy;
 use std::path::Path;
 use swarf_geom::TriMesh;
 use swarf_nc::read::{GcodeReadOptions, Motion, Program, parse_gcode};
-use swarf_path::roughing::{RoughingReport, RoughingStock, entry_moves, plan as plan_roughing};
-use swarf_path::{Plan, PlanReport, StrategyKind};
-use swarf_rest::{CleanupParams, Source, detect, plan_cleanup};
+use swarf_path::strategy::roughing::{
+    RoughingReport, RoughingStock, entry_moves, plan as plan_roughing,
+};
+use swarf_path::{Plan, PlanReport};
+use swarf_rest::{Source, detect, plan_cleanup};
 use swarf_sim::engagement::measure_engagement;
 use swarf_sim::grid::DEFAULT_MAX_BYTES;
 use swarf_sim::simulate_from;
@@ -77,6 +80,9 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
     report.program = whole_program(&shop, &all_moves, motions_before)?;
     if let Some(file) = &seq.output.gcode {
         out.write(file, report.program.as_bytes())?;
+        let mut record = sequence_record(seq);
+        record.programs = vec![file.clone()];
+        out.write_json(crate::plan_record::record_name(file), &record)?;
     }
     if let Some(limit) = report.operations.last().map(|o| o.rest_limit_mm) {
         report.rest = rest_cells(&dexel, &shop.design, limit);
@@ -87,11 +93,44 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
     Ok(report)
 }
 
+/// The plan record of the sequence's program (`crate::plan_record`): every
+/// operation's tool and what it was planned for.
+fn sequence_record(seq: &Sequence) -> crate::plan_record::PlanRecord {
+    use crate::plan_record::{OperationRecord, PlanRecord, ToolRecord};
+    let tools = seq
+        .operations
+        .iter()
+        .map(|op| ToolRecord {
+            number: op.number,
+            cutter: op.job.tool.to_string(),
+            name: op.job.library_tool.as_ref().map(|t| t.name.clone()),
+        })
+        .collect();
+    let operations = seq
+        .operations
+        .iter()
+        .map(|op| OperationRecord {
+            name: op.name.clone(),
+            strategy: op.job.strategy.kind().into(),
+            tool: op.number,
+            scallop: op.job.strategy.scallop(),
+            tolerance: op.job.tolerance(),
+        })
+        .collect();
+    PlanRecord::new(
+        &seq.part,
+        seq.output.units,
+        tools,
+        operations,
+        seq.output.post.as_deref().unwrap_or("linuxcnc"),
+    )
+}
+
 /// The part, the design over the stock's grid, the post, and the stock.
 fn open_shop<'a>(seq: &'a Sequence, job_dir: &Path) -> Result<(Shop<'a>, Dexel)> {
     let first = &seq.operations[0].job;
     let model = load_model_with(&part_arg(first, job_dir), &first.load_options())?;
-    let mesh = part_mesh(&model, seq.stock.tol.min(first.strategy.tolerance))?.into_owned();
+    let mesh = part_mesh(&model, seq.stock.tol.min(first.tolerance()))?.into_owned();
     let b = mesh.aabb();
     let m = seq.stock.margin;
     let grid = Grid::covering(
@@ -212,12 +251,12 @@ fn plan_operation(
 ) -> Result<(Plan, Option<RoughingReport>)> {
     let (model, mesh, design, tol) = (&shop.model, &shop.mesh, &shop.design, shop.seq.stock.tol);
     let job = &op.job;
-    let plan = match job.strategy.kind {
-        StrategyKind::Roughing => {
+    let plan = match &job.strategy {
+        Strategy::Roughing(r) => {
             let grid = *dexel.grid();
             // Material to rough: stock above the design plus the allowance (the part
             // itself, and what an earlier roughing left of the allowance, are not).
-            let leave = job.roughing_params().allowance + tol;
+            let leave = r.allowance + tol;
             let material = |x: f64, y: f64| {
                 grid.cell_of(x, y).map_or(f64::NEG_INFINITY, |(i, j)| {
                     let h = dexel.height(i, j);
@@ -240,10 +279,11 @@ fn plan_operation(
                 top,
                 material: &material,
             };
-            let (plan, report) = plan_roughing(mesh, &stock, &job.roughing_params())?;
+            let (plan, report) = plan_roughing(mesh, &stock, &job.cutting(), r)
+                .map_err(|e| crate::plan::in_table("strategy", e))?;
             return Ok((plan, Some(report)));
         }
-        StrategyKind::Cleanup => {
+        Strategy::Cleanup(c) => {
             let reference = reference.ok_or_else(|| {
                 AppError::Message(
                     "a cleanup cannot be the first operation: it cleans up after the one before"
@@ -262,14 +302,8 @@ fn plan_operation(
                 design,
             };
             // Every region the stock shows is rest of the stock kind: all are cleaned.
-            let detection = detect(mesh, &reference, source, tol, &job.region_params())?;
-            let params = CleanupParams {
-                finish: job.finish(),
-                pattern: job.strategy.pattern,
-                passes: job.strategy.passes,
-                scallop: job.strategy.scallop.unwrap_or(job.strategy.tolerance),
-            };
-            let toolpath = plan_cleanup(mesh, &detection.regions, &reference, &params)?;
+            let detection = detect(mesh, &reference, source, tol, &c.regions())?;
+            let toolpath = plan_cleanup(mesh, &detection.regions, &reference, &job.cutting(), c)?;
             Plan {
                 toolpath,
                 report: PlanReport::default(),
@@ -277,7 +311,7 @@ fn plan_operation(
             }
         }
         _ => match model {
-            Model::Patches(part) if !matches!(job.strategy.kind, StrategyKind::Raster) => {
+            Model::Patches(part) if !matches!(job.strategy, Strategy::Raster(_)) => {
                 plan(job, PlanInput::Part(part))?
             }
             _ => plan(job, PlanInput::Mesh(mesh))?,
@@ -301,7 +335,9 @@ fn gcode_options(op: &Operation, post: &swarf_nc::Post, seq: &Sequence) -> swarf
 fn section_comment(op: &Operation) -> String {
     format!(
         "operation {}: {:?} with {}",
-        op.name, op.job.strategy.kind, op.job.tool
+        op.name,
+        op.job.strategy.name(),
+        op.job.tool
     )
 }
 
@@ -400,7 +436,13 @@ fn measure_roughing(
     let motions = Motion::of_moves(moves, start);
     let eng = measure_engagement(dexel, &tool, &motions, first, &sim_options(op), &Quiet)
         .without(&entry_moves(moves, rough));
-    let limit = job.roughing_params().max_engagement.to_degrees();
+    let Strategy::Roughing(r) = &job.strategy else {
+        return Err(AppError::Message(format!(
+            "operation {}: only roughing has its engagement measured",
+            op.name
+        )));
+    };
+    let limit = r.max_engagement.to_degrees();
     let cutting = eng.cutting();
     let over = cutting
         .iter()
@@ -425,7 +467,7 @@ fn measure_roughing(
 
 fn sim_options(op: &Operation) -> SimOptions {
     SimOptions {
-        sample_tol: 0.25 * op.job.strategy.tolerance,
+        sample_tol: swarf_sim::verify::default_sample_tol(op.job.tolerance()),
         known_start: false,
     }
 }

@@ -245,7 +245,8 @@ mod tests {
     use crate::design::tests::die;
     use crate::gencurve::CurveOptions;
     use crate::sections::Sections;
-    use swarf_path::params::{Finish, IsoParams};
+    use swarf_path::Cutting;
+    use swarf_path::strategy::iso::planar::IsoPlanarParams;
 
     #[test]
     fn smoothing_is_the_least_envelope_within_the_rate() {
@@ -278,15 +279,14 @@ mod tests {
     /// Three passes through the middle of the die: iso-planar, 60 degrees off X,
     /// cross feed 3.5 mm, steps of about 2 mm (chordal tolerance 0.005 mm).
     pub(super) fn die_passes() -> Vec<Vec<Contact>> {
-        let mut finish = Finish::new("bull:d=38.1,r=6.35".parse().unwrap());
-        finish.tolerance = 0.005;
-        let params = IsoParams {
-            scallop: None,
+        let cut = Cutting::new("bull:d=38.1,r=6.35".parse().unwrap());
+        let mut params = IsoPlanarParams {
             stepover: Some(3.5),
             angle: 60f64.to_radians(),
-            ..IsoParams::new(finish, 0.0)
+            ..IsoPlanarParams::default()
         };
-        let plan = swarf_path::iso_planar::plan(&die(), &params).unwrap();
+        params.finish.tolerance = 0.005;
+        let plan = swarf_path::strategy::iso::planar::plan(&die(), &cut, &params).unwrap();
         let all = crate::cc_paths::cc_paths(&plan.toolpath);
         let mid = all.len() / 2;
         all[mid - 1..=mid + 1].to_vec()

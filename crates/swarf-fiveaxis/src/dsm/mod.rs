@@ -31,6 +31,7 @@
 //!   spin): the real limit is where the best spin's clearance, maximised over the
 //!   full turn, drops to 0, and the tool part holding the deepest point there is
 //!   named.
+//! - **Parameters** ([`params`]): a drop-spin job's strategy table.
 //! - **Passes** ([`passes`]). One pass per zone fraction along the edge, a pose per
 //!   station, cutting with the leading or trailing side.
 //!
@@ -47,12 +48,14 @@
 pub mod clearance;
 pub mod edge;
 pub mod fit;
+pub mod params;
 pub mod passes;
 pub mod spin;
 pub mod zone;
 
 pub use clearance::{Clearance, Face};
 pub use edge::Station;
+pub use params::{BandChoice, DropSpinParams, MAX_DROP_SPIN_PASSES, SpinChoice, ZoneChoice};
 pub use passes::{
     EdgePasses, EdgePose, PassParams, Reach, Reachable, Side, StationIssue, StationZone,
 };

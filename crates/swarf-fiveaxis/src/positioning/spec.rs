@@ -20,7 +20,7 @@ fn default_rate() -> f64 {
 /// How a job places the tool on its CC paths (degrees and mm; thesis 000 §7.3). Both
 /// methods report the sectioning gouge check on planes `sections` mm apart, parallel
 /// to the passes.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "method", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum Positioning {
     /// A fixed lead angle for the whole path.

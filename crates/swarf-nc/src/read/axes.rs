@@ -17,9 +17,9 @@
 
 use crate::read::feed::BlockFeed;
 use crate::read::kinematics::{AxisPosition, Kinematics, arc_in_part_frame, home_position};
-use crate::read::program::{Motion, MotionKind};
 use swarf_geom::Point3;
 use swarf_tool::Pose;
+use swarf_toolpath::program::{Motion, MotionKind};
 
 /// The axes' program position and the tool's pose over the part.
 #[derive(Debug, Clone, Copy)]

@@ -6,7 +6,7 @@
 //! Names are case-insensitive (kept upper-case); numbers are decimal with an optional
 //! exponent (`1.0E+01`), and must be finite.
 
-use crate::read::program::Diagnostic;
+use swarf_toolpath::program::Diagnostic;
 
 /// One field of a record.
 #[derive(Debug, Clone, PartialEq)]

@@ -29,8 +29,8 @@ use crate::read::comp_geometry::find_turn;
 use crate::read::feed::BlockFeed;
 use crate::read::modal::{Interpreter, Pos};
 use crate::read::motion::ArcMove;
-use crate::read::program::{Diagnostic, MotionKind};
 use crate::read::words::{Word, Words};
+use swarf_toolpath::program::{Diagnostic, MotionKind};
 
 mod arc;
 mod straight;

@@ -26,8 +26,8 @@
 use crate::read::codes::{Action, SpindleTurn};
 use crate::read::expr::integer;
 use crate::read::modal::{Interpreter, Pos};
-use crate::read::program::{Diagnostic, MotionKind};
 use crate::read::words::Words;
+use swarf_toolpath::program::{Diagnostic, MotionKind};
 
 /// Most holes one cycle block may make (`L`), and most pecks one hole may take.
 pub const MAX_CYCLE_STEPS: i64 = 1_000_000;

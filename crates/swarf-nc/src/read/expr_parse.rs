@@ -6,7 +6,7 @@
 
 use crate::read::expr::{Expr, Func, Op};
 use crate::read::lexer::Cursor;
-use crate::read::program::Diagnostic;
+use swarf_toolpath::program::Diagnostic;
 
 /// Deepest nesting of values (brackets, parameters of parameters, signs) in one
 /// expression. LinuxCNC's lines are at most 256 characters, which bounds its nesting

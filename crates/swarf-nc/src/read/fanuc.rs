@@ -22,10 +22,10 @@ use crate::read::expr::integer;
 use crate::read::flow::{Frame, MAX_CALL_DEPTH, Runner};
 use crate::read::lexer::{Statement, lex_line};
 use crate::read::modal::Flow;
-use crate::read::program::Diagnostic;
 use crate::read::statement::{FanucStatement, Label};
 use crate::read::words::Word;
 use std::collections::HashMap;
+use swarf_toolpath::program::Diagnostic;
 
 /// Fanuc's local variables: `#1` to `#33`.
 const LOCALS: usize = 33;

@@ -20,12 +20,12 @@
 use crate::read::lexer::{Line, Statement, Syntax, lex_line};
 use crate::read::modal::{Flow, Interpreter};
 use crate::read::oword::OState;
-use crate::read::program::Diagnostic;
 use crate::read::source::Source;
 use crate::read::statement::Label;
 use crate::read::words::Word;
 use std::collections::HashMap;
 use std::path::PathBuf;
+use swarf_toolpath::program::Diagnostic;
 
 mod comments;
 mod scope;

@@ -25,12 +25,12 @@ use crate::read::kinematics::{DEFAULT_KINEMATICS_TOL, Kinematics};
 use crate::read::lexer::{Syntax, lex_line};
 use crate::read::modal::{Interpreter, Setup};
 use crate::read::params::Params;
-use crate::read::program::{Diagnostic, Program};
 use crate::read::source::Source;
 use crate::read::tooltable::ToolTable;
 use std::path::{Path, PathBuf};
 use swarf_geom::Point3;
 use swarf_tool::Pose;
+use swarf_toolpath::program::{Diagnostic, Program};
 
 /// Options of the G-code reader.
 #[derive(Debug, Clone, Copy)]

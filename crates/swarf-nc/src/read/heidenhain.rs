@@ -28,7 +28,7 @@
 use crate::error::NcError;
 use crate::post::Language;
 use crate::read::gcode::{GcodeReadOptions, check_text, parse_gcode};
-use crate::read::program::{Diagnostic, Program};
+use swarf_toolpath::program::{Diagnostic, Program};
 
 /// Reads Heidenhain conversational text (module doc); `source` names it.
 ///

@@ -9,7 +9,7 @@
 //! the straight move in axis space, subdivided until the straight pieces between them
 //! are within a chordal tolerance of the curve; each piece becomes one straight motion
 //! (the tool axis turning between poses by spherical interpolation, see
-//! [`crate::read::program`]). The swarf-fiveaxis crate implements this trait for its
+//! [`swarf_toolpath::program`]). The swarf-fiveaxis crate implements this trait for its
 //! machine files (`swarf_fiveaxis::machine::reader`); this crate sits below it and sees
 //! only the trait.
 //!

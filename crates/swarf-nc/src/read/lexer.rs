@@ -21,8 +21,8 @@
 //! Columns are 1-based and count characters, as an editor shows them.
 
 use crate::read::expr::Expr;
-use crate::read::program::Diagnostic;
 use crate::read::statement::{Control, FanucStatement, control, fanuc_statement};
+use swarf_toolpath::program::Diagnostic;
 
 /// Which language the lexer reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

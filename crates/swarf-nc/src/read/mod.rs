@@ -41,7 +41,6 @@ pub mod offsets;
 pub mod oword;
 pub mod params;
 pub mod pose_csv;
-pub mod program;
 pub mod source;
 pub mod statement;
 pub mod tooltable;
@@ -54,7 +53,7 @@ pub use gcode::{GcodeReadOptions, parse_gcode};
 pub use kinematics::{AxisPosition, Kinematics};
 pub use params::parse_var_file;
 pub use pose_csv::parse_pose_csv;
-pub use program::{Diagnostic, Motion, MotionKind, Program, ToolUse};
+pub use swarf_toolpath::program::{Diagnostic, Motion, MotionKind, Program, ToolUse};
 pub use tooltable::{Tool, ToolTable};
 
 use crate::error::NcError;

@@ -34,12 +34,12 @@ use crate::read::cycle::CycleState;
 use crate::read::kinematics::DEFAULT_KINEMATICS_TOL;
 use crate::read::offsets::Offsets;
 use crate::read::params::Params;
-use crate::read::program::{Diagnostic, Motion};
 use crate::read::tooltable::ToolTable;
 use crate::read::warnings::Warnings;
 use crate::read::words::{Word, Words};
 use swarf_geom::units::MM_PER_INCH;
 use swarf_tool::Pose;
+use swarf_toolpath::program::{Diagnostic, Motion};
 
 mod queries;
 mod tools;
@@ -105,7 +105,7 @@ pub struct Interpreter<'k> {
     /// The tool the program cuts with now (noted at its first motion).
     cutting_tool: Option<u32>,
     /// Each tool the program cuts with, from its first motion.
-    pub(crate) tool_uses: Vec<crate::read::program::ToolUse>,
+    pub(crate) tool_uses: Vec<swarf_toolpath::program::ToolUse>,
     pub(crate) spindle: SpindleTurn,
     pub(crate) offsets: Offsets,
     pub(crate) cycle: CycleState,

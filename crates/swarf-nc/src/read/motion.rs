@@ -12,9 +12,9 @@ use crate::read::arc::{ArcRequest, CenterWords, Plane, arc_center};
 use crate::read::codes::Action;
 use crate::read::feed::BlockFeed;
 use crate::read::modal::{Interpreter, MAX_TURNS, Pos};
-use crate::read::program::{Diagnostic, MotionKind};
 use crate::read::words::Words;
 use swarf_geom::{Point3, Vec3};
+use swarf_toolpath::program::{Diagnostic, MotionKind};
 
 /// An arc in program coordinates, ready to emit.
 #[derive(Debug, Clone, Copy, PartialEq)]

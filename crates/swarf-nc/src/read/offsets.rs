@@ -23,8 +23,8 @@
 use crate::read::codes::Action;
 use crate::read::kinematics::AxisPosition;
 use crate::read::modal::{Interpreter, Pos};
-use crate::read::program::Diagnostic;
 use crate::read::words::Words;
+use swarf_toolpath::program::Diagnostic;
 
 mod group_zero;
 mod set_data;

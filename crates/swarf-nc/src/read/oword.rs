@@ -21,10 +21,10 @@
 //!   as LinuxCNC refuses it.
 
 use crate::read::flow::{Frame, MAX_CALL_DEPTH, Runner};
-use crate::read::program::Diagnostic;
 use crate::read::source::Source;
 use crate::read::statement::{Control, Keyword, Label};
 use std::collections::HashMap;
+use swarf_toolpath::program::Diagnostic;
 
 /// Subroutine arguments: `#1` to `#30`.
 pub const SUB_PARAMETERS: usize = 30;

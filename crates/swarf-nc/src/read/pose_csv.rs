@@ -16,11 +16,11 @@
 
 use crate::error::NcError;
 use crate::read::gcode::check_text;
-use crate::read::program::{Diagnostic, Motion, MotionKind, Program};
 use crate::read::warnings::Warnings;
 use swarf_geom::units::MM_PER_INCH;
 use swarf_geom::{Point3, Vec3};
 use swarf_tool::Pose;
+use swarf_toolpath::program::{Diagnostic, Motion, MotionKind, Program};
 
 /// Reads pose CSV text.
 ///

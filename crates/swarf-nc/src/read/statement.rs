@@ -11,8 +11,8 @@
 
 use crate::read::expr::Expr;
 use crate::read::lexer::{Assignment, Cursor, Syntax, assignment};
-use crate::read::program::Diagnostic;
 use std::fmt;
+use swarf_toolpath::program::Diagnostic;
 
 /// Most arguments an O-word call takes (#1 to #30).
 pub const MAX_CALL_ARGUMENTS: usize = 30;

@@ -2,8 +2,8 @@
 //! harmless unsupported word on every line gets the first few warnings about it and
 //! one summary with the count of the rest.
 
-use crate::read::program::Diagnostic;
 use std::collections::HashMap;
+use swarf_toolpath::program::Diagnostic;
 
 /// Warnings with the same message beyond this many are counted, not listed.
 pub const MAX_SIMILAR_WARNINGS: usize = 20;

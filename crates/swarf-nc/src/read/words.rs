@@ -9,8 +9,8 @@
 //! naming the machine's letters, and rotary words on an arc (G2/G3) are refused.
 
 use crate::read::codes::{Action, Effect, Group, g_code, m_code};
-use crate::read::program::Diagnostic;
 use crate::read::warnings::Warnings;
+use swarf_toolpath::program::Diagnostic;
 
 /// One word with its value evaluated: a letter and a number, with the column of
 /// the letter.

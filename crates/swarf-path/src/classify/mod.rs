@@ -40,9 +40,9 @@ mod board;
 mod regions;
 
 use crate::error::PathError;
-use crate::params::shown_degrees;
 use geo::MultiPolygon;
 use rayon::prelude::*;
+use swarf_geom::units::shown_degrees;
 use swarf_geom::{TriMesh, Vec3};
 
 /// Most cells the Go board may have: a finer cell over a larger part is refused

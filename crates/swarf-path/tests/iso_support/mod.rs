@@ -16,19 +16,114 @@ use moves::Moves;
 use rayon::prelude::*;
 use swarf_geom::math::point_segment_distance;
 use swarf_geom::{Part, Patch, Point3, Vec3};
-use swarf_path::Plan;
+use swarf_path::strategy::iso::planar::{self, IsoPlanarParams};
+use swarf_path::strategy::iso::{IsoParams, parametric, scallop};
+use swarf_path::{Cutting, Finish, PathError, Plan};
 use swarf_tool::Cutter;
 use swarf_toolpath::Pass;
 
 #[allow(unused_imports)]
 pub use swarf_testkit::parts::wave;
 
+/// An iso strategy's parameters.
+#[derive(Debug, Clone)]
+pub enum Iso {
+    /// Iso-parametric.
+    Parametric(IsoParams),
+    /// Iso-planar.
+    Planar(IsoPlanarParams),
+    /// Iso-scallop.
+    Scallop(IsoParams),
+}
+
+impl Iso {
+    /// The iso strategy `kind` with the parameters of its strategy `table` (TOML,
+    /// without `kind`), checked for `tool`.
+    ///
+    /// # Errors
+    /// The table's or the check's message.
+    pub fn parse(kind: &str, table: &str, tool: &Cutter) -> Result<Iso, String> {
+        let iso = match kind {
+            "iso-parametric" => Iso::Parametric(toml::from_str(table).map_err(|e| e.to_string())?),
+            "iso-planar" => Iso::Planar(toml::from_str(table).map_err(|e| e.to_string())?),
+            "iso-scallop" => Iso::Scallop(toml::from_str(table).map_err(|e| e.to_string())?),
+            other => return Err(format!("not an iso strategy: {other}")),
+        };
+        iso.validate(tool).map_err(|e| e.to_string())?;
+        Ok(iso)
+    }
+
+    /// Checks the parameters for `tool`.
+    ///
+    /// # Errors
+    /// The field and what was expected.
+    pub fn validate(&self, tool: &Cutter) -> Result<(), PathError> {
+        match self {
+            Iso::Parametric(p) | Iso::Scallop(p) => p.validate(tool),
+            Iso::Planar(p) => p.validate(tool),
+        }
+    }
+
+    /// The scallop limit.
+    pub fn scallop_mut(&mut self) -> &mut Option<f64> {
+        match self {
+            Iso::Parametric(p) | Iso::Scallop(p) => &mut p.scallop,
+            Iso::Planar(p) => &mut p.scallop,
+        }
+    }
+
+    /// The tolerance and zigzag.
+    pub fn finish_mut(&mut self) -> &mut Finish {
+        match self {
+            Iso::Parametric(p) | Iso::Scallop(p) => &mut p.finish,
+            Iso::Planar(p) => &mut p.finish,
+        }
+    }
+}
+
+/// An iso strategy with the cutting it is planned with.
+#[derive(Debug, Clone)]
+pub struct IsoJob {
+    /// The cutter.
+    pub tool: Cutter,
+    /// Tool, feeds (300 mm/min, 1500 rev/min), linking.
+    pub cut: Cutting,
+    /// The strategy.
+    pub iso: Iso,
+}
+
+impl IsoJob {
+    /// Plans the strategy on `part`.
+    ///
+    /// # Errors
+    /// The strategy's.
+    pub fn plan(&self, part: &Part) -> Result<Plan, PathError> {
+        match &self.iso {
+            Iso::Parametric(p) => parametric::plan(part, &self.cut, p),
+            Iso::Planar(p) => planar::plan(part, &self.cut, p),
+            Iso::Scallop(p) => scallop::plan(part, &self.cut, p),
+        }
+    }
+}
+
+/// The iso strategy `kind` with `tool` (a spec) and the strategy `table`.
+pub fn iso_job(kind: &str, tool: &str, table: &str) -> IsoJob {
+    let tool: Cutter = tool.parse().expect("a cutter spec");
+    let iso = Iso::parse(kind, table, &tool).expect("a good strategy table");
+    IsoJob {
+        tool,
+        cut: Cutting::new(tool),
+        iso,
+    }
+}
+
 /// A job on wave for `kind` with scallop `h` and tolerance `tol`, ball d = 8.
-pub fn wave_job(kind: &str, h: f64, tol: f64) -> swarf_app::Job {
-    let text = format!(
-        "part = \"builtin:wave\"\ntool = \"ball:d=8\"\n[strategy]\nkind = \"{kind}\"\nscallop = {h}\ntolerance = {tol}\n[feeds]\nfeed = 300\nspindle = 1500\n"
-    );
-    swarf_app::Job::parse(&text, "test job").expect("valid job")
+pub fn wave_job(kind: &str, h: f64, tol: f64) -> IsoJob {
+    iso_job(
+        kind,
+        "ball:d=8",
+        &format!("scallop = {h}\ntolerance = {tol}\n"),
+    )
 }
 
 /// How far along the normal the oracle looks for the tool, in ball radii: material

@@ -22,9 +22,9 @@ use crate::error::ReportError;
 use glb::Glb;
 pub use stock::{StockMesh, StockMeshOptions};
 use swarf_geom::TriMesh;
-use swarf_nc::read::Motion;
 use swarf_sim::Verification;
 use swarf_tool::{Cutter, Pose};
+use swarf_toolpath::Motion;
 
 /// The bytes of `glb`, refused when the file would pass the GLB format's 4 GiB.
 fn finish(glb: &Glb, what: &str) -> Result<Vec<u8>, ReportError> {

@@ -8,7 +8,7 @@
 //! every other feed move is a cut. Arcs are drawn as [`ARC_CHORDS`] chords each.
 
 use super::glb::{Glb, LINES, linear};
-use swarf_nc::read::{Motion, MotionKind};
+use swarf_toolpath::{Motion, MotionKind};
 
 /// Chords per arc motion.
 pub const ARC_CHORDS: usize = 32;

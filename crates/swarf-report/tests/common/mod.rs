@@ -1,8 +1,8 @@
 //! Test programs shared by the report tests.
 
 use swarf_geom::Point3;
-use swarf_nc::read::{Motion, MotionKind, Program};
 use swarf_tool::Pose;
+use swarf_toolpath::{Motion, MotionKind, Program};
 
 /// Appends straight motions of a vertical tool from `at` through `points` (each with
 /// its kind) at 300 mm/min, one source line each; `at` ends at the last point.

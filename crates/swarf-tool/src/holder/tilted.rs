@@ -155,9 +155,9 @@ impl<'m> Views<'m> {
 
 /// The shortest stick-out that clears every one of `poses`, whatever their axes
 /// ([`super::vertical`]'s rule in each pose's own frame: the holder's needs at
-/// every pose, then the shank bared to the largest): the poses `vertical` says are
-/// on `dropper` (the mesh as it is), the others in their views. Pose indices are
-/// into `poses`.
+/// every pose, then the shank bared to the largest): vertical poses
+/// ([`Pose::is_vertical`]) on `dropper` (the mesh as it is), the others in their
+/// views. Pose indices are into `poses`.
 ///
 /// # Errors
 /// A shank or holder segment outside the domain of tools.
@@ -166,11 +166,10 @@ pub fn shortest_stick_out_posed(
     dropper: &MeshDropper,
     views: &mut Views<'_>,
     poses: &[Pose],
-    vertical: impl Fn(&Vec3) -> bool,
 ) -> Result<StickOut, ToolError> {
     let mut scratch = DropScratch::default();
     let mut at = |pieces: &Prepared, pose: &Pose, views: &mut Views<'_>| {
-        if vertical(&pose.axis) {
+        if pose.is_vertical() {
             pieces.clearance(dropper, &pose.cl, &mut scratch)
         } else {
             views

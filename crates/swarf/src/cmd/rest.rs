@@ -4,9 +4,9 @@
 
 use anyhow::Result;
 use std::path::PathBuf;
-use swarf_app::job::RestSource;
 use swarf_app::rest::{RestRequest, rest_request};
 use swarf_rest::RegionParams;
+use swarf_rest::RestSource;
 
 /// Arguments of `swarf rest`.
 #[derive(clap::Args)]

@@ -9,7 +9,9 @@ use crate::progress::Bars;
 use anyhow::{Result, bail};
 use std::path::{Path, PathBuf};
 use swarf_app::holder;
-use swarf_app::verify::{GcodeSetup, SimSettings, VerifyRequest, verify_request_with};
+use swarf_app::verify::{
+    Deviation, GcodeSetup, SimSettings, StockChoice, VerifyRequest, verify_request_with,
+};
 use swarf_sim::report::text_summary;
 
 /// Arguments of `swarf verify`.
@@ -115,7 +117,7 @@ impl GcodeArgs {
 pub struct SimArgs {
     /// Stock: box, box:TOP, offset:ALLOWANCE (mm above the design) or a mesh file.
     #[arg(long, default_value = "offset:0.5")]
-    stock: String,
+    stock: StockChoice,
     /// Cell size, mm (default: 5 x the tolerance).
     #[arg(long)]
     cell: Option<f64>,
@@ -143,8 +145,8 @@ pub struct SimArgs {
     pub partial: bool,
     /// How deviation is measured: `vertical` (along z) or `normal` (along the design
     /// normals, "mow the grass"; the scallop height of paper 004; the default).
-    #[arg(long, value_parser = ["vertical", "normal"])]
-    deviation: Option<String>,
+    #[arg(long)]
+    deviation: Option<Deviation>,
 }
 
 impl SimArgs {
@@ -158,7 +160,7 @@ impl SimArgs {
             rapid: self.rapid,
             sample_tol: self.sample_tol,
             max_memory: self.max_memory,
-            deviation: self.deviation.clone(),
+            deviation: self.deviation,
         }
     }
 }
@@ -272,7 +274,7 @@ mod tests {
     /// The command's defaults, with 0.05 mm cells.
     fn sim_args() -> SimArgs {
         SimArgs {
-            stock: "offset:0.5".into(),
+            stock: StockChoice::Offset { allowance: 0.5 },
             cell: Some(0.05),
             tol: None,
             scallop: None,

@@ -9,8 +9,8 @@ use crate::read::comp_geometry::{arc_to_arc_corner, find_turn, inside, line_to_a
 use crate::read::expr::TOLERANCE_EQUAL;
 use crate::read::feed::BlockFeed;
 use crate::read::modal::{Interpreter, Pos};
-use crate::read::program::Diagnostic;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use swarf_toolpath::program::Diagnostic;
 
 use super::{CORNER_SLACK, Queued, with_xy, with_z};
 

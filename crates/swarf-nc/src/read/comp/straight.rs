@@ -5,8 +5,8 @@
 use crate::read::comp_geometry::{arc_to_line_corner, inside, line_to_line_corner};
 use crate::read::feed::BlockFeed;
 use crate::read::modal::{Interpreter, Pos};
-use crate::read::program::{Diagnostic, MotionKind};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use swarf_toolpath::program::{Diagnostic, MotionKind};
 
 use super::{CORNER_SLACK, Queued, with_xy, with_z};
 

@@ -6,7 +6,7 @@ use super::Runner;
 use crate::read::expr::{Expr, ParamSource, integer};
 use crate::read::lexer::{Assignment, Target};
 use crate::read::params::{PARAMETER_COUNT, is_read_only};
-use crate::read::program::Diagnostic;
+use swarf_toolpath::program::Diagnostic;
 
 impl Runner<'_> {
     /// The value of an expression with the parameters as they are now.

@@ -3,8 +3,8 @@
 
 use super::{Interpreter, Pos, whole};
 use crate::read::codes::Action;
-use crate::read::program::{Diagnostic, ToolUse};
 use crate::read::words::{Word, Words};
+use swarf_toolpath::program::{Diagnostic, ToolUse};
 
 impl Interpreter<'_> {
     /// M6, M61, M3/M4/M5.

@@ -4,8 +4,8 @@
 use super::{minus, plus, rotate};
 use crate::read::codes::Action;
 use crate::read::modal::Interpreter;
-use crate::read::program::{Diagnostic, MotionKind};
 use crate::read::words::Words;
+use swarf_toolpath::program::{Diagnostic, MotionKind};
 
 impl Interpreter<'_> {
     /// The non-modal codes of group 0 that change offsets or move: G10, G28, G30,

@@ -3,8 +3,8 @@
 
 use super::{minus, plus, rotate, system_base};
 use crate::read::modal::Interpreter;
-use crate::read::program::Diagnostic;
 use crate::read::words::Words;
+use swarf_toolpath::program::Diagnostic;
 
 impl Interpreter<'_> {
     /// G10: L1 (tool table), L2 and L20 (coordinate systems).
