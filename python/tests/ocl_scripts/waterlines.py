@@ -26,15 +26,16 @@ for cutter, levels in [(ocl.CylCutter(2, 20), [5.1]), (ocl.BallCutter(2, 20), [4
             print("loop")
             for point in loop:
                 print("G01 " + xyz(point))
-    print("AdaptiveWaterline", cutter, "z =", 4.0)
-    awl = ocl.AdaptiveWaterline()
-    awl.setSTL(surface)
-    awl.setCutter(cutter)
-    awl.setZ(4.0)
-    awl.setSampling(0.1)
-    awl.setMinSampling(0.02)
-    awl.run()
-    for loop in awl.getLoops():
-        print("loop")
-        for point in loop:
-            print("G01 " + xyz(point))
+cutter = ocl.CylCutter(2, 20)
+print("AdaptiveWaterline", cutter, "z =", 4.0)
+awl = ocl.AdaptiveWaterline()
+awl.setSTL(surface)
+awl.setCutter(cutter)
+awl.setZ(4.0)
+awl.setSampling(0.5)
+awl.setMinSampling(0.05)
+awl.run()
+for loop in awl.getLoops():
+    print("loop")
+    for point in loop:
+        print("G01 " + xyz(point))
