@@ -12,13 +12,12 @@ use swarf_fiveaxis::gouge::{GougeOptions, check_pass};
 use swarf_fiveaxis::positioning::{Positioning, position};
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
-use swarf_geom::{Part, Point3};
+use swarf_geom::Point3;
 use swarf_nc::read::{Motion, MotionKind};
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, SimTool, StockInit, simulate};
 use swarf_testkit::die_cc;
 use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
-use swarf_toolpath::Contact;
 
 /// Gouge tolerance, mm.
 const TOL: f64 = 0.01;
