@@ -17,7 +17,6 @@
 
 use crate::error::Result;
 use crate::job::Job;
-use crate::plan::{PlanInput, plan};
 use swarf_fiveaxis::FiveAxisError;
 use swarf_fiveaxis::cc_paths::{cc_paths, linking};
 use swarf_fiveaxis::machine::{Machine, MachineKind};
@@ -26,20 +25,10 @@ use swarf_fiveaxis::post::{Post5x, PostOptions, post_5x};
 use swarf_geom::Part;
 use swarf_nc::Post;
 use swarf_path::Plan;
-use swarf_toolpath::{Contact, Toolpath};
+use swarf_toolpath::Toolpath;
 
 #[cfg(doc)]
 use swarf_fiveaxis::machine::load_machine;
-
-/// The CC paths of `job`'s 3-axis plan on `part` ([`cc_paths`] of its passes): what
-/// [`position_plan`] positions, for callers that position them themselves.
-///
-/// # Errors
-/// The planning errors of [`plan()`].
-pub fn planned_cc_paths(job: &Job, part: &Part) -> Result<Vec<Vec<Contact>>> {
-    let plan = plan(job, PlanInput::Part(part))?;
-    Ok(cc_paths(&plan.toolpath))
-}
 
 /// Positions the planned passes of `plan` as `job.positioning` asks (module doc) and
 /// relinks them; `None` (and `plan` untouched) for a job without positioning.
@@ -147,7 +136,7 @@ mod tests {
             "job.toml",
         )
         .unwrap();
-        let plan = crate::plan::plan(&job, PlanInput::Part(&part)).unwrap();
+        let plan = crate::plan::plan(&job, crate::plan::PlanInput::Part(&part)).unwrap();
         let lifted: Vec<_> = plan
             .toolpath
             .passes

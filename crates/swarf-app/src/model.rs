@@ -5,7 +5,7 @@ use crate::error::{Result, bail};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use swarf_geom::{Part, TriMesh};
-use swarf_io::CadOptions;
+use swarf_io::{CadOptions, Source};
 
 /// A face as a job names it: its index (as `swarf inspect` lists it) or its name in
 /// the CAD file.
@@ -159,12 +159,14 @@ fn read_model(arg: &str, cad: &CadOptions) -> Result<Model> {
     let known = |name: &str| {
         swarf_io::builtin_part(name).is_some() || swarf_io::builtin_mesh(name).is_some()
     };
-    if is_file && !arg.starts_with("builtin:") && known(arg) {
+    let prefixed = match Source::parse(arg, Path::new("")) {
+        Source::Builtin(name) => Some(name),
+        Source::File(_) => None,
+    };
+    if is_file && prefixed.is_none() && known(arg) {
         eprintln!("note: {arg}: reading the file {arg}; write builtin:{arg} for the built-in part");
     }
-    let builtin = arg
-        .strip_prefix("builtin:")
-        .or_else(|| (!is_file && (known(arg) || !path.exists())).then_some(arg));
+    let builtin = prefixed.or_else(|| (!is_file && (known(arg) || !path.exists())).then_some(arg));
     if let Some(name) = builtin {
         if let Some(part) = swarf_io::builtin_part(name) {
             return Ok(Model::Patches(part));
@@ -173,7 +175,7 @@ fn read_model(arg: &str, cad: &CadOptions) -> Result<Model> {
             let name = name.strip_suffix(".stl").unwrap_or(name).to_string();
             return Ok(Model::Mesh { name, mesh });
         }
-        if arg.starts_with("builtin:") || path.extension().is_none() {
+        if prefixed.is_some() || path.extension().is_none() {
             bail!(
                 "{}: no such file and no built-in part of that name (built-in parts: {})",
                 swarf_geom::domain::excerpt(arg, 200),

@@ -22,6 +22,7 @@ use swarf_fiveaxis::machine::{Machine, load_machine};
 use swarf_fiveaxis::positioning::{Positioning, PositioningReport};
 use swarf_geom::TriMesh;
 use swarf_geom::domain::excerpt;
+use swarf_io::Source;
 use swarf_nc::read::GcodeReadOptions;
 use swarf_nc::{GcodeOptions, Post};
 use swarf_path::Plan;
@@ -267,10 +268,9 @@ fn cleanup_outputs(
 /// The job's part as a `load_model` argument: built-in or absolute as given, else
 /// relative to the job's directory.
 pub fn part_arg(job: &Job, job_dir: &Path) -> String {
-    if job.part.starts_with("builtin:") || Path::new(&job.part).is_absolute() {
-        job.part.clone()
-    } else {
-        job_dir.join(&job.part).display().to_string()
+    match Source::parse(&job.part, job_dir) {
+        Source::Builtin(_) => job.part.clone(),
+        Source::File(path) => path.display().to_string(),
     }
 }
 

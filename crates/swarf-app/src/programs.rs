@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use swarf_fiveaxis::machine::reader::MachineKinematics;
 use swarf_fiveaxis::machine::{Machine, MachineKind, load_machine};
 use swarf_geom::domain::excerpt;
+use swarf_io::Source;
 use swarf_nc::Language;
 use swarf_nc::read::{
     GcodeReadOptions, Program, ProgramFormat, ToolTable, parse_var_file, read_program_with,
@@ -236,7 +237,7 @@ pub fn read_with_machine(
 /// # Errors
 /// A file that cannot be read or parsed; an unknown built-in name.
 pub fn machine_arg(spec: &str) -> Result<Machine> {
-    if spec.starts_with("builtin:") {
+    if let Source::Builtin(_) = Source::parse(spec, Path::new("")) {
         return Ok(load_machine(spec, Path::new(""))?);
     }
     let text = swarf_io::read_input_text(Path::new(spec))

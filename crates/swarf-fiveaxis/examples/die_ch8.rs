@@ -6,8 +6,6 @@
 //! `machines/xyzac-trunnion.toml`, as APT CL, and its machined surface as STL.
 
 use std::time::Instant;
-use swarf_app::Job;
-use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, pose_gouge};
 use swarf_fiveaxis::machine::Machine;
@@ -16,10 +14,10 @@ use swarf_fiveaxis::post::{PostOptions, write_gcode_5x};
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
 use swarf_fiveaxis::{CurveOptions, incline_pass};
-use swarf_geom::Part;
+use swarf_testkit::die_cc;
 use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
-use swarf_toolpath::{Contact, Feeds, Linking, Pass, Toolpath};
+use swarf_toolpath::{Feeds, Linking, Pass, Toolpath};
 
 fn show(name: &str, r: &PositioningReport, secs: f64) {
     let worst = r.gouges.first();
@@ -179,15 +177,4 @@ fn write_outputs(dir: &std::path::Path, cutter: &Cutter, passes: Vec<Pass>) {
     .expect("stl");
     out.commit().expect("stl");
     println!("wrote {}", dir.display());
-}
-
-/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
-/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
-fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
-    let text = format!(
-        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
-         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
-    );
-    let job = Job::parse(&text, "die job").expect("job");
-    planned_cc_paths(&job, part).expect("CC paths")
 }

@@ -6,20 +6,18 @@
 //! gouged lies under a pose that the sectioning check flagged.
 
 use std::time::Instant;
-use swarf_app::Job;
-use swarf_app::five_axis::planned_cc_paths;
 use swarf_fiveaxis::CurveOptions;
 use swarf_fiveaxis::design::DesignSurface;
 use swarf_fiveaxis::gouge::{GougeOptions, check_pass};
 use swarf_fiveaxis::positioning::{Positioning, position};
 use swarf_fiveaxis::sections::Sections;
 use swarf_fiveaxis::swept::SweptSurface;
-use swarf_geom::{Part, Point3};
+use swarf_geom::Point3;
 use swarf_nc::read::{Motion, MotionKind};
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, SimTool, StockInit, simulate};
+use swarf_testkit::die_cc;
 use swarf_tool::ProfileTable;
 use swarf_tool::{Cutter, Pose};
-use swarf_toolpath::Contact;
 
 /// Gouge tolerance, mm.
 const TOL: f64 = 0.01;
@@ -203,15 +201,4 @@ fn compare(r: &Run<'_>, x: f64) {
          dexel deepest below design {gouge:.4} mm, {gouged} cells gouged, {unflagged} of them \
          under no flagged pose; dexel {t_dx:.2} s"
     );
-}
-
-/// CC paths on the die: iso-planar at `angle` degrees off X, a fixed cross feed of
-/// `stepover` mm and the chordal tolerance `tol` mm, for `tool`.
-fn die_cc(part: &Part, tool: &str, angle: f64, stepover: f64, tol: f64) -> Vec<Vec<Contact>> {
-    let text = format!(
-        "part = \"builtin:die\"\ntool = \"{tool}\"\n[strategy]\nkind = \"iso-planar\"\n\
-         stepover = {stepover}\ntolerance = {tol}\nangle = {angle}\n"
-    );
-    let job = Job::parse(&text, "die job").expect("job");
-    planned_cc_paths(&job, part).expect("CC paths")
 }

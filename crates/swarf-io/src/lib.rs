@@ -9,6 +9,7 @@
 //! - [`step`]: STEP (ISO 10303-21) B-rep parts as trimmed NURBS faces;
 //! - [`iges`]: IGES 5.3 trimmed NURBS faces ([`cad`] options and result, and
 //!   [`read_cad`], which picks the reader by the file's extension);
+//! - [`source`]: `builtin:NAME` or a file, for parts, machines and posts;
 //! - [`csv`]: numeric point lists; [`json`]: JSON whose numbers are all finite;
 //! - [`atomic`], [`output_set`]: writes that never leave a half-written file, or a
 //!   mix of two runs' files, behind.
@@ -31,6 +32,7 @@ pub mod obj;
 pub mod output_set;
 pub mod part;
 pub mod rest_parts;
+pub mod source;
 pub mod step;
 pub mod stl;
 
@@ -47,6 +49,7 @@ pub use obj::{parse_obj, read_obj};
 pub use output_set::OutputSet;
 pub use part::{parse_part, read_part};
 pub use rest_parts::{MESH_PART_CHORD, builtin_mesh, builtin_mesh_names};
+pub use source::{BUILTIN_PREFIX, Source};
 pub use step::{parse_step, read_step};
 pub use stl::{parse_stl, read_stl, write_stl};
 

@@ -42,6 +42,7 @@ use crate::error::NcError;
 use crate::number::Units;
 use serde::Deserialize;
 use std::path::Path;
+use swarf_io::Source;
 
 /// The built-in posts, by name: the text of `crates/swarf-nc/posts/NAME.toml`.
 pub const BUILTIN_POSTS: [(&str, &str); 5] = [
@@ -273,16 +274,18 @@ impl Post {
         Post::parse(text, &format!("{name}.toml (built in)"))
     }
 
-    /// The post `spec` names: a built-in name, or a post file (`.toml`), relative to
-    /// `dir` unless absolute.
+    /// The post `spec` names: a built-in name (`builtin:NAME`, or the bare name when
+    /// it does not end in `.toml`), or a post file (`.toml`), relative to `dir` unless
+    /// absolute.
     ///
     /// # Errors
     /// As [`Post::builtin`] and [`Post::parse`]; a file that cannot be read.
     pub fn load(spec: &str, dir: &Path) -> Result<Post, NcError> {
-        if !spec.ends_with(".toml") {
-            return Post::builtin(spec);
-        }
-        let path = dir.join(spec);
+        let path = match Source::parse(spec, dir) {
+            Source::Builtin(name) => return Post::builtin(name),
+            Source::File(_) if !spec.ends_with(".toml") => return Post::builtin(spec),
+            Source::File(path) => path,
+        };
         let text = swarf_io::read_input_text(&path).map_err(|e| NcError::Post {
             file: path.display().to_string(),
             field: "post".into(),

@@ -123,18 +123,19 @@ fn locate(path: &serde_path_to_error::Path, message: &str) -> Located {
         .collect();
     let mut message = message.trim().to_string();
     let in_strategy = matches!(keys.last(), Some(Key::Name(n)) if n == "strategy");
-    if in_strategy && let Some((field, rest)) = message.split_once(": ") {
-        if is_field_path(field) {
-            // Further lines name further fields of the table: placed as the first.
-            let table = dotted(&keys);
-            let mut lines = rest.split('\n');
-            let mut placed = lines.next().unwrap_or_default().to_string();
-            for line in lines {
-                placed += &format!("; {table}.{line}");
-            }
-            keys.extend(field_keys(field));
-            message = placed;
+    if in_strategy
+        && let Some((field, rest)) = message.split_once(": ")
+        && is_field_path(field)
+    {
+        // Further lines name further fields of the table: placed as the first.
+        let table = dotted(&keys);
+        let mut lines = rest.split('\n');
+        let mut placed = lines.next().unwrap_or_default().to_string();
+        for line in lines {
+            placed += &format!("; {table}.{line}");
         }
+        keys.extend(field_keys(field));
+        message = placed;
     }
     Located {
         path: keys,

@@ -5,7 +5,7 @@
 //! checks and its plan.
 //!
 //! Adding a strategy is its kernel's parameter struct and plan, one file here with
-//! its [`Kind`] impl, and one line in the [`strategies!`] list: the enum, its file
+//! its [`Kind`] impl, and one line in the `strategies!` list: the enum, its file
 //! syntax (`kind = "..."` and the table's fields, unknown fields refused with the
 //! kinds that take them), its schema and every dispatch follow from the list.
 //!

@@ -4,6 +4,7 @@
 use super::Machine;
 use crate::error::FiveAxisError;
 use std::path::Path;
+use swarf_io::Source;
 
 /// The machine files shipped with swarf (`machines/*.toml`), by built-in name.
 pub const BUILTIN_MACHINES: [(&str, &str); 3] = [
@@ -28,21 +29,23 @@ pub const BUILTIN_MACHINES: [(&str, &str); 3] = [
 /// [`FiveAxisError::Machine`] for an unknown built-in name, a file that cannot be
 /// read, or a machine file that does not parse (with its line and field).
 pub fn load_machine(spec: &str, job_dir: &Path) -> Result<Machine, FiveAxisError> {
-    if let Some(name) = spec.strip_prefix("builtin:") {
-        let name = name.strip_suffix(".toml").unwrap_or(name);
-        let Some((_, text)) = BUILTIN_MACHINES.iter().find(|(n, _)| *n == name) else {
-            let names: Vec<_> = BUILTIN_MACHINES.iter().map(|(n, _)| *n).collect();
-            return Err(FiveAxisError::Machine {
-                file: spec.to_string(),
-                message: format!(
-                    "no built-in machine of that name (built-in machines: {})",
-                    names.join(", ")
-                ),
-            });
-        };
-        return Machine::parse(text, &format!("{name}.toml (built in)"));
-    }
-    let path = job_dir.join(spec);
+    let path = match Source::parse(spec, job_dir) {
+        Source::File(path) => path,
+        Source::Builtin(name) => {
+            let name = name.strip_suffix(".toml").unwrap_or(name);
+            let Some((_, text)) = BUILTIN_MACHINES.iter().find(|(n, _)| *n == name) else {
+                let names: Vec<_> = BUILTIN_MACHINES.iter().map(|(n, _)| *n).collect();
+                return Err(FiveAxisError::Machine {
+                    file: spec.to_string(),
+                    message: format!(
+                        "no built-in machine of that name (built-in machines: {})",
+                        names.join(", ")
+                    ),
+                });
+            };
+            return Machine::parse(text, &format!("{name}.toml (built in)"));
+        }
+    };
     let text = swarf_io::read_input_text(&path).map_err(|e| FiveAxisError::Machine {
         file: path.display().to_string(),
         message: format!("cannot read the machine file (output.machine): {e}"),
