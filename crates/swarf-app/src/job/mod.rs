@@ -222,7 +222,13 @@ impl Job {
         };
         read::from_text::<ToolFirst>(text).map_err(|e| err(e.in_file()))?;
         let file: JobFile = read::from_text(text).map_err(|e| err(e.in_file()))?;
-        file.resolve(dir).map_err(err)
+        file.resolve(dir).map_err(|m| {
+            err(if m.starts_with("tool: ") {
+                read::at_key_line(text, "tool", m)
+            } else {
+                m
+            })
+        })
     }
 
     /// A job from a value in the job file's schema (a Python dict turned into TOML
