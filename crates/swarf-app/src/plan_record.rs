@@ -1,6 +1,6 @@
 //! The plan record: what a plan knows that a verification of its program needs,
 //! written beside every program swarf writes (`part.ngc`, `part.cl`, `part.csv`
-//! share `part.plan.json`) and read back by `swarf verify` and `swarf view` for
+//! share `part.record.json`) and read back by `swarf verify` and `swarf view` for
 //! G-code, APT CL and pose CSV alike. Its fields are the defaults of those commands
 //! (flags given override them): the tools with their numbers, each operation's
 //! planned scallop (the excess allowance) and tolerance, the machine and the post.
@@ -21,7 +21,7 @@ pub const FORMAT: &str = "swarf plan record";
 /// The record's version.
 pub const VERSION: u32 = 1;
 /// The record's extension, after the program's stem.
-pub const EXTENSION: &str = "plan.json";
+pub const EXTENSION: &str = "record.json";
 
 /// A plan record (module doc).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -242,10 +242,10 @@ mod tests {
         .unwrap();
         let e = read_record(&program).unwrap_err().to_string();
         assert!(
-            e.contains("a.plan.json") && e.contains("version: 99"),
+            e.contains("a.record.json") && e.contains("version: 99"),
             "{e}"
         );
         std::fs::remove_dir_all(&dir).ok();
-        assert_eq!(record_name("out/part.ngc"), "out/part.plan.json");
+        assert_eq!(record_name("out/part.ngc"), "out/part.record.json");
     }
 }

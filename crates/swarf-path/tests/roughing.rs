@@ -156,11 +156,13 @@ fn ribs_standing_in_a_larger_box_are_islands() {
 fn rough(case: &Case, adaptive: bool) -> Run {
     let mesh = swarf_io::builtin_mesh(case.part).unwrap();
     let tool = Cutter::flat(10.0, None).unwrap();
-    let mut params = RoughingParams::default();
-    params.step_down = 4.0;
-    params.allowance = 0.5;
-    params.max_engagement = 60f64.to_radians();
-    params.adaptive = adaptive;
+    let params = RoughingParams {
+        step_down: 4.0,
+        allowance: 0.5,
+        max_engagement: 60f64.to_radians(),
+        adaptive,
+        ..RoughingParams::default()
+    };
     let (lo, hi, top) = (case.min, case.max, case.top);
     let box_top = |x: f64, y: f64| {
         if (lo[0]..=hi[0]).contains(&x) && (lo[1]..=hi[1]).contains(&y) {

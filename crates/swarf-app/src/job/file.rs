@@ -15,6 +15,16 @@ use swarf_tool::Cutter;
 use swarf_tool::library::{LibraryTool, ToolLibrary};
 use swarf_toolpath::{Feeds, LinkingSpec};
 
+/// The tool of a job file alone, read before the rest: the strategy's domains
+/// depend on it (a stepover below the diameter), so a bad tool is the error to
+/// report, whatever else the file holds.
+#[derive(Deserialize)]
+pub(super) struct ToolFirst {
+    /// As [`JobFile::tool`]: only its errors are wanted.
+    #[serde(default, rename = "tool")]
+    _tool: Option<ToolRef>,
+}
+
 /// A job file (module doc of [`crate::job`]).
 #[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]

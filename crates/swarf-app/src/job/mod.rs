@@ -99,6 +99,7 @@ pub(crate) mod file;
 pub(crate) mod read;
 mod validate;
 
+use file::ToolFirst;
 pub use file::{FeedsSpec, JobFile, ToolRef};
 pub(crate) use validate::{check_arcs, output_file};
 
@@ -219,8 +220,15 @@ impl Job {
             file: source.to_string(),
             message,
         };
+        read::from_text::<ToolFirst>(text).map_err(|e| err(e.in_file()))?;
         let file: JobFile = read::from_text(text).map_err(|e| err(e.in_file()))?;
-        file.resolve(dir).map_err(err)
+        file.resolve(dir).map_err(|m| {
+            err(if m.starts_with("tool: ") {
+                read::at_key_line(text, "tool", m)
+            } else {
+                m
+            })
+        })
     }
 
     /// A job from a value in the job file's schema (a Python dict turned into TOML
@@ -239,6 +247,7 @@ impl Job {
             file: source.to_string(),
             message,
         };
+        read::from_value::<ToolFirst>(value.clone()).map_err(|e| err(e.in_value()))?;
         let file: JobFile = read::from_value(value).map_err(|e| err(e.in_value()))?;
         file.resolve(dir).map_err(err)
     }

@@ -172,6 +172,18 @@ fn field_keys(path: &str) -> Vec<Key> {
     keys
 }
 
+/// `message`, about the top-level `key` of the document `text`, with the key's line
+/// in front (`line 4: tool: ...`) when the key is there.
+pub(crate) fn at_key_line(text: &str, key: &str, message: String) -> String {
+    let at = DeTable::parse(text)
+        .ok()
+        .and_then(|d| key_span(d.get_ref(), &[Key::Name(key.to_string())]));
+    match at {
+        Some(a) => format!("line {}: {message}", swarf_geom::domain::line_of(text, a)),
+        None => message,
+    }
+}
+
 /// The byte offset of the deepest key of `path` found in `doc`.
 fn key_span(doc: &DeTable<'_>, path: &[Key]) -> Option<usize> {
     let mut table = doc;

@@ -1,7 +1,7 @@
 //! The iso strategies on parametric patches (paper 004): passes along
 //! constant-parameter curves ([`parametric`]), sections by vertical drive planes
 //! ([`planar`]), and passes placed so that the scallop between neighbours is the
-//! limit ([`scallop`]); what they share ([`setup`]: parameters, side steps, gouge
+//! limit ([`scallop`]); what they share (`setup`: parameters, side steps, gouge
 //! check, ordering; boundary passes along the edges; clipping to trimmed faces), and
 //! the least number of passes any family needs ([`pass_bound`]).
 
