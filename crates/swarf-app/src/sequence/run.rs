@@ -334,7 +334,7 @@ fn gcode_options(op: &Operation, post: &swarf_nc::Post, seq: &Sequence) -> swarf
 
 fn section_comment(op: &Operation) -> String {
     format!(
-        "operation {}: {:?} with {}",
+        "operation {}: {} with {}",
         op.name,
         op.job.strategy.name(),
         op.job.tool

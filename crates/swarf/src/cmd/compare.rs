@@ -24,7 +24,12 @@ pub struct Args {
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
     let mut out = Outputs::new(&args.out);
-    let (rows, five) = compare_all(&args.jobs, &args.sim.settings(), &mut out, &Bars::default())?;
+    let (rows, five) = compare_all(
+        &args.jobs,
+        &args.sim.settings()?,
+        &mut out,
+        &Bars::default(),
+    )?;
     let stopped: Vec<&str> = rows
         .iter()
         .filter(|r| r.incomplete)

@@ -9,9 +9,7 @@ use crate::progress::Bars;
 use anyhow::{Result, bail};
 use std::path::{Path, PathBuf};
 use swarf_app::holder;
-use swarf_app::verify::{
-    Deviation, GcodeSetup, SimSettings, StockChoice, VerifyRequest, verify_request_with,
-};
+use swarf_app::verify::{GcodeSetup, SimSettings, VerifyRequest, verify_request_with};
 use swarf_sim::report::text_summary;
 
 /// Arguments of `swarf verify`.
@@ -117,7 +115,7 @@ impl GcodeArgs {
 pub struct SimArgs {
     /// Stock: box, box:TOP, offset:ALLOWANCE (mm above the design) or a mesh file.
     #[arg(long, default_value = "offset:0.5")]
-    stock: StockChoice,
+    stock: String,
     /// Cell size, mm (default: 5 x the tolerance).
     #[arg(long)]
     cell: Option<f64>,
@@ -146,22 +144,26 @@ pub struct SimArgs {
     /// How deviation is measured: `vertical` (along z) or `normal` (along the design
     /// normals, "mow the grass"; the scallop height of paper 004; the default).
     #[arg(long)]
-    deviation: Option<Deviation>,
+    deviation: Option<String>,
 }
 
 impl SimArgs {
-    /// The settings these flags give.
-    pub fn settings(&self) -> SimSettings {
-        SimSettings {
-            stock: self.stock.clone(),
+    /// The settings these flags give (stock and deviation parsed as Python's
+    /// keywords are, so that both say the same of a bad value).
+    ///
+    /// # Errors
+    /// A stock or deviation neither names.
+    pub fn settings(&self) -> Result<SimSettings> {
+        Ok(SimSettings {
+            stock: self.stock.parse()?,
             cell: self.cell,
             tol: self.tol,
             scallop: self.scallop,
             rapid: self.rapid,
             sample_tol: self.sample_tol,
             max_memory: self.max_memory,
-            deviation: self.deviation,
-        }
+            deviation: self.deviation.as_deref().map(str::parse).transpose()?,
+        })
     }
 }
 
@@ -170,7 +172,7 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(l) = args.tool_length {
         super::check_flags(&[("--tool-length", l, swarf_geom::domain::TOOL_LENGTH)])?;
     }
-    let sim = args.sim.settings();
+    let sim = args.sim.settings()?;
     let gcode = args.gcode.setup()?;
     let tools = match &args.tool_library {
         Some(library) => holder::library_specs(&holder_request(args, library, &gcode, sim.tol))?,
@@ -274,7 +276,7 @@ mod tests {
     /// The command's defaults, with 0.05 mm cells.
     fn sim_args() -> SimArgs {
         SimArgs {
-            stock: StockChoice::Offset { allowance: 0.5 },
+            stock: "offset:0.5".into(),
             cell: Some(0.05),
             tol: None,
             scallop: None,

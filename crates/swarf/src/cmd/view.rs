@@ -67,7 +67,7 @@ pub fn run(args: &Args) -> Result<()> {
     if args.sim.partial {
         bail!("--partial: swarf view shows programs that run to their end");
     }
-    let sim = args.sim.settings();
+    let sim = args.sim.settings()?;
     let source = match (&args.job, &args.part, &args.program) {
         (Some(job), _, _) => ViewSource::Job(job),
         (None, Some(part), Some(program)) => ViewSource::Program {
