@@ -10,6 +10,7 @@ pub(crate) mod boundary_edges;
 pub mod parametric;
 pub mod pass_bound;
 pub mod planar;
+mod planar_params;
 pub mod scallop;
 pub(crate) mod setup;
 pub(crate) mod trim_clip;

@@ -47,10 +47,7 @@
 
 use crate::error::PathError;
 use crate::ordering::Row;
-use crate::params::{
-    Cutting, Finish, ParamDir, StartSide, check_angle, check_scallop, check_stepover,
-    require_spacing,
-};
+use crate::params::{Cutting, ParamDir, StartSide, check_angle};
 use crate::plan::{Plan, PlanReport};
 use crate::section_point::{PlaneEq, Solved, two_planes};
 use crate::stepping::forward_step::{Sample, sample_curve};
@@ -58,12 +55,11 @@ use crate::stepping::side_step::corners_face;
 use crate::strategy::iso::parametric::Figures;
 use crate::strategy::iso::setup::IsoJob;
 use crate::strategy::iso::setup::{IsoSetup, fit_interval};
-use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
-use swarf_geom::domain::{SCALLOP, STEP};
 use swarf_geom::math::point_segment_distance;
 use swarf_geom::{Part, Patch, Plane, SectionCurve, Vec3};
 use swarf_toolpath::{Pass, PathPoint};
+
+pub use super::planar_params::IsoPlanarParams;
 
 /// The first and last planes are moved this far inside the part's extent, mm.
 const EDGE_INSET: f64 = 1e-4;
@@ -73,67 +69,6 @@ const EXTENT_SURVEY: usize = 129;
 const HALFWAY_BISECTIONS: usize = 40;
 /// Newton steps pulling an interpolated parameter point back onto the plane.
 const PULL_BACK_STEPS: usize = 4;
-
-/// Parameters of iso-planar finishing.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, default)]
-pub struct IsoPlanarParams {
-    /// Tolerance and zigzag.
-    #[serde(flatten)]
-    pub finish: Finish,
-    /// Scallop height limit h, mm: the drive planes' spacing follows from it (or
-    /// give `stepover`).
-    #[schemars(extend("unit" = "mm", "domain" = format!("{SCALLOP}, below the tool radius")))]
-    pub scallop: Option<f64>,
-    /// Fixed distance between the drive planes, mm ("cross feed", thesis 000 ch. 8):
-    /// then no boundary passes are added; instead of `scallop`.
-    #[schemars(extend("unit" = "mm", "domain" = format!("{STEP}, below the tool diameter")))]
-    pub stepover: Option<f64>,
-    /// Feed direction in the XY plane, degrees from +X.
-    #[serde(with = "swarf_geom::units::serde_degrees")]
-    #[schemars(with = "f64", extend("unit" = "degrees"))]
-    pub angle: f64,
-    /// Side the first pass starts on.
-    pub start: StartSide,
-}
-
-impl IsoPlanarParams {
-    /// Drive planes spaced by the scallop limit `scallop` (mm), along +X.
-    pub fn new(scallop: f64) -> IsoPlanarParams {
-        IsoPlanarParams {
-            scallop: Some(scallop),
-            ..IsoPlanarParams::default()
-        }
-    }
-
-    /// Checks the parameters for `tool`.
-    ///
-    /// # Errors
-    /// [`PathError::InvalidParameter`] naming the field: a tolerance, scallop,
-    /// stepover or angle out of range; neither or both of scallop and stepover; a
-    /// stepover not below the tool's diameter.
-    pub fn validate(&self, tool: &swarf_tool::Cutter) -> Result<(), PathError> {
-        self.finish.validate()?;
-        check_scallop(self.scallop, tool)?;
-        check_stepover(self.stepover)?;
-        require_spacing(self.scallop, self.stepover)?;
-        check_angle(self.angle)?;
-        match (self.scallop, self.stepover) {
-            (Some(_), Some(_)) => Err(PathError::InvalidParameter {
-                field: "stepover".into(),
-                message: "give either `scallop` (plane spacing from a scallop limit) or `stepover` (a fixed cross feed), not both".into(),
-            }),
-            (None, Some(step)) if step >= 2.0 * tool.radius() => Err(PathError::InvalidParameter {
-                field: "stepover".into(),
-                message: format!(
-                    "{step} mm is not smaller than the tool diameter {} mm",
-                    2.0 * tool.radius()
-                ),
-            }),
-            _ => Ok(()),
-        }
-    }
-}
 
 /// Plans iso-planar finishing of `part` (all patches: the upper envelope).
 ///
