@@ -44,6 +44,7 @@ fn fillet_pocket_from_a_box_in_one_job() {
         .count();
     eprintln!("{} blocks, {arcs} opening an arc", program.lines().count());
     assert!(arcs > 0);
+    each_tool_change_sets_its_length(&program);
     for op in &report.operations {
         eprintln!(
             "T{} {}: {} motions, {:.0} s; gouge cells {}, rest cells {} over {:.3} mm, max {:.3} mm",
@@ -73,6 +74,35 @@ fn fillet_pocket_from_a_box_in_one_job() {
         last.rest_cells, 0,
         "the ball d=4 reaches every fillet and corner"
     );
+}
+
+/// rs274 with a tool table of four different lengths (inches, its machine units)
+/// puts each tool's length in force after its change (skipped without rs274).
+fn each_tool_change_sets_its_length(program: &str) {
+    let dir = std::env::temp_dir().join(format!("swarf-sequence-tlo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let lengths = [2.0, 3.25, 4.5, 5.75];
+    let table: String = (1..=4)
+        .zip(lengths)
+        .map(|(t, l)| format!("T{t} P{t} Z{l}\n"))
+        .collect();
+    std::fs::write(dir.join("tool.tbl"), table).unwrap();
+    std::fs::write(dir.join("seq.ngc"), program).unwrap();
+    let out = swarf_testkit::rs274::run_rs274_precise(&dir, "seq.ngc", "tool.tbl");
+    std::fs::remove_dir_all(&dir).ok();
+    let Some(out) = out else { return };
+    assert!(out.contains("--- exit 0"), "rs274 failed:\n{out}");
+    let got = swarf_testkit::rs274::length_after_changes(&out);
+    let want: Vec<(u32, Option<f64>)> = (1..=4)
+        .zip(lengths)
+        .map(|(t, l)| (t, Some(l * 25.4)))
+        .collect();
+    assert_eq!(got.len(), 4, "{got:?}");
+    for (g, w) in got.iter().zip(&want) {
+        assert_eq!(g.0, w.0, "{got:?}");
+        let z = g.1.unwrap_or(f64::NAN);
+        assert!((z - w.1.unwrap()).abs() < 1e-6, "T{}: {z}", g.0);
+    }
 }
 
 /// Distance from the pocket's core rectangle [25, 75] x [25, 55] (parts/README.md).

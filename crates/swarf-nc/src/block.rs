@@ -221,11 +221,6 @@ impl<'p> BlockWriter<'p> {
         self.feed = None;
     }
 
-    /// Whether the post writes the tool length offset in 3-axis programs too.
-    pub fn length_offset_3_axis(&self) -> bool {
-        self.post.tool.length_offset_3_axis
-    }
-
     /// The post's tool length offset blocks (`G43 H t`; none on controls without).
     pub fn length_offset(&mut self, tool: u32) {
         let post = self.post;

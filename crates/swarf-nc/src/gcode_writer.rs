@@ -4,8 +4,8 @@
 //!
 //! Layout: the post's header and begin lines (`%`, Fanuc's `O` number, Heidenhain's
 //! `BEGIN PGM`), comment lines naming part, tool and strategy, the safe modal line
-//! (`G17 G21|G20 G40 G49 G80 G90 G94`), tool change (and length offset where the post
-//! writes it in 3-axis programs), spindle on, the moves (only changed words, `F` when
+//! (`G17 G21|G20 G40 G49 G80 G90 G94`), tool change and length offset (`T1 M6`,
+//! `G43 H1`) for each tool, spindle on, the moves (only changed words, `F` when
 //! it changes), the post's end blocks and footer. A move that changes no written
 //! coordinate is dropped. The blocks are written by the one block writer of every
 //! post, [`crate::block::BlockWriter`].
@@ -113,6 +113,7 @@ pub fn write_gcode_sections(
     let per_minute = FeedMode::UnitsPerMinute;
     let post = &opts.post;
     post.check("3-axis program", opts.program_number, per_minute, false)?;
+    post.check_tools("3-axis program", sections.iter().map(|s| s.tool_number))?;
     let axes = ['X', 'Y', 'Z'].map(|c| (c, WordKind::Length));
     let blocks = sections.iter().map(|s| s.moves.len()).sum();
     let fit = match opts.arc_tolerance {
@@ -142,9 +143,7 @@ pub fn write_gcode_sections(
             w.comment(c);
         }
         w.tool_change(s.tool_number, s.feeds.spindle)?;
-        if w.length_offset_3_axis() {
-            w.length_offset(s.tool_number);
-        }
+        w.length_offset(s.tool_number);
         w.spindle_on(s.feeds.spindle)?;
         w.forget_position();
         for (k, m) in s.moves.iter().enumerate() {

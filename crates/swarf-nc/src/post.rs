@@ -24,8 +24,11 @@
 //!   changes), `rapid_suffix` (Heidenhain's `FMAX`, which holds for its block only);
 //! - `[modal]`: the safe modal `line`, the words of the units (`mm`, `inch`) and feed
 //!   modes (`per_minute`, `inverse_time`);
-//! - `[tool]`: the `change` blocks, the `length_offset` blocks (five-axis table-table
-//!   programs, and 3-axis programs when `length_offset_3_axis`), `spindle_on`;
+//! - `[tool]`: the `change` blocks (none: the control has no tool change, and a
+//!   program of more than one tool is refused), the `length_offset` blocks written
+//!   after every change (none where the change sets the length, as Heidenhain's
+//!   `TOOL CALL` does; five-axis programs on head machines carry the length in their
+//!   kinematics instead), `spindle_on`;
 //! - `[arc]` (optional; a post without it never gets arcs): the `cw` and `ccw`
 //!   words (`G2`, `G3`; Heidenhain `C`), the `center` form: `"ij"` (incremental
 //!   `I J` from the start), `"r"` (an `R` word: `max_sweep` must stay below 180) or
@@ -167,7 +170,6 @@ pub(crate) struct Modal {
 pub(crate) struct ToolWords {
     pub(crate) change: Vec<String>,
     pub(crate) length_offset: Vec<String>,
-    pub(crate) length_offset_3_axis: bool,
     pub(crate) spindle_on: Vec<String>,
 }
 
@@ -376,6 +378,38 @@ impl Post {
             });
         }
         Ok(())
+    }
+
+    /// Refuses a program of more than one tool (`tools`: the T number of each
+    /// section, in order) on a post without tool change blocks.
+    ///
+    /// # Errors
+    /// [`NcError::Unsupported`] naming the post, `tool.change` and the tools.
+    pub fn check_tools(
+        &self,
+        operation: &str,
+        tools: impl IntoIterator<Item = u32>,
+    ) -> Result<(), NcError> {
+        let mut distinct: Vec<u32> = Vec::new();
+        for t in tools {
+            if !distinct.contains(&t) {
+                distinct.push(t);
+            }
+        }
+        if distinct.len() < 2 || !self.tool.change.is_empty() {
+            return Ok(());
+        }
+        let list: Vec<String> = distinct.iter().map(|t| format!("T{t}")).collect();
+        Err(NcError::Unsupported {
+            post: self.name.clone(),
+            field: "tool.change",
+            message: format!(
+                "{operation} with {} tools ({}): the control has no tool change; write one \
+                 program per tool",
+                distinct.len(),
+                list.join(", ")
+            ),
+        })
     }
 
     /// The units word of `units`.

@@ -129,7 +129,7 @@ fn each_post_writes_its_own_conventions() {
     let expect: [(&str, &[&str]); 5] = [
         (
             "linuxcnc",
-            &["%\n(part wave  test )\nG17 G21 G40 G49 G80 G90 G94\nT3 M6\nS"],
+            &["%\n(part wave  test )\nG17 G21 G40 G49 G80 G90 G94\nT3 M6\nG43 H3\nS"],
         ),
         (
             "fanuc",
@@ -138,7 +138,7 @@ fn each_post_writes_its_own_conventions() {
         ("mach3", &["(part wave  test )\n", "T3 M6\nG43 H3\nS"]),
         (
             "grbl",
-            &["G17 G21 G40 G49 G80 G90 G94\nM5\n(change to tool 3, set its length, resume)\nM0\nS"],
+            &["(part wave  test )\nG17 G21 G40 G49 G80 G90 G94\nS"],
         ),
         (
             "heidenhain",

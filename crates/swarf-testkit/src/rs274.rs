@@ -133,3 +133,32 @@ pub fn run_rs274_precise(dir: &std::path::Path, program: &str, tool_table: &str)
         }
     }
 }
+
+/// The tool length offset in force after each tool change of an `rs274` output (the
+/// tool of the last `SELECT_TOOL(n)` at each `CHANGE_TOOL`, which names a table slot,
+/// then the Z of the next `USE_TOOL_LENGTH_OFFSET(x y z, ...)`), in order: `(n, None)`
+/// for a change that is followed by another change, or by the end, before any offset.
+pub fn length_after_changes(output: &str) -> Vec<(u32, Option<f64>)> {
+    let args = |line: &str, call: &str| -> Option<String> {
+        let (_, rest) = line.split_once(call)?;
+        Some(rest.split(')').next().unwrap_or("").to_string())
+    };
+    let mut selected = u32::MAX;
+    let mut out: Vec<(u32, Option<f64>)> = Vec::new();
+    for line in output.lines() {
+        if let Some(a) = args(line, "SELECT_TOOL(") {
+            selected = a.trim().parse().unwrap_or(u32::MAX);
+        } else if args(line, "CHANGE_TOOL(").is_some() {
+            out.push((selected, None));
+        } else if let Some(a) = args(line, "USE_TOOL_LENGTH_OFFSET(")
+            && let Some((_, z)) = out.last_mut().filter(|(_, z)| z.is_none())
+        {
+            *z = a
+                .split([' ', ','])
+                .filter(|w| !w.is_empty())
+                .nth(2)
+                .and_then(|w| w.parse().ok());
+        }
+    }
+    out
+}

@@ -45,7 +45,7 @@ fn every_post_plans_and_verifies() {
         ),
         ("fanuc", "dialect = \"fanuc\"", "nc", "fanuc", "O1000"),
         ("mach3", "post = \"mach3\"", "tap", "linuxcnc", "G43 H1"),
-        ("grbl", "post = \"grbl\"", "gcode", "linuxcnc", "M0"),
+        ("grbl", "post = \"grbl\"", "gcode", "linuxcnc", "G94\nS"),
         (
             "heidenhain",
             "post = \"heidenhain\"",

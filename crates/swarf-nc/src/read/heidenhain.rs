@@ -8,7 +8,7 @@
 //! |---|---|
 //! | `n` (block number), `; text`, `* text` | (nothing) |
 //! | `BEGIN PGM name MM` / `INCH` | `G17 G21` / `G20` `G40 G49 G80 G90 G90.1 G94` |
-//! | `TOOL CALL t Z S s` | `T t M6 S s` |
+//! | `TOOL CALL t Z S s` (the length from the tool table) | `T t M6 G43 H t S s` |
 //! | `L X+1 Y-2 Z+3 [A B C] R0 FMAX M..` | `G0 X1 Y-2 Z3 ... M..` |
 //! | `L X.. F f M..` (or no F: the last one) | `G1 X.. F f M..` |
 //! | `CC X+a Y+b` (circle centre, both words) | (nothing; kept for `C`) |
@@ -223,7 +223,7 @@ fn tool_call(w: &[(usize, &str)], line: usize) -> Result<String, Diagnostic> {
     let tool: u32 = tool
         .parse()
         .map_err(|_| at(tcol, format!("TOOL CALL: {tool} is not a tool number")))?;
-    let mut block = format!("T{tool} M6");
+    let mut block = format!("T{tool} M6 G43 H{tool}");
     let mut rest = w[3..].iter().peekable();
     while let Some(&(col, word)) = rest.next() {
         let upper = word.to_ascii_uppercase();

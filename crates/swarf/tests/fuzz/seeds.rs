@@ -202,6 +202,12 @@ pub const CHEAPER: &[(&str, &str, &str)] = &[
         "scallop = 0.01",
         "scallop = 0.1",
     ),
+    (
+        "fillet-pocket-sequence.toml",
+        "scallop = 0.01",
+        "scallop = 0.1",
+    ),
+    ("fillet-pocket-sequence.toml", "cell = 0.25", "cell = 0.5"),
     ("wave-steep-shallow.toml", "scallop = 0.15", "scallop = 0.6"),
 ];
 
