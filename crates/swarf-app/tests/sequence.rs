@@ -217,6 +217,18 @@ arc_tolerance = 2",
         err.contains("stock.top: 15 mm is below the part's top"),
         "{err}"
     );
+    // grbl has no tool change: four tools are refused before anything is planned.
+    let grbl = base.replace("[output]", "[output]\npost = \"grbl\"");
+    let grbl = Sequence::parse(&grbl, "seq.toml", &jobs()).unwrap();
+    let err = plan_sequence(&grbl, &jobs(), &mut out)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains(
+            "output.post = \"grbl\": post grbl: tool.change: sequence with 4 tools (T1, T2, T3, T4)"
+        ),
+        "{err}"
+    );
 }
 
 /// A sequence on the deep pocket (60 x 60 block, a 10 x 40 pocket 40 deep) finished

@@ -155,6 +155,8 @@ fn open_shop<'a>(seq: &'a Sequence, job_dir: &Path) -> Result<(Shop<'a>, Dexel)>
     let spec = seq.output.post.as_deref().unwrap_or("linuxcnc");
     let post = swarf_nc::Post::load(spec, job_dir)
         .map_err(|e| AppError::Message(format!("output.post = {spec:?}: {e}")))?;
+    post.check_tools("sequence", seq.operations.iter().map(|o| o.number))
+        .map_err(|e| AppError::Message(format!("output.post = {spec:?}: {e}")))?;
     let read = GcodeReadOptions {
         language: post.reader(),
         ..GcodeReadOptions::default()
