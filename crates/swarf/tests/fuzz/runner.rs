@@ -50,7 +50,7 @@ impl Settings {
             seed,
             only: var("SWARF_FUZZ_CASE"),
             limits: Limits {
-                timeout: Duration::from_secs(var("SWARF_FUZZ_TIMEOUT").unwrap_or(20)),
+                timeout: Duration::from_secs(var("SWARF_FUZZ_TIMEOUT").unwrap_or(60)),
                 memory_kib: var::<u64>("SWARF_FUZZ_MEMORY_MB").unwrap_or(3000) * 1024,
             },
             shrink: var("SWARF_FUZZ_SHRINK").unwrap_or(8),
