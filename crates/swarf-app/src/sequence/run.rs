@@ -153,10 +153,11 @@ fn open_shop<'a>(seq: &'a Sequence, job_dir: &Path) -> Result<(Shop<'a>, Dexel)>
     }
     let dexel = initial_stock(&seq.stock, grid, &design, b.max.z, job_dir)?;
     let spec = seq.output.post.as_deref().unwrap_or("linuxcnc");
-    let post = swarf_nc::Post::load(spec, job_dir)
-        .map_err(|e| AppError::Message(format!("output.post = {spec:?}: {e}")))?;
+    let post_error =
+        |e: swarf_nc::NcError| AppError::Message(format!("output.post = {spec:?}: {e}"));
+    let post = swarf_nc::Post::load(spec, job_dir).map_err(post_error)?;
     post.check_tools("sequence", seq.operations.iter().map(|o| o.number))
-        .map_err(|e| AppError::Message(format!("output.post = {spec:?}: {e}")))?;
+        .map_err(post_error)?;
     let read = GcodeReadOptions {
         language: post.reader(),
         ..GcodeReadOptions::default()
