@@ -167,6 +167,7 @@ fn compare(r: &Run<'_>, x: f64) {
     let so = SimOptions {
         sample_tol: r.sample_tol,
         known_start: true,
+        ..SimOptions::default()
     };
     let tool = SimTool::new(r.cutter).expect("sim tool");
     simulate(&mut dexel, &tool, r.motions, &so, &Quiet);

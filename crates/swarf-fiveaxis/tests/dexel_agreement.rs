@@ -56,6 +56,7 @@ fn generating_curves_agree_with_the_dexel_within_3_micrometres() {
     let so = SimOptions {
         sample_tol: 0.05,
         known_start: true,
+        ..SimOptions::default()
     };
     simulate(&mut dexel, &tool, &motions, &so, &Quiet);
     let mut compared = 0;

@@ -186,6 +186,7 @@ fn rough(case: &Case, adaptive: bool) -> Run {
     let opts = SimOptions {
         sample_tol: 0.001,
         known_start: true,
+        ..SimOptions::default()
     };
     let eng = measure_engagement(&mut dexel, &sim_tool, &motions, 0, &opts, &Quiet);
     // No gouge: every cell at least the design plus the allowance; on the floor,

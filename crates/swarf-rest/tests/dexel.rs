@@ -54,6 +54,7 @@ fn cut(mesh: &TriMesh, grid: Grid, top: f64, stages: &[(&Toolpath, &Cutter)]) ->
         let opts = SimOptions {
             sample_tol: 0.25 * TOL,
             known_start: false,
+            ..SimOptions::default()
         };
         simulate(
             &mut stock,

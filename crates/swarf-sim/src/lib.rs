@@ -7,6 +7,8 @@
 //! - [`sweep`]: what a motion removes (the per-shape `Sweep` interface, the sampling
 //!   bounds for arcs and five-axis motions), with [`sweep_linear`] (exact) and
 //!   [`sweep_tilted`] (one tilted tool position).
+//! - [`sweep_bound`]: how finely a tilted motion is sampled (second order for
+//!   rounded tools below the stock's reach).
 //! - [`sweep_budget`]: the samples and depths a program asks for, refused before
 //!   any sampling when beyond the budget.
 //! - [`design`]: the design's height (and normal) at every cell centre, from the
@@ -36,6 +38,7 @@ pub mod report;
 pub mod simulate;
 pub mod stage;
 pub mod sweep;
+pub mod sweep_bound;
 pub mod sweep_budget;
 pub mod sweep_linear;
 pub mod sweep_tilted;

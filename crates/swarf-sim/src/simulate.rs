@@ -16,7 +16,8 @@
 use crate::dexel::{Dexel, NO_MOTION};
 use crate::grid::Grid;
 use crate::progress::Progress;
-use crate::sweep::{Primitive, RowJob, SimTool, sweep_motion};
+use crate::sweep::{Primitive, RowJob, Sampling, SimTool, sweep_motion};
+use crate::sweep_bound::StockCeiling;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -39,6 +40,9 @@ pub struct SimOptions {
     /// read from a file does not say where the machine stands before it), the first
     /// motion only places the tool at its end.
     pub known_start: bool,
+    /// Sample every tilted motion by the first-order bound, as the reference sweep
+    /// the second-order sampling ([`crate::sweep_bound`]) is checked against.
+    pub first_order: bool,
 }
 
 impl Default for SimOptions {
@@ -46,6 +50,7 @@ impl Default for SimOptions {
         SimOptions {
             sample_tol: 0.001,
             known_start: true,
+            first_order: false,
         }
     }
 }
@@ -71,6 +76,9 @@ pub struct SimReport {
     pub primitives: usize,
     /// Motions that were sampled (arcs, five-axis).
     pub sampled_motions: usize,
+    /// Five-axis motions sampled by the second-order bound (rounded tools whose sharp
+    /// top stays above the stock, [`crate::sweep_bound`]); the others by the first.
+    pub second_order_motions: usize,
     /// Largest sampling bound of any motion, mm (0: all exact); five-axis rapids are
     /// sampled at least as coarsely as [`crate::sweep::RAPID_SAMPLE`].
     pub max_sample_bound: f64,
@@ -99,6 +107,7 @@ impl SimReport {
         self.motions += later.motions;
         self.primitives += later.primitives;
         self.sampled_motions += later.sampled_motions;
+        self.second_order_motions += later.second_order_motions;
         self.max_sample_bound = self.max_sample_bound.max(later.max_sample_bound);
         self.cells_visited += later.cells_visited;
         self.cells_lowered += later.cells_lowered;
@@ -136,6 +145,12 @@ pub fn simulate_from(
         motions: motions.len(),
         ..SimReport::default()
     };
+    let ceiling = StockCeiling::of(&grid, dexel.heights());
+    let sampling = Sampling {
+        tol: opts.sample_tol,
+        ceiling: &ceiling,
+        first_order: opts.first_order,
+    };
     progress.begin("simulating", motions.len() as u64);
     let mut chunk: Vec<(Primitive, u32)> = Vec::new();
     let mut rapid = BTreeMap::new();
@@ -147,16 +162,17 @@ pub fn simulate_from(
             let mut first = *m;
             first.start = m.end;
             first.kind = MotionKind::Linear;
-            let mut sw = sweep_motion(tool, &first, opts.sample_tol);
+            let mut sw = sweep_motion(tool, &first, &sampling);
             sw.bound = 0.0;
             sw
         } else {
-            sweep_motion(tool, m, opts.sample_tol)
+            sweep_motion(tool, m, &sampling)
         };
         if sw.bound > 0.0 {
             report.sampled_motions += 1;
             report.max_sample_bound = report.max_sample_bound.max(sw.bound);
         }
+        report.second_order_motions += usize::from(sw.second_order);
         if !matches!(m.kind, MotionKind::Rapid)
             && let Some(gap) = outside_gap(&grid, &sw.primitives)
             && gap > OUTSIDE_MARGIN * tool.radius()

@@ -55,18 +55,20 @@ pub(crate) struct StagesRun {
 }
 
 /// Runs `stages` in order over `dexel`, stage `s` with `tools[s]` (see the module
-/// doc); machining time at `rapid_rate` mm/min for rapids.
+/// doc), sampled within `sampling.0` mm (by the first-order bound alone when
+/// `sampling.1`); machining time at `rapid_rate` mm/min for rapids.
 pub(crate) fn run_stages(
     dexel: &mut Dexel,
     stages: &[Stage<'_>],
     tools: &[SimTool],
-    sample_tol: f64,
+    sampling: (f64, bool),
     rapid_rate: f64,
     progress: &dyn Progress,
 ) -> StagesRun {
     let opts = SimOptions {
-        sample_tol,
+        sample_tol: sampling.0,
         known_start: false,
+        first_order: sampling.1,
     };
     let mut run = StagesRun {
         sim: SimReport::default(),

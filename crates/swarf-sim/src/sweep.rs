@@ -19,20 +19,23 @@
 //!   `eps` of each other (Hausdorff distance). `n` is the least count with
 //!   `eps <= sample_tol`.
 //! - A motion whose tool axis is not vertical (five-axis CL data) is sampled as
-//!   [`ToolInstance`]s at `t = k / n`. Between samples the tip moves at most
-//!   `S / n` (S the tip path's length bound: the chord, or `Theta r_max + |r2 - r1| +
-//!   |h|` on an arc) and the axis turns by at most `alpha / n` (alpha the angle between
-//!   the end axes, slerp turning uniformly), which moves any tool point by at most
-//!   `(S + B alpha) / n`, `B = sqrt(R^2 + H^2)` the tool's reach from its tip. Every
-//!   position of the motion is within half a step of a sample, so every point of the
-//!   true swept solid lies within `delta = (S + B alpha) / (2 n)` of the sampled union
-//!   (which lies inside the true solid): the simulated surface may stand up to `delta`
-//!   (measured in 3D, i.e. along the surface normal) above the true one, never below.
-//!   `n` is the least count with `delta <= sample_tol`; rapids use the coarser
-//!   [`RAPID_SAMPLE`] (a rapid that touches material is reported anyway).
+//!   [`ToolInstance`]s at `t = k / n`, which lie inside the true swept solid. Between
+//!   samples the tip moves at most `S / n` (S the tip path's length bound: the chord,
+//!   or `Theta r_max + |r2 - r1| + |h|` on an arc) and the axis turns by at most
+//!   `alpha / n` (alpha the angle between the end axes, slerp turning uniformly),
+//!   which moves any tool point by at most `(S + B alpha) / n`, `B = sqrt(R^2 + H^2)`
+//!   the tool's reach from its tip: every point of the true swept solid lies within
+//!   `delta_1 = (S + B alpha) / (2 n)` of the samples (first order). Ball and bull
+//!   cutters whose sharp top stays clear of the stock are bounded to second order,
+//!   `delta_2 = (A + V^2 / rho) / (8 n^2)` ([`crate::sweep_bound`]), so `n` grows as
+//!   `1 / sqrt(sample_tol)`. Either way the simulated surface may stand up to the
+//!   bound (a 3D distance, i.e. along the surface normal) above the true one, never
+//!   below. `n` is the least count with the bound `<= sample_tol`; rapids use the
+//!   coarser [`RAPID_SAMPLE`] (a rapid that touches material is reported anyway).
 
 use crate::error::SimError;
 use crate::grid::Grid;
+use crate::sweep_bound::{Kinematics, Rounding, StockCeiling, rolling_radius, sample_poses};
 use crate::sweep_linear::{LinearSweep, RowCut};
 use crate::sweep_tilted::ToolInstance;
 use swarf_geom::tol::LENGTH_EPS;
@@ -54,6 +57,7 @@ pub struct SimTool {
     radius: f64,
     length: f64,
     convex: bool,
+    rounding: Rounding,
 }
 
 impl SimTool {
@@ -72,13 +76,20 @@ impl SimTool {
                 "tool {cutter}: the profile has no lower surface to cut with"
             )));
         }
+        let radius = envelope.radius().max(profile.radius());
+        let length = profile.length();
         Ok(SimTool {
             cutter: *cutter,
             profile,
             envelope,
-            radius: envelope.radius().max(profile.radius()),
-            length: profile.length(),
+            radius,
+            length,
             convex: profile.is_convex(),
+            rounding: Rounding {
+                radius,
+                length,
+                rho: rolling_radius(cutter, length),
+            },
         })
     }
 
@@ -159,10 +170,11 @@ impl Sweep for ToolInstance {
                 continue;
             }
             let x = job.grid.x(i);
-            if self.floor(x, y) >= h {
+            let floor = self.floor(x, y);
+            if floor >= h {
                 continue;
             }
-            let z = self.lowest(&job.tool.profile, job.tool.convex, (x, y), h);
+            let z = self.lowest(&job.tool.profile, job.tool.convex, (x, y), h, floor);
             if z < h {
                 heights[i] = z;
                 last[i] = job.motion;
@@ -209,6 +221,20 @@ pub struct MotionSweep {
     pub primitives: Vec<Primitive>,
     /// 3D distance bound between the simulated and true swept solids, mm (0: exact).
     pub bound: f64,
+    /// The tilted tool was sampled by the second-order bound ([`crate::sweep_bound`]).
+    pub second_order: bool,
+}
+
+/// How sampled motions are sampled.
+#[derive(Debug, Clone, Copy)]
+pub struct Sampling<'a> {
+    /// Distance bound, mm.
+    pub tol: f64,
+    /// A bound of the stock's height (where the sharp top of a tilted tool may cut).
+    pub ceiling: &'a StockCeiling,
+    /// Sample every tilted motion by the first-order bound (the reference the
+    /// second-order sampling is tested against).
+    pub first_order: bool,
 }
 
 /// Radii, swept angle and rise of an arc motion: `(r1, r2, theta, h)`.
@@ -233,13 +259,20 @@ fn arc_shape(m: &Motion, center: &Point3, normal: &Vec3) -> Option<(f64, f64, f6
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum SweepPlan {
     Exact,
-    Polyline { n: usize, bound: f64 },
-    Instances { n: usize, bound: f64 },
+    Polyline {
+        n: usize,
+        bound: f64,
+    },
+    Instances {
+        n: usize,
+        bound: f64,
+        second_order: bool,
+    },
 }
 
-/// The sampling of motion `m` for `tool` within `sample_tol` (mm), and the sample
-/// count before it is capped (for [`crate::sweep_budget::check_sampling`]).
-pub(crate) fn sweep_plan(tool: &SimTool, m: &Motion, sample_tol: f64) -> (SweepPlan, f64) {
+/// The sampling of motion `m` for `tool` within `sampling`, and the sample count
+/// before it is capped (for [`crate::sweep_budget::check_sampling`]).
+pub(crate) fn sweep_plan(tool: &SimTool, m: &Motion, sampling: &Sampling<'_>) -> (SweepPlan, f64) {
     let straight = matches!(m.kind, MotionKind::Rapid | MotionKind::Linear);
     let arc = match m.kind {
         MotionKind::Arc { center, normal, .. } => arc_shape(m, &center, &normal),
@@ -249,34 +282,66 @@ pub(crate) fn sweep_plan(tool: &SimTool, m: &Motion, sample_tol: f64) -> (SweepP
     if upright && (straight || arc.is_none()) {
         return (SweepPlan::Exact, 1.0);
     }
+    // |P''| in the arc angle (module doc), and the tip path's length bound.
+    let bend_of = |(r1, r2, theta, _): (f64, f64, f64, f64)| {
+        r1.max(r2) + 2.0 * (r2 - r1).abs() / theta.max(LENGTH_EPS)
+    };
     if upright {
-        let (r1, r2, theta, _) = arc.unwrap_or_default();
-        let big_m = r1.max(r2) + 2.0 * (r2 - r1).abs() / theta.max(LENGTH_EPS);
-        let err = big_m * theta * theta / 8.0;
-        let (n, wanted) = steps(err, sample_tol, true);
+        let (_, _, theta, _) = arc.unwrap_or_default();
+        let err = bend_of(arc.unwrap_or_default()) * theta * theta / 8.0;
+        let (n, wanted) = steps(err, sampling.tol, true);
         let bound = err / (n * n) as f64;
         return (SweepPlan::Polyline { n, bound }, wanted);
     }
-    let path = match arc {
-        Some((r1, r2, theta, h)) => theta * r1.max(r2) + (r2 - r1).abs() + h.abs(),
-        None => (m.end.cl - m.start.cl).norm(),
+    let kin = match arc {
+        Some(a @ (r1, r2, theta, h)) => Kinematics {
+            path: theta * r1.max(r2) + (r2 - r1).abs() + h.abs(),
+            bend: bend_of(a) * theta * theta,
+            turn: m.start.axis.angle(&m.end.axis),
+        },
+        None => Kinematics {
+            path: (m.end.cl - m.start.cl).norm(),
+            bend: 0.0,
+            turn: m.start.axis.angle(&m.end.axis),
+        },
     };
-    let turn = m.start.axis.angle(&m.end.axis);
-    let travel = path + tool.reach() * turn;
     let tol = if matches!(m.kind, MotionKind::Rapid) {
-        sample_tol.max(RAPID_SAMPLE)
+        sampling.tol.max(RAPID_SAMPLE)
     } else {
-        sample_tol
+        sampling.tol
     };
-    let (n, wanted) = steps(0.5 * travel, tol, false);
-    let bound = 0.5 * travel / n as f64;
-    (SweepPlan::Instances { n, bound }, wanted)
+    let first = tool.rounding.first_order(&kin);
+    if !sampling.first_order
+        && let Some(second) = tool.rounding.second_order(&kin)
+    {
+        let (n, wanted) = steps(second, tol, true);
+        let poses = sample_poses(&|t| m.point_at(t), n);
+        if tool
+            .rounding
+            .slab_clear(&poses, first / n as f64, sampling.ceiling)
+        {
+            let bound = second / (n * n) as f64;
+            let plan = SweepPlan::Instances {
+                n,
+                bound,
+                second_order: true,
+            };
+            return (plan, wanted);
+        }
+    }
+    let (n, wanted) = steps(first, tol, false);
+    let plan = SweepPlan::Instances {
+        n,
+        bound: first / n as f64,
+        second_order: false,
+    };
+    (plan, wanted)
 }
 
-/// The primitives of motion `m` for `tool`, sampled within `sample_tol` (mm) where
-/// the motion is not swept exactly (see the module doc).
-pub fn sweep_motion(tool: &SimTool, m: &Motion, sample_tol: f64) -> MotionSweep {
-    match sweep_plan(tool, m, sample_tol).0 {
+/// The primitives of motion `m` for `tool`, sampled within `sampling` where the
+/// motion is not swept exactly (see the module doc).
+pub fn sweep_motion(tool: &SimTool, m: &Motion, sampling: &Sampling<'_>) -> MotionSweep {
+    match sweep_plan(tool, m, sampling).0 {
         SweepPlan::Exact => MotionSweep {
             primitives: vec![Primitive::Linear(LinearSweep::new(
                 &m.start.cl,
@@ -284,6 +349,7 @@ pub fn sweep_motion(tool: &SimTool, m: &Motion, sample_tol: f64) -> MotionSweep 
                 tool.radius,
             ))],
             bound: 0.0,
+            second_order: false,
         },
         SweepPlan::Polyline { n, bound } => {
             let pts: Vec<Point3> = (0..=n)
@@ -295,9 +361,14 @@ pub fn sweep_motion(tool: &SimTool, m: &Motion, sample_tol: f64) -> MotionSweep 
                     .map(|w| Primitive::Linear(LinearSweep::new(&w[0], &w[1], tool.radius)))
                     .collect(),
                 bound,
+                second_order: false,
             }
         }
-        SweepPlan::Instances { n, bound } => MotionSweep {
+        SweepPlan::Instances {
+            n,
+            bound,
+            second_order,
+        } => MotionSweep {
             primitives: (0..=n)
                 .map(|k| {
                     let pose = m.point_at(k as f64 / n as f64);
@@ -305,6 +376,7 @@ pub fn sweep_motion(tool: &SimTool, m: &Motion, sample_tol: f64) -> MotionSweep 
                 })
                 .collect(),
             bound,
+            second_order,
         },
     }
 }
@@ -357,7 +429,7 @@ mod tests {
             v(10.0, 0.0, 0.0),
             v(0.0, 10.0, -1.0),
         );
-        let sw = sweep_motion(&tool, &m, 1e-3);
+        let sw = sweep_motion(&tool, &m, &sampling(1e-3, f64::INFINITY, false));
         assert!(sw.bound <= 1e-3 && sw.bound > 0.0);
         // Chord mid-points lie within the bound of the true arc at the same parameter.
         let n = sw.primitives.len();
@@ -374,15 +446,43 @@ mod tests {
         assert!(coarser > 1e-3);
     }
 
+    fn sampling(tol: f64, stock_top: f64, first_order: bool) -> Sampling<'static> {
+        let ceiling = Box::leak(Box::new(StockCeiling::Level(stock_top)));
+        Sampling {
+            tol,
+            ceiling,
+            first_order,
+        }
+    }
+
     #[test]
     fn tilted_motion_is_sampled_within_its_bound() {
         let tool = SimTool::new(&"ball:d=8".parse().unwrap()).unwrap();
         let a = Pose::new(Point3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.1, 1.0)).unwrap();
         let b = Pose::new(Point3::new(2.0, 0.0, 0.0), Vec3::new(0.0, -0.1, 1.0)).unwrap();
-        let sw = sweep_motion(&tool, &motion(MotionKind::Linear, a, b), 0.01);
-        assert!(sw.bound <= 0.01);
-        let travel = 2.0 + tool.reach() * a.axis.angle(&b.axis);
+        let m = motion(MotionKind::Linear, a, b);
+        let turn = a.axis.angle(&b.axis);
+        // First order: half the travel of the farthest tool point per sample.
+        let sw = sweep_motion(&tool, &m, &sampling(0.01, 0.0, true));
+        assert!(sw.bound <= 0.01 && !sw.second_order);
+        let travel = 2.0 + tool.reach() * turn;
         assert_eq!(sw.primitives.len(), (travel / 0.02).ceil() as usize + 1);
+        // The top slab (3 mm above the tip at the least) stands above a stock at 2:
+        // second order, (A + V^2 / rho) / (8 n^2) with the core's reach.
+        let sw = sweep_motion(&tool, &m, &sampling(0.01, 2.0, false));
+        let bc = (tool.length - 4.0).hypot(0.0);
+        let v = 2.0 + turn * bc;
+        let k = (turn * turn * bc + v * v / 4.0) / 8.0;
+        assert!(sw.second_order && sw.bound <= 0.01);
+        assert_eq!(sw.primitives.len(), (k / 0.01).sqrt().ceil() as usize + 1);
+        assert!(sw.primitives.len() * 4 < (travel / 0.02) as usize);
+        // A stock that reaches the slab: first order again.
+        let deep = sweep_motion(&tool, &m, &sampling(0.01, 40.0, false));
+        assert!(!deep.second_order);
+        assert_eq!(deep.primitives.len(), (travel / 0.02).ceil() as usize + 1);
+        // A flat end mill's edge is sharp: first order.
+        let flat = SimTool::new(&"flat:d=8".parse().unwrap()).unwrap();
+        assert!(!sweep_motion(&flat, &m, &sampling(0.01, -100.0, false)).second_order);
         let vert = sweep_motion(
             &tool,
             &motion(
@@ -390,7 +490,7 @@ mod tests {
                 Pose::vertical(Point3::origin()),
                 Pose::vertical(Point3::new(5.0, 1.0, 2.0)),
             ),
-            0.01,
+            &sampling(0.01, f64::INFINITY, false),
         );
         assert_eq!((vert.primitives.len(), vert.bound), (1, 0.0));
     }

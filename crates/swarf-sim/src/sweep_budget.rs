@@ -2,7 +2,8 @@
 //!
 //! Straight moves and arcs of a vertical tool are swept exactly or as a few chords;
 //! tilted motions are sampled as tool instances ([`crate::sweep`]), `n` of them with
-//! `n` proportional to the motion's travel over the sample tolerance. Two budgets
+//! `n` proportional to the motion's travel over the sample tolerance (to its square
+//! root where the second-order bound of [`crate::sweep_bound`] applies). Two budgets
 //! keep that bounded: [`MAX_MOTION_SAMPLES`] per motion and [`MAX_TOTAL_SAMPLES`] per
 //! verification, each refused with the sample tolerance that would fit.
 //!
@@ -13,7 +14,8 @@
 //! measurement (a `GOTO/..,-1000` in CL data took minutes before this check).
 
 use crate::error::SimError;
-use crate::sweep::{SimTool, SweepPlan, sweep_plan};
+use crate::sweep::{Sampling, SimTool, SweepPlan, sweep_plan};
+use crate::sweep_bound::StockCeiling;
 use swarf_toolpath::Motion;
 
 /// Most samples one motion may be swept with.
@@ -30,7 +32,8 @@ pub fn floor(tool: &SimTool, design_low: f64) -> f64 {
 /// Refuses, before any sample is made, a program of `motions` (read from `file`)
 /// whose sampling would take more than [`MAX_MOTION_SAMPLES`] for one motion or
 /// [`MAX_TOTAL_SAMPLES`] in all, or whose tilted motions take the tip below
-/// [`floor`] for a design whose lowest point is `design_low`.
+/// [`floor`] for a design whose lowest point is `design_low`. `stock_top` bounds the
+/// stock's height (it decides which motions the second-order bound may sample).
 ///
 /// # Units
 /// mm.
@@ -45,11 +48,18 @@ pub fn check_sampling(
     sample_tol: f64,
     file: &str,
     design_low: f64,
+    stock_top: f64,
 ) -> Result<(), SimError> {
     let floor = floor(tool, design_low);
+    let ceiling = StockCeiling::Level(stock_top);
+    let sampling = Sampling {
+        tol: sample_tol,
+        ceiling: &ceiling,
+        first_order: false,
+    };
     let mut total = 0.0;
     for m in motions {
-        let (plan, wanted) = sweep_plan(tool, m, sample_tol);
+        let (plan, wanted) = sweep_plan(tool, m, &sampling);
         if let SweepPlan::Instances { .. } = plan {
             let tip = m.start.cl.z.min(m.end.cl.z);
             if tip < floor {

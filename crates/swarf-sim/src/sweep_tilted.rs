@@ -106,11 +106,20 @@ impl ToolInstance {
     }
 
     /// Lowest point of the tool over `(x, y)`, mm; `+inf` when the line misses it or
-    /// only meets it above `ceiling` (the cell's current height: nothing to cut).
-    pub fn lowest(&self, profile: &Profile, convex: bool, (x, y): (f64, f64), ceiling: f64) -> f64 {
+    /// only meets it above `ceiling` (the cell's current height: nothing to cut). The
+    /// march starts at `from` (a lower bound of that point: [`ToolInstance::floor`],
+    /// or `-inf`) or 1 mm below the tool, whichever is higher.
+    pub fn lowest(
+        &self,
+        profile: &Profile,
+        convex: bool,
+        (x, y): (f64, f64),
+        ceiling: f64,
+        from: f64,
+    ) -> f64 {
         let top = self.ztop.min(ceiling);
         let f = |z: f64| profile.signed_distance(&self.pose, &Point3::new(x, y, z));
-        let mut z = self.zlo - 1.0;
+        let mut z = from.max(self.zlo - 1.0);
         let mut prev = f64::INFINITY;
         for _ in 0..MAX_STEPS {
             let d = f(z);
@@ -197,7 +206,7 @@ mod tests {
         let centre = pose.cl + axis * 4.0;
         for k in 0..40 {
             let (x, y) = (centre.x - 3.9 + 0.2 * k as f64, centre.y + 0.7);
-            let got = inst.lowest(&profile, true, (x, y), f64::INFINITY);
+            let got = inst.lowest(&profile, true, (x, y), f64::INFINITY, f64::NEG_INFINITY);
             let d2 = (x - centre.x).powi(2) + (y - centre.y).powi(2);
             let sphere = centre.z - (16.0 - d2).sqrt();
             // The lowest point over the cell is on the ball wherever the ball's lowest
@@ -210,7 +219,13 @@ mod tests {
             assert!((got - inside).abs() < 1e-7, "x {x}: {got} vs {inside}");
         }
         assert_eq!(
-            inst.lowest(&profile, true, (centre.x + 30.0, centre.y), f64::INFINITY),
+            inst.lowest(
+                &profile,
+                true,
+                (centre.x + 30.0, centre.y),
+                f64::INFINITY,
+                f64::NEG_INFINITY
+            ),
             f64::INFINITY
         );
     }
@@ -232,9 +247,16 @@ mod tests {
                 for l in 0..=40 {
                     let x = b[0] + (b[2] - b[0]) * k as f64 / 40.0;
                     let y = b[1] + (b[3] - b[1]) * l as f64 / 40.0;
-                    let exact = inst.lowest(&profile, true, (x, y), f64::INFINITY);
+                    let exact =
+                        inst.lowest(&profile, true, (x, y), f64::INFINITY, f64::NEG_INFINITY);
                     let floor = inst.floor(x, y);
                     assert!(floor <= exact + 1e-9, "{x} {y}: {floor} > {exact}");
+                    // Marching from the floor finds the same point.
+                    let from = inst.lowest(&profile, true, (x, y), f64::INFINITY, floor);
+                    assert!(
+                        from == exact || (from - exact).abs() < 1e-7,
+                        "{from} {exact}"
+                    );
                     pruned += usize::from(floor.is_infinite());
                 }
             }
@@ -254,7 +276,7 @@ mod tests {
         for k in 0..=60 {
             let x = b[0] + (b[2] - b[0]) * k as f64 / 60.0;
             let y = 1.3;
-            let got = inst.lowest(&profile, true, (x, y), f64::INFINITY);
+            let got = inst.lowest(&profile, true, (x, y), f64::INFINITY, f64::NEG_INFINITY);
             if got.is_finite() {
                 hits += 1;
                 assert!(

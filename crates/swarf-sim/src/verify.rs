@@ -44,6 +44,16 @@ pub enum StockSpec {
 }
 
 impl StockSpec {
+    /// A bound of the stock's height over a design whose highest point is
+    /// `design_top`, mm.
+    pub fn top(&self, design_top: f64) -> f64 {
+        match self {
+            StockSpec::Box { top } => top.unwrap_or(design_top),
+            StockSpec::Offset { allowance } => design_top + allowance,
+            StockSpec::Mesh(m) => m.aabb().max.z,
+        }
+    }
+
     /// Short description for reports.
     pub fn describe(&self) -> String {
         match self {
@@ -81,6 +91,9 @@ pub struct VerifyOptions {
     /// Verify only inside this XY rectangle `[min, max]`, mm, clipped to the design's
     /// box (default: the whole design).
     pub window: Option<[[f64; 2]; 2]>,
+    /// Sample five-axis motions by the first-order bound alone: the slow reference
+    /// sweep ([`crate::sweep_bound`]).
+    pub first_order: bool,
 }
 
 /// The sampling bound of arcs and five-axis motions for a verification tolerance
@@ -109,6 +122,7 @@ impl Default for VerifyOptions {
             max_regions: 20,
             along_normals: false,
             window: None,
+            first_order: false,
         }
     }
 }
@@ -246,13 +260,17 @@ fn check_settings(
         .iter()
         .map(|s| SimTool::new(s.cutter))
         .collect::<Result<Vec<_>, _>>()?;
-    let design_low = match design {
-        Design::Part(p) => p.control_box().min.z,
-        Design::Mesh(m) => m.aabb().min.z,
+    let (design_low, design_top) = match design {
+        Design::Part(p) => (p.control_box().min.z, p.control_box().max.z),
+        Design::Mesh(m) => (m.aabb().min.z, m.aabb().max.z),
     };
+    let stock_top = opts.stock.top(design_top);
     for (stage, tool) in stages.iter().zip(&tools) {
         let p = stage.program;
-        crate::sweep_budget::check_sampling(tool, &p.motions, sample_tol, &p.source, design_low)?;
+        let (motions, file) = (&p.motions, &p.source);
+        crate::sweep_budget::check_sampling(
+            tool, motions, sample_tol, file, design_low, stock_top,
+        )?;
     }
     Ok(Checked {
         tol,
@@ -296,7 +314,7 @@ pub fn verify_stages(
         &mut stock,
         stages,
         &tools,
-        sample_tol,
+        (sample_tol, opts.first_order),
         opts.rapid_rate,
         progress,
     );
@@ -384,8 +402,8 @@ fn initial_stock(
 ) -> Result<Dexel, SimError> {
     let stock_heights;
     let init = match spec {
-        StockSpec::Box { top } => StockInit::Box {
-            top: top.unwrap_or(design_top),
+        StockSpec::Box { .. } => StockInit::Box {
+            top: spec.top(design_top),
         },
         StockSpec::Offset { allowance } => StockInit::Offset {
             design: &field.heights,

@@ -364,12 +364,29 @@ fn tilted_ball_passes_leave_the_same_scallop_within_the_sampling_bound() {
     for j in 0..g.ny {
         let y = g.y(j);
         let want = h((y - s / 2.0).abs()).min(h((y + s / 2.0).abs())).min(3.0);
+        // Between two of the n + 1 tool positions of a pass, l = 14 / n apart, the
+        // column halfway sees the ball at l / 2 along the pass: a tube of radius
+        // sqrt(r^2 - l^2 / 4). The true surface's point there is sqrt(r^2 + l^2 / 4)
+        // from both balls' centres: the 3D gap the stated bound must cover.
+        let l = 14.0 / (report.primitives / 2 - 1) as f64;
+        let shrunk = (r * r - 0.25 * l * l).sqrt();
+        assert!((r * r + 0.25 * l * l).sqrt() - r <= report.max_sample_bound);
+        let hi = |rho: f64| {
+            if rho < shrunk {
+                r - (shrunk * shrunk - rho * rho).sqrt()
+            } else {
+                3.0
+            }
+        };
+        let most = hi((y - s / 2.0).abs())
+            .min(hi((y + s / 2.0).abs()))
+            .min(3.0);
         for i in 0..g.nx {
             let got = d.height(i, j);
             // The march stops within 1e-9 mm (3D) of the tool: vertically 1e-9 over
             // the cosine of the slope, which on the ball's flank is 1e-7 at most here.
             assert!(
-                got >= want - 1e-7 && got <= want + report.max_sample_bound,
+                got >= want - 1e-7 && got <= most + 1e-9,
                 "y {y}: {got} vs {want}"
             );
         }

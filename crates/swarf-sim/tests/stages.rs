@@ -290,6 +290,7 @@ fn one_stage_is_the_program_simulated_alone() {
     let opts = SimOptions {
         sample_tol: v.sample_tol,
         known_start: false,
+        ..SimOptions::default()
     };
     let sim = simulate(
         &mut d,

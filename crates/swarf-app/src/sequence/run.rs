@@ -472,5 +472,6 @@ fn sim_options(op: &Operation) -> SimOptions {
     SimOptions {
         sample_tol: swarf_sim::verify::default_sample_tol(op.job.tolerance()),
         known_start: false,
+        ..SimOptions::default()
     }
 }
