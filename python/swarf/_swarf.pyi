@@ -298,6 +298,7 @@ def verify(
     machine_units: str = "mm",
     out: Optional[PathLike] = None,
     partial: bool = False,
+    first_order_sweep: bool = False,
 ) -> Verification:
     """Simulates programs on a dexel stock and measures them against the design, as
     ``swarf verify`` does (the keyword arguments are its flags)."""

@@ -46,6 +46,9 @@ pub struct SimSettings {
     pub max_memory: u64,
     /// How deviation is measured (default: along the normals).
     pub deviation: Option<Deviation>,
+    /// Sample five-axis motions by the first-order bound alone: the slow reference
+    /// sweep the default (second-order where it applies) is checked against.
+    pub first_order_sweep: bool,
 }
 
 impl Default for SimSettings {
@@ -60,6 +63,7 @@ impl Default for SimSettings {
             sample_tol: None,
             max_memory: 4096,
             deviation: None,
+            first_order_sweep: false,
         }
     }
 }
@@ -140,6 +144,7 @@ impl SimSettings {
             along_normals: self
                 .deviation
                 .map_or(along_normals, |d| d == Deviation::Normal),
+            first_order: self.first_order_sweep,
             ..VerifyOptions::default()
         })
     }

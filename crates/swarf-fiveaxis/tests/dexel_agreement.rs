@@ -53,8 +53,9 @@ fn generating_curves_agree_with_the_dexel_within_3_micrometres() {
     let grid = Grid::covering([x - 0.5 * cell, y0], [x + 0.5 * cell, y1], cell, 1 << 26).unwrap();
     let mut dexel = Dexel::new(grid, StockInit::Box { top: 100.0 }).unwrap();
     let tool = SimTool::new(&cutter).unwrap();
+    // (sampled within 1 um: second order, a few dozen positions per motion)
     let so = SimOptions {
-        sample_tol: 0.05,
+        sample_tol: 0.001,
         known_start: true,
         ..SimOptions::default()
     };

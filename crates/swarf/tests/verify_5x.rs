@@ -80,7 +80,7 @@ fn write_programs(dir: &Path) {
 }
 
 /// `swarf verify` on `dir/program` into `dir/out` (1 mm cells, motions sampled within
-/// 0.05 mm: a few seconds in the dev profile), with `extra` arguments.
+/// 0.01 mm: a few seconds in the dev profile), with `extra` arguments.
 fn verify(dir: &Path, program: &str, out: &str, extra: &[&str]) -> Output {
     let program = dir.join(program).display().to_string();
     let out = dir.join(out).display().to_string();
@@ -97,7 +97,7 @@ fn verify(dir: &Path, program: &str, out: &str, extra: &[&str]) -> Output {
         "--tol",
         "0.01",
         "--sample-tol",
-        "0.05",
+        "0.01",
         "-o",
         &out,
     ];

@@ -145,6 +145,11 @@ pub struct SimArgs {
     /// normals, "mow the grass"; the scallop height of paper 004; the default).
     #[arg(long)]
     deviation: Option<String>,
+    /// Sample five-axis motions by the first-order bound alone (the slow reference
+    /// sweep; the default samples ball and bull cutters to a second-order bound where
+    /// their flat top stays clear of the stock)
+    #[arg(long)]
+    first_order_sweep: bool,
 }
 
 impl SimArgs {
@@ -163,6 +168,7 @@ impl SimArgs {
             sample_tol: self.sample_tol,
             max_memory: self.max_memory,
             deviation: self.deviation.as_deref().map(str::parse).transpose()?,
+            first_order_sweep: self.first_order_sweep,
         })
     }
 }
@@ -285,6 +291,7 @@ mod tests {
             max_memory: 4096,
             deviation: None,
             partial: false,
+            first_order_sweep: false,
         }
     }
 
