@@ -6,9 +6,10 @@
 //! the worst cell difference between the two over what their bounds allow.
 //!
 //! ```sh
-//! cargo run --release -p swarf-app --example verify5x_bench [-- CELL...]
+//! cargo run --release -p swarf-app --example verify5x_bench [-- CELL... MACHINE...]
 //! ```
-//! (default cells 1, 0.5 and 0.1 mm; the reference runs at the first).
+//! (default cells 1, 0.5 and 0.1 mm, the reference at the first; default machines
+//! the three built-in ones).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -21,7 +22,16 @@ const MACHINES: [&str; 3] = ["xyzac-trunnion", "xyzbc-head", "xyzbc-table-head"]
 /// Plans the die job for `machine` into `dir`; returns the G-code's path.
 fn plan(jobs: &Path, dir: &Path, machine: &str) -> PathBuf {
     let text = std::fs::read_to_string(jobs.join("die-gouge-free.toml")).expect("shipped job");
-    let text = text.replace("builtin:xyzac-trunnion", &format!("builtin:{machine}"));
+    // (head machines position the gauge line: a 150 mm tool)
+    let length = if machine.contains("head") {
+        "\ntool_length = 150.0"
+    } else {
+        ""
+    };
+    let text = text.replace(
+        "machine = \"builtin:xyzac-trunnion\"",
+        &format!("machine = \"builtin:{machine}\"{length}"),
+    );
     let job = Job::parse_in(&text, "die-gouge-free.toml", jobs).expect("valid job");
     let mut out = swarf_app::Outputs::new(dir);
     swarf_app::plan_job::plan_job(&job, jobs, &mut out, &Quiet).expect("plans");
@@ -83,17 +93,24 @@ fn worst_ratio(fast: &Verified, slow: &Verified) -> (f64, usize) {
 }
 
 fn main() {
-    let mut cells: Vec<f64> = std::env::args()
-        .skip(1)
-        .filter_map(|a| a.parse().ok())
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut cells: Vec<f64> = args.iter().filter_map(|a| a.parse().ok()).collect();
+    let named: Vec<&str> = MACHINES
+        .into_iter()
+        .filter(|m| args.iter().any(|a| a == m))
         .collect();
+    let machines = if named.is_empty() {
+        MACHINES.to_vec()
+    } else {
+        named
+    };
     if cells.is_empty() {
         cells = vec![1.0, 0.5, 0.1];
     }
     let jobs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../jobs");
     let scratch = std::env::temp_dir().join(format!("swarf-verify5x-{}", std::process::id()));
     println!("{} threads", rayon::current_num_threads());
-    for machine in MACHINES {
+    for machine in machines {
         let dir = scratch.join(machine);
         let program = plan(&jobs, &dir, machine);
         let mut fast_at_first = None;

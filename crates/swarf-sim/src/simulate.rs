@@ -171,8 +171,8 @@ pub fn simulate_from(
         if sw.bound > 0.0 {
             report.sampled_motions += 1;
             report.max_sample_bound = report.max_sample_bound.max(sw.bound);
+            report.second_order_motions += usize::from(sw.second_order);
         }
-        report.second_order_motions += usize::from(sw.second_order);
         if !matches!(m.kind, MotionKind::Rapid)
             && let Some(gap) = outside_gap(&grid, &sw.primitives)
             && gap > OUTSIDE_MARGIN * tool.radius()

@@ -10,12 +10,13 @@
 //! `|g''| <= |p''| + alpha^2 |w|`. The simulator cuts the union `U` of the tool at
 //! `t_k = k / n`, which lies inside the true swept solid `S`.
 //!
-//! Ball and bull cutters (corner radius `r > 0`) are, below their flat top, unions of
-//! balls of radius `rho = min(r, L / 2)` (`L` the flute length): the tool's opening
-//! by that ball, whose centres fill the eroded core `C` (points within
-//! `B_c = sqrt((R - rho)^2 + (L - rho)^2)` of the tip, `R` the radius). The opening
-//! differs from the tool only in the slab within `rho` of the top, where the rim is
-//! sharp. Take a point `q` of `S` that is not in that slab: it lies in a ball
+//! Ball and bull cutters (corner radius `r > 0`, `R` for a ball) are, below their flat
+//! top, unions of balls of radius `rho = min(r, L - r)` (`L` the flute length): the
+//! tool is the eroded core `C` (a bull of radius `R - rho` and corner `r - rho`
+//! raised by `rho` and cut at `L - rho`, which holds its corner when
+//! `r + rho <= L`; points within `B_c = sqrt((R - rho)^2 + (L - rho)^2)` of the
+//! tip) grown by the ball, except in the slab within `rho` of the top, where the rim
+//! is sharp. Take a point `q` of `S` that is not in that slab: it lies in a ball
 //! `B(g_c(t), rho)` for some core point `c` and `t` between two samples. The chord
 //! between `g_c(t_k)` and `g_c(t_k+1)` passes within `e = h^2 / 8 * max |g''|`
 //! (`h = 1 / n`, the interpolation error of a vector function) of `g_c(t)`, so `q` is
@@ -126,16 +127,18 @@ impl StockCeiling {
     }
 }
 
-/// The rolling radius `rho` of a cutter with flute length `length`: ball and bull
-/// cutters are unions of balls of that radius below the slab within `rho` of their top
-/// (see the module doc); 0 for the others.
+/// The rolling radius `rho = min(r, L - r)` of a cutter with corner radius `r` and
+/// flute length `L = length`: ball and bull cutters are unions of balls of that
+/// radius below the slab within `rho` of their top (see the module doc); 0 for the
+/// others and for a flute no longer than the corner.
 pub fn rolling_radius(cutter: &Cutter, length: f64) -> f64 {
     let r = match *cutter {
         Cutter::Ball { radius, .. } => radius,
         Cutter::Bull { corner, .. } => corner,
         _ => 0.0,
     };
-    r.min(0.5 * length).max(0.0)
+    let rho = r.min(length - r);
+    if rho > 0.0 { rho } else { 0.0 }
 }
 
 /// What the bound needs of the tool: radius `R`, flute length `L`, rolling radius.
@@ -234,4 +237,52 @@ const PLANE_MIN_COS: f64 = 0.05;
 /// The poses of the sampled tool, `t = k / n`.
 pub fn sample_poses(at: &impl Fn(f64) -> Pose, n: usize) -> Vec<Pose> {
     (0..=n).map(|k| at(k as f64 / n as f64)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rolling_radius_of_the_family() {
+        let rho = |spec: &str| {
+            let c: Cutter = spec.parse().unwrap();
+            rolling_radius(&c, c.length())
+        };
+        assert_eq!(rho("ball:d=8,length=20"), 4.0);
+        assert_eq!(rho("bull:d=10,r=2,length=20"), 2.0);
+        // A flute shorter than twice the ball's radius: the balls that fit below the
+        // top are smaller.
+        assert_eq!(rho("ball:d=8,length=6"), 2.0);
+        assert_eq!(rho("flat:d=8"), 0.0);
+        assert_eq!(rho("cone:d=6,angle=60"), 0.0);
+    }
+
+    #[test]
+    fn tiles_bound_every_cell_they_cover() {
+        let g = Grid::covering([0.0, 0.0], [9.3, 7.1], 0.1, 1 << 30).unwrap();
+        let heights: Vec<f64> = (0..g.len())
+            .map(|k| ((k * 7919) % 1000) as f64 / 100.0 - 3.0)
+            .collect();
+        let c = StockCeiling::of(&g, &heights);
+        for b in [
+            [1.0, 1.0, 2.0, 1.5],
+            [-5.0, -5.0, 0.3, 0.2],
+            [8.9, 6.0, 20.0, 20.0],
+            [3.33, 2.22, 3.34, 2.23],
+        ] {
+            let highest = (0..g.ny)
+                .flat_map(|j| (0..g.nx).map(move |i| (i, j)))
+                .filter(|&(i, j)| {
+                    let [x, y] = g.centre(i, j);
+                    x >= b[0] && x <= b[2] && y >= b[1] && y <= b[3]
+                })
+                .map(|(i, j)| heights[j * g.nx + i])
+                .fold(f64::NEG_INFINITY, f64::max);
+            // Clear just above the highest tile, never below the highest cell.
+            assert!(!c.clears(b, |_| highest - 1e-9), "{b:?}");
+            assert!(c.clears(b, |_| 7.0 + 1e-9), "{b:?}");
+        }
+        assert!(c.clears([50.0, 50.0, 60.0, 60.0], |_| f64::NEG_INFINITY));
+    }
 }

@@ -19,7 +19,7 @@
 //! decrease `f`, `f` never decreases again and the line misses the tool. That ends
 //! misses after a few steps instead of marching to the top.
 
-use swarf_geom::Point3;
+use swarf_geom::{Point3, Vec3};
 use swarf_tool::{Pose, Profile};
 
 /// The march stops this close to the tool, mm.
@@ -34,6 +34,8 @@ const BRACKET_STEPS: usize = 80;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ToolInstance {
     pose: Pose,
+    /// The pose's axis, of unit length (NaN for a zero axis).
+    unit: Vec3,
     bounds: [f64; 4],
     zlo: f64,
     ztop: f64,
@@ -51,6 +53,7 @@ impl ToolInstance {
         let hi = |k: usize| pose.cl[k].max(top[k]) + grow(k);
         ToolInstance {
             pose,
+            unit: pose.axis / pose.axis.norm(),
             bounds: [lo(0), lo(1), hi(0), hi(1)],
             zlo: lo(2),
             ztop: hi(2),
@@ -118,7 +121,14 @@ impl ToolInstance {
         from: f64,
     ) -> f64 {
         let top = self.ztop.min(ceiling);
-        let f = |z: f64| profile.signed_distance(&self.pose, &Point3::new(x, y, z));
+        // The profile's signed distance at (x, y, z) ([`Profile::signed_distance`] with
+        // the axis normalised once).
+        let (a, w0) = (&self.unit, Point3::new(x, y, 0.0) - self.pose.cl);
+        let f = |z: f64| {
+            let w = Vec3::new(w0.x, w0.y, w0.z + z);
+            let u = w.dot(a);
+            profile.signed_distance_rho_z((w - a * u).norm(), u)
+        };
         let mut z = from.max(self.zlo - 1.0);
         let mut prev = f64::INFINITY;
         for _ in 0..MAX_STEPS {
@@ -179,7 +189,6 @@ fn grazing(f: &impl Fn(f64) -> f64, z: f64, top: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use swarf_geom::Vec3;
     use swarf_tool::Cutter;
 
     /// Bisection on the sign of the signed distance between a point known outside
