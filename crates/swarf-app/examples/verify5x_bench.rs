@@ -16,6 +16,7 @@ use std::time::Instant;
 use swarf_app::job::Job;
 use swarf_app::verify::{GcodeSetup, SimSettings, Verified, VerifyRequest, verify_in_memory};
 use swarf_sim::progress::Quiet;
+use swarf_testkit::heights::worst_height_ratio;
 
 const MACHINES: [&str; 3] = ["xyzac-trunnion", "xyzbc-head", "xyzbc-table-head"];
 
@@ -63,33 +64,19 @@ fn verify(program: &Path, cell: f64, first_order: bool) -> (Verified, f64) {
     (v, t.elapsed().as_secs_f64())
 }
 
-/// The largest height difference of the two stocks over `allowed` (the sum of their
-/// bounds, 3D) times `sqrt(1 + s^2)`, `s` the reference's steepest one-sided slope at
-/// the cell, among cut cells no steeper than 2:1; and the cells compared.
+/// The worst cell difference of the two stocks over the sum of their bounds (3D),
+/// among the cells some motion cut ([`worst_height_ratio`]).
 fn worst_ratio(fast: &Verified, slow: &Verified) -> (f64, usize) {
     let (f, s) = (&fast.verification, &slow.verification);
     let allowed = f.sim.max_sample_bound.min(f.sample_tol) + s.sample_tol + 1e-9;
     let g = s.grid;
-    let (h, q) = (s.stock.heights(), f.stock.heights());
-    let (mut worst, mut count) = (0.0f64, 0);
-    for j in 1..g.ny - 1 {
-        for i in 1..g.nx - 1 {
-            let k = j * g.nx + i;
-            let slope = [k - 1, k + 1, k - g.nx, k + g.nx]
-                .iter()
-                .map(|&n| (h[n] - h[k]).abs() / g.cell)
-                .fold(0.0, f64::max);
-            if !(slope <= 2.0)
-                || !h[k].is_finite()
-                || s.stock.last_motion()[k] == swarf_sim::dexel::NO_MOTION
-            {
-                continue;
-            }
-            count += 1;
-            worst = worst.max((q[k] - h[k]).abs() / (allowed * (1.0 + slope * slope).sqrt()));
-        }
-    }
-    (worst, count)
+    let last = s.stock.last_motion();
+    worst_height_ratio(
+        (s.stock.heights(), f.stock.heights()),
+        (g.nx, g.ny, g.cell),
+        allowed,
+        |k| last[k] != swarf_sim::dexel::NO_MOTION,
+    )
 }
 
 fn main() {

@@ -9,6 +9,7 @@
 
 use swarf_geom::{Point3, Vec3};
 use swarf_sim::{Dexel, Grid, Quiet, SimOptions, SimReport, SimTool, StockInit, simulate};
+use swarf_testkit::heights::worst_height_ratio;
 use swarf_tool::Pose;
 use swarf_toolpath::{Motion, MotionKind};
 
@@ -79,29 +80,13 @@ fn run(spec: &str, moves: &[Motion], tol: f64, first_order: bool) -> (Dexel, Sim
     (d, r)
 }
 
-/// The largest height difference over the allowed one, among cells whose cut surface
-/// (the reference's, by one-sided differences) is no steeper than 2:1.
+/// [`worst_height_ratio`] of the two stocks over cut cells (below the stock's top).
 fn worst_ratio(fast: &Dexel, slow: &Dexel, allowed: f64) -> (f64, usize) {
     let g = *slow.grid();
-    let (h, f) = (slow.heights(), fast.heights());
-    let mut worst = 0.0f64;
-    let mut checked = 0;
-    for j in 1..g.ny - 1 {
-        for i in 1..g.nx - 1 {
-            let k = j * g.nx + i;
-            let slope = [k - 1, k + 1, k - g.nx, k + g.nx]
-                .iter()
-                .map(|&n| (h[n] - h[k]).abs() / g.cell)
-                .fold(0.0, f64::max);
-            if slope > 2.0 || h[k] >= 0.0 {
-                continue;
-            }
-            checked += 1;
-            let diff = (f[k] - h[k]).abs();
-            worst = worst.max(diff / (allowed * (1.0 + slope * slope).sqrt()));
-        }
-    }
-    (worst, checked)
+    let h = slow.heights();
+    worst_height_ratio((h, fast.heights()), (g.nx, g.ny, g.cell), allowed, |k| {
+        h[k] < 0.0
+    })
 }
 
 #[test]

@@ -2,6 +2,7 @@
 //! never published; every crate takes it as a dev-dependency).
 //!
 //! - [`boss`]: the built-in boss measured where a ball reaches it.
+//! - [`heights`]: two dexel height fields compared against a 3D distance bound.
 //! - [`parts`]: the built-in die and wave, the exact cylinder and the groove.
 //! - [`machines`]: the example machine files and the repository root.
 //! - [`references`]: whether independent references (OpenCAMLib, `rs274`) are
@@ -16,6 +17,7 @@
 pub mod boss;
 #[cfg(feature = "plan")]
 mod die;
+pub mod heights;
 pub mod machines;
 pub mod ocl;
 pub mod parts;
