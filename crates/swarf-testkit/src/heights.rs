@@ -20,7 +20,7 @@ pub fn worst_height_ratio(
                 .iter()
                 .map(|&n| (slow[n] - slow[k]).abs() / cell)
                 .fold(0.0, f64::max);
-            if !(slope <= 2.0) || !slow[k].is_finite() || !include(k) {
+            if slope.is_nan() || slope > 2.0 || !slow[k].is_finite() || !include(k) {
                 continue;
             }
             count += 1;
