@@ -28,8 +28,8 @@
 //! Every program verified in steps 3 and 4 also gets its 3D view (`*.view/`: GLB
 //! files, `view.json`, and the viewer page where it has been built; [`crate::view`]).
 //!
-//! The jobs are embedded so that the demo needs no files; their parts and machine are
-//! built-in.
+//! Each section ends with the wall time it took. The jobs are embedded so that the
+//! demo needs no files; their parts and machine are built-in.
 
 use crate::compare::{compare_all_views, five_axis_markdown, markdown};
 use crate::error::{Context, Result};
@@ -103,11 +103,13 @@ const DEMO_SECTIONS: usize = 7;
 /// jobs and parts are built in).
 pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<()> {
     let start = std::time::Instant::now();
+    let mut section = start;
     let mut outputs = Outputs::new(dir);
     let out = &mut outputs;
     reporter.job(0, DEMO_SECTIONS, "demo: parts");
     writeln!(text, "== parts")?;
     tessellate_parts(out, text)?;
+    section_took(text, &mut section)?;
     reporter.job(1, DEMO_SECTIONS, "demo: tool paths");
     writeln!(text, "\n== tool paths (paper 004 on wave.toml)")?;
     let jobs_dir = out.path("jobs");
@@ -129,6 +131,7 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         out.write(&path, job_text.as_bytes())?;
         paths.push(path);
     }
+    section_took(text, &mut section)?;
     reporter.job(2, DEMO_SECTIONS, "demo: verification");
     writeln!(
         text,
@@ -138,12 +141,14 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         compare_all_views(&paths, &SimSettings::default(), out, reporter, true)
     })?;
     write!(text, "{}", markdown(&rows))?;
+    section_took(text, &mut section)?;
     reporter.job(3, DEMO_SECTIONS, "demo: five-axis");
     writeln!(
         text,
         "\n== five-axis (thesis 000 ch. 8 on die.toml), verified by dexel through the APT CL"
     )?;
     die(out, &jobs_dir, text, reporter)?;
+    section_took(text, &mut section)?;
     reporter.job(4, DEMO_SECTIONS, "demo: rest and cleanup");
     writeln!(
         text,
@@ -152,18 +157,21 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
     out.in_dir("rest", |out| {
         crate::demo_rest::cleanup_section(out, text, reporter)
     })?;
+    section_took(text, &mut section)?;
     reporter.job(5, DEMO_SECTIONS, "demo: drop and spin");
     writeln!(
         text,
         "\n== drop and spin at the common edge (paper 003 on the edge parts)"
     )?;
     edges(out, text, reporter)?;
+    section_took(text, &mut section)?;
     reporter.job(6, DEMO_SECTIONS, "demo: stock to part");
     writeln!(
         text,
         "\n== from stock to part (thesis 002 §4.1 on the fillet pocket: rough, rest-rough, finish, clean up)"
     )?;
     sequence(out, text)?;
+    section_took(text, &mut section)?;
     reporter.jobs_done();
     outputs.commit()?;
     match crate::view::viewer_dist() {
@@ -185,6 +193,14 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         dir.display(),
         start.elapsed().as_secs_f64()
     )?;
+    Ok(())
+}
+
+/// Prints the wall time since `mark` as the cost of the section just done, and
+/// starts the next one.
+fn section_took(text: &mut dyn Write, mark: &mut std::time::Instant) -> Result<()> {
+    writeln!(text, "(section: {:.1} s)", mark.elapsed().as_secs_f64())?;
+    *mark = std::time::Instant::now();
     Ok(())
 }
 
