@@ -6,7 +6,8 @@
 //!   ([`swarf_tool::drop::Envelope`]) along a straight move.
 //! - [`sweep`]: what a motion removes (the per-shape `Sweep` interface, the sampling
 //!   bounds for arcs and five-axis motions), with [`sweep_linear`] (exact) and
-//!   [`sweep_tilted`] (one tilted tool position).
+//!   [`sweep_tilted`] (one tilted tool position, marched by the distance of
+//!   [`tool_solid`]).
 //! - [`sweep_bound`]: how finely a tilted motion is sampled (second order for
 //!   rounded tools below the stock's reach).
 //! - [`sweep_budget`]: the samples and depths a program asks for, refused before
@@ -43,6 +44,7 @@ pub mod sweep_budget;
 pub mod sweep_linear;
 pub mod sweep_tilted;
 pub mod swept_min;
+pub mod tool_solid;
 pub mod verify;
 
 pub use design::{Design, DesignField, DesignSurface};

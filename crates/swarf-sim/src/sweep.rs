@@ -38,10 +38,11 @@ use crate::grid::Grid;
 use crate::sweep_bound::{Kinematics, Rounding, StockCeiling, rolling_radius, sample_poses};
 use crate::sweep_linear::{LinearSweep, RowCut};
 use crate::sweep_tilted::ToolInstance;
+use crate::tool_solid::ToolSolid;
 use swarf_geom::tol::LENGTH_EPS;
 use swarf_geom::{Point3, Vec3};
+use swarf_tool::Cutter;
 use swarf_tool::drop::Envelope;
-use swarf_tool::{Cutter, Profile};
 use swarf_toolpath::{Motion, MotionKind};
 
 /// Sampling tolerance for five-axis rapids, mm (at least this coarse).
@@ -52,7 +53,7 @@ pub const RAPID_SAMPLE: f64 = 0.1;
 pub struct SimTool {
     /// The cutter.
     pub cutter: Cutter,
-    profile: Profile,
+    solid: ToolSolid,
     envelope: Envelope,
     radius: f64,
     length: f64,
@@ -80,7 +81,7 @@ impl SimTool {
         let length = profile.length();
         Ok(SimTool {
             cutter: *cutter,
-            profile,
+            solid: ToolSolid::of(cutter, &profile),
             envelope,
             radius,
             length,
@@ -174,7 +175,7 @@ impl Sweep for ToolInstance {
             if floor >= h {
                 continue;
             }
-            let z = self.lowest(&job.tool.profile, job.tool.convex, (x, y), h, floor);
+            let z = self.lowest(&job.tool.solid, job.tool.convex, (x, y), h, floor);
             if z < h {
                 heights[i] = z;
                 last[i] = job.motion;

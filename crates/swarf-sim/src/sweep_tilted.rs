@@ -19,8 +19,9 @@
 //! decrease `f`, `f` never decreases again and the line misses the tool. That ends
 //! misses after a few steps instead of marching to the top.
 
+use crate::tool_solid::ToolSolid;
 use swarf_geom::{Point3, Vec3};
-use swarf_tool::{Pose, Profile};
+use swarf_tool::Pose;
 
 /// The march stops this close to the tool, mm.
 pub const HIT_DISTANCE: f64 = 1e-9;
@@ -114,20 +115,19 @@ impl ToolInstance {
     /// or `-inf`) or 1 mm below the tool, whichever is higher.
     pub fn lowest(
         &self,
-        profile: &Profile,
+        solid: &ToolSolid,
         convex: bool,
         (x, y): (f64, f64),
         ceiling: f64,
         from: f64,
     ) -> f64 {
         let top = self.ztop.min(ceiling);
-        // The profile's signed distance at (x, y, z) ([`Profile::signed_distance`] with
-        // the axis normalised once).
+        // The tool's signed distance at (x, y, z), the axis normalised once.
         let (a, w0) = (&self.unit, Point3::new(x, y, 0.0) - self.pose.cl);
         let f = |z: f64| {
             let w = Vec3::new(w0.x, w0.y, w0.z + z);
             let u = w.dot(a);
-            profile.signed_distance_rho_z((w - a * u).norm(), u)
+            solid.distance((w - a * u).norm(), u)
         };
         let mut z = from.max(self.zlo - 1.0);
         let mut prev = f64::INFINITY;
@@ -189,7 +189,7 @@ fn grazing(f: &impl Fn(f64) -> f64, z: f64, top: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use swarf_tool::Cutter;
+    use swarf_tool::{Cutter, Profile};
 
     /// Bisection on the sign of the signed distance between a point known outside
     /// (below) and one known inside: an independent route to the entry point.
@@ -209,13 +209,14 @@ mod tests {
     fn tilted_ball_matches_the_sphere_and_bisection() {
         let cutter: Cutter = "ball:d=8".parse().unwrap();
         let profile = cutter.profile();
+        let solid = ToolSolid::of(&cutter, &profile);
         let axis = Vec3::new(0.3, -0.2, 1.0).normalize();
         let pose = Pose::new(Point3::new(1.0, 2.0, 3.0), axis).unwrap();
         let inst = ToolInstance::new(pose, 4.0, cutter.length());
         let centre = pose.cl + axis * 4.0;
         for k in 0..40 {
             let (x, y) = (centre.x - 3.9 + 0.2 * k as f64, centre.y + 0.7);
-            let got = inst.lowest(&profile, true, (x, y), f64::INFINITY, f64::NEG_INFINITY);
+            let got = inst.lowest(&solid, true, (x, y), f64::INFINITY, f64::NEG_INFINITY);
             let d2 = (x - centre.x).powi(2) + (y - centre.y).powi(2);
             let sphere = centre.z - (16.0 - d2).sqrt();
             // The lowest point over the cell is on the ball wherever the ball's lowest
@@ -229,7 +230,7 @@ mod tests {
         }
         assert_eq!(
             inst.lowest(
-                &profile,
+                &solid,
                 true,
                 (centre.x + 30.0, centre.y),
                 f64::INFINITY,
@@ -243,6 +244,7 @@ mod tests {
     fn floor_is_a_lower_bound() {
         let cutter: Cutter = "bull:d=10,r=2".parse().unwrap();
         let profile = cutter.profile();
+        let solid = ToolSolid::of(&cutter, &profile);
         for axis in [
             Vec3::new(-0.5, 0.1, 1.0),
             Vec3::z(),
@@ -256,12 +258,11 @@ mod tests {
                 for l in 0..=40 {
                     let x = b[0] + (b[2] - b[0]) * k as f64 / 40.0;
                     let y = b[1] + (b[3] - b[1]) * l as f64 / 40.0;
-                    let exact =
-                        inst.lowest(&profile, true, (x, y), f64::INFINITY, f64::NEG_INFINITY);
+                    let exact = inst.lowest(&solid, true, (x, y), f64::INFINITY, f64::NEG_INFINITY);
                     let floor = inst.floor(x, y);
                     assert!(floor <= exact + 1e-9, "{x} {y}: {floor} > {exact}");
                     // Marching from the floor finds the same point.
-                    let from = inst.lowest(&profile, true, (x, y), f64::INFINITY, floor);
+                    let from = inst.lowest(&solid, true, (x, y), f64::INFINITY, floor);
                     assert!(
                         from == exact || (from - exact).abs() < 1e-7,
                         "{from} {exact}"
@@ -277,6 +278,7 @@ mod tests {
     fn tilted_bull_matches_bisection_and_misses_are_quick() {
         let cutter: Cutter = "bull:d=10,r=2".parse().unwrap();
         let profile = cutter.profile();
+        let solid = ToolSolid::of(&cutter, &profile);
         let axis = Vec3::new(-0.5, 0.1, 1.0).normalize();
         let pose = Pose::new(Point3::new(0.0, 0.0, 0.0), axis).unwrap();
         let inst = ToolInstance::new(pose, 5.0, cutter.length());
@@ -285,7 +287,7 @@ mod tests {
         for k in 0..=60 {
             let x = b[0] + (b[2] - b[0]) * k as f64 / 60.0;
             let y = 1.3;
-            let got = inst.lowest(&profile, true, (x, y), f64::INFINITY, f64::NEG_INFINITY);
+            let got = inst.lowest(&solid, true, (x, y), f64::INFINITY, f64::NEG_INFINITY);
             if got.is_finite() {
                 hits += 1;
                 assert!(
