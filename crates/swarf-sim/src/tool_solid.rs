@@ -13,20 +13,21 @@
 
 use swarf_tool::{Cutter, Profile};
 
-/// How the distance to a tool solid is found.
+/// A tool solid and how the distance to it is found.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum ToolSolid {
-    /// A ball or bull: its core grown by the corner, and its top slab.
-    Rounded {
-        /// Radius `R`, mm.
-        radius: f64,
-        /// Corner radius `r`, mm.
-        corner: f64,
-        /// Flute length `L`, mm.
-        length: f64,
-    },
-    /// Any other tool: its profile's exact signed distance.
-    Profile(Profile),
+pub struct ToolSolid {
+    /// The profile (its exact signed distance for every tool but a ball or bull).
+    profile: Profile,
+    /// A ball's or bull's radius `R`, corner `r` and flute length `L`, mm.
+    rounded: Option<Rounded>,
+}
+
+/// A ball or bull: its core grown by the corner, and its top slab.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Rounded {
+    radius: f64,
+    corner: f64,
+    length: f64,
 }
 
 impl ToolSolid {
@@ -38,30 +39,36 @@ impl ToolSolid {
             _ => (0.0, 0.0),
         };
         let length = profile.length();
-        if corner > 0.0 && corner <= radius && 2.0 * corner <= length {
-            ToolSolid::Rounded {
+        let rounded =
+            (corner > 0.0 && corner <= radius && 2.0 * corner <= length).then_some(Rounded {
                 radius,
                 corner,
                 length,
-            }
-        } else {
-            ToolSolid::Profile(*profile)
+            });
+        ToolSolid {
+            profile: *profile,
+            rounded,
         }
+    }
+
+    /// True when the distance is the ball's or bull's own (not the profile walk).
+    pub fn is_rounded(&self) -> bool {
+        self.rounded.is_some()
     }
 
     /// Signed distance from the meridian point `(rho, u)` (negative inside), mm.
     #[inline]
     pub fn distance(&self, rho: f64, u: f64) -> f64 {
-        match *self {
-            ToolSolid::Rounded {
+        match self.rounded {
+            Some(Rounded {
                 radius,
                 corner,
                 length,
-            } => {
+            }) => {
                 let core = cylinder(rho, u, radius - corner, (corner, length - corner)) - corner;
                 core.min(cylinder(rho, u, radius, (length - corner, length)))
             }
-            ToolSolid::Profile(p) => p.signed_distance_rho_z(rho, u),
+            None => self.profile.signed_distance_rho_z(rho, u),
         }
     }
 }
@@ -90,7 +97,7 @@ mod tests {
             let cutter: Cutter = spec.parse().unwrap();
             let profile = cutter.profile();
             let solid = ToolSolid::of(&cutter, &profile);
-            assert!(matches!(solid, ToolSolid::Rounded { .. }), "{spec}");
+            assert!(solid.is_rounded(), "{spec}");
             let (r, l) = (profile.radius(), profile.length());
             for k in 0..=60 {
                 for m in 0..=60 {
@@ -118,7 +125,7 @@ mod tests {
         for spec in ["flat:d=6", "cone:d=6,angle=60", "ball:d=8,length=6"] {
             let cutter: Cutter = spec.parse().unwrap();
             let solid = ToolSolid::of(&cutter, &cutter.profile());
-            assert!(matches!(solid, ToolSolid::Profile(_)), "{spec}");
+            assert!(!solid.is_rounded(), "{spec}");
         }
     }
 }
