@@ -35,7 +35,7 @@
 
 use crate::error::SimError;
 use crate::grid::Grid;
-use crate::sweep_bound::{Kinematics, Rounding, StockCeiling, rolling_radius, sample_poses};
+use crate::sweep_bound::{Kinematics, Rounding, StockCeiling, rolling_radius};
 use crate::sweep_linear::{LinearSweep, RowCut};
 use crate::sweep_tilted::ToolInstance;
 use crate::tool_solid::ToolSolid;
@@ -316,10 +316,10 @@ pub(crate) fn sweep_plan(tool: &SimTool, m: &Motion, sampling: &Sampling<'_>) ->
         && let Some(second) = tool.rounding.second_order(&kin)
     {
         let (n, wanted) = steps(second, tol, true);
-        let poses = sample_poses(&|t| m.point_at(t), n);
+        let poses = (0..=n).map(|k| m.point_at(k as f64 / n as f64));
         if tool
             .rounding
-            .slab_clear(&poses, first / n as f64, sampling.ceiling)
+            .slab_clear(poses, first / n as f64, sampling.ceiling)
         {
             let bound = second / (n * n) as f64;
             let plan = SweepPlan::Instances {

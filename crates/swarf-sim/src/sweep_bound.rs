@@ -43,6 +43,7 @@
 //! whose edges are sharp) the motion is sampled to `delta_1`.
 
 use crate::grid::Grid;
+use crate::sweep_tilted::ToolInstance;
 use swarf_tool::{Cutter, Pose};
 
 /// Side of the tiles whose highest initial stock bounds the stock, mm (about).
@@ -200,22 +201,23 @@ impl Rounding {
     /// slab's lowest point is bounded by its box's bottom and, for an axis above the
     /// horizontal, by the plane of the slab's bottom face (every slab point lies
     /// above it; `margin` lowers it by `margin / a_z`), least at a tile corner.
-    pub fn slab_clear(&self, poses: &[Pose], margin: f64, ceiling: &StockCeiling) -> bool {
+    pub fn slab_clear(
+        &self,
+        poses: impl IntoIterator<Item = Pose>,
+        margin: f64,
+        ceiling: &StockCeiling,
+    ) -> bool {
         let bottom = self.length - self.rho;
-        poses.iter().all(|pose| {
+        poses.into_iter().all(|pose| {
             let Some(a) = pose.axis.try_normalize(1e-12) else {
                 return false;
             };
+            // The slab is the cylinder of the tool's radius and length rho from `lo`.
             let lo = pose.cl + a * bottom;
-            let hi = pose.cl + a * self.length;
-            let grow = |k: usize| self.radius * (1.0 - a[k] * a[k]).max(0.0).sqrt() + margin;
-            let b = [
-                lo.x.min(hi.x) - grow(0),
-                lo.y.min(hi.y) - grow(1),
-                lo.x.max(hi.x) + grow(0),
-                lo.y.max(hi.y) + grow(1),
-            ];
-            let box_low = lo.z.min(hi.z) - grow(2);
+            let slab = ToolInstance::new(Pose { cl: lo, axis: a }, self.radius, self.rho);
+            let [x0, y0, x1, y1] = slab.bounds();
+            let b = [x0 - margin, y0 - margin, x1 + margin, y1 + margin];
+            let box_low = slab.zlo() - margin;
             let (gx, gy) = (-a.x / a.z, -a.y / a.z);
             let plane = |x: f64, y: f64| lo.z + gx * (x - lo.x) + gy * (y - lo.y) - margin / a.z;
             ceiling.clears(b, |t| {
@@ -233,11 +235,6 @@ impl Rounding {
 /// Below this axis height (about 87 degrees of tilt) the slab's plane bound is not
 /// used (it grows without bound as the axis nears the horizontal).
 const PLANE_MIN_COS: f64 = 0.05;
-
-/// The poses of the sampled tool, `t = k / n`.
-pub fn sample_poses(at: &impl Fn(f64) -> Pose, n: usize) -> Vec<Pose> {
-    (0..=n).map(|k| at(k as f64 / n as f64)).collect()
-}
 
 #[cfg(test)]
 mod tests {
