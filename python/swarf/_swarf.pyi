@@ -238,11 +238,19 @@ class SequencePlan:
         """The lines ``swarf plan`` prints: one per operation, then the total."""
     def write_gcode(self, path: PathLike) -> None: ...
 
-def plan(job: JobLike, *, out: Optional[PathLike] = None) -> Union[Plan, SequencePlan]:
+def plan(
+    job: JobLike,
+    *,
+    out: Optional[PathLike] = None,
+    allow_unsafe: bool = False,
+    verify: bool = True,
+) -> Union[Plan, SequencePlan]:
     """Plans a job (a ``Job``, a dict, TOML text or a job file path) as
     ``swarf plan`` does; with ``out`` writes the job's outputs there. A sequence
     job (``[[operation]]`` tables; a path, TOML text or a dict) gives a
-    ``SequencePlan``; errors name ``operation[k]``."""
+    ``SequencePlan``; errors name ``operation[k]``. The program is verified on
+    the job's stock first: an unsafe one raises ``SwarfError`` naming its lines;
+    ``allow_unsafe=True`` returns it labelled, ``verify=False`` skips the check."""
 
 class Verification:
     """What a verification found, over the dexel grid (``ny`` rows, ``nx`` columns)."""

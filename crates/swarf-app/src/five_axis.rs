@@ -56,7 +56,7 @@ pub fn position_plan(
     }
     let (passes, report) =
         position_with_progress(&job.tool, part, &cc, positioning, job.tolerance(), progress)?;
-    plan.toolpath.linking = linking(&job.linking, &job.tool, part, &passes);
+    plan.toolpath.linking = linking(&job.cutting(), part, &passes);
     plan.toolpath.passes = passes;
     plan.report.lifted_points = 0;
     plan.report.max_lift = 0.0;

@@ -61,6 +61,10 @@ pub fn select_faces(part: &Part, refs: &[FaceRef], arg: &str) -> Result<Part> {
         .map_err(|e| crate::error::AppError::Message(format!("{arg}: {e}")))
 }
 
+/// Chordal tolerance of the tessellation that bounds a patch part's top
+/// ([`Model::top`]), mm.
+pub const TOP_CHORD: f64 = 0.01;
+
 /// A part as the user named it: parametric patches or a triangle mesh.
 pub enum Model {
     /// Patches from a part file or a built-in part.
@@ -87,6 +91,28 @@ impl Model {
         })
     }
 
+    /// A box holding the design: a mesh's bounding box, the control box of patches
+    /// (they lie in the convex hull of their control points).
+    pub fn bounds(&self) -> swarf_geom::Aabb {
+        match self {
+            Model::Patches(part) => part.control_box(),
+            Model::Mesh { mesh, .. } => mesh.aabb(),
+        }
+    }
+
+    /// A height the design does not rise above, within [`TOP_CHORD`] of its highest
+    /// point, mm: a mesh's highest vertex; the highest vertex of the patches'
+    /// tessellation within [`TOP_CHORD`], plus that chord.
+    ///
+    /// # Errors
+    /// A tessellation that fails.
+    pub fn top(&self) -> Result<f64> {
+        Ok(match self {
+            Model::Mesh { mesh, .. } => mesh.aabb().max.z,
+            Model::Patches(part) => part.tessellate(TOP_CHORD)?.aabb().max.z + TOP_CHORD,
+        })
+    }
+
     /// Refuses a design that covers no area seen from above (a vertical plane, a
     /// line): the commands that lay a grid over the part's XY box (verify, rest,
     /// classify) have nothing to measure. `name` is the part as the user gave it.
@@ -94,10 +120,7 @@ impl Model {
     /// # Errors
     /// A box of zero width or depth in XY, naming `name` and the box.
     pub fn check_covers_xy(&self, name: &str) -> Result<()> {
-        let b = match self {
-            Model::Patches(part) => part.control_box(),
-            Model::Mesh { mesh, .. } => mesh.aabb(),
-        };
+        let b = self.bounds();
         if b.max.x > b.min.x && b.max.y > b.min.y {
             return Ok(());
         }

@@ -54,7 +54,7 @@ fn add_job_leads(job: &Job, input: PlanInput<'_>, plan: &mut Plan) -> Result<(),
     let dropper = swarf_tool::drop::MeshDropper::new(mesh, &job.tool);
     swarf_path::leads::add_leads(&mut plan.toolpath.passes, &dropper, &leads)?;
     let top = swarf_toolpath::top_z(&plan.toolpath.passes);
-    plan.toolpath.linking = job.linking.for_top(top);
+    plan.toolpath.linking = job.cutting().linking_for(top);
     Ok(())
 }
 

@@ -7,6 +7,7 @@ use crate::cleanup::{plan_cleanup_job, rest_json, stage_file, steep_json};
 use crate::drop_spin::{contacts_csv, drop_spin_json, plan_drop_spin};
 use crate::error::{AppError, Result, bail};
 use crate::five_axis::{position_plan, write_job_gcode};
+use crate::gate::{self, Gate, stock_spec};
 use crate::holder::HolderCheck;
 use crate::holder::path::{check_path, gcode_line, refusal};
 use crate::job::{Job, Output};
@@ -14,7 +15,7 @@ use crate::model::{Model, load_model_with};
 use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
 use crate::plan_record::{OperationRecord, PlanRecord, ToolRecord, record_name};
-use crate::programs::SCALLOP_COMMENT;
+use crate::plan_summary::{RotaryRanges, SummaryParts, header_comments, summary_json};
 use crate::report::Reporter;
 use crate::strategy::Strategy;
 use std::path::Path;
@@ -26,6 +27,7 @@ use swarf_io::Source;
 use swarf_nc::read::GcodeReadOptions;
 use swarf_nc::{GcodeOptions, Post};
 use swarf_path::Plan;
+use swarf_sim::StockSpec;
 use swarf_tool::library::LibraryTool;
 use swarf_toolpath::{Toolpath, motion_stats};
 
@@ -83,6 +85,10 @@ pub fn plan_model_toolpath(
     out: &mut Outputs,
     reporter: &dyn Reporter,
 ) -> Result<Planned> {
+    let job = &match job.material_top {
+        Some(_) => job.clone(),
+        None => job.on_stock(model, job_dir)?,
+    };
     let machine = job
         .output
         .machine
@@ -97,12 +103,23 @@ pub fn plan_model_toolpath(
     let post = Post::load(spec, job_dir)
         .map_err(|e| AppError::Message(format!("output.post = {:?}: {e}", excerpt(spec, 80))))?;
     let post = &post;
+    let gate_stock = match job.gate {
+        Gate::Skip => None,
+        _ => Some(stock_spec(job, job_dir)?),
+    };
+    let gate_stock = gate_stock.as_ref();
     match &job.strategy {
         Strategy::Cleanup(_) => {
-            return cleanup_outputs(job, model, job_dir, (machine.as_ref(), post), out);
+            return cleanup_outputs(
+                job,
+                model,
+                job_dir,
+                (machine.as_ref(), post, gate_stock),
+                out,
+            );
         }
         Strategy::DropSpin(_) => {
-            return drop_spin_outputs(job, model, (machine.as_ref(), post), out);
+            return drop_spin_outputs(job, model, (machine.as_ref(), post, gate_stock), out);
         }
         _ => {}
     }
@@ -133,6 +150,7 @@ pub fn plan_model_toolpath(
         post,
         positioning: positioning.as_ref(),
         notes: &[],
+        gate_stock,
     };
     let summary = write_outputs(job, &plan, &written, out)?;
     Ok(Planned {
@@ -152,6 +170,9 @@ struct Written<'a> {
     positioning: Option<&'a PositioningReport>,
     /// Extra header comments of the program.
     notes: &'a [String],
+    /// The stock the verification gate simulates the program on (`None`: the gate
+    /// is skipped).
+    gate_stock: Option<&'a StockSpec>,
 }
 
 /// Plans a drop-spin job ([`crate::drop_spin`]) and writes its outputs, the
@@ -159,7 +180,7 @@ struct Written<'a> {
 fn drop_spin_outputs(
     job: &Job,
     model: &Model,
-    (machine, post): (Option<&Machine>, &Post),
+    (machine, post, gate_stock): (Option<&Machine>, &Post, Option<&StockSpec>),
     out: &mut Outputs,
 ) -> Result<Planned> {
     let Model::Patches(part) = model else {
@@ -181,6 +202,7 @@ fn drop_spin_outputs(
         post,
         positioning: None,
         notes: &[],
+        gate_stock,
     };
     let mut quiet = job.clone();
     let summary_file = quiet.output.summary.take();
@@ -203,7 +225,7 @@ fn cleanup_outputs(
     job: &Job,
     model: &Model,
     job_dir: &Path,
-    (machine, post): (Option<&Machine>, &Post),
+    (machine, post, gate_stock): (Option<&Machine>, &Post, Option<&StockSpec>),
     out: &mut Outputs,
 ) -> Result<Planned> {
     let mut stages = plan_cleanup_job(job, model, job_dir, Some(out))?;
@@ -234,6 +256,7 @@ fn cleanup_outputs(
             post,
             positioning: None,
             notes: &stage.notes,
+            gate_stock,
         };
         let mut s = write_outputs(&staged, &stage.plan, &written, out)?;
         s["reference_tool"] = serde_json::json!(stage.reference.to_string());
@@ -307,6 +330,7 @@ fn write_outputs(
         post,
         positioning,
         notes,
+        gate_stock: _,
     } = *written;
     let holder = match &job.library_tool {
         Some(tool) => {
@@ -321,9 +345,15 @@ fn write_outputs(
     let stats = motion_stats(&moves, job.feeds.rapid);
     let strategy = job.strategy.kind().to_string();
     let comments = header_comments(job, plan, part_name, &strategy, notes);
-    let (rotary, program) = write_program(job, plan, written, &moves, comments, out)?;
+    let read = GcodeReadOptions {
+        language: post.reader(),
+        ..GcodeReadOptions::default()
+    };
+    let (rotary, program, gate) =
+        gated_program(job, plan, written, (&moves, &read), comments, out)?;
     if let Some((tool, mesh, check)) = &holder {
-        refuse_collisions(job, plan, post, program.as_deref(), (tool, mesh, check))?;
+        let program = program.as_deref().map(|text| (text, &read));
+        refuse_collisions(job, plan, program, (tool, mesh, check))?;
     }
     if let Some(rel) = &job.output.cl {
         let text = swarf_nc::write_cl(&moves, &job.feeds, &job.tool, part_name, job.output.units)?;
@@ -337,44 +367,58 @@ fn write_outputs(
         out.write(rel, text.as_bytes())?;
     }
     write_records(&job_record(job, plan, written), &job.output, out)?;
-    let numbers = [
-        stats.cutting_length,
-        stats.approach_length,
-        stats.rapid_length,
-        stats.time_s,
-    ];
-    swarf_io::json::check_finite(&(numbers, &plan.report))
-        .map_err(|e| AppError::Message(format!("the plan's summary: {e}")))?;
-    let mut summary = serde_json::json!({
-        "job": job.name,
-        "part": part_name,
-        "tool": job.tool.to_string(),
-        "strategy": strategy,
-        "passes": plan.toolpath.passes.len(),
-        "poses": plan.toolpath.pose_count(),
-        "cutting_length_mm": stats.cutting_length,
-        "approach_length_mm": stats.approach_length,
-        "rapid_length_mm": stats.rapid_length,
-        "estimated_time_s": stats.time_s,
-        "lifted_points": plan.toolpath.lifted_count(),
-        "report": plan.report,
-    });
-    if let Some(m) = machine {
-        summary["machine"] = serde_json::json!(m.name);
-        if let Some(ranges) = rotary {
-            summary["rotary_ranges_deg"] = rotary_json(m, ranges);
-        }
-    }
-    if let Some(p) = positioning {
-        summary["positioning"] = serde_json::to_value(p)?;
-    }
-    if let Some((tool, _, check)) = &holder {
-        summary["holder"] = holder_json(tool, check)?;
-    }
+    let summary = summary_json(&SummaryParts {
+        job,
+        plan,
+        part_name,
+        stats: &stats,
+        machine: machine.map(|m| (m, rotary)),
+        positioning,
+        holder: holder.as_ref().map(|(tool, _, check)| (*tool, check)),
+        gate: gate.as_ref(),
+        gated: gate::is_gated(&moves),
+    })?;
     if let Some(rel) = &job.output.summary {
         out.write_json(rel, &summary)?;
     }
     Ok(summary)
+}
+
+/// Writes the program ([`write_program`]) through the verification gate
+/// ([`crate::gate`]): simulated on the job's stock as it would be written, its
+/// verdict in its header, refused when unsafe unless the job allows it.
+///
+/// # Errors
+/// As [`write_program`]; the gate's refusal.
+fn gated_program(
+    job: &Job,
+    plan: &Plan,
+    written: &Written<'_>,
+    (moves, read): (&[swarf_toolpath::Move], &GcodeReadOptions<'_>),
+    mut comments: Vec<String>,
+    out: &mut Outputs,
+) -> Result<(
+    Option<RotaryRanges>,
+    Option<String>,
+    Option<gate::GateReport>,
+)> {
+    let stock = written.gate_stock;
+    let first = match (&job.output.gcode, stock) {
+        (Some(_), Some(_)) => Some(three_axis_gcode(
+            job,
+            written.post,
+            moves,
+            comments.clone(),
+        )?),
+        _ => None,
+    };
+    let scallop = planned_scallop(job, plan).unwrap_or(0.0);
+    let simulated = (moves, first.as_deref(), read);
+    let mut gate = gate::run(job, written.model, simulated, stock, scallop)?;
+    comments.push(gate::comment(gate.as_ref(), gate::is_gated(moves)));
+    let (rotary, program) = write_program(job, plan, written, moves, comments, out)?;
+    gate::conclude(job, gate.as_mut(), (moves, program.as_deref(), read))?;
+    Ok((rotary, program, gate))
 }
 
 /// The plan record of `job`'s program (`crate::plan_record`): its tool, what it was
@@ -410,7 +454,7 @@ fn job_record(job: &Job, plan: &Plan, written: &Written<'_>) -> PlanRecord {
 
 /// The scallop a job's program is planned for, mm: the job's limit, else what its
 /// strategy predicts.
-fn planned_scallop(job: &Job, plan: &Plan) -> Option<f64> {
+pub(crate) fn planned_scallop(job: &Job, plan: &Plan) -> Option<f64> {
     job.strategy.scallop().or(plan.report.predicted_max_scallop)
 }
 
@@ -438,9 +482,6 @@ pub(crate) fn write_records(record: &PlanRecord, output: &Output, out: &mut Outp
     }
     Ok(())
 }
-
-/// The ranges of a five-axis program's two rotary axes, radians.
-type RotaryRanges = [[f64; 2]; 2];
 
 /// Writes the program `output.gcode` asks for: five-axis for `output.machine`
 /// (with the rotary axes' ranges), else three-axis (returned as text, the T number
@@ -470,14 +511,6 @@ fn write_program(
     Ok((None, Some(text)))
 }
 
-/// The summary's `holder` section: the check's figures and the tool.
-fn holder_json(tool: &LibraryTool, check: &HolderCheck) -> Result<serde_json::Value> {
-    let mut h = serde_json::to_value(check.cleared()?)?;
-    h["number"] = serde_json::json!(tool.number);
-    h["name"] = serde_json::json!(tool.name);
-    Ok(h)
-}
-
 /// Refuses a path whose shank or holder reaches into the part (module doc of
 /// [`crate::holder::path`]): the first collision's pass, pose and G-code line (when
 /// `program` is the three-axis G-code written), the shortest stick-out that clears,
@@ -485,81 +518,19 @@ fn holder_json(tool: &LibraryTool, check: &HolderCheck) -> Result<serde_json::Va
 fn refuse_collisions(
     job: &Job,
     plan: &Plan,
-    post: &Post,
-    program: Option<&str>,
+    program: Option<(&str, &GcodeReadOptions<'_>)>,
     (tool, mesh, check): (&LibraryTool, &TriMesh, &HolderCheck),
 ) -> Result<()> {
     let Some(first) = check.collisions.first() else {
         return Ok(());
     };
     let mut check = check.clone();
-    if let Some(text) = program {
-        let read = GcodeReadOptions {
-            language: post.reader(),
-            ..GcodeReadOptions::default()
-        };
-        check.collisions[0].line = gcode_line(text, &read, &plan.toolpath, first);
+    if let Some((text, read)) = program {
+        check.collisions[0].line = gcode_line(text, read, &plan.toolpath, first);
     }
     let max_tilt = match job.positioning {
         Some(Positioning::GougeFree { max_alpha, .. }) => Some(max_alpha.to_radians()),
         _ => None,
     };
     Err(AppError::Message(refusal(mesh, tool, &check, max_tilt)?))
-}
-
-/// The program's header comments.
-fn header_comments(
-    job: &Job,
-    plan: &Plan,
-    part_name: &str,
-    strategy: &str,
-    notes: &[String],
-) -> Vec<String> {
-    let mut comments = vec![
-        format!("swarf {}", env!("CARGO_PKG_VERSION")),
-        format!("part {part_name}"),
-        format!("tool {}", job.tool),
-        format!("strategy {strategy}"),
-    ];
-    if plan.toolpath.passes.is_empty() {
-        comments.push("no passes: nothing to cut".into());
-    }
-    if let Some(h) = planned_scallop(job, plan) {
-        comments.push(format!("{SCALLOP_COMMENT}{h} mm"));
-    }
-    comments.extend(notes.iter().cloned());
-    if let Some(p) = &job.positioning {
-        comments.push(format!("positioning {}", describe(p)));
-    }
-    comments
-}
-
-/// The rotary axes' ranges by name, degrees.
-fn rotary_json(m: &Machine, ranges: [[f64; 2]; 2]) -> serde_json::Value {
-    let names = m.rotary_names();
-    let deg = |r: [f64; 2]| [r[0].to_degrees(), r[1].to_degrees()];
-    serde_json::json!({
-        names[0].to_string(): deg(ranges[0]),
-        names[1].to_string(): deg(ranges[1]),
-    })
-}
-
-/// The positioning as one line for the G-code header (degrees, mm).
-fn describe(p: &Positioning) -> String {
-    match *p {
-        Positioning::Inclined {
-            alpha,
-            tilt,
-            sections,
-        } => format!("inclined, lead {alpha} deg, tilt {tilt} deg, sections {sections} mm"),
-        Positioning::GougeFree {
-            max_alpha,
-            sections,
-            tilt,
-            max_rate,
-            ..
-        } => format!(
-            "gouge-free, lead <= {max_alpha} deg, <= {max_rate} deg/mm, tilt {tilt} deg, sections {sections} mm"
-        ),
-    }
 }

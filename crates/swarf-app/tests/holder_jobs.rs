@@ -173,7 +173,7 @@ fn a_tilted_pose_beside_a_wall_names_the_tilt_that_clears() {
             .iter()
             .map(|&y| PathPoint::new(Pose::new(Point3::new(-3.0, y, 5.0), axis).unwrap()))
             .collect(),
-        skim: None,
+        ..Pass::default()
     };
     let toolpath = Toolpath {
         passes: vec![pass],

@@ -214,7 +214,7 @@ arc_tolerance = 2",
         .unwrap_err()
         .to_string();
     assert!(
-        err.contains("stock.top: 15 mm is below the part's top"),
+        err.contains("stock.top: the stock's top 15 mm is below the part's top"),
         "{err}"
     );
     // grbl has no tool change: four tools are refused before anything is planned.

@@ -144,6 +144,7 @@ fn write_outputs(dir: &std::path::Path, cutter: &Cutter, passes: Vec<Pass>) {
         linking: Linking {
             clearance: top + 10.0,
             approach: 2.0,
+            ..Linking::default()
         },
     };
     let m = Machine::parse(

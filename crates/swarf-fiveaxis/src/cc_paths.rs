@@ -15,11 +15,13 @@
 //!    max over pass ends of R sin(alpha)`, `top` the higher of the part's top and the
 //!    highest tip, the whole tool is above the part. The job's clearance is raised to
 //!    that height when below it; by default it is that height plus
-//!    [`swarf_toolpath::DEFAULT_CLEARANCE_MARGIN`].
+//!    [`swarf_toolpath::DEFAULT_CLEARANCE_MARGIN`]. The stock's top is raised by the
+//!    same reach, so the rapid down to `approach` above it keeps the tilted tool out
+//!    of the stock.
 
 use swarf_geom::Part;
-use swarf_tool::Cutter;
-use swarf_toolpath::{Contact, Linking, LinkingSpec, Pass, Toolpath, top_z};
+use swarf_path::Cutting;
+use swarf_toolpath::{Contact, Linking, Pass, Toolpath, top_z};
 
 /// Consecutive contacts closer than this are merged by [`cc_paths`], mm.
 pub const MIN_CC_GAP: f64 = 1e-6;
@@ -56,10 +58,11 @@ pub fn cc_paths(toolpath: &Toolpath) -> Vec<Vec<Contact>> {
     out
 }
 
-/// The linking of positioned `passes` of `tool` on `part` under the rule `spec`
-/// (module doc).
-pub fn linking(spec: &LinkingSpec, tool: &Cutter, part: &Part, passes: &[Pass]) -> Linking {
-    let r = tool.radius();
+/// The linking of positioned `passes` on `part` with `cutting`'s tool, linking rule
+/// and material (module doc): the clearance plane and the material top are raised by
+/// the most the tilted tool reaches below its tip at a pass end.
+pub fn linking(cutting: &Cutting, part: &Part, passes: &[Pass]) -> Linking {
+    let r = cutting.tool.radius();
     let top = part.control_box().max.z.max(top_z(passes));
     let below = passes
         .iter()
@@ -67,7 +70,9 @@ pub fn linking(spec: &LinkingSpec, tool: &Cutter, part: &Part, passes: &[Pass]) 
         .flatten()
         .map(|p| r * (1.0 - p.pose.axis.z.clamp(-1.0, 1.0).powi(2)).sqrt())
         .fold(0.0, f64::max);
-    spec.for_top(top + below)
+    cutting
+        .linking
+        .for_top(top + below, cutting.material_top.map(|m| m + below))
 }
 
 #[cfg(test)]
@@ -137,7 +142,7 @@ mod tests {
     /// (`R sin(alpha)`) higher.
     #[test]
     fn clearance_is_above_the_part_under_the_whole_tilted_tool() {
-        let tool: Cutter = "bull:d=20,r=4".parse().unwrap();
+        let tool: swarf_tool::Cutter = "bull:d=20,r=4".parse().unwrap();
         let p = |x: f64, y: f64| Point3::new(x, y, 20.0);
         let part = Part {
             name: "plane".into(),
@@ -170,7 +175,7 @@ mod tests {
                 points: vec![at(tip), at(tip)],
                 ..Pass::default()
             }];
-            let l = linking(&LinkingSpec::default(), &tool, &part, &passes);
+            let l = linking(&Cutting::new(tool), &part, &passes);
             let low = lowest(l.clearance);
             assert!(low >= top + 5.0 - 1e-9, "{low} vs {top}");
             assert!(low <= top + 5.0 + 10.0 * a.sin(), "{low} vs {top}");

@@ -35,6 +35,7 @@ fn toolpath() -> Toolpath {
         linking: Linking {
             clearance: 70.0,
             approach: 2.0,
+            ..Linking::default()
         },
     }
 }

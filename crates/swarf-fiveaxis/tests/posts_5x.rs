@@ -44,6 +44,7 @@ fn toolpath() -> Toolpath {
         linking: Linking {
             clearance: 20.0,
             approach: 2.0,
+            ..Linking::default()
         },
     }
 }

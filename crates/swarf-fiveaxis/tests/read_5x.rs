@@ -63,6 +63,7 @@ fn toolpath() -> Toolpath {
         linking: Linking {
             clearance: 70.0,
             approach: 2.0,
+            ..Linking::default()
         },
     }
 }

@@ -12,9 +12,10 @@ use serde::{Deserialize, Serialize};
 use swarf_geom::domain::{COORDINATE, Domain, SCALLOP, STEP, TOLERANCE, show};
 use swarf_geom::units::shown_degrees;
 use swarf_tool::Cutter;
-use swarf_toolpath::{Feeds, LinkingSpec};
+use swarf_toolpath::{Feeds, Linking, LinkingSpec};
 
-/// What every strategy cuts with: the job's tool, feeds and linking.
+/// What every strategy cuts with: the job's tool, feeds and linking, and how high
+/// the material it cuts reaches.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cutting {
     /// The cutter.
@@ -23,16 +24,25 @@ pub struct Cutting {
     pub feeds: Feeds,
     /// Clearance plane and approach.
     pub linking: LinkingSpec,
+    /// The stock's top, mm (`None`: no material above the path's highest point).
+    pub material_top: Option<f64>,
 }
 
 impl Cutting {
-    /// `tool` with default feeds and linking.
+    /// `tool` with default feeds and linking, no stock above the path.
     pub fn new(tool: Cutter) -> Cutting {
         Cutting {
             tool,
             feeds: Feeds::default(),
             linking: LinkingSpec::default(),
+            material_top: None,
         }
+    }
+
+    /// The linking of a path whose highest CL point is at `top_z` (mm), above this
+    /// cutting's material ([`LinkingSpec::for_top`]).
+    pub fn linking_for(&self, top_z: f64) -> Linking {
+        self.linking.for_top(top_z, self.material_top)
     }
 }
 

@@ -93,7 +93,7 @@ impl Plan {
         report: PlanReport,
         double_contacts: Vec<DoubleContact>,
     ) -> Plan {
-        let linking = cutting.linking.for_top(top_z(&passes));
+        let linking = cutting.linking_for(top_z(&passes));
         Plan {
             toolpath: Toolpath {
                 passes,

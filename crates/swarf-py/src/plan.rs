@@ -15,6 +15,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
+use swarf_app::gate::Gate;
 use swarf_app::{Model, Outputs, PlanInput};
 use swarf_sim::Quiet;
 use swarf_toolpath::{MoveKind, Toolpath};
@@ -79,7 +80,7 @@ fn staged_texts(job: &swarf_app::Job, out: &Outputs) -> PyResult<(Option<String>
 /// Plans `job` (without the GIL): with `out`, writing the job's outputs there as
 /// `swarf plan --out` does; without, staging only its G-code and CL in a scratch
 /// folder to read them back.
-fn plan_job_values(job: &Job, out: Option<&Path>) -> PyResult<Planned> {
+fn plan_job_values(job: &Job, out: Option<&Path>, gate: Gate) -> PyResult<Planned> {
     let context = |e: swarf_app::AppError| {
         swarf_msg(format!(
             "{}: planning the job: {}",
@@ -89,7 +90,7 @@ fn plan_job_values(job: &Job, out: Option<&Path>) -> PyResult<Planned> {
     };
     let part = swarf_app::plan_job::part_arg(&job.job, &job.dir);
     let model = swarf_app::load_model_with(&part, &job.job.load_options()).map_err(context)?;
-    let staged_job = match out {
+    let mut staged_job = match out {
         Some(_) => job.job.clone(),
         None => {
             let mut j = job.job.clone();
@@ -103,6 +104,7 @@ fn plan_job_values(job: &Job, out: Option<&Path>) -> PyResult<Planned> {
             j
         }
     };
+    staged_job.gate = gate;
     let (dir, _scratch) = output_dir(out)?;
     let mut outputs = Outputs::new(&dir);
     let planned =
@@ -126,17 +128,28 @@ fn plan_job_values(job: &Job, out: Option<&Path>) -> PyResult<Planned> {
 /// `out`, the job's outputs are written into that folder as `swarf plan JOB --out
 /// OUT` writes them; without, nothing is written.
 ///
+/// The program is verified on the job's stock first, as `swarf plan` does: an
+/// unsafe one raises `SwarfError` naming its lines; `allow_unsafe=True` returns it
+/// labelled, `verify=False` skips the check (`--allow-unsafe`, `--no-verify`).
+///
 /// Returns a `Plan`: the program's moves as arrays, the summary dict, and the
 /// G-code and APT CL text; for a sequence, a `SequencePlan`. Raises `SwarfError`
 /// with the job file (or `job dict`), the line or key and the field for a bad job
 /// (`operation[k]` for a sequence's operation), and the planning's errors.
 #[pyfunction]
-#[pyo3(signature = (job, *, out = None))]
+#[pyo3(signature = (job, *, out = None, allow_unsafe = false, verify = true))]
 pub fn plan(
     py: Python<'_>,
     job: &Bound<'_, PyAny>,
     out: Option<&Bound<'_, PyAny>>,
+    allow_unsafe: bool,
+    verify: bool,
 ) -> PyResult<Py<PyAny>> {
+    let gate = match (verify, allow_unsafe) {
+        (false, _) => Gate::Skip,
+        (true, true) => Gate::AllowUnsafe,
+        (true, false) => Gate::Verify,
+    };
     let out = out
         .map(|o| {
             path_text(o).map(PathBuf::from).ok_or_else(|| {
@@ -144,12 +157,13 @@ pub fn plan(
             })
         })
         .transpose()?;
-    if let Some(seq) = sequence_arg(job)? {
+    if let Some(mut seq) = sequence_arg(job)? {
+        seq.seq.gate = gate;
         let planned = detached(py, || plan_sequence_values(&seq, out.as_deref()))?;
         return Ok(Py::new(py, planned)?.into_any());
     }
     let job = job_arg(job)?;
-    let planned = detached(py, || plan_job_values(&job, out.as_deref()))?;
+    let planned = detached(py, || plan_job_values(&job, out.as_deref(), gate))?;
     let plan = Plan {
         summary: planned.summary,
         toolpath: planned.toolpath,

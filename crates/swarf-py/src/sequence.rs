@@ -21,7 +21,7 @@ use swarf_app::sequence::{Sequence, SequenceReport, plan_sequence};
 
 /// A parsed sequence job, with the folder its relative paths start from.
 pub struct SequenceJob {
-    seq: Sequence,
+    pub(crate) seq: Sequence,
     dir: PathBuf,
     /// Where it came from, for messages: the file, `<toml>` or `job dict`.
     source: String,

@@ -114,7 +114,7 @@ pub fn plan_cleanup(
         per_region.push(passes);
     }
     let mut passes = order_regions(per_region);
-    let linking = cutting.linking.for_top(top_z(&passes));
+    let linking = cutting.linking_for(top_z(&passes));
     add_skims(&dropper, &mut passes, linking.clearance);
     Ok(Toolpath {
         passes,

@@ -67,7 +67,7 @@ impl Pencil<'_> {
             for centre in self.densify(chain, &mut scratch) {
                 let first = vec![Pass {
                     points: centre.iter().map(point_of).collect(),
-                    skim: None,
+                    ..Pass::default()
                 }];
                 let side = |sign: f64, scratch: &mut DropScratch| {
                     step_out(
@@ -238,6 +238,9 @@ pub(crate) fn clip(piece: Vec<PathPoint>, region: &RestRegion) -> Vec<Pass> {
     out.push(cur);
     out.into_iter()
         .filter(|c| c.len() > 1)
-        .map(|points| Pass { points, skim: None })
+        .map(|points| Pass {
+            points,
+            ..Pass::default()
+        })
         .collect()
 }

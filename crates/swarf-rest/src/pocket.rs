@@ -87,6 +87,9 @@ fn drop_ring(
     drop_track(mesh, dropper, &track, tolerance, scratch)
         .pieces
         .into_iter()
-        .map(|points| Pass { points, skim: None })
+        .map(|points| Pass {
+            points,
+            ..Pass::default()
+        })
         .collect()
 }

@@ -128,7 +128,10 @@ mod tests {
                 }
             })
             .collect();
-        vec![Pass { points, skim: None }]
+        vec![Pass {
+            points,
+            ..Pass::default()
+        }]
     }
 
     #[test]

@@ -5,10 +5,13 @@
 //! unit tool axis), each remembering the cutter contact (CC) it was planned from.
 //! Passes are cut in the order stored; strategies reverse alternate passes for zigzag.
 //! Linking between passes: retract along the tool axis to the clearance plane, rapid
-//! above the next pass, rapid down to `approach` above its first pose, then feed in at
-//! the plunge rate. A pass with a skim height is linked to at that height instead
-//! (the strategy has checked the part below the link). The first move of a program
-//! starts from the clearance plane.
+//! above the next pass, rapid down to `approach` above the material (the stock's
+//! top, [`Linking::material_top`], or the pass's first pose where that is higher),
+//! then feed in at the plunge rate. Rapids therefore never enter the stock, however
+//! far below its top a pass starts. A pass with a skim height is linked to at that
+//! height instead (the strategy has checked the part below the link), but never
+//! lower than `approach` above the material. The first move of a program starts
+//! from the clearance plane.
 
 use serde::{Deserialize, Serialize};
 use swarf_geom::{Point3, Vec3};
@@ -59,6 +62,12 @@ pub struct Pass {
     /// clearance plane. Ignored for the first pass and when above the clearance plane.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub skim: Option<f64>,
+    /// The height above which no material stands over this pass's first pose when it
+    /// is cut, mm (set by a strategy that cleared it, as roughing clears each level
+    /// before the one below); the rapid down then stops `approach` above it instead
+    /// of above the stock's top.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clear_from: Option<f64>,
 }
 
 impl Pass {
@@ -102,15 +111,21 @@ impl Default for Feeds {
 pub struct Linking {
     /// Height of the clearance plane (absolute z, part frame), mm.
     pub clearance: f64,
-    /// Distance above a pass start where the rapid down stops and the plunge feed begins, mm.
+    /// Distance above the material (or above a pass start higher than it) where the
+    /// rapid down stops and the plunge feed begins, mm.
     pub approach: f64,
+    /// The highest the material can be before the program cuts (the stock's top),
+    /// mm: no rapid goes below `approach` above it.
+    pub material_top: f64,
 }
 
 impl Default for Linking {
+    /// Clearance plane at 10 mm, approach 2 mm, material up to 0.
     fn default() -> Self {
         Linking {
             clearance: 10.0,
             approach: 2.0,
+            material_top: 0.0,
         }
     }
 }
@@ -128,13 +143,16 @@ pub fn top_z(passes: &[Pass]) -> f64 {
 pub const DEFAULT_CLEARANCE_MARGIN: f64 = 5.0;
 
 /// Linking as a job asks for it: the clearance plane may be left to swarf, which puts
-/// it [`DEFAULT_CLEARANCE_MARGIN`] above the path ([`LinkingSpec::for_top`]).
+/// it [`DEFAULT_CLEARANCE_MARGIN`] above the path and the material
+/// ([`LinkingSpec::for_top`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct LinkingSpec {
-    /// Clearance plane z, mm; default: 5 mm above the highest CL point of the path.
+    /// Clearance plane z, mm; default: 5 mm above the highest CL point of the path
+    /// or the stock's top, whichever is higher.
     pub clearance: Option<f64>,
-    /// Distance above a pass start where the plunge feed begins, mm.
+    /// Distance above the stock's top (or above a pass start higher than it) where
+    /// the rapid down stops and the plunge feed begins, mm.
     pub approach: f64,
     /// Radius of arc leads into and out of each pass, mm (none: no arcs).
     pub lead_radius: Option<f64>,
@@ -155,18 +173,22 @@ impl Default for LinkingSpec {
 }
 
 impl LinkingSpec {
-    /// The linking for a path whose highest CL point is at `top_z`: the given
-    /// clearance (raised to `top_z` if it is below), else `top_z` plus
-    /// [`DEFAULT_CLEARANCE_MARGIN`].
+    /// The linking for a path whose highest CL point is at `top_z`, cut from
+    /// material that reaches `material_top` (`None`: no more than the path's own
+    /// top): the given clearance (raised to the higher of the two if it is below),
+    /// else the higher plus [`DEFAULT_CLEARANCE_MARGIN`].
     ///
     /// # Units
     /// mm.
-    pub fn for_top(&self, top_z: f64) -> Linking {
+    pub fn for_top(&self, top_z: f64, material_top: Option<f64>) -> Linking {
+        let material_top = material_top.unwrap_or(top_z);
+        let top = top_z.max(material_top);
         Linking {
             clearance: self
                 .clearance
-                .map_or(top_z + DEFAULT_CLEARANCE_MARGIN, |c| c.max(top_z)),
+                .map_or(top + DEFAULT_CLEARANCE_MARGIN, |c| c.max(top)),
             approach: self.approach,
+            material_top,
         }
     }
 }
@@ -227,7 +249,10 @@ impl Toolpath {
                 continue;
             };
             let height = self.link_height(pass, out.is_empty());
-            self.link_in(&first.pose, out.is_empty(), height, &mut out);
+            let material = pass.clear_from.map_or(self.linking.material_top, |c| {
+                c.min(self.linking.material_top)
+            });
+            self.link_in(&first.pose, out.is_empty(), (height, material), &mut out);
             out.extend(pass.points.iter().skip(1).map(|p| Move {
                 kind: MoveKind::Feed,
                 to: p.pose,
@@ -242,17 +267,27 @@ impl Toolpath {
         out
     }
 
-    /// The tip height of the link into `pass`: its skim height, else the clearance
-    /// plane.
+    /// The tip height of the link into `pass`: its skim height (no lower than
+    /// `approach` above the material), else the clearance plane.
     fn link_height(&self, pass: &Pass, is_first: bool) -> f64 {
+        let l = &self.linking;
         match pass.skim {
-            Some(h) if !is_first && h < self.linking.clearance => h,
-            _ => self.linking.clearance,
+            Some(h) if !is_first && h < l.clearance => {
+                h.max(l.material_top + l.approach).min(l.clearance)
+            }
+            _ => l.clearance,
         }
     }
 
-    /// Moves from the link height down onto `start`.
-    fn link_in(&self, start: &Pose, is_first: bool, height: f64, out: &mut Vec<Move>) {
+    /// Moves from the link height down onto `start`, under which the material
+    /// stands no higher than `material`.
+    fn link_in(
+        &self,
+        start: &Pose,
+        is_first: bool,
+        (height, material): (f64, f64),
+        out: &mut Vec<Move>,
+    ) {
         let above = lift_to(start, height);
         if is_first {
             let mut high = above;
@@ -262,12 +297,14 @@ impl Toolpath {
             }
         }
         out.push(rapid(above));
-        let approach = Pose {
-            cl: start.cl + start.axis * self.linking.approach,
-            axis: start.axis,
-        };
-        if approach.cl.z < above.cl.z {
-            out.push(rapid(approach));
+        let l = &self.linking;
+        let mut entry = lift_to(start, material + l.approach);
+        let near = start.cl + start.axis * l.approach;
+        if near.z > entry.cl.z {
+            entry.cl = near;
+        }
+        if entry.cl.z < above.cl.z {
+            out.push(rapid(entry));
         }
         out.push(Move {
             kind: MoveKind::Feed,
@@ -355,25 +392,49 @@ mod tests {
         Pass {
             points: vec![p(0.0), p(5.0)],
             skim,
+            clear_from: None,
         }
     }
 
-    #[test]
-    fn skim_links_stay_low_and_others_use_the_clearance_plane() {
+    fn rapids(material_top: f64) -> Vec<[f64; 3]> {
         let tp = Toolpath {
             passes: vec![pass(0.0, Some(3.0)), pass(2.0, Some(4.0)), pass(4.0, None)],
             feeds: Feeds::default(),
             linking: Linking {
                 clearance: 20.0,
                 approach: 1.0,
+                material_top,
             },
         };
-        let rapids: Vec<[f64; 3]> = tp
-            .moves()
+        tp.moves()
             .iter()
             .filter(|m| m.kind == MoveKind::Rapid)
             .map(|m| [m.to.cl.x, m.to.cl.y, m.to.cl.z])
-            .collect();
+            .collect()
+    }
+
+    #[test]
+    fn rapids_stop_above_the_material_and_skims_do_not_dip_into_it() {
+        // Material up to z 5: every rapid down stops at 6 (the feed takes the tool
+        // down to the passes at z 1), the skim at 3 rises to 6, the one at 4 too.
+        assert_eq!(
+            rapids(5.0),
+            vec![
+                [0.0, 0.0, 20.0],
+                [0.0, 0.0, 6.0],
+                [0.0, 5.0, 6.0],
+                [2.0, 0.0, 6.0],
+                [2.0, 5.0, 20.0],
+                [4.0, 0.0, 20.0],
+                [4.0, 0.0, 6.0],
+                [4.0, 5.0, 20.0],
+            ]
+        );
+    }
+
+    #[test]
+    fn skim_links_stay_low_and_others_use_the_clearance_plane() {
+        let rapids = rapids(-10.0);
         // First pass from the clearance plane (its skim ignored); into the second at
         // its skim height 4; into the third through the clearance plane; end on it.
         assert_eq!(

@@ -25,7 +25,9 @@ enum Command {
     Eval(cmd::eval::Args),
     /// Tessellate a part into a binary STL within a chordal tolerance.
     Tessellate(cmd::tessellate::Args),
-    /// Plan a finishing tool path from a job file and write G-code, CL, CSV, summary.
+    /// Plan a job (finishing, roughing, cleanup, five-axis, or a sequence of
+    /// operations), verify its program on the job's stock, and write G-code, CL, CSV,
+    /// summary.
     Plan(cmd::plan::Args),
     /// Simulate an NC program (or several in sequence, each with its tool) on a dexel
     /// stock and measure gouge, excess and scallops against the design; writes a JSON

@@ -59,6 +59,7 @@ fn toolpath() -> Toolpath {
         linking: Linking {
             clearance: 70.0,
             approach: 2.0,
+            ..Linking::default()
         },
     }
 }

@@ -355,7 +355,7 @@ fn add_steep(job: &Job, parent: &Job, mesh: &TriMesh, stage: &mut CleanupStage) 
     }
     let tp = &mut stage.plan.toolpath;
     tp.passes.extend(passes);
-    tp.linking = cutting.linking.for_top(top_z(&tp.passes));
+    tp.linking = cutting.linking_for(top_z(&tp.passes));
     stage.plan.report.elapsed_s += start.elapsed().as_secs_f64();
     stage.steep = Some(rest);
     Ok(())

@@ -6,6 +6,7 @@
 use super::{Import, Job, Output, Parent};
 use crate::holder::library::named_tool;
 use crate::model::FaceRef;
+use crate::stock::Stock;
 use crate::strategy::Strategy;
 use schemars::JsonSchema;
 use serde::{Deserialize, Deserializer};
@@ -60,6 +61,9 @@ pub struct JobFile {
     /// Linking between passes.
     #[serde(default)]
     pub linking: LinkingSpec,
+    /// The stock the job cuts (default: a box 1 mm above the part).
+    #[serde(default)]
+    pub stock: Stock,
     /// Output files.
     #[serde(default)]
     pub output: Output,
@@ -192,6 +196,9 @@ impl JobFile {
             strategy: self.strategy,
             positioning: self.positioning,
             linking: self.linking,
+            stock: self.stock,
+            material_top: None,
+            gate: crate::gate::Gate::default(),
             output: self.output,
             parent: self.parent,
         };

@@ -83,8 +83,9 @@
 //! Lengths in the job are mm; angles are degrees (converted to radians where they are
 //! used, at the input edge).
 
-use crate::error::AppError;
-use crate::model::{FaceRef, LoadOptions};
+use crate::error::{AppError, bail};
+use crate::model::{FaceRef, LoadOptions, Model};
+use crate::stock::Stock;
 use crate::strategy::Strategy;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -130,6 +131,15 @@ pub struct Job {
     pub feeds: Feeds,
     /// Linking between passes.
     pub linking: LinkingSpec,
+    /// The stock the job cuts.
+    pub stock: Stock,
+    /// How high the material reaches, mm: the stock's top once the part is known
+    /// ([`Job::on_stock`]; a sequence's operation: the in-process stock's).
+    pub material_top: Option<f64>,
+    /// What `swarf plan` does with the program: verify it on the stock and refuse
+    /// it when unsafe (the default), write it labelled, or skip the check
+    /// ([`crate::gate`]; a command-line choice, not a key of the job file).
+    pub gate: crate::gate::Gate,
     /// Output files.
     pub output: Output,
     /// What a cleanup job cleans up after (`kind = "cleanup"` only).
@@ -181,13 +191,39 @@ impl Job {
         }
     }
 
-    /// What every strategy cuts with: the tool, feeds and linking.
+    /// What every strategy cuts with: the tool, feeds, linking and the material's
+    /// top.
     pub fn cutting(&self) -> Cutting {
         Cutting {
             tool: self.tool,
             feeds: self.feeds,
             linking: self.linking,
+            material_top: self.material_top,
         }
+    }
+
+    /// This job with its material's top set from its stock over `model`, whose
+    /// files are relative to `dir`.
+    ///
+    /// # Errors
+    /// A mesh stock that cannot be read, a stock that does not hold the part, a
+    /// clearance plane below the stock's top.
+    pub fn on_stock(&self, model: &Model, dir: &std::path::Path) -> crate::error::Result<Job> {
+        let mesh = self.stock.mesh(dir)?;
+        let top = self.stock.top(model.top()?, mesh.as_ref())?;
+        if let Some(c) = self.linking.clearance
+            && c < top
+        {
+            bail!(
+                "linking.clearance: {} mm is below the stock's top ({top:.3} mm): expected a \
+                 clearance plane above the stock",
+                swarf_geom::domain::show(c)
+            );
+        }
+        Ok(Job {
+            material_top: Some((top * 1e3).ceil() / 1e3),
+            ..self.clone()
+        })
     }
 
     /// The chordal (and gouge) tolerance of the strategy, mm.

@@ -60,11 +60,11 @@ use crate::error::AppError;
 use crate::job::read::{Key, Located};
 use crate::job::{FeedsSpec, Import, Job, Output, Parent, ToolRef};
 use crate::model::FaceRef;
+use crate::stock::Stock;
 use crate::strategy::Strategy;
 use schemars::JsonSchema;
 use serde::Deserialize;
 use std::path::Path;
-use swarf_geom::domain::show;
 use swarf_tool::library::ToolLibrary;
 use swarf_toolpath::LinkingSpec;
 
@@ -124,8 +124,9 @@ pub struct OperationFile {
 }
 
 /// The keys of a job that a sequence gives, not its operations.
-const SEQUENCE_KEYS: [&str; 7] = [
+const SEQUENCE_KEYS: [&str; 8] = [
     "part",
+    "stock",
     "faces",
     "import",
     "output",
@@ -133,53 +134,6 @@ const SEQUENCE_KEYS: [&str; 7] = [
     "positioning",
     "tools",
 ];
-
-/// The stock a sequence starts from.
-#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, default)]
-pub struct Stock {
-    /// `box`, `offset` or `mesh`.
-    pub kind: StockKind,
-    /// Box: top, mm (default 1 mm above the part).
-    pub top: Option<f64>,
-    /// Box: XY margin round the part, mm.
-    pub margin: f64,
-    /// Offset: material above the design, mm.
-    pub allowance: f64,
-    /// Mesh: the stock's file (STL or OBJ), relative to the job file.
-    pub file: Option<String>,
-    /// Cell of the in-process stock, mm.
-    pub cell: f64,
-    /// Gouge and rest tolerance of the per-operation reports, mm.
-    pub tol: f64,
-}
-
-impl Default for Stock {
-    fn default() -> Self {
-        Stock {
-            kind: StockKind::Box,
-            top: None,
-            margin: 0.0,
-            allowance: 1.0,
-            file: None,
-            cell: 0.25,
-            tol: 0.01,
-        }
-    }
-}
-
-/// How the stock is made.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema)]
-#[serde(rename_all = "lowercase")]
-pub enum StockKind {
-    /// A block over the part's XY extent.
-    #[default]
-    Box,
-    /// The design raised by an allowance.
-    Offset,
-    /// A mesh's upper envelope.
-    Mesh,
-}
 
 /// Outputs of a sequence.
 #[derive(Debug, Clone, Default, Deserialize, JsonSchema)]
@@ -236,6 +190,9 @@ pub struct Sequence {
     pub stock: Stock,
     /// Operations in order.
     pub operations: Vec<Operation>,
+    /// What `swarf plan` does with an unsafe program ([`crate::gate`]; every
+    /// operation is simulated on the in-process stock whatever this says).
+    pub gate: crate::gate::Gate,
     /// Outputs.
     pub output: SequenceOutput,
 }
@@ -290,8 +247,8 @@ fn misplaced(mut e: Located) -> Located {
         && e.message.starts_with("unknown field")
     {
         e.message = format!(
-            "{key}: not an operation's key (the sequence gives part, faces, import, tools \
-             and output; operations are three-axis)"
+            "{key}: not an operation's key (the sequence gives part, faces, import, stock, \
+             tools and output; operations are three-axis)"
         );
         e.path.pop();
     }
@@ -305,7 +262,7 @@ impl SequenceFile {
     /// A bad stock or output, a library that cannot be read, and every error of an
     /// operation, as `operation[k]: field: message`.
     pub fn resolve(self, dir: &Path) -> Result<Sequence, String> {
-        check_stock(&self.stock)?;
+        self.stock.check()?;
         crate::job::check_arcs(self.output.arcs, self.output.arc_tolerance)?;
         for (name, file) in [
             ("output.gcode", &self.output.gcode),
@@ -334,6 +291,7 @@ impl SequenceFile {
             part: self.part,
             stock: self.stock,
             operations,
+            gate: crate::gate::Gate::default(),
             output: self.output,
         })
     }
@@ -392,6 +350,9 @@ impl SequenceFile {
             strategy: op.strategy.clone(),
             positioning: None,
             linking: op.linking,
+            stock: self.stock.clone(),
+            material_top: None,
+            gate: crate::gate::Gate::default(),
             output: Output::default(),
             parent,
         };
@@ -402,43 +363,4 @@ impl SequenceFile {
             job,
         })
     }
-}
-
-fn check_stock(s: &Stock) -> Result<(), String> {
-    let cell_ok = s.cell.is_finite() && (0.01..=10.0).contains(&s.cell);
-    if !cell_ok {
-        return Err(format!(
-            "stock.cell: {} mm: expected 0.01 to 10 mm",
-            show(s.cell)
-        ));
-    }
-    if !(s.tol.is_finite() && s.tol > 0.0 && s.tol <= 10.0) {
-        return Err(format!(
-            "stock.tol: {} mm: expected more than 0, at most 10 mm",
-            show(s.tol)
-        ));
-    }
-    if !(s.margin.is_finite() && (0.0..=1000.0).contains(&s.margin)) {
-        return Err(format!(
-            "stock.margin: {} mm: expected 0 to 1000 mm",
-            show(s.margin)
-        ));
-    }
-    if !(s.allowance.is_finite() && (0.0..=1000.0).contains(&s.allowance)) {
-        return Err(format!(
-            "stock.allowance: {} mm: expected 0 to 1000 mm",
-            show(s.allowance)
-        ));
-    }
-    if let Some(top) = s.top
-        && !(top.is_finite() && top.abs() <= 1e6)
-    {
-        return Err(format!(
-            "stock.top: {top} mm: expected a height within 1e6 mm"
-        ));
-    }
-    if s.kind == StockKind::Mesh && s.file.is_none() {
-        return Err("stock.file: a mesh stock needs its file (STL or OBJ)".into());
-    }
-    Ok(())
 }

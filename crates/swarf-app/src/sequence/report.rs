@@ -45,6 +45,9 @@ pub struct OperationReport {
     /// Roughing: engagement measured on the stock.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub engagement: Option<EngagementSummary>,
+    /// Rapids of its program that removed material from the in-process stock (a
+    /// crash on the machine): their lines in the operation's own program.
+    pub rapid_cut_lines: Vec<usize>,
     /// Cells below the design by more than the tolerance after it.
     pub gouge_cells: usize,
     /// Deepest of them, mm (0 for none).
@@ -115,8 +118,9 @@ impl SequenceReport {
                     )
                 });
                 format!(
-                    "T{} {} ({}, {}): {} motions, {:.0} mm, {:.0} s{eng}{holder}; after it: {} \
-                     gouge cells, {} cells more than {:.3} mm above the part",
+                    "T{} {} ({}, {}): {} motions, {:.0} mm, {:.0} s{eng}{holder}; {} rapids in \
+                     material; after it: {} gouge cells, {} cells more than {:.3} mm above the \
+                     part",
                     op.number,
                     op.name,
                     op.strategy,
@@ -124,6 +128,7 @@ impl SequenceReport {
                     op.motions,
                     op.cutting_length_mm,
                     op.time_s,
+                    op.rapid_cut_lines.len(),
                     op.gouge_cells,
                     op.rest_cells,
                     op.rest_limit_mm
@@ -152,6 +157,7 @@ pub(super) fn op_report(
         cutting_length_mm,
         time_s,
         engagement,
+        rapid_cut_lines: Vec::new(),
         gouge_cells: 0,
         worst_gouge_mm: 0.0,
         rest_cells: 0,

@@ -4,14 +4,16 @@
 use super::report::{
     EngagementSummary, OperationReport, SequenceReport, deviation, op_report, rest_cells,
 };
-use super::{Operation, Sequence, Stock, StockKind};
+use super::{Operation, Sequence};
 use crate::cleanup::part_mesh;
 use crate::error::{AppError, Result};
+use crate::gate::Gate;
 use crate::holder::{HolderSummary, POSE_SPACING, check_program};
 use crate::model::{Model, load_model_with};
 use crate::outputs::Outputs;
 use crate::plan::{PlanInput, plan};
 use crate::plan_job::part_arg;
+use crate::stock::{Stock, StockKind};
 use crate::strategy::Strategy;
 use std::path::Path;
 use swarf_geom::TriMesh;
@@ -77,7 +79,8 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
         report.programs.push(text);
         all_moves.push(moves);
     }
-    report.program = whole_program(&shop, &all_moves, motions_before)?;
+    let verdict = gate_verdict(seq, &report.operations)?;
+    report.program = whole_program(&shop, &all_moves, motions_before, verdict)?;
     if let Some(file) = &seq.output.gcode {
         out.write(file, report.program.as_bytes())?;
         let mut record = sequence_record(seq);
@@ -142,15 +145,6 @@ fn open_shop<'a>(seq: &'a Sequence, job_dir: &Path) -> Result<(Shop<'a>, Dexel)>
     let design = DesignSurface::new(Design::Mesh(&mesh))?
         .heights(&grid, false, &Quiet)
         .heights;
-    if seq.stock.kind == StockKind::Box
-        && let Some(top) = seq.stock.top
-        && top < b.max.z
-    {
-        return Err(AppError::Message(format!(
-            "stock.top: {top} mm is below the part's top ({:.3} mm): expected a box that holds the part",
-            b.max.z
-        )));
-    }
     let dexel = initial_stock(&seq.stock, grid, &design, b.max.z, job_dir)?;
     let spec = seq.output.post.as_deref().unwrap_or("linuxcnc");
     let post_error =
@@ -218,30 +212,23 @@ fn initial_stock(
     part_top: f64,
     job_dir: &Path,
 ) -> Result<Dexel> {
-    Ok(match stock.kind {
-        StockKind::Box => Dexel::new(
-            grid,
-            StockInit::Box {
-                top: stock.top.unwrap_or(part_top + 1.0),
-            },
-        )?,
-        StockKind::Offset => Dexel::new(
+    let mesh = stock.mesh(job_dir)?;
+    let top = stock.top(part_top, mesh.as_ref())?;
+    Ok(match (stock.kind, mesh) {
+        (StockKind::Offset, _) => Dexel::new(
             grid,
             StockInit::Offset {
                 design,
                 allowance: stock.allowance,
             },
         )?,
-        StockKind::Mesh => {
-            let file = stock.file.as_deref().unwrap_or_default();
-            let path = job_dir.join(file);
-            let mesh = swarf_io::read_mesh(&path)
-                .map_err(|e| AppError::Message(format!("stock.file: {e}")))?;
+        (_, Some(mesh)) => {
             let heights = DesignSurface::new(Design::Mesh(&mesh))?
                 .heights(&grid, false, &Quiet)
                 .heights;
             Dexel::new(grid, StockInit::Heights(&heights))?
         }
+        (_, None) => Dexel::new(grid, StockInit::Box { top })?,
     })
 }
 
@@ -253,7 +240,16 @@ fn plan_operation(
     reference: Option<swarf_tool::Cutter>,
 ) -> Result<(Plan, Option<RoughingReport>)> {
     let (model, mesh, design, tol) = (&shop.model, &shop.mesh, &shop.design, shop.seq.stock.tol);
-    let job = &op.job;
+    // The in-process stock is the material the operation's links stay above.
+    let top = dexel
+        .heights()
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    let job = &crate::job::Job {
+        material_top: Some(top),
+        ..op.job.clone()
+    };
     let plan = match &job.strategy {
         Strategy::Roughing(r) => {
             let grid = *dexel.grid();
@@ -271,11 +267,6 @@ fn plan_operation(
                     }
                 })
             };
-            let top = dexel
-                .heights()
-                .iter()
-                .copied()
-                .fold(f64::NEG_INFINITY, f64::max);
             let stock = RoughingStock {
                 min: grid.origin,
                 max: grid.max(),
@@ -349,7 +340,64 @@ fn section_comment(op: &Operation) -> String {
 ///
 /// # Errors
 /// A program the post refuses, or one that does not read back.
-fn whole_program(shop: &Shop<'_>, moves: &[Vec<Move>], motions: usize) -> Result<String> {
+/// The gate on a sequence ([`crate::gate`]): every operation is simulated on the
+/// in-process stock as it is planned; a rapid in material or a gouge beyond the
+/// stock's tolerance refuses the program (naming the operations), unless the
+/// sequence allows it. Returns the program's header line.
+///
+/// # Errors
+/// An unsafe program under [`Gate::Verify`].
+fn gate_verdict(seq: &Sequence, ops: &[OperationReport]) -> Result<String> {
+    let mut gouged = 0;
+    let mut found = Vec::new();
+    for op in ops {
+        if !op.rapid_cut_lines.is_empty() {
+            found.push(format!(
+                "operation {}: {} rapids cut material (its program's lines {:?})",
+                op.name,
+                op.rapid_cut_lines.len(),
+                op.rapid_cut_lines
+            ));
+        }
+        if op.gouge_cells > gouged {
+            found.push(format!(
+                "operation {}: gouges {} more cells beyond {} mm (worst {:.4} mm)",
+                op.name,
+                op.gouge_cells - gouged,
+                seq.stock.tol,
+                -op.worst_gouge_mm
+            ));
+            gouged = op.gouge_cells;
+        }
+    }
+    match (found.is_empty(), seq.gate) {
+        (true, _) => Ok(format!(
+            "verified on the in-process stock: 0 rapids in material, 0 gouge cells beyond {} mm",
+            seq.stock.tol
+        )),
+        (false, Gate::Verify) => Err(AppError::Message(format!(
+            "the program fails its verification on the in-process stock: {}; nothing written \
+             (--allow-unsafe writes it, labelled)",
+            found.join("; ")
+        ))),
+        (false, gate) => Ok(format!(
+            "UNSAFE, written with {}: {}",
+            if gate == Gate::Skip {
+                "--no-verify"
+            } else {
+                "--allow-unsafe"
+            },
+            found.join("; ")
+        )),
+    }
+}
+
+fn whole_program(
+    shop: &Shop<'_>,
+    moves: &[Vec<Move>],
+    motions: usize,
+    verdict: String,
+) -> Result<String> {
     let seq = shop.seq;
     let comments: Vec<Vec<String>> = seq
         .operations
@@ -374,6 +422,7 @@ fn whole_program(shop: &Shop<'_>, moves: &[Vec<Move>], motions: usize) -> Result
             seq.name.as_deref().unwrap_or(&seq.part)
         ),
         format!("part: {}", seq.part),
+        verdict,
     ];
     let opts = swarf_nc::GcodeOptions {
         post: shop.post.clone(),
@@ -408,7 +457,7 @@ fn simulate_operation(
 ) -> Result<OperationReport> {
     let job = &op.job;
     let tool = SimTool::new(&job.tool)?;
-    simulate_from(
+    let sim = simulate_from(
         dexel,
         &tool,
         &program.motions,
@@ -417,7 +466,9 @@ fn simulate_operation(
         &Quiet,
     );
     let stats = program_stats(program, job.feeds.rapid);
-    Ok(op_report(op, (stats.cutting_length_mm, stats.time_s), None))
+    let mut r = op_report(op, (stats.cutting_length_mm, stats.time_s), None);
+    r.rapid_cut_lines = sim.rapid_cuts.iter().map(|n| n.line).collect();
+    Ok(r)
 }
 
 /// Simulates a roughing's planned moves on the stock, measuring the engagement of

@@ -1,6 +1,6 @@
-//! Z-level roughing of a single job: a box over the part's XY extent, its top at
-//! the job's `stock_top` (default 1 mm above the part). A sequence roughs its
-//! in-process stock instead ([`crate::sequence`]).
+//! Z-level roughing of a single job: a box over the part's XY extent, its top the
+//! job's stock's ([`crate::stock`]; for a caller without one, 1 mm above the part).
+//! A sequence roughs its in-process stock instead ([`crate::sequence`]).
 
 use super::meshes::mesh_of;
 use super::{FieldError, Kind};
@@ -8,9 +8,6 @@ use crate::plan::PlanInput;
 use swarf_path::strategy::roughing::{self, RoughingParams, RoughingStock};
 use swarf_path::{Cutting, Finish, PathError, Plan};
 use swarf_tool::Cutter;
-
-/// Height of the default box stock's top above the part, mm.
-pub const STOCK_TOP_MARGIN: f64 = 1.0;
 
 /// Z-level roughing ([`roughing`]).
 pub struct Roughing;
@@ -35,7 +32,9 @@ impl Kind for Roughing {
     ) -> Result<Plan, PathError> {
         let mesh = mesh_of(input, p.finish.tolerance)?;
         let b = mesh.aabb();
-        let top = p.stock_top.unwrap_or(b.max.z + STOCK_TOP_MARGIN);
+        let top = cutting
+            .material_top
+            .unwrap_or(b.max.z + crate::stock::DEFAULT_BOX_ABOVE);
         let (min, max) = ([b.min.x, b.min.y], [b.max.x, b.max.y]);
         let material = move |x: f64, y: f64| {
             if x >= min[0] && x <= max[0] && y >= min[1] && y <= max[1] {

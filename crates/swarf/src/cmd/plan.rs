@@ -5,6 +5,7 @@ use crate::progress::Bars;
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use swarf_app::Job;
+use swarf_app::gate::Gate;
 use swarf_app::sequence::{Sequence, plan_sequence};
 
 /// Arguments of `swarf plan`.
@@ -13,8 +14,17 @@ pub struct Args {
     /// Job file (TOML): part, tool, strategy, feeds, linking, outputs.
     job: PathBuf,
     /// Directory for the outputs (default: beside the job file).
-    #[arg(long)]
+    #[arg(long, short = 'o')]
     out: Option<PathBuf>,
+    /// Write a program that fails its verification on the job's stock (a rapid in
+    /// material, a gouge beyond the tolerance), labelled so in its header and
+    /// summary, instead of refusing it.
+    #[arg(long, conflicts_with = "no_verify")]
+    allow_unsafe: bool,
+    /// Do not verify the program on the job's stock before writing it (faster; the
+    /// header says it was not verified).
+    #[arg(long)]
+    no_verify: bool,
 }
 
 /// Runs the subcommand.
@@ -25,7 +35,8 @@ pub fn run(args: &Args) -> Result<()> {
     let out_dir = args.out.clone().unwrap_or_else(|| job_dir.to_path_buf());
     let mut out = swarf_app::Outputs::new(&out_dir);
     if Sequence::is_sequence(&text) {
-        let seq = Sequence::parse(&text, &args.job.display().to_string(), job_dir)?;
+        let mut seq = Sequence::parse(&text, &args.job.display().to_string(), job_dir)?;
+        seq.gate = gate(args);
         let report = plan_sequence(&seq, job_dir, &mut out)
             .with_context(|| format!("{}: planning the sequence", args.job.display()))?;
         out.commit()?;
@@ -34,10 +45,20 @@ pub fn run(args: &Args) -> Result<()> {
         }
         return Ok(());
     }
-    let job = Job::parse_in(&text, &args.job.display().to_string(), job_dir)?;
+    let mut job = Job::parse_in(&text, &args.job.display().to_string(), job_dir)?;
+    job.gate = gate(args);
     let summary = swarf_app::plan_job(&job, job_dir, &mut out, &Bars::default())
         .with_context(|| format!("{}: planning the job", args.job.display()))?;
     out.commit()?;
     println!("{summary}");
     Ok(())
+}
+
+/// The gate the flags ask for.
+fn gate(args: &Args) -> Gate {
+    match (args.allow_unsafe, args.no_verify) {
+        (_, true) => Gate::Skip,
+        (true, _) => Gate::AllowUnsafe,
+        _ => Gate::Verify,
+    }
 }

@@ -258,7 +258,7 @@ impl<'a> IsoSetup<'a> {
             toolpath: Toolpath {
                 passes,
                 feeds: self.params.cutting.feeds,
-                linking: self.params.cutting.linking.for_top(top),
+                linking: self.params.cutting.linking_for(top),
             },
             report,
             double_contacts: Vec::new(),

@@ -83,6 +83,7 @@ fn push_piece(out: &mut Vec<Pass>, points: Vec<PathPoint>, skim: Option<f64>, mi
         out.push(Pass {
             points,
             skim: if out.is_empty() { skim } else { None },
+            clear_from: None,
         });
     }
 }

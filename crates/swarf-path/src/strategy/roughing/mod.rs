@@ -12,7 +12,9 @@
 //! `acos(1 - s / R)` (R the cutter radius). The tool enters a
 //! level at each innermost ring by ramping down along that ring's own loop at the
 //! ramp angle (a helix when the ring is round), from the level above, which was
-//! cleared (the allowed region only shrinks downwards).
+//! cleared (the allowed region only shrinks downwards). So every pass starts clear
+//! of material with nothing above it, and its link comes down to the approach above
+//! its start ([`swarf_toolpath::Pass::clear_from`]), not above the stock.
 //!
 //! The stock bounds the work: a skirt of vertical walls one clearance outside the
 //! stock's XY box joins the part, so every level is a closed pocket and the rings
@@ -101,10 +103,6 @@ pub struct RoughingParams {
     /// radius).
     #[schemars(extend("unit" = "mm", "domain" = "0.05 to 100 tool radii"))]
     pub corner_radius: Option<f64>,
-    /// Top of the box stock of a single roughing job, mm (default 1 mm above the
-    /// part); the box covers the part's XY extent. A sequence roughs its own stock.
-    #[schemars(extend("unit" = "mm"))]
-    pub stock_top: Option<f64>,
 }
 
 impl Default for RoughingParams {
@@ -120,7 +118,6 @@ impl Default for RoughingParams {
             sampling: None,
             adaptive: true,
             corner_radius: None,
-            stock_top: None,
         }
     }
 }
@@ -154,9 +151,6 @@ impl RoughingParams {
     pub fn validate(&self, tool: &Cutter) -> Result<(), PathError> {
         self.finish.validate()?;
         crate::params::in_domain("sampling", self.sampling, SAMPLE)?;
-        if let Some(top) = self.stock_top {
-            crate::params::in_domain("stock_top", Some(top), swarf_geom::domain::COORDINATE)?;
-        }
         check_params(self, tool)
     }
 }
@@ -236,6 +230,10 @@ pub fn plan(
             levels.last().copied().unwrap_or(stock.top),
             stock.top
         )));
+    }
+    // Each pass starts clear of material, under levels already cleared (module doc).
+    for p in &mut passes {
+        p.clear_from = p.points.first().map(|q| q.pose.cl.z);
     }
     let plan_report = PlanReport {
         side_step_range: Some(report.stepover),

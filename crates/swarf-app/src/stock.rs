@@ -1,0 +1,157 @@
+//! The stock every job is cut from (`[stock]`, in a job and in a sequence): a block
+//! over the part, the design raised by an allowance, or a mesh. Planning needs only
+//! how high it reaches ([`Stock::top`]): no rapid goes below the link's approach
+//! above it ([`swarf_toolpath::Linking::material_top`]), and the default clearance
+//! plane is above it. A sequence cuts it as its in-process dexel stock.
+//!
+//! ```toml
+//! [stock]
+//! kind = "box"          # "box" (top, margin), "offset" (allowance) or "mesh" (file)
+//! top = 21              # box top, mm (default 1 mm above the part)
+//! margin = 5            # box: XY margin round the part, mm
+//! ```
+
+use crate::error::{AppError, Result};
+use schemars::JsonSchema;
+use serde::Deserialize;
+use std::path::Path;
+use swarf_geom::TriMesh;
+use swarf_geom::domain::show;
+
+/// Height of the default box stock above the part, mm.
+pub const DEFAULT_BOX_ABOVE: f64 = 1.0;
+
+/// The stock a job or a sequence starts from.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Stock {
+    /// `box`, `offset` or `mesh`.
+    pub kind: StockKind,
+    /// Box: top, mm (default 1 mm above the part; not below it).
+    pub top: Option<f64>,
+    /// Box: XY margin round the part, mm (0 to 1000).
+    pub margin: f64,
+    /// Offset: material above the design, mm (0 to 1000).
+    pub allowance: f64,
+    /// Mesh: the stock's file (STL or OBJ), relative to the job file.
+    pub file: Option<String>,
+    /// Cell of a sequence's in-process stock, mm (0.01 to 10).
+    pub cell: f64,
+    /// Gouge and rest tolerance of a sequence's per-operation reports, mm (more than
+    /// 0, at most 10).
+    pub tol: f64,
+}
+
+impl Default for Stock {
+    fn default() -> Self {
+        Stock {
+            kind: StockKind::Box,
+            top: None,
+            margin: 0.0,
+            allowance: 1.0,
+            file: None,
+            cell: 0.25,
+            tol: 0.01,
+        }
+    }
+}
+
+/// How the stock is made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum StockKind {
+    /// A block over the part's XY extent (grown by the margin).
+    #[default]
+    Box,
+    /// The design raised by an allowance.
+    Offset,
+    /// A mesh's upper envelope.
+    Mesh,
+}
+
+impl Stock {
+    /// Checks every field's domain.
+    ///
+    /// # Errors
+    /// The first field out of its domain, as `stock.field: value: expected ...`.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        let s = self;
+        let cell_ok = s.cell.is_finite() && (0.01..=10.0).contains(&s.cell);
+        if !cell_ok {
+            return Err(format!(
+                "stock.cell: {} mm: expected 0.01 to 10 mm",
+                show(s.cell)
+            ));
+        }
+        if !(s.tol.is_finite() && s.tol > 0.0 && s.tol <= 10.0) {
+            return Err(format!(
+                "stock.tol: {} mm: expected more than 0, at most 10 mm",
+                show(s.tol)
+            ));
+        }
+        if !(s.margin.is_finite() && (0.0..=1000.0).contains(&s.margin)) {
+            return Err(format!(
+                "stock.margin: {} mm: expected 0 to 1000 mm",
+                show(s.margin)
+            ));
+        }
+        if !(s.allowance.is_finite() && (0.0..=1000.0).contains(&s.allowance)) {
+            return Err(format!(
+                "stock.allowance: {} mm: expected 0 to 1000 mm",
+                show(s.allowance)
+            ));
+        }
+        if let Some(top) = s.top
+            && !(top.is_finite() && top.abs() <= 1e6)
+        {
+            return Err(format!(
+                "stock.top: {} mm: expected a height within 1e6 mm",
+                show(top)
+            ));
+        }
+        if s.kind == StockKind::Mesh && s.file.is_none() {
+            return Err("stock.file: a mesh stock needs its file (STL or OBJ)".into());
+        }
+        Ok(())
+    }
+
+    /// The mesh of a mesh stock, its file read relative to `dir` (`None` for the
+    /// other kinds).
+    ///
+    /// # Errors
+    /// A file that cannot be read, as `stock.file: ...`.
+    pub fn mesh(&self, dir: &Path) -> Result<Option<TriMesh>> {
+        if self.kind != StockKind::Mesh {
+            return Ok(None);
+        }
+        let file = self.file.as_deref().unwrap_or_default();
+        swarf_io::read_mesh(&dir.join(file))
+            .map(Some)
+            .map_err(|e| AppError::Message(format!("stock.file: {e}")))
+    }
+
+    /// How high the stock reaches over a part whose highest point is `part_top`, mm
+    /// (`mesh`: the mesh stock, when there is one).
+    ///
+    /// # Errors
+    /// A box top, or a mesh stock's top, below the part's top: the stock would not
+    /// hold the part.
+    pub fn top(&self, part_top: f64, mesh: Option<&TriMesh>) -> Result<f64> {
+        let (top, field) = match (self.kind, mesh) {
+            (StockKind::Mesh, Some(m)) => (m.aabb().max.z, "stock.file"),
+            (StockKind::Offset, _) => (part_top + self.allowance, "stock.allowance"),
+            _ => (
+                self.top.unwrap_or(part_top + DEFAULT_BOX_ABOVE),
+                "stock.top",
+            ),
+        };
+        if top < part_top - 1e-9 {
+            return Err(AppError::Message(format!(
+                "{field}: the stock's top {} mm is below the part's top ({part_top:.3} mm): \
+                 expected a stock that holds the part",
+                show(top)
+            )));
+        }
+        Ok(top)
+    }
+}
