@@ -120,6 +120,21 @@ def test_plan_from_toml_text_and_dict(repo, tmp_path):
     assert p.read_text() == ref.gcode and (tmp_path / "a.cl").read_text() == ref.cl
 
 
+def test_plan_is_verified_on_the_stock_unless_asked_not_to(repo):
+    """The gate of `swarf plan`: the three-axis program simulated on the job's stock
+    (a box 1 mm above the wave by default), its verdict in the summary and header."""
+    path = repo / "jobs" / "wave-raster.toml"
+    p = swarf.plan(path)
+    v = p.summary["verification"]
+    assert v["stock"] == "box, top 50.972 mm"
+    assert v["rapid_cuts"] == [] and v["gouge_cells"] == 0 and not v["written_unsafe"]
+    assert "(verified on box, top 50.972 mm, 0.2 mm cells: 0 rapids in material, 0 gouge cells" in p.gcode
+    skipped = swarf.plan(path, verify=False)
+    assert skipped.summary["verification"] == {"skipped": "--no-verify"}
+    assert "(not verified: --no-verify)" in skipped.gcode
+    assert swarf.plan(path, allow_unsafe=True).gcode == p.gcode, "a safe program is not labelled"
+
+
 def test_plan_errors_match_swarf_plan(cli, tmp_path):
     good = 'name = "x"\npart = "builtin:wave"\ntool = "ball:d=8"\n[strategy]\nkind = "raster"\nscallop = 0.2\n'
     cases = [

@@ -83,7 +83,8 @@ pub struct GateReport {
     pub excess_cells: usize,
     /// Whether the program is written although unsafe ([`Gate::AllowUnsafe`]).
     pub written_unsafe: bool,
-    /// Time the gate took, s.
+    /// Time the gate took, s (not part of deterministic outputs).
+    #[serde(skip)]
     pub seconds: f64,
 }
 
@@ -108,7 +109,7 @@ impl GateReport {
             )
         } else {
             format!(
-                "UNSAFE, written with --allow-unsafe: on {} ({} mm cells) {found}",
+                "UNSAFE, written with --allow-unsafe: on {}, {} mm cells, {found}",
                 self.stock, self.cell
             )
         }
@@ -317,7 +318,7 @@ pub fn run(
 pub fn comment(gate: Option<&GateReport>, gated: bool) -> String {
     match gate {
         Some(g) => g.comment(),
-        None if gated => "not verified (--no-verify)".into(),
+        None if gated => "not verified: --no-verify".into(),
         None => "not verified: five-axis programs are checked by swarf verify".into(),
     }
 }

@@ -402,7 +402,7 @@ fn gated_program(
     Option<String>,
     Option<gate::GateReport>,
 )> {
-    let stock = written.gate_stock;
+    let stock = written.gate_stock.filter(|_| gate::is_gated(moves));
     let first = match (&job.output.gcode, stock) {
         (Some(_), Some(_)) => Some(three_axis_gcode(
             job,
