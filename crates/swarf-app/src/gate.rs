@@ -104,7 +104,7 @@ impl GateReport {
         );
         if self.safe() {
             format!(
-                "verified on {} ({} mm cells): {found}",
+                "verified on {}, {} mm cells: {found}",
                 self.stock, self.cell
             )
         } else {
