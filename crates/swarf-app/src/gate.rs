@@ -23,6 +23,7 @@ use crate::error::{AppError, Result};
 use crate::job::Job;
 use crate::model::Model;
 use crate::stock::StockKind;
+use crate::verify::design_of;
 use serde::Serialize;
 use std::path::Path;
 use swarf_nc::read::{GcodeReadOptions, parse_gcode};
@@ -77,7 +78,7 @@ pub struct GateReport {
     pub gouge_cells: usize,
     /// Deepest gouge, mm (0 without one).
     pub worst_gouge_mm: f64,
-    /// The gouge regions, deepest first (at most [`MAX_NAMED`]).
+    /// The gouge regions, deepest first (at most 10).
     pub gouges: Vec<Finding>,
     /// Cells with more material left than the planned scallop and the tolerance.
     pub excess_cells: usize,
@@ -236,15 +237,11 @@ pub fn check(
         ..VerifyOptions::default()
     };
     let stock_name = opts.stock.describe();
-    let design = match model {
-        Model::Patches(p) => swarf_sim::Design::Part(p),
-        Model::Mesh { mesh, .. } => swarf_sim::Design::Mesh(mesh),
-    };
     let stage = Stage {
         program,
         cutter: &job.tool,
     };
-    let v = verify_stages(design, &[stage], &opts, &Quiet)
+    let v = verify_stages(design_of(model), &[stage], &opts, &Quiet)
         .map_err(|e| AppError::Message(format!("the verification gate: {e}")))?;
     let s = &v.deviation.summary;
     Ok(GateReport {

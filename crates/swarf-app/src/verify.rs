@@ -360,7 +360,7 @@ pub fn verify_in_memory(req: &VerifyRequest<'_>, progress: &dyn Progress) -> Res
 }
 
 /// The design a model gives the verifier.
-fn design_of(model: &Model) -> Design<'_> {
+pub(crate) fn design_of(model: &Model) -> Design<'_> {
     match model {
         Model::Patches(p) => Design::Part(p),
         Model::Mesh { mesh, .. } => Design::Mesh(mesh),
