@@ -349,8 +349,9 @@ fn write_outputs(
         language: post.reader(),
         ..GcodeReadOptions::default()
     };
+    let gated = gate::is_gated(&moves);
     let (rotary, program, gate) =
-        gated_program(job, plan, written, (&moves, &read), comments, out)?;
+        gated_program(job, plan, written, (&moves, gated, &read), comments, out)?;
     if let Some((tool, mesh, check)) = &holder {
         let program = program.as_deref().map(|text| (text, &read));
         refuse_collisions(job, plan, program, (tool, mesh, check))?;
@@ -376,7 +377,7 @@ fn write_outputs(
         positioning,
         holder: holder.as_ref().map(|(tool, _, check)| (*tool, check)),
         gate: gate.as_ref(),
-        gated: gate::is_gated(&moves),
+        gated,
     })?;
     if let Some(rel) = &job.output.summary {
         out.write_json(rel, &summary)?;
@@ -385,8 +386,9 @@ fn write_outputs(
 }
 
 /// Writes the program ([`write_program`]) through the verification gate
-/// ([`crate::gate`]): simulated on the job's stock as it would be written, its
-/// verdict in its header, refused when unsafe unless the job allows it.
+/// ([`crate::gate`]): simulated on the job's stock as it would be written (when
+/// `gated`, [`gate::is_gated`]), its verdict in its header, refused when unsafe
+/// unless the job allows it.
 ///
 /// # Errors
 /// As [`write_program`]; the gate's refusal.
@@ -394,7 +396,7 @@ fn gated_program(
     job: &Job,
     plan: &Plan,
     written: &Written<'_>,
-    (moves, read): (&[swarf_toolpath::Move], &GcodeReadOptions<'_>),
+    (moves, gated, read): (&[swarf_toolpath::Move], bool, &GcodeReadOptions<'_>),
     mut comments: Vec<String>,
     out: &mut Outputs,
 ) -> Result<(
@@ -402,7 +404,7 @@ fn gated_program(
     Option<String>,
     Option<gate::GateReport>,
 )> {
-    let stock = written.gate_stock.filter(|_| gate::is_gated(moves));
+    let stock = written.gate_stock.filter(|_| gated);
     let first = match (&job.output.gcode, stock) {
         (Some(_), Some(_)) => Some(three_axis_gcode(
             job,
@@ -415,7 +417,7 @@ fn gated_program(
     let scallop = planned_scallop(job, plan).unwrap_or(0.0);
     let simulated = (moves, first.as_deref(), read);
     let mut gate = gate::run(job, written.model, simulated, stock, scallop)?;
-    comments.push(gate::comment(gate.as_ref(), gate::is_gated(moves)));
+    comments.push(gate::comment(gate.as_ref(), gated));
     let (rotary, program) = write_program(job, plan, written, moves, comments, out)?;
     gate::conclude(job, gate.as_mut(), (moves, program.as_deref(), read))?;
     Ok((rotary, program, gate))

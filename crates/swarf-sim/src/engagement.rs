@@ -37,6 +37,9 @@ pub struct Engagement {
     /// Per motion: the largest engagement angle, radians; `None` for motions not
     /// measured (rapids, arcs, motions that are not horizontal).
     pub per_motion: Vec<Option<f64>>,
+    /// Rapids that removed material while the program was simulated (as
+    /// [`crate::SimReport::rapid_cuts`]).
+    pub rapid_cuts: Vec<crate::simulate::MotionNote>,
 }
 
 impl Engagement {
@@ -49,7 +52,10 @@ impl Engagement {
             .enumerate()
             .map(|(k, a)| a.filter(|_| !left_out.get(k).copied().unwrap_or(false)))
             .collect();
-        Engagement { per_motion }
+        Engagement {
+            per_motion,
+            rapid_cuts: self.rapid_cuts.clone(),
+        }
     }
 
     /// The measured angles (radians) of the motions that cut (engagement above 0).
@@ -96,6 +102,7 @@ pub fn measure_engagement(
 ) -> Engagement {
     let mut out = Engagement {
         per_motion: Vec::with_capacity(motions.len()),
+        rapid_cuts: Vec::new(),
     };
     progress.begin("measuring engagement", motions.len() as u64);
     for (k, m) in motions.iter().enumerate() {
@@ -106,7 +113,7 @@ pub fn measure_engagement(
             known_start: opts.known_start || k > 0,
             ..*opts
         };
-        simulate_from(
+        let sim = simulate_from(
             dexel,
             tool,
             std::slice::from_ref(m),
@@ -114,6 +121,7 @@ pub fn measure_engagement(
             &opts,
             &Quietly,
         );
+        out.rapid_cuts.extend(sim.rapid_cuts);
         progress.advance(1);
     }
     progress.end();

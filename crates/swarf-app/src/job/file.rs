@@ -182,6 +182,7 @@ impl JobFile {
     /// The library, the tool it names, and every check of [`Job`]'s fields, as
     /// `field: message`.
     pub fn resolve(self, dir: &Path) -> Result<Job, String> {
+        self.stock.check()?;
         let library = read_library(self.tools.as_deref(), dir)?;
         let (tool, library_tool) = self.tool.resolve(library.as_ref())?;
         let job = Job {

@@ -57,6 +57,12 @@ fn bad_jobs_name_the_field() {
         ),
         (GOOD.replace("feed = 300", "fed = 300"), "fed"),
         (GOOD.replace("ball:d=8", "ball:d=-8"), "line 3"),
+        (format!("{GOOD}[stock]\ntop = nan\n"), "stock.top: NaN mm"),
+        (format!("{GOOD}[stock]\nmargin = -1\n"), "stock.margin"),
+        (
+            format!("{GOOD}[stock]\nkind = \"mesh\"\n"),
+            "stock.file: a mesh stock needs its file",
+        ),
     ];
     for (text, want) in cases {
         let e = Job::parse(&text, "job.toml").unwrap_err().to_string();

@@ -46,7 +46,8 @@ pub struct OperationReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub engagement: Option<EngagementSummary>,
     /// Rapids of its program that removed material from the in-process stock (a
-    /// crash on the machine): their lines in the operation's own program.
+    /// crash on the machine): their lines in the operation's own program (a
+    /// roughing's: the numbers of its planned moves, which it is simulated from).
     pub rapid_cut_lines: Vec<usize>,
     /// Cells below the design by more than the tolerance after it.
     pub gouge_cells: usize,

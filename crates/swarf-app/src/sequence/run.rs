@@ -512,11 +512,9 @@ fn measure_roughing(
         entries: rough.entries.len(),
     };
     let stats = motion_stats(moves, job.feeds.rapid);
-    Ok(op_report(
-        op,
-        (stats.cutting_length, stats.time_s),
-        Some(summary),
-    ))
+    let mut r = op_report(op, (stats.cutting_length, stats.time_s), Some(summary));
+    r.rapid_cut_lines = eng.rapid_cuts.iter().map(|n| n.line).collect();
+    Ok(r)
 }
 
 fn sim_options(op: &Operation) -> SimOptions {
