@@ -62,7 +62,7 @@ pub fn select_faces(part: &Part, refs: &[FaceRef], arg: &str) -> Result<Part> {
 }
 
 /// Chordal tolerance of the tessellation that bounds a patch part's top
-/// ([`Model::top`]), mm.
+/// ([`Model::z_range`]), mm.
 pub const TOP_CHORD: f64 = 0.01;
 
 /// A part as the user named it: parametric patches or a triangle mesh.
@@ -100,16 +100,22 @@ impl Model {
         }
     }
 
-    /// A height the design does not rise above, within [`TOP_CHORD`] of its highest
-    /// point, mm: a mesh's highest vertex; the highest vertex of the patches'
-    /// tessellation within [`TOP_CHORD`], plus that chord.
+    /// Heights the design does not go below and above, within [`TOP_CHORD`] of its
+    /// lowest and highest points, mm: a mesh's lowest and highest vertex; those of
+    /// the patches' tessellation within [`TOP_CHORD`], widened by that chord.
     ///
     /// # Errors
     /// A tessellation that fails.
-    pub fn top(&self) -> Result<f64> {
+    pub fn z_range(&self) -> Result<[f64; 2]> {
         Ok(match self {
-            Model::Mesh { mesh, .. } => mesh.aabb().max.z,
-            Model::Patches(part) => part.tessellate(TOP_CHORD)?.aabb().max.z + TOP_CHORD,
+            Model::Mesh { mesh, .. } => {
+                let b = mesh.aabb();
+                [b.min.z, b.max.z]
+            }
+            Model::Patches(part) => {
+                let b = part.tessellate(TOP_CHORD)?.aabb();
+                [b.min.z - TOP_CHORD, b.max.z + TOP_CHORD]
+            }
         })
     }
 

@@ -1,6 +1,8 @@
 //! Planning a job: its strategy run on the part (or on its tessellation, for the
 //! strategies that plan on meshes: [`crate::strategy`]), its leads, and the
-//! clearance plane above the planned path. The strategies' errors name fields
+//! clearance plane above the planned path. The passes are cut to where the tool may
+//! go ([`swarf_toolpath::reach`]: above the floor, within reach of the stock)
+//! before the leads are added. The strategies' errors name fields
 //! inside their table; here they are placed in it (`strategy.scallop`,
 //! `linking.lead_radius`).
 
@@ -58,6 +60,33 @@ fn add_job_leads(job: &Job, input: PlanInput<'_>, plan: &mut Plan) -> Result<(),
     Ok(())
 }
 
+/// `plan`'s passes cut to where `job`'s tool may go ([`Job::reach`]), with what was
+/// cut in its report; nothing to do before the job is on its stock.
+///
+/// # Errors
+/// [`PathError::NoPath`] when no pass is left.
+pub fn clip_to_reach(job: &Job, plan: &mut Plan) -> Result<(), PathError> {
+    let Some(reach) = &job.reach else {
+        return Ok(());
+    };
+    if plan.toolpath.passes.is_empty() {
+        return Ok(());
+    }
+    let passes = std::mem::take(&mut plan.toolpath.passes);
+    let (passes, clipped) = swarf_toolpath::reach::clip(passes, reach);
+    if passes.is_empty() {
+        return Err(PathError::NoPath(format!(
+            "every pass lies below stock.floor ({:.3} mm) or out of the tool's reach of the \
+             stock",
+            reach.floor
+        )));
+    }
+    plan.toolpath.passes = passes;
+    plan.report.clipped_points += clipped.points;
+    plan.report.split_passes += clipped.splits;
+    Ok(())
+}
+
 /// Plans `job` on `input`.
 ///
 /// # Errors
@@ -70,6 +99,7 @@ pub fn plan(job: &Job, input: PlanInput<'_>) -> Result<Plan, PathError> {
         .strategy
         .plan(&job.cutting(), input)
         .map_err(|e| in_table("strategy", e))?;
+    clip_to_reach(job, &mut plan)?;
     add_job_leads(job, input, &mut plan).map_err(|e| in_table("linking", e))?;
     plan.report.lifted_points = plan.toolpath.lifted_count();
     plan.report.elapsed_s = start.elapsed().as_secs_f64();

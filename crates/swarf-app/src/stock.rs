@@ -1,22 +1,26 @@
 //! The stock every job is cut from (`[stock]`, in a job and in a sequence): a block
-//! over the part, the design raised by an allowance, or a mesh. Planning needs only
-//! how high it reaches ([`Stock::top`]): no rapid goes below the link's approach
-//! above it ([`swarf_toolpath::Linking::material_top`]), and the default clearance
-//! plane is above it. A sequence cuts it as its in-process dexel stock.
+//! over the part, the design raised by an allowance, or a mesh. Planning needs how
+//! high it reaches ([`Stock::top`]): no rapid goes below the link's approach above
+//! it ([`swarf_toolpath::Linking::material_top`]), and the default clearance plane
+//! is above it. The passes are cut to where the tool may go
+//! ([`swarf_toolpath::reach`]): above the floor ([`Stock::floor`]) and within the
+//! tool's radius of the stock's XY box ([`Stock::footprint`]). A sequence cuts the
+//! stock as its in-process dexel stock.
 //!
 //! ```toml
 //! [stock]
 //! kind = "box"          # "box" (top, margin), "offset" (allowance) or "mesh" (file)
 //! top = 21              # box top, mm (default 1 mm above the part)
 //! margin = 5            # box: XY margin round the part, mm
+//! floor = 0             # lowest height of the tool tip, mm (default: the part's lowest point)
 //! ```
 
 use crate::error::{AppError, Result};
 use schemars::JsonSchema;
 use serde::Deserialize;
 use std::path::Path;
-use swarf_geom::TriMesh;
 use swarf_geom::domain::show;
+use swarf_geom::{Aabb, TriMesh};
 
 /// Height of the default box stock above the part, mm.
 pub const DEFAULT_BOX_ABOVE: f64 = 1.0;
@@ -35,6 +39,9 @@ pub struct Stock {
     pub allowance: f64,
     /// Mesh: the stock's file (STL or OBJ), relative to the job file.
     pub file: Option<String>,
+    /// The lowest height the tool tip may reach, mm (default: the part's lowest
+    /// point; not above the part's top): passes are cut where they would go below.
+    pub floor: Option<f64>,
     /// Cell of a sequence's in-process stock, mm (0.01 to 10).
     pub cell: f64,
     /// Gouge and rest tolerance of a sequence's per-operation reports, mm (more than
@@ -50,6 +57,7 @@ impl Default for Stock {
             margin: 0.0,
             allowance: 1.0,
             file: None,
+            floor: None,
             cell: 0.25,
             tol: 0.01,
         }
@@ -109,6 +117,14 @@ impl Stock {
                 show(top)
             ));
         }
+        if let Some(floor) = s.floor
+            && !(floor.is_finite() && floor.abs() <= 1e6)
+        {
+            return Err(format!(
+                "stock.floor: {} mm: expected a height within 1e6 mm",
+                show(floor)
+            ));
+        }
         if s.kind == StockKind::Mesh && s.file.is_none() {
             return Err("stock.file: a mesh stock needs its file (STL or OBJ)".into());
         }
@@ -153,5 +169,39 @@ impl Stock {
             )));
         }
         Ok(top)
+    }
+
+    /// The lowest height the tool tip may reach over a part whose lowest and
+    /// highest points are `bottom` and `top`, mm: the job's `floor`, else `bottom`.
+    ///
+    /// # Errors
+    /// A floor above the part's top.
+    pub fn floor(&self, bottom: f64, top: f64) -> Result<f64> {
+        let floor = self.floor.unwrap_or(bottom);
+        if floor > top + 1e-9 {
+            return Err(AppError::Message(format!(
+                "stock.floor: {} mm is above the part's top ({top:.3} mm): expected a floor \
+                 at or below the part's top",
+                show(floor)
+            )));
+        }
+        Ok(floor)
+    }
+
+    /// The stock's XY box, `[x_min, y_min, x_max, y_max]`, mm, over a part held in
+    /// `part` (`mesh`: the mesh stock, when there is one): a box's grown by its
+    /// margin, an offset's the part's, a mesh's its own.
+    pub fn footprint(&self, part: &Aabb, mesh: Option<&TriMesh>) -> [f64; 4] {
+        let (b, grow) = match (self.kind, mesh) {
+            (StockKind::Mesh, Some(m)) => (m.aabb(), 0.0),
+            (StockKind::Offset, _) => (*part, self.allowance),
+            _ => (*part, self.margin),
+        };
+        [
+            b.min.x - grow,
+            b.min.y - grow,
+            b.max.x + grow,
+            b.max.y + grow,
+        ]
     }
 }

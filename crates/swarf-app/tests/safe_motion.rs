@@ -5,13 +5,15 @@
 //! removes material, no cell is gouged beyond the job's tolerance, and every rapid
 //! stays at least the approach above the box (checked on the moves, apart from the
 //! simulation). A gouge planted in a program is refused with its line; with
-//! `AllowUnsafe` it is written and labelled.
+//! `AllowUnsafe` it is written and labelled. No move goes below the floor (the
+//! part's lowest point, or `stock.floor`): passes that dive off a part's edge are
+//! cut there, and a pass that leaves and comes back is split.
 
 use std::path::{Path, PathBuf};
 use swarf_app::Job;
 use swarf_app::gate::{self, Gate};
 use swarf_app::model::load_model_with;
-use swarf_app::plan_job::{part_arg, plan_model_toolpath};
+use swarf_app::plan_job::{Planned, part_arg, plan_model_toolpath};
 use swarf_app::stock::Stock;
 use swarf_nc::read::GcodeReadOptions;
 use swarf_sim::Quiet;
@@ -51,7 +53,8 @@ fn every_shipped_three_axis_job_is_safe_on_a_box_ten_mm_above_the_part() {
         let name = path.file_name().unwrap().to_string_lossy().to_string();
         let mut job = Job::parse_in(&text, &name, &jobs()).unwrap();
         let model = load_model_with(&part_arg(&job, &jobs()), &job.load_options()).unwrap();
-        let top = (model.top().unwrap() + 10.0).ceil();
+        let [floor, part_top] = model.z_range().unwrap();
+        let top = (part_top + 10.0).ceil();
         job.stock = Stock {
             top: Some(top),
             margin: 5.0,
@@ -70,6 +73,10 @@ fn every_shipped_three_axis_job_is_safe_on_a_box_ten_mm_above_the_part() {
         let approach = tp.linking.approach;
         let cleared = tp.passes.iter().any(|p| p.clear_from.is_some());
         for (k, m) in tp.moves().iter().enumerate() {
+            assert!(
+                m.to.cl.z >= floor - 1e-9,
+                "{name}: move {k} below the floor: {m:?}"
+            );
             if m.kind == MoveKind::Rapid && k > 0 && !cleared {
                 assert!(
                     m.to.cl.z >= top + approach - 1e-6,
@@ -174,15 +181,29 @@ fn a_planted_gouge_and_a_rapid_in_the_stock_are_refused_by_line_or_labelled() {
     );
 }
 
-/// Plans the job `text` on its stock under `gate` and returns the gate's verdict.
-fn verdict(text: &str, name: &str, gate: Gate) -> serde_json::Value {
+/// Plans the job `text` on its stock under `gate`.
+fn planned(text: &str, name: &str, gate: Gate) -> swarf_app::Result<Planned> {
     let mut job = Job::parse_in(text, name, &jobs()).unwrap();
     job.gate = gate;
     let model = load_model_with(&part_arg(&job, &jobs()), &job.load_options()).unwrap();
     let dir = std::env::temp_dir().join(format!("swarf-safe-motion-{name}"));
     let mut out = swarf_app::Outputs::new(&dir);
-    let planned = plan_model_toolpath(&job, &model, &jobs(), &mut out, &Quiet).unwrap();
-    planned.summary["verification"].clone()
+    plan_model_toolpath(&job, &model, &jobs(), &mut out, &Quiet)
+}
+
+/// The gate's verdict on the job `text` planned under `gate`.
+fn verdict(text: &str, name: &str, gate: Gate) -> serde_json::Value {
+    planned(text, name, gate).unwrap().summary["verification"].clone()
+}
+
+/// The lowest tool tip of `planned`'s moves, mm.
+fn lowest(planned: &Planned) -> f64 {
+    planned
+        .toolpath
+        .moves()
+        .iter()
+        .map(|m| m.to.cl.z)
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Waterline levels 10 mm apart on the boss: the highest level is below the ribs'
@@ -242,7 +263,68 @@ fn raster_approaches_on_an_open_groove_stay_above_the_box() {
     );
     // The raster's own gouges at the groove's open ends crossed at an angle are the
     // tolerance's business; here the links are checked.
-    let v = verdict(&text, "groove.toml", Gate::AllowUnsafe);
+    let p = planned(&text, "groove.toml", Gate::AllowUnsafe).unwrap();
+    let v = &p.summary["verification"];
     assert_eq!(v["stock"], "box, top 5 mm", "{v}");
     assert_eq!(v["rapid_cuts"].as_array().unwrap().len(), 0, "{v}");
+    // Off the groove's open ends the ball's drop falls below the bottom (-20):
+    // those starts are cut at the floor.
+    assert!(p.summary["report"]["clipped_points"].as_u64().unwrap() > 0);
+    assert!(lowest(&p) >= -20.0 - 1e-9, "{}", lowest(&p));
+}
+
+/// A STEP solid (OpenCASCADE's drilled plate, z 0 to 5) on a box 5 mm wider: the
+/// raster's passes that roll off the plate's outer edges are cut at its bottom and
+/// stay within the tool's radius of the box; with the floor raised to 2 the passes
+/// over the through hole are split there and linked.
+#[test]
+fn a_raster_on_a_solid_stays_above_the_floor_and_in_the_stock() {
+    let job = |floor: &str| {
+        format!(
+            "part = \"../parts/cad/plate-hole.step\"\ntool = \"ball:d=10\"\n[strategy]\n\
+             kind = \"raster\"\nscallop = 0.05\n[stock]\nmargin = 5\ntop = 15\n{floor}"
+        )
+    };
+    let whole = planned(&job(""), "plate-raster.toml", Gate::Skip).unwrap();
+    assert!(whole.summary["report"]["clipped_points"].as_u64().unwrap() > 0);
+    // The patches' lowest point is known within the 0.01 mm tessellation.
+    assert!(lowest(&whole) >= -0.01 - 1e-9, "{}", lowest(&whole));
+    for m in whole.toolpath.moves() {
+        let [x, y] = [m.to.cl.x, m.to.cl.y];
+        assert!((-10.0 - 1e-9..=50.0 + 1e-9).contains(&x), "x {x}");
+        assert!((-10.0 - 1e-9..=40.0 + 1e-9).contains(&y), "y {y}");
+    }
+    let raised = planned(&job("floor = 2"), "plate-raster-2.toml", Gate::Skip).unwrap();
+    assert!(lowest(&raised) >= 2.0 - 1e-9, "{}", lowest(&raised));
+    let splits = raised.summary["report"]["split_passes"].as_u64().unwrap();
+    assert!(splits > 0, "{}", raised.summary["report"]);
+    assert!(raised.toolpath.passes.len() > whole.toolpath.passes.len());
+}
+
+/// A floor above the part (the boss's ribs are 10 high), or not a number, is
+/// refused naming `stock.floor`.
+#[test]
+fn a_floor_above_the_part_is_refused() {
+    let text = |floor: &str| {
+        format!(
+            "part = \"builtin:boss\"\ntool = \"ball:d=10\"\n[strategy]\nkind = \"raster\"\n\
+             scallop = 0.1\n[stock]\nfloor = {floor}\n"
+        )
+    };
+    let above = planned(&text("11"), "floor.toml", Gate::Skip)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        above.contains("stock.floor") && above.contains("above the part's top"),
+        "{above}"
+    );
+    let nan = Job::parse_in(&text("nan"), "floor.toml", &jobs())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        nan.contains("stock.floor") && nan.contains("expected a height"),
+        "{nan}"
+    );
 }

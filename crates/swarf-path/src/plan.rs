@@ -55,9 +55,21 @@ pub struct PlanReport {
     /// column that needs them ([`crate::strategy::iso::pass_bound`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pass_bound: Vec<PassBound>,
+    /// CL points cut from the passes below the floor or out of the tool's reach of
+    /// the stock ([`swarf_toolpath::reach`]).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub clipped_points: usize,
+    /// Passes split where they left that region and came back.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub split_passes: usize,
     /// Planning wall time, s (not part of deterministic outputs).
     #[serde(skip)]
     pub elapsed_s: f64,
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if takes a reference
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 impl PlanReport {

@@ -239,6 +239,9 @@ pub fn plan_cleanup_job(
     ) {
         add_steep(job, parent, &mesh, last)?;
     }
+    for stage in &mut stages {
+        crate::plan::clip_to_reach(job, &mut stage.plan)?;
+    }
     Ok(stages)
 }
 

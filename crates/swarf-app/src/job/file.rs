@@ -199,6 +199,7 @@ impl JobFile {
             linking: self.linking,
             stock: self.stock,
             material_top: None,
+            reach: None,
             gate: crate::gate::Gate::default(),
             output: self.output,
             parent: self.parent,

@@ -136,6 +136,9 @@ pub struct Job {
     /// How high the material reaches, mm: the stock's top once the part is known
     /// ([`Job::on_stock`]; a sequence's operation: the in-process stock's).
     pub material_top: Option<f64>,
+    /// Where the tool tip may go, once the part is known ([`Job::on_stock`]; a
+    /// sequence's operation: over the in-process stock): the passes are cut to it.
+    pub reach: Option<swarf_toolpath::reach::Reach>,
     /// What `swarf plan` does with the program: verify it on the stock and refuse
     /// it when unsafe (the default), write it labelled, or skip the check
     /// ([`crate::gate`]; a command-line choice, not a key of the job file).
@@ -202,15 +205,16 @@ impl Job {
         }
     }
 
-    /// This job with its material's top set from its stock over `model`, whose
-    /// files are relative to `dir`.
+    /// This job with its material's top and the tool's reach set from its stock
+    /// over `model`, whose files are relative to `dir`.
     ///
     /// # Errors
     /// A mesh stock that cannot be read, a stock that does not hold the part, a
-    /// clearance plane below the stock's top.
+    /// floor above the part, a clearance plane below the stock's top.
     pub fn on_stock(&self, model: &Model, dir: &std::path::Path) -> crate::error::Result<Job> {
         let mesh = self.stock.mesh(dir)?;
-        let top = self.stock.top(model.top()?, mesh.as_ref())?;
+        let [bottom, part_top] = model.z_range()?;
+        let top = self.stock.top(part_top, mesh.as_ref())?;
         if let Some(c) = self.linking.clearance
             && c < top
         {
@@ -220,8 +224,14 @@ impl Job {
                 swarf_geom::domain::show(c)
             );
         }
+        let [x0, y0, x1, y1] = self.stock.footprint(&model.bounds(), mesh.as_ref());
+        let r = self.tool.radius();
         Ok(Job {
             material_top: Some((top * 1e3).ceil() / 1e3),
+            reach: Some(swarf_toolpath::reach::Reach {
+                floor: self.stock.floor(bottom, part_top)?,
+                footprint: Some([x0 - r, y0 - r, x1 + r, y1 + r]),
+            }),
             ..self.clone()
         })
     }

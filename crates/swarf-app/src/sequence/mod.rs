@@ -352,6 +352,7 @@ impl SequenceFile {
             linking: op.linking,
             stock: self.stock.clone(),
             material_top: None,
+            reach: None,
             gate: crate::gate::Gate::default(),
             output: Output::default(),
             parent,

@@ -47,6 +47,8 @@ struct Shop<'a> {
     model: Model,
     mesh: TriMesh,
     design: Vec<f64>,
+    /// The lowest height of the tool tip ([`crate::stock::Stock::floor`]).
+    floor: f64,
     post: swarf_nc::Post,
     read: GcodeReadOptions<'static>,
 }
@@ -145,6 +147,7 @@ fn open_shop<'a>(seq: &'a Sequence, job_dir: &Path) -> Result<(Shop<'a>, Dexel)>
     let design = DesignSurface::new(Design::Mesh(&mesh))?
         .heights(&grid, false, &Quiet)
         .heights;
+    let floor = seq.stock.floor(b.min.z, b.max.z)?;
     let dexel = initial_stock(&seq.stock, grid, &design, b.max.z, job_dir)?;
     let spec = seq.output.post.as_deref().unwrap_or("linuxcnc");
     let post_error =
@@ -161,6 +164,7 @@ fn open_shop<'a>(seq: &'a Sequence, job_dir: &Path) -> Result<(Shop<'a>, Dexel)>
         model,
         mesh,
         design,
+        floor,
         post,
         read,
     };
@@ -232,6 +236,30 @@ fn initial_stock(
     })
 }
 
+/// The operation's job on the stock as it stands: the in-process stock is the
+/// material its links stay above, and its XY box with the floor where its tool
+/// may go.
+fn on_stock(op: &Operation, shop: &Shop<'_>, dexel: &Dexel) -> crate::job::Job {
+    let top = dexel
+        .heights()
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    let (lo, hi, r) = (
+        dexel.grid().origin,
+        dexel.grid().max(),
+        op.job.tool.radius(),
+    );
+    crate::job::Job {
+        material_top: Some(top),
+        reach: Some(swarf_toolpath::reach::Reach {
+            floor: shop.floor,
+            footprint: Some([lo[0] - r, lo[1] - r, hi[0] + r, hi[1] + r]),
+        }),
+        ..op.job.clone()
+    }
+}
+
 /// The operation's plan on the stock as it stands (and a roughing's report).
 fn plan_operation(
     op: &Operation,
@@ -240,16 +268,8 @@ fn plan_operation(
     reference: Option<swarf_tool::Cutter>,
 ) -> Result<(Plan, Option<RoughingReport>)> {
     let (model, mesh, design, tol) = (&shop.model, &shop.mesh, &shop.design, shop.seq.stock.tol);
-    // The in-process stock is the material the operation's links stay above.
-    let top = dexel
-        .heights()
-        .iter()
-        .copied()
-        .fold(f64::NEG_INFINITY, f64::max);
-    let job = &crate::job::Job {
-        material_top: Some(top),
-        ..op.job.clone()
-    };
+    let job = &on_stock(op, shop, dexel);
+    let top = job.material_top.unwrap_or_default();
     let plan = match &job.strategy {
         Strategy::Roughing(r) => {
             let grid = *dexel.grid();
@@ -273,8 +293,9 @@ fn plan_operation(
                 top,
                 material: &material,
             };
-            let (plan, report) = plan_roughing(mesh, &stock, &job.cutting(), r)
+            let (mut plan, report) = plan_roughing(mesh, &stock, &job.cutting(), r)
                 .map_err(|e| crate::plan::in_table("strategy", e))?;
+            crate::plan::clip_to_reach(job, &mut plan)?;
             return Ok((plan, Some(report)));
         }
         Strategy::Cleanup(c) => {
@@ -298,11 +319,13 @@ fn plan_operation(
             // Every region the stock shows is rest of the stock kind: all are cleaned.
             let detection = detect(mesh, &reference, source, tol, &c.regions())?;
             let toolpath = plan_cleanup(mesh, &detection.regions, &reference, &job.cutting(), c)?;
-            Plan {
+            let mut plan = Plan {
                 toolpath,
                 report: PlanReport::default(),
                 double_contacts: Vec::new(),
-            }
+            };
+            crate::plan::clip_to_reach(job, &mut plan)?;
+            plan
         }
         _ => match model {
             Model::Patches(part) if !matches!(job.strategy, Strategy::Raster(_)) => {
