@@ -88,7 +88,8 @@ fn job_view_folder_is_whole_and_repeats() {
         6 * (count + 1)
     );
     let line = view["motions"]["line"][count / 2].as_u64().unwrap() as usize;
-    assert!(view["source"][line - 1].as_str().unwrap().contains('X'));
+    let source = view["source"][line - 1].as_str().unwrap();
+    assert!(source.contains(['X', 'Y', 'Z']), "line {line}: {source}");
     assert!(out.join("report.json").is_file() && out.join("deviation.png").is_file());
     let page = fake_dist(&dir);
     let o = swarf(&args, &page);
