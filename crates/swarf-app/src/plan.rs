@@ -61,12 +61,13 @@ fn add_job_leads(job: &Job, input: PlanInput<'_>, plan: &mut Plan) -> Result<(),
 }
 
 /// `plan`'s passes cut to where `job`'s tool may go ([`Job::reach`]), with what was
-/// cut in its report; nothing to do before the job is on its stock.
+/// cut in its report; nothing to do before the job is on its stock, nor for a
+/// five-axis job (its vertical tips are not where the positioned tool goes).
 ///
 /// # Errors
 /// [`PathError::NoPath`] when no pass is left.
 pub fn clip_to_reach(job: &Job, plan: &mut Plan) -> Result<(), PathError> {
-    let Some(reach) = &job.reach else {
+    let (Some(reach), None) = (&job.reach, &job.positioning) else {
         return Ok(());
     };
     if plan.toolpath.passes.is_empty() {
