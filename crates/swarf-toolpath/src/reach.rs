@@ -28,6 +28,17 @@ pub struct Reach {
     pub footprint: Option<[f64; 4]>,
 }
 
+impl Reach {
+    /// The reach of a tool of `radius` over a stock whose XY box is `[x_min, y_min,
+    /// x_max, y_max]`, above `floor` (mm).
+    pub fn around(floor: f64, [x0, y0, x1, y1]: [f64; 4], radius: f64) -> Reach {
+        Reach {
+            floor,
+            footprint: Some([x0 - radius, y0 - radius, x1 + radius, y1 + radius]),
+        }
+    }
+}
+
 /// What [`clip`] removed.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Clipped {

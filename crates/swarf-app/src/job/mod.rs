@@ -224,14 +224,14 @@ impl Job {
                 swarf_geom::domain::show(c)
             );
         }
-        let [x0, y0, x1, y1] = self.stock.footprint(&model.bounds(), mesh.as_ref());
-        let r = self.tool.radius();
+        let footprint = self.stock.footprint(&model.bounds(), mesh.as_ref());
         Ok(Job {
             material_top: Some((top * 1e3).ceil() / 1e3),
-            reach: Some(swarf_toolpath::reach::Reach {
-                floor: self.stock.floor(bottom, part_top)?,
-                footprint: Some([x0 - r, y0 - r, x1 + r, y1 + r]),
-            }),
+            reach: Some(swarf_toolpath::reach::Reach::around(
+                self.stock.floor(bottom, part_top)?,
+                footprint,
+                self.tool.radius(),
+            )),
             ..self.clone()
         })
     }

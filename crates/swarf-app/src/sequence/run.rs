@@ -245,17 +245,14 @@ fn on_stock(op: &Operation, shop: &Shop<'_>, dexel: &Dexel) -> crate::job::Job {
         .iter()
         .copied()
         .fold(f64::NEG_INFINITY, f64::max);
-    let (lo, hi, r) = (
-        dexel.grid().origin,
-        dexel.grid().max(),
-        op.job.tool.radius(),
-    );
+    let (lo, hi) = (dexel.grid().origin, dexel.grid().max());
     crate::job::Job {
         material_top: Some(top),
-        reach: Some(swarf_toolpath::reach::Reach {
-            floor: shop.floor,
-            footprint: Some([lo[0] - r, lo[1] - r, hi[0] + r, hi[1] + r]),
-        }),
+        reach: Some(swarf_toolpath::reach::Reach::around(
+            shop.floor,
+            [lo[0], lo[1], hi[0], hi[1]],
+            op.job.tool.radius(),
+        )),
         ..op.job.clone()
     }
 }
