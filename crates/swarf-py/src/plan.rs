@@ -318,8 +318,9 @@ fn passes_list<'py>(
 }
 
 /// Plans one 3-axis strategy of kind `kind` with the job file's `[strategy]` keys
-/// `params` on `part` with `tool`, as a job with that strategy plans it; returns the
-/// passes as `(K, 3)` arrays of tool tip positions.
+/// `params` on `part` with `tool`, as a job with that strategy plans it (on its
+/// default stock: cut to the part's lowest point and the tool's reach of its box);
+/// returns the passes as `(K, 3)` arrays of tool tip positions.
 fn strategy_passes<'py>(
     py: Python<'py>,
     kind: &str,
@@ -341,12 +342,16 @@ fn strategy_passes<'py>(
     let job = job_from_dict(&job, PathBuf::from("."), &format!("{kind}()"))?;
     let plan = detached(py, || {
         let model = model.load()?;
+        let fail = |e: &(dyn std::error::Error + 'static)| {
+            swarf_msg(format!("{kind}(): {}", crate::errors::chain(e)))
+        };
+        // On the job's default stock, as `swarf plan` puts it: its floor and reach.
+        let job = job.job.on_stock(&model, &job.dir).map_err(|e| fail(&e))?;
         let input = match &*model {
             Model::Patches(p) => PlanInput::Part(p),
             Model::Mesh { mesh, .. } => PlanInput::Mesh(mesh),
         };
-        swarf_app::plan(&job.job, input)
-            .map_err(|e| swarf_msg(format!("{kind}(): {}", crate::errors::chain(&e))))
+        swarf_app::plan(&job, input).map_err(|e| fail(&e))
     })?;
     passes_list(py, &plan.toolpath, 3)
 }
