@@ -6,7 +6,9 @@
 //!    gouge-free lead, with the sectioning gouge report. The positioned passes replace
 //!    the 3-axis ones, in the same order and directions (zigzag kept), relinked above
 //!    the tilted tool ([`swarf_fiveaxis::cc_paths::linking`]).
-//! 3. **Post** ([`write_job_gcode`]): the machine named by `output.machine`
+//! 3. **Holder avoidance** ([`avoid_holder`]) for a library tool: poses whose shank
+//!    or holder meets the part are tilted clear.
+//! 4. **Post** ([`write_job_gcode`]): the machine named by `output.machine`
 //!    ([`load_machine`]: a file relative to the job file, or `builtin:NAME` for the
 //!    machines shipped in `machines/`), G93 or G94, the tool length for machines with
 //!    head axes, through [`post_5x`].
@@ -16,15 +18,21 @@
 //! what the tilted tool does.
 
 use crate::error::Result;
+use crate::holder::avoid::{Avoidance, Limits, avoid};
 use crate::job::Job;
+use crate::model::Model;
 use swarf_fiveaxis::FiveAxisError;
 use swarf_fiveaxis::cc_paths::{cc_paths, linking};
 use swarf_fiveaxis::machine::{Machine, MachineKind};
-use swarf_fiveaxis::positioning::{PositioningReport, position_with_progress};
+use swarf_fiveaxis::positioning::spec::DEFAULT_MAX_RATE;
+use swarf_fiveaxis::positioning::{
+    Positioning, PositioningReport, position_with_progress, recheck,
+};
 use swarf_fiveaxis::post::{Post5x, PostOptions, post_5x};
 use swarf_geom::Part;
 use swarf_nc::Post;
 use swarf_path::Plan;
+use swarf_tool::holder::tilted::TiltSearch;
 use swarf_toolpath::Toolpath;
 
 #[cfg(doc)]
@@ -62,6 +70,53 @@ pub fn position_plan(
     plan.report.max_lift = 0.0;
     plan.report.predicted_max_scallop = None;
     Ok(Some(report))
+}
+
+/// Tilts the positioned passes of `plan` clear of the job's library tool's shank
+/// and holder on the part's triangles ([`crate::holder::avoid`]) under the
+/// positioning's limits (its `max_rate`, the default rate for an inclined tool; a
+/// gouge-free lead's `max_alpha`), relinks them above the tilted tool and runs the
+/// positioning's gouge check on them again (`report`). `None` (and `plan`
+/// untouched) for a job without positioning or library tool, or when nothing was
+/// tilted.
+///
+/// # Errors
+/// The part's tessellation; as [`avoid`] and [`recheck`].
+pub fn avoid_holder(
+    job: &Job,
+    model: &Model,
+    plan: &mut Plan,
+    report: Option<&mut PositioningReport>,
+) -> crate::error::Result<Option<Avoidance>> {
+    let (Model::Patches(part), Some(tool)) = (model, &job.library_tool) else {
+        return Ok(None);
+    };
+    let limits = match job.positioning {
+        None => return Ok(None),
+        Some(Positioning::Inclined { .. }) => Limits {
+            max_rate: DEFAULT_MAX_RATE.to_radians(),
+            max_tilt: TiltSearch::default().max_tilt,
+            max_lean: None,
+        },
+        Some(Positioning::GougeFree {
+            max_alpha,
+            max_rate,
+            ..
+        }) => Limits {
+            max_rate: max_rate.to_radians(),
+            max_tilt: TiltSearch::default().max_tilt,
+            max_lean: Some(max_alpha.to_radians()),
+        },
+    };
+    let mesh = model.triangles(job.tolerance())?;
+    let avoided = avoid(&mesh, tool, &mut plan.toolpath, &limits)?;
+    if avoided.is_some() {
+        plan.toolpath.linking = linking(&job.cutting(), part, &plan.toolpath.passes);
+        if let Some(r) = report {
+            recheck(&job.tool, part, &plan.toolpath.passes, r)?;
+        }
+    }
+    Ok(avoided)
 }
 
 /// The five-axis post options for `job` on `machine`, with header `comments`.

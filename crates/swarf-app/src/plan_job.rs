@@ -6,9 +6,10 @@
 use crate::cleanup::{plan_cleanup_job, rest_json, stage_file, steep_json};
 use crate::drop_spin::{contacts_csv, drop_spin_json, plan_drop_spin};
 use crate::error::{AppError, Result, bail};
-use crate::five_axis::{position_plan, write_job_gcode};
+use crate::five_axis::{avoid_holder, position_plan, write_job_gcode};
 use crate::gate::{self, Gate, stock_spec};
 use crate::holder::HolderCheck;
+use crate::holder::avoid::Avoidance;
 use crate::holder::path::{check_path, gcode_line, refusal};
 use crate::job::{Job, Output};
 use crate::model::{Model, load_model_with};
@@ -127,7 +128,7 @@ pub fn plan_model_toolpath(
         Model::Patches(part) => (part.name.clone(), plan(job, PlanInput::Part(part))?),
         Model::Mesh { name, mesh } => (name.clone(), plan(job, PlanInput::Mesh(mesh))?),
     };
-    let positioning = match (model, &job.positioning) {
+    let mut positioning = match (model, &job.positioning) {
         (_, None) => None,
         (Model::Patches(part), Some(_)) => {
             let start = std::time::Instant::now();
@@ -143,13 +144,16 @@ pub fn plan_model_toolpath(
             bail!("positioning: five-axis positioning needs a parametric part (.toml), not a mesh")
         }
     };
+    let avoidance = avoid_holder(job, model, &mut plan, positioning.as_mut())?;
+    let notes: Vec<String> = avoidance.iter().map(Avoidance::note).collect();
     let written = Written {
         part_name: &name,
         model,
         machine: machine.as_ref(),
         post,
         positioning: positioning.as_ref(),
-        notes: &[],
+        avoidance: avoidance.as_ref(),
+        notes: &notes,
         gate_stock,
     };
     let summary = write_outputs(job, &plan, &written, out)?;
@@ -168,6 +172,8 @@ struct Written<'a> {
     /// The post of the G-code.
     post: &'a Post,
     positioning: Option<&'a PositioningReport>,
+    /// What holder avoidance tilted.
+    avoidance: Option<&'a Avoidance>,
     /// Extra header comments of the program.
     notes: &'a [String],
     /// The stock the verification gate simulates the program on (`None`: the gate
@@ -201,6 +207,7 @@ fn drop_spin_outputs(
         machine,
         post,
         positioning: None,
+        avoidance: None,
         notes: &[],
         gate_stock,
     };
@@ -255,6 +262,7 @@ fn cleanup_outputs(
             machine,
             post,
             positioning: None,
+            avoidance: None,
             notes: &stage.notes,
             gate_stock,
         };
@@ -329,6 +337,7 @@ fn write_outputs(
         machine,
         post,
         positioning,
+        avoidance,
         notes,
         gate_stock: _,
     } = *written;
@@ -375,7 +384,9 @@ fn write_outputs(
         stats: &stats,
         machine: machine.map(|m| (m, rotary)),
         positioning,
-        holder: holder.as_ref().map(|(tool, _, check)| (*tool, check)),
+        holder: holder
+            .as_ref()
+            .map(|(tool, _, check)| (*tool, check, avoidance)),
         gate: gate.as_ref(),
         gated,
     })?;

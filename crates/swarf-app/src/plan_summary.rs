@@ -5,6 +5,7 @@
 use crate::error::{AppError, Result};
 use crate::gate::GateReport;
 use crate::holder::HolderCheck;
+use crate::holder::avoid::Avoidance;
 use crate::job::Job;
 use crate::plan_job::planned_scallop;
 use crate::programs::SCALLOP_COMMENT;
@@ -27,8 +28,8 @@ pub(crate) struct SummaryParts<'a> {
     /// The machine of five-axis G-code, and the rotary ranges of the program written.
     pub machine: Option<(&'a Machine, Option<RotaryRanges>)>,
     pub positioning: Option<&'a PositioningReport>,
-    /// The library tool and its shank and holder check.
-    pub holder: Option<(&'a LibraryTool, &'a HolderCheck)>,
+    /// The library tool, its shank and holder check and what avoidance tilted.
+    pub holder: Option<(&'a LibraryTool, &'a HolderCheck, Option<&'a Avoidance>)>,
     /// The verification gate's verdict (`None`: skipped).
     pub gate: Option<&'a GateReport>,
     /// Whether the gate checks programs of this kind ([`crate::gate::is_gated`]).
@@ -82,8 +83,11 @@ pub(crate) fn summary_json(parts: &SummaryParts<'_>) -> Result<serde_json::Value
     if let Some(p) = positioning {
         summary["positioning"] = serde_json::to_value(p)?;
     }
-    if let Some((tool, check)) = holder {
+    if let Some((tool, check, avoidance)) = holder {
         summary["holder"] = holder_json(tool, check)?;
+        if let Some(a) = avoidance {
+            summary["holder"]["avoidance"] = serde_json::to_value(a)?;
+        }
     }
     summary["verification"] = match gate {
         Some(g) => serde_json::to_value(g)?,

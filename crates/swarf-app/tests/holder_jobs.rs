@@ -11,8 +11,11 @@
 //! to the floor needs 40 mm.
 
 use std::path::{Path, PathBuf};
+use swarf_app::holder::avoid::{Limits, avoid};
 use swarf_app::holder::path::{check_path, collision_tilt, refusal};
 use swarf_app::holder::{HolderRequest, POSE_SPACING, check_request, library_specs};
+use swarf_app::model::load_model_with;
+use swarf_app::plan_job::{part_arg, plan_model_toolpath};
 use swarf_app::verify::{GcodeSetup, SimSettings, VerifyRequest, verify_in_memory};
 use swarf_app::{Job, Outputs};
 use swarf_geom::{Point3, Vec3};
@@ -210,6 +213,174 @@ fn a_tilted_pose_beside_a_wall_names_the_tilt_that_clears() {
             && s.contains("leads up to 25.000 deg"),
         "{s}"
     );
+}
+
+/// The pose above, on a pass that comes toward the wall along x from x = -30 to -3,
+/// tilted clear by holder avoidance: the ball turns about its centre `C` (the cut is
+/// unchanged), so the tip moves to `C - 3 a(t)`. With `(p, q) = E - C = (3 + 3 sin
+/// t0, 35 - 3 cos t0)` from `C` to the edge `E`, the edge sits in the frame of tilt
+/// `t` at `z' = q cos t - p sin t + 3` and `rho = p cos t + q sin t`, and the cone
+/// clears it once `(q + 0.3 p) sin t + (p - 0.3 q) cos t = 1.9`. The least tilt is
+/// applied where the pass meets the wall, tilts change by at most the rate limit per
+/// mm, far poses are untouched, and the path clears.
+#[test]
+fn holder_avoidance_tilts_a_pass_beside_a_wall_clear_about_the_ball_centre() {
+    let library = ToolLibrary::read(&library_file()).unwrap();
+    let tool = library.get("ball6-long").unwrap();
+    let mesh = swarf_io::builtin_mesh("deep-pocket").unwrap();
+    let t0 = 12f64.to_radians();
+    let axis = Vec3::new(-t0.sin(), 0.0, t0.cos());
+    let pass = Pass {
+        points: (0..=27)
+            .map(|i| {
+                let x = -30.0 + f64::from(i);
+                PathPoint::new(Pose::new(Point3::new(x, 30.0, 5.0), axis).unwrap())
+            })
+            .collect(),
+        ..Pass::default()
+    };
+    let mut toolpath = Toolpath {
+        passes: vec![pass],
+        feeds: Feeds::default(),
+        linking: Linking::default(),
+    };
+    let before = toolpath.clone();
+    assert!(
+        !check_path(&mesh, &toolpath, tool, "")
+            .unwrap()
+            .collisions
+            .is_empty()
+    );
+    let rate = 0.5f64.to_radians();
+    let limits = Limits {
+        max_rate: rate,
+        max_tilt: 60f64.to_radians(),
+        max_lean: None,
+    };
+    let a = avoid(&mesh, tool, &mut toolpath, &limits).unwrap().unwrap();
+    let after = check_path(&mesh, &toolpath, tool, "").unwrap();
+    assert!(
+        after.collisions.is_empty(),
+        "{:?}",
+        after.collisions.first()
+    );
+    let (p, q) = (3.0 + 3.0 * t0.sin(), 35.0 - 3.0 * t0.cos());
+    let (ca, cb) = (q + 0.3 * p, p - 0.3 * q);
+    let closed = (1.9 / ca.hypot(cb)).asin() - cb.atan2(ca) - t0;
+    let old = &before.passes[0].points;
+    let new = &toolpath.passes[0].points;
+    let tilts: Vec<f64> = old
+        .iter()
+        .zip(new)
+        .map(|(o, n)| o.pose.axis.angle(&n.pose.axis))
+        .collect();
+    let last = tilts[tilts.len() - 1];
+    eprintln!(
+        "applied tilt at the wall {:.5} deg, closed form {:.5} deg; {} poses tilted, up to {:.4} deg in {} rounds",
+        last.to_degrees(),
+        closed.to_degrees(),
+        a.tilted_poses,
+        a.largest_tilt_deg,
+        a.rounds
+    );
+    assert!(
+        (last - closed).abs().to_degrees() < 0.01,
+        "{last} vs {closed}"
+    );
+    assert_eq!(
+        tilts[0], 0.0,
+        "the pose 27 mm from the wall clears as it is"
+    );
+    for (k, w) in tilts.windows(2).enumerate() {
+        assert!((w[1] - w[0]).abs() <= rate * 1.0 + 1e-9, "pose {k}: {w:?}");
+    }
+    for (o, n) in old.iter().zip(new) {
+        let centre = |q: &PathPoint| q.pose.cl + 3.0 * q.pose.axis;
+        assert!((centre(o) - centre(n)).norm() < 1e-9);
+        assert!(n.pose.axis.y.abs() < 1e-12 && n.pose.axis.x <= o.pose.axis.x + 1e-12);
+    }
+    assert_eq!(a.tilted_poses, tilts.iter().filter(|&&t| t > 0.0).count());
+}
+
+/// The deep pocket's outer wall as a part file: the floor z = 0 for x in [-40, 0],
+/// the wall x = 0 up to z = 40 and its top for x in [0, 20], y in [0, 60] (three
+/// planar patches, normals out of the material).
+const WALL_FLOOR: &str = "name = \"wall-floor\"
+units = \"mm\"
+[[patch]]
+degree = [1, 1]
+points = [[-40, 0, 0], [-40, 60, 0], [0, 0, 0], [0, 60, 0]]
+[[patch]]
+degree = [1, 1]
+points = [[0, 0, 0], [0, 60, 0], [0, 0, 40], [0, 60, 40]]
+[[patch]]
+degree = [1, 1]
+points = [[0, 0, 40], [0, 60, 40], [20, 0, 40], [20, 60, 40]]
+";
+
+/// A five-axis job beside that wall: the floor finished along y, one way, by the
+/// `ball6-long` inclined 12 degrees sideways away from the wall, its centre at most
+/// 3 from the wall. On the floor the ball's centre `C` stays 3 above it whatever the
+/// axis; where the holder's nose cone meets the top edge `E = (0, 40)` the axis is
+/// tilted further about `C` to the least total tilt `t` with `(q + 0.3 p) sin t +
+/// (p - 0.3 q) cos t = 1.9`, `(p, q) = E - C` (the closed form above, from the
+/// vertical); the poses farther out keep their 12 degrees, the plan clears and the
+/// positioning's gouge check finds nothing on the tilted poses.
+#[test]
+fn a_five_axis_job_beside_a_wall_plans_with_the_clearing_tilt() {
+    let dir = temp("wall");
+    std::fs::write(dir.join("wall-floor.toml"), WALL_FLOOR).unwrap();
+    let text = format!(
+        "part = \"wall-floor.toml\"\ntools = {:?}\ntool = \"ball6-long\"\n\
+         [strategy]\nkind = \"raster\"\nangle = 90\nstepover = 1\nzigzag = false\n\
+         boundary = [-12, 20, -3.05, 40]\n\
+         [positioning]\nmethod = \"inclined\"\nalpha = 0\ntilt = 12\n",
+        library_file().display().to_string()
+    );
+    let job = Job::parse_in(&text, "wall.toml", &dir).unwrap();
+    let model = load_model_with(&part_arg(&job, &dir), &job.load_options()).unwrap();
+    let mut out = Outputs::new(&dir);
+    let planned = plan_model_toolpath(&job, &model, &dir, &mut out, &Quiet).unwrap();
+    let avoided = &planned.summary["holder"]["avoidance"];
+    eprintln!("{avoided}");
+    let t0 = 12f64.to_radians();
+    let (mut tilted, mut largest) = (0, 0f64);
+    for pass in &planned.toolpath.passes {
+        for q in &pass.points {
+            let Pose { cl, axis } = q.pose;
+            let centre = cl + 3.0 * axis;
+            assert!((centre.z - 3.0).abs() < 1e-6, "{q:?}");
+            let t = axis.angle(&Vec3::z());
+            let (p, q) = (-centre.x, 40.0 - centre.z);
+            let (ca, cb) = (q + 0.3 * p, p - 0.3 * q);
+            let need = (1.9 / ca.hypot(cb)).asin() - cb.atan2(ca);
+            let expected = if need > t0 { need } else { t0 };
+            assert!(axis.x < 0.0, "away from the wall: {axis:?}");
+            assert!(
+                (t - expected).abs().to_degrees() < 0.01,
+                "{t} vs {expected} at {cl:?}"
+            );
+            if need > t0 {
+                tilted += 1;
+                largest = largest.max(need - t0);
+            }
+        }
+    }
+    eprintln!(
+        "{tilted} poses tilted, up to {:.4} deg more",
+        largest.to_degrees()
+    );
+    assert!(tilted > 0);
+    // The holder check after the tilt (the plan would be refused otherwise).
+    let least = planned.summary["holder"]["min_clearance"].as_f64().unwrap();
+    assert!(least >= 0.0, "{least}");
+    // The positioning's gouge check, run again on the tilted poses.
+    let positioned = &planned.summary["positioning"];
+    assert_eq!(positioned["gouging_poses"], 0, "{positioned}");
+    assert!(positioned["max_axis_rate_deg_per_mm"].as_f64().unwrap() <= 0.5 + 1e-9);
+    assert_eq!(avoided["tilted_poses"], tilted);
+    assert!((avoided["largest_tilt_deg"].as_f64().unwrap() - largest.to_degrees()).abs() < 0.01);
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 fn holder_request<'a>(

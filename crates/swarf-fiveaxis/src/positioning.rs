@@ -374,6 +374,27 @@ fn check(
     r.gouges = spots;
 }
 
+/// The sectioning check of `passes` (positioned with `cutter` on `part`) run again
+/// after their axes changed (holder avoidance tilts them): the report's gouges,
+/// worst depth and axis rate replaced, on its own section planes and tolerance.
+///
+/// # Errors
+/// A part the design surface cannot be built from; a report whose sections or
+/// tolerance are out of their domains.
+pub fn recheck(
+    cutter: &Cutter,
+    part: &Part,
+    passes: &[Pass],
+    r: &mut PositioningReport,
+) -> Result<(), FiveAxisError> {
+    let design = DesignSurface::new(part)?;
+    let g = gouge_options(r.sections[0].to_radians(), r.sections[1], r.tolerance)?;
+    r.worst_depth = f64::NEG_INFINITY;
+    r.max_axis_rate_deg_per_mm = max_axis_rate(passes).to_degrees();
+    check(&design, cutter, passes, &g, r);
+    Ok(())
+}
+
 /// Largest angle between consecutive tool axes per mm of tip travel, rad/mm.
 fn max_axis_rate(passes: &[Pass]) -> f64 {
     passes

@@ -119,6 +119,7 @@ fn tilting_away_from_the_wall_clears_the_holder() {
     let Tilt::Clears {
         tilt,
         axis,
+        cl,
         clearance,
     } = clearing_tilt(&a, &mesh, &pose, &Vec3::x(), &search).unwrap()
     else {
@@ -139,6 +140,7 @@ fn tilting_away_from_the_wall_clears_the_holder() {
         "{tilt} vs {closed}"
     );
     assert!((axis.norm() - 1.0).abs() < 1e-12 && axis.x > 0.0 && axis.y.abs() < 1e-12);
+    assert_eq!(cl, pose.cl, "turned about the tip, the tip stays");
     assert!(
         !oracle_collides(&pose.cl, &axis),
         "tilt {tilt} still collides"

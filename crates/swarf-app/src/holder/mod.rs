@@ -13,6 +13,7 @@
 //! its T number ([`stage_tools`]). A planned job's path is checked the same way
 //! ([`path`]); the resolution of library tools in job files is [`library`].
 
+pub mod avoid;
 pub mod library;
 pub mod path;
 

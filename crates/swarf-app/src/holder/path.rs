@@ -8,13 +8,14 @@
 //! A tilted pose that collides (five-axis) is also searched for the extra tilt that
 //! clears ([`clearing_tilt`]): the axis turned about the tool tip away from where
 //! the holder or shank touches the part, `a(t) = a cos t + d sin t` with `d` the
-//! direction from the contact to the tip, normal to `a`. The plan is refused either
-//! way, naming that tilt; applying it in the positioning is left to the positioning
-//! (the tilt must then be gouge-checked there, within its lead limit).
+//! direction from the contact to the tip, normal to `a`. A positioned ball-end
+//! path is tilted clear first ([`super::avoid`]); what still collides is refused,
+//! naming that tilt.
 
 use super::{HolderCheck, LineCollision, POSE_SPACING, check_poses};
 use crate::error::Result;
 use swarf_geom::TriMesh;
+use swarf_geom::math::slerp;
 use swarf_nc::read::{GcodeReadOptions, parse_gcode};
 use swarf_tool::Pose;
 use swarf_tool::holder::tilted::{Tilt, TiltSearch, clearing_tilt};
@@ -27,7 +28,7 @@ const LINE_MATCH: f64 = 1e-3;
 
 /// The poses of the passes of `toolpath`: each point, and points about `spacing`
 /// apart on the straight segments between consecutive points (axes interpolated
-/// and normalised), each tagged with its pass and the pose it leads to.
+/// by the one slerp), each tagged with its pass and the pose it leads to.
 pub fn path_poses(toolpath: &Toolpath, spacing: f64) -> Vec<(Pose, [usize; 2])> {
     let mut out = Vec::new();
     for (p, pass) in toolpath.passes.iter().enumerate() {
@@ -39,7 +40,7 @@ pub fn path_poses(toolpath: &Toolpath, spacing: f64) -> Vec<(Pose, [usize; 2])> 
                 for i in 1..n {
                     let f = i as f64 / n as f64;
                     let cl = a.cl + f * (b.cl - a.cl);
-                    let axis = a.axis + f * (b.axis - a.axis);
+                    let axis = slerp(&a.axis, &b.axis, f);
                     if let Some(pose) = Pose::new(cl, axis) {
                         out.push((pose, [p, k]));
                     }

@@ -13,8 +13,12 @@ fn default_sections() -> f64 {
     1.0
 }
 
+/// The default largest change of a gouge-free lead per mm of feed, degrees/mm
+/// (also the rate at which holder avoidance may tilt an inclined path).
+pub const DEFAULT_MAX_RATE: f64 = 0.5;
+
 fn default_rate() -> f64 {
-    0.5
+    DEFAULT_MAX_RATE
 }
 
 /// How a job places the tool on its CC paths (degrees and mm; thesis 000 §7.3). Both

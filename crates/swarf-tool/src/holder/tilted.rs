@@ -13,9 +13,11 @@
 //! that clears a pose is found in its frame as in three axes, and over a path of
 //! any axes it is the largest of the poses' ([`shortest_stick_out_posed`]).
 //!
-//! The tilt search turns the axis about the tool tip in the plane of the axis and a
-//! given direction, `a(t) = a cos t + d sin t` (`d` the direction's part normal to
-//! `a`), steps `t` from 0 by `step` up to `max_tilt`, and bisects between the last
+//! The tilt search turns the axis about a point on it `pivot` above the tool tip (the
+//! tip itself, or a ball's centre, about which the ball's cut does not change) in
+//! the plane of the axis and a given direction, `a(t) = a cos t + d sin t` (`d` the
+//! direction's part normal to `a`; the tip moves to `pivot point - pivot a(t)`),
+//! steps `t` from 0 by `step` up to `max_tilt`, and bisects between the last
 //! step that collides and the first that clears down to `tolerance`. The clearance
 //! need not grow steadily with the tilt, so a window of clearing tilts narrower than
 //! the step can be missed; the answer is the first clearing tilt on that grid.
@@ -37,15 +39,19 @@ pub struct TiltSearch {
     pub max_tilt: f64,
     /// Bisection stops when the bracket is this narrow, radians.
     pub tolerance: f64,
+    /// How far above the tool tip along the axis the point the axis turns about
+    /// lies, mm (0: the tip).
+    pub pivot: f64,
 }
 
 impl Default for TiltSearch {
-    /// 1 degree steps up to 60 degrees, refined to 1e-4 rad.
+    /// 1 degree steps up to 60 degrees, refined to 1e-4 rad, about the tip.
     fn default() -> Self {
         TiltSearch {
             step: 1f64.to_radians(),
             max_tilt: 60f64.to_radians(),
             tolerance: 1e-4,
+            pivot: 0.0,
         }
     }
 }
@@ -55,12 +61,14 @@ impl Default for TiltSearch {
 pub enum Tilt {
     /// The pose clears as it is.
     Clear,
-    /// Tilting by `tilt` (radians) clears: the new axis and its clearance (mm).
+    /// Tilting by `tilt` (radians) clears: the new pose and its clearance (mm).
     Clears {
         /// Extra tilt, radians.
         tilt: f64,
         /// The tilted unit axis.
         axis: Vec3,
+        /// The tool tip there (moved when the search turns about a point above it).
+        cl: Point3,
         /// Clearance there, mm (>= 0).
         clearance: f64,
     },
@@ -213,8 +221,8 @@ pub fn pose_clearance(
     }
 }
 
-/// The smallest extra tilt of `pose` toward `toward`, about the tool tip, that keeps
-/// the shank and holder clear of `mesh` (module doc).
+/// The smallest extra tilt of `pose` toward `toward`, about the point `search.pivot`
+/// above the tool tip, that keeps the shank and holder clear of `mesh` (module doc).
 ///
 /// # Errors
 /// A shank or holder segment outside the domain of tools.
@@ -231,16 +239,16 @@ pub fn clearing_tilt(
     let Some(d) = Pose::new(pose.cl, toward - toward.dot(&a) * a).map(|p| p.axis) else {
         return Ok(Tilt::Fails);
     };
-    let axis_at = |t: f64| a * t.cos() + d * t.sin();
+    let centre = pose.cl + search.pivot * a;
+    let pose_at = |t: f64| {
+        let axis = a * t.cos() + d * t.sin();
+        Pose {
+            cl: centre - search.pivot * axis,
+            axis,
+        }
+    };
     let clearance = |t: f64| -> Result<f64, ToolError> {
-        let c = pose_clearance(
-            assembly,
-            mesh,
-            &Pose {
-                cl: pose.cl,
-                axis: axis_at(t),
-            },
-        )?;
+        let c = pose_clearance(assembly, mesh, &pose_at(t))?;
         Ok(c.map_or(f64::INFINITY, |c| c.clearance))
     };
     if clearance(0.0)? >= 0.0 {
@@ -268,9 +276,11 @@ pub fn clearing_tilt(
             lo = mid;
         }
     }
+    let Pose { cl, axis } = pose_at(hi);
     Ok(Tilt::Clears {
         tilt: hi,
-        axis: axis_at(hi),
+        axis,
+        cl,
         clearance: clearance(hi)?,
     })
 }
