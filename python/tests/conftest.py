@@ -1,8 +1,8 @@
 """Shared fixtures: the repository, the `swarf` command line the package is checked
 against, and helpers to run it.
 
-The command line is `$SWARF_BIN`, else `target/release/swarf` in the checkout
-(`cargo build --release -p swarf`). Without it the comparisons skip, unless
+The command line is `$SWARF_BIN`, else `target/debug/swarf` in the checkout
+(`cargo build -p swarf`; the test suite builds it). Without it the comparisons skip, unless
 `SWARF_REQUIRE_REFERENCES=1` (as `.ci/python` sets), when they fail.
 """
 
@@ -33,9 +33,9 @@ def repo():
 
 @pytest.fixture(scope="session")
 def swarf_bin():
-    path = Path(os.environ.get("SWARF_BIN", REPO / "target" / "release" / "swarf"))
+    path = Path(os.environ.get("SWARF_BIN", REPO / "target" / "debug" / "swarf"))
     if not path.is_file():
-        _missing(f"the swarf command line ({path}; cargo build --release -p swarf)")
+        _missing(f"the swarf command line ({path}; cargo build -p swarf)")
     return str(path)
 
 
