@@ -158,6 +158,23 @@ fn with_enough_stick_out_the_job_plans_and_reports_the_clearance() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// One pass of tips at z = 5 through the points `xy`, the axis tilted `t0` from +z
+/// toward -x.
+fn tilted_path(t0: f64, xy: impl Iterator<Item = (f64, f64)>) -> Toolpath {
+    let axis = Vec3::new(-t0.sin(), 0.0, t0.cos());
+    let pass = Pass {
+        points: xy
+            .map(|(x, y)| PathPoint::new(Pose::new(Point3::new(x, y, 5.0), axis).unwrap()))
+            .collect(),
+        ..Pass::default()
+    };
+    Toolpath {
+        passes: vec![pass],
+        feeds: Feeds::default(),
+        linking: Linking::default(),
+    }
+}
+
 /// A tool tilted away from the block's wall x = 0 with its tip at (-3, 30, 5): the
 /// holder's nose cone (radius 10 + 0.3 h, h above the face 30 above the tip) meets
 /// the block's top edge (x = 0, z = 40). In the tool frame at tilt `t` from +z toward
@@ -170,19 +187,7 @@ fn a_tilted_pose_beside_a_wall_names_the_tilt_that_clears() {
     let tool = library.get("ball6-long").unwrap();
     let mesh = swarf_io::builtin_mesh("deep-pocket").unwrap();
     let t0 = 12f64.to_radians();
-    let axis = Vec3::new(-t0.sin(), 0.0, t0.cos());
-    let pass = Pass {
-        points: [30.0, 30.5]
-            .iter()
-            .map(|&y| PathPoint::new(Pose::new(Point3::new(-3.0, y, 5.0), axis).unwrap()))
-            .collect(),
-        ..Pass::default()
-    };
-    let toolpath = Toolpath {
-        passes: vec![pass],
-        feeds: Feeds::default(),
-        linking: Linking::default(),
-    };
+    let toolpath = tilted_path(t0, [30.0, 30.5].map(|y| (-3.0, y)).into_iter());
     let check = check_path(&mesh, &toolpath, tool, "five-axis").unwrap();
     assert_eq!((check.poses, check.tilted), (2, 2));
     let first = check.collisions[0];
@@ -229,21 +234,7 @@ fn holder_avoidance_tilts_a_pass_beside_a_wall_clear_about_the_ball_centre() {
     let tool = library.get("ball6-long").unwrap();
     let mesh = swarf_io::builtin_mesh("deep-pocket").unwrap();
     let t0 = 12f64.to_radians();
-    let axis = Vec3::new(-t0.sin(), 0.0, t0.cos());
-    let pass = Pass {
-        points: (0..=27)
-            .map(|i| {
-                let x = -30.0 + f64::from(i);
-                PathPoint::new(Pose::new(Point3::new(x, 30.0, 5.0), axis).unwrap())
-            })
-            .collect(),
-        ..Pass::default()
-    };
-    let mut toolpath = Toolpath {
-        passes: vec![pass],
-        feeds: Feeds::default(),
-        linking: Linking::default(),
-    };
+    let mut toolpath = tilted_path(t0, (0..=27).map(|i| (-30.0 + f64::from(i), 30.0)));
     let before = toolpath.clone();
     assert!(
         !check_path(&mesh, &toolpath, tool, "")

@@ -4,18 +4,19 @@
 //! At each colliding pose the least extra tilt that clears is searched
 //! ([`clearing_tilt`]) away from where the piece touches (the direction from the
 //! contact to the tip, normal to the axis), about the ball's centre: a ball is the
-//! same solid about its centre whatever its axis, so its cut, and the gouge check
-//! the positioning made of it, do not change; only the tip moves, to `centre - R
-//! a'`. A collision between two poses of a pass asks its tilt of both ends.
+//! same solid about its centre whatever its axis, so its cut does not change and
+//! only the tip moves, to `centre - R a'` (the flutes above the ball lean with the
+//! axis: the caller runs the positioning's gouge check again). A collision between
+//! two poses of a pass asks its tilt of both ends.
 //!
 //! Along each pass the tilts are spread under the positioning's tilt-rate limit
 //! `r` (radians per mm of the tip's path): the applied tilt is `T(s) = max_k (t_k -
 //! r |s - s_k|)`, the least tilt that is at least every asked `t_k` at its pose
-//! `s_k` and changes by at most `r` per mm, found by one sweep each way; its
-//! direction is that of the pose that asks most there. The path is checked again
-//! and the round repeated on what still collides, [`ROUNDS`] times at most; what no
-//! tilt up to the limit clears is left as it was, and the job is refused naming it
-//! ([`super::path::refusal`]).
+//! `s_k` and changes by at most `r` per mm (the envelope the gouge-free lead is
+//! smoothed by); its direction is that of the nearest pose that asks. The path is
+//! checked again and the round repeated on what still collides, [`ROUNDS`] times
+//! at most; what no tilt up to the limit clears is left as it was, and the job is
+//! refused naming it ([`super::path::refusal`]).
 //!
 //! The limit of a gouge-free lead is kept: a tilted axis may lean from the
 //! contact's normal by at most `max_alpha` (or as far as it leaned before).
@@ -25,6 +26,7 @@ use super::path::check_path;
 use crate::error::{AppError, Result};
 use serde::Serialize;
 use std::collections::BTreeMap;
+use swarf_fiveaxis::autotilt::smooth;
 use swarf_geom::{TriMesh, Vec3};
 use swarf_tool::holder::tilted::{Tilt, TiltSearch, clearing_tilt};
 use swarf_tool::library::LibraryTool;
@@ -200,8 +202,9 @@ fn by_pass(asks: BTreeMap<[usize; 2], Ask>) -> BTreeMap<usize, Vec<(usize, Ask)>
     out
 }
 
-/// Spreads the asks of pass `p` under the rate limit and turns its axes about the
-/// ball centres (module doc).
+/// Spreads the asks of pass `p` under the rate limit ([`smooth`], the least
+/// envelope the gouge-free lead is smoothed by) and turns its axes about the ball
+/// centres, each toward the direction of the nearest ask (module doc).
 fn spread_and_tilt(
     toolpath: &mut Toolpath,
     p: usize,
@@ -215,34 +218,23 @@ fn spread_and_tilt(
     for i in 1..n {
         s[i] = s[i - 1] + (points[i].pose.cl - points[i - 1].pose.cl).norm();
     }
-    let mut want: Vec<Option<Ask>> = vec![None; n];
+    let mut tilts = vec![0.0; n];
     for &(k, ask) in asks {
-        want[k] = Some(ask);
+        tilts[k] = ask.tilt;
     }
-    let decay = |a: Option<Ask>, ds: f64| {
-        a.map(|a| Ask {
-            tilt: a.tilt - limits.max_rate * ds,
-            ..a
-        })
-        .filter(|a| a.tilt > 0.0)
-    };
-    let larger = |a: Option<Ask>, b: Option<Ask>| match (a, b) {
-        (Some(x), Some(y)) => Some(if y.tilt > x.tilt { y } else { x }),
-        (x, y) => x.or(y),
-    };
-    for i in 1..n {
-        want[i] = larger(want[i], decay(want[i - 1], s[i] - s[i - 1]));
-    }
-    for i in (0..n.saturating_sub(1)).rev() {
-        want[i] = larger(want[i], decay(want[i + 1], s[i + 1] - s[i]));
-    }
-    for (point, ask) in points.iter_mut().zip(want) {
-        let Some(ask) = ask else { continue };
+    smooth(&mut tilts, &s, limits.max_rate);
+    for (i, point) in points.iter_mut().enumerate() {
+        let nearest = asks
+            .iter()
+            .min_by(|x, y| (s[x.0] - s[i]).abs().total_cmp(&(s[y.0] - s[i]).abs()));
+        let (Some(&(_, ask)), true) = (nearest, tilts[i] > 0.0) else {
+            continue;
+        };
         let a = point.pose.axis;
         let Some(d) = (ask.toward - ask.toward.dot(&a) * a).try_normalize(1e-12) else {
             continue;
         };
-        let t = ask.tilt.min(limits.max_tilt);
+        let t = tilts[i].min(limits.max_tilt);
         let axis = a * t.cos() + d * t.sin();
         if let (Some(max), Some(c)) = (limits.max_lean, &point.contact)
             && axis.angle(&c.normal) > max.max(a.angle(&c.normal)) + 1e-12
