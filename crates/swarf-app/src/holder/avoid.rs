@@ -23,7 +23,7 @@
 
 use super::HolderCheck;
 use super::path::check_path;
-use crate::error::{AppError, Result};
+use crate::error::Result;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use swarf_fiveaxis::autotilt::smooth;
@@ -43,7 +43,8 @@ const MARGIN: f64 = 1e-5;
 const SEARCH_TOLERANCE: f64 = 1e-5;
 
 /// Colliding poses searched at most in one round (each search lays the mesh out
-/// along a few dozen axes).
+/// along a few dozen axes); a path with more is left to the refusal, which names
+/// the stick-out that clears.
 pub const MAX_SEARCHED: usize = 5_000;
 
 /// How far avoidance may tilt.
@@ -88,13 +89,13 @@ struct Ask {
 }
 
 /// Tilts the passes of `toolpath` (a positioned five-axis path) until `tool`'s
-/// shank and holder clear `mesh`, within `limits` (module doc). `None` when
-/// nothing collided or the tool is not a ball (its cut would change with the axis:
-/// its collisions are refused as checked).
+/// shank and holder clear `mesh`, within `limits` (module doc). `None` when no
+/// pose was tilted: nothing collided, no tilt cleared, more than [`MAX_SEARCHED`]
+/// poses collided, or the tool is not a ball (its cut would change with the axis).
+/// What still collides is refused by the caller's check.
 ///
 /// # Errors
-/// A shank or holder segment the kernel refuses; more colliding poses in a round
-/// than [`MAX_SEARCHED`].
+/// A shank or holder segment the kernel refuses.
 pub fn avoid(
     mesh: &TriMesh,
     tool: &LibraryTool,
@@ -118,7 +119,7 @@ pub fn avoid(
     let mut rounds = 0;
     for _ in 0..ROUNDS {
         let check = check_path(mesh, toolpath, tool, "")?;
-        if check.collisions.is_empty() {
+        if check.collisions.is_empty() || check.collisions.len() > MAX_SEARCHED {
             break;
         }
         rounds += 1;
@@ -130,9 +131,6 @@ pub fn avoid(
             spread_and_tilt(toolpath, p, &pass_asks, radius, limits);
         }
     }
-    if rounds == 0 {
-        return Ok(None);
-    }
     let mut tilted_poses = 0;
     let mut largest = 0f64;
     for (pass, axes) in toolpath.passes.iter().zip(&before) {
@@ -143,6 +141,9 @@ pub fn avoid(
                 largest = largest.max(angle);
             }
         }
+    }
+    if tilted_poses == 0 {
+        return Ok(None);
     }
     Ok(Some(Avoidance {
         tilted_poses,
@@ -159,13 +160,6 @@ fn asks(
     check: &HolderCheck,
     search: &TiltSearch,
 ) -> Result<BTreeMap<[usize; 2], Ask>> {
-    if check.collisions.len() > MAX_SEARCHED {
-        return Err(AppError::Message(format!(
-            "holder: {} colliding poses to tilt clear, more than {MAX_SEARCHED}: expected a \
-             tool whose holder clears the part over most of the path (a longer stick-out)",
-            check.collisions.len()
-        )));
-    }
     let mut out: BTreeMap<[usize; 2], Ask> = BTreeMap::new();
     for c in &check.collisions {
         let Some([p, k]) = c.pass else { continue };
