@@ -55,7 +55,10 @@ impl Rs274 {
 /// `None`, after [`skip_reference`], when rs274 cannot be run.
 pub fn run_rs274(program: &str, name: &str) -> Option<Rs274> {
     let _guard = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
-    let dir = std::env::temp_dir();
+    // A folder of this process's own, its HOME too: rs274 keeps its parameter file
+    // there, and test processes run side by side.
+    let dir = std::env::temp_dir().join(format!("swarf-rs274-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("the temporary folder is created");
     let run = RUNS.fetch_add(1, Ordering::Relaxed);
     let path = dir.join(format!("swarf-{name}-{}-{run}.ngc", std::process::id()));
     std::fs::write(&path, program).expect("the temporary program is written");
@@ -63,6 +66,7 @@ pub fn run_rs274(program: &str, name: &str) -> Option<Rs274> {
         .arg("-g")
         .arg(&path)
         .current_dir(&dir)
+        .env("HOME", &dir)
         .output();
     let _ = std::fs::remove_file(&path);
     match out {
