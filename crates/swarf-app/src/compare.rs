@@ -22,6 +22,7 @@
 //! dexel's gouges and scallops, and the planning time (thesis 000 ch. 8).
 
 use crate::error::{Context, Result};
+use crate::gate::Gate;
 use crate::job::Job;
 use crate::model::load_model_with;
 use crate::outputs::Outputs;
@@ -199,6 +200,26 @@ pub fn compare_all_views(
     Ok((rows, five))
 }
 
+/// Sets `job` up to be planned and then measured (by `swarf compare` and `swarf
+/// view`): its program written as `STEM.ngc`, a five-axis one also as `STEM.cl`
+/// (part-frame poses, so that the verifier needs no machine), its summary as
+/// `STEM.plan.json`, nothing else; in mm; written even where the gate finds it
+/// unsafe (its header says what the gate found: the measurement shows it). Returns
+/// the program file to verify and whether the job is five-axis.
+pub(crate) fn for_measurement(job: &mut Job, stem: &str) -> (String, bool) {
+    job.gate = Gate::AllowUnsafe;
+    let five = job.positioning.is_some() || job.strategy.tilted();
+    let program_file = format!("{stem}.{}", if five { "cl" } else { "ngc" });
+    job.output.gcode = (!five || job.output.machine.is_some()).then(|| format!("{stem}.ngc"));
+    job.output.cl = five.then(|| program_file.clone());
+    job.output.summary = Some(format!("{stem}.plan.json"));
+    job.output.csv = None;
+    job.output.double_contacts = None;
+    job.output.contacts = None;
+    job.output.units = swarf_nc::Units::Mm;
+    (program_file, five)
+}
+
 /// Plans the job at `path` into `out` and verifies its program (G-code; APT CL for a
 /// five-axis job), writing the plan, the program, the report and the pictures.
 fn check_one(
@@ -216,17 +237,7 @@ fn check_one(
         .file_stem()
         .map_or_else(|| "job".to_string(), |s| s.to_string_lossy().into_owned());
     let job_dir = path.parent().unwrap_or(Path::new("."));
-    // Five-axis programs are verified through their APT CL (part-frame poses), so
-    // the verifier needs no machine.
-    let five = job.positioning.is_some() || job.strategy.tilted();
-    let program_file = format!("{stem}.{}", if five { "cl" } else { "ngc" });
-    job.output.gcode = (!five || job.output.machine.is_some()).then(|| format!("{stem}.ngc"));
-    job.output.cl = five.then(|| program_file.clone());
-    job.output.summary = Some(format!("{stem}.plan.json"));
-    job.output.csv = None;
-    job.output.double_contacts = None;
-    job.output.contacts = None;
-    job.output.units = swarf_nc::Units::Mm;
+    let (program_file, five) = for_measurement(&mut job, &stem);
     let part = part_arg(&job, job_dir);
     let start = Instant::now();
     let model = load_model_with(&part, &job.load_options())?;

@@ -14,11 +14,14 @@
 //! gate reports is there; features between cell centres are left to `swarf
 //! verify`.
 //!
-//! Five-axis programs are not gated yet ([`is_gated`]): their simulation on a
-//! box stock takes minutes for the die's programs, and a tilted finishing tool in
-//! a box stock is buried to its holder, so each of its retracts along the axis
-//! cuts. Their header says they were not verified; `swarf verify` checks them.
+//! Five-axis programs are simulated from their poses (part frame, the axis turned
+//! by the one slerp, as their APT CL reads), on cells of at least
+//! [`FIVE_AXIS_CELL`] mm: the tilted sweep visits every cell of a motion's
+//! footprint at each of its samples. A five-axis finishing job's default stock is
+//! the design raised by an allowance ([`crate::stock::Stock::near_net`]): a
+//! tilted finishing tool in a block is buried to its holder, and the gate says so.
 
+use crate::compare::FIVE_AXIS_CELL;
 use crate::error::{AppError, Result};
 use crate::job::Job;
 use crate::model::Model;
@@ -32,7 +35,7 @@ use swarf_sim::{Quiet, Stage, StockSpec, VerifyOptions, verify_stages};
 use swarf_toolpath::Move;
 use swarf_toolpath::program::{Motion, Program};
 
-/// Most cells of the gate's grid for a three-axis program.
+/// Most cells of the gate's grid.
 pub const GATE_CELLS: f64 = 500_000.0;
 
 /// Findings of each kind named in a refusal.
@@ -181,11 +184,6 @@ pub fn stock_spec(job: &Job, dir: &Path) -> Result<StockSpec> {
     })
 }
 
-/// Whether the gate checks `moves`: three-axis programs (every pose vertical).
-pub fn is_gated(moves: &[Move]) -> bool {
-    moves.iter().all(|m| m.to.is_vertical())
-}
-
 /// The program the gate simulates: the three-axis G-code `text` as it reads back
 /// (arcs and the post's rounding included; read as `read` says), else the tool
 /// path's `moves` themselves (move `k` as line `k + 1`).
@@ -225,7 +223,14 @@ pub fn check(
     let tol = job.tolerance();
     let b = model.bounds();
     let area = (b.max.x - b.min.x) * (b.max.y - b.min.y);
-    let cell = (CELL_PER_TOL * tol).max((area / GATE_CELLS).sqrt());
+    let tilted = program
+        .motions
+        .iter()
+        .any(|m| !m.start.is_vertical() || !m.end.is_vertical());
+    let least = if tilted { FIVE_AXIS_CELL } else { 0.0 };
+    let cell = (CELL_PER_TOL * tol)
+        .max((area / GATE_CELLS).sqrt())
+        .max(least);
     let cell = (cell * 1e4).ceil() / 1e4;
     let opts = VerifyOptions {
         cell: Some(cell),
@@ -291,7 +296,7 @@ pub fn locate(report: &mut GateReport, program: &Program) {
 pub type Simulated<'a> = (&'a [Move], Option<&'a str>, &'a GcodeReadOptions<'a>);
 
 /// The gate on a job's program ([`check`] of [`program`]), on `stock` (`None`:
-/// skipped); `None` also for a program the gate does not check ([`is_gated`]).
+/// skipped).
 ///
 /// # Errors
 /// As [`program`] and [`check`].
@@ -302,22 +307,16 @@ pub fn run(
     stock: Option<&StockSpec>,
     scallop: f64,
 ) -> Result<Option<GateReport>> {
-    match stock {
-        Some(stock) if is_gated(moves) => {
-            let simulated = program(moves, text, read)?;
-            check(job, model, &simulated, stock.clone(), scallop).map(Some)
-        }
-        _ => Ok(None),
-    }
+    let Some(stock) = stock else {
+        return Ok(None);
+    };
+    let simulated = program(moves, text, read)?;
+    check(job, model, &simulated, stock.clone(), scallop).map(Some)
 }
 
-/// The program's header line about the gate: its verdict, or why there is none.
-pub fn comment(gate: Option<&GateReport>, gated: bool) -> String {
-    match gate {
-        Some(g) => g.comment(),
-        None if gated => "not verified: --no-verify".into(),
-        None => "not verified: five-axis programs are checked by swarf verify".into(),
-    }
+/// The program's header line about the gate: its verdict, or that it was skipped.
+pub fn comment(gate: Option<&GateReport>) -> String {
+    gate.map_or_else(|| "not verified: --no-verify".into(), GateReport::comment)
 }
 
 /// After the program is written (`text`: its three-axis G-code, with the gate's

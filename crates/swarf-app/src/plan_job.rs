@@ -358,9 +358,8 @@ fn write_outputs(
         language: post.reader(),
         ..GcodeReadOptions::default()
     };
-    let gated = gate::is_gated(&moves);
     let (rotary, program, gate) =
-        gated_program(job, plan, written, (&moves, gated, &read), comments, out)?;
+        gated_program(job, plan, written, (&moves, &read), comments, out)?;
     if let Some((tool, mesh, check)) = &holder {
         let program = program.as_deref().map(|text| (text, &read));
         refuse_collisions(job, plan, program, (tool, mesh, check))?;
@@ -388,7 +387,6 @@ fn write_outputs(
             .as_ref()
             .map(|(tool, _, check)| (*tool, check, avoidance)),
         gate: gate.as_ref(),
-        gated,
     })?;
     if let Some(rel) = &job.output.summary {
         out.write_json(rel, &summary)?;
@@ -397,9 +395,9 @@ fn write_outputs(
 }
 
 /// Writes the program ([`write_program`]) through the verification gate
-/// ([`crate::gate`]): simulated on the job's stock as it would be written (when
-/// `gated`, [`gate::is_gated`]), its verdict in its header, refused when unsafe
-/// unless the job allows it.
+/// ([`crate::gate`]): simulated on the job's stock as it would be written (a
+/// five-axis or machine program: from its poses), its verdict in its header,
+/// refused when unsafe unless the job allows it.
 ///
 /// # Errors
 /// As [`write_program`]; the gate's refusal.
@@ -407,7 +405,7 @@ fn gated_program(
     job: &Job,
     plan: &Plan,
     written: &Written<'_>,
-    (moves, gated, read): (&[swarf_toolpath::Move], bool, &GcodeReadOptions<'_>),
+    (moves, read): (&[swarf_toolpath::Move], &GcodeReadOptions<'_>),
     mut comments: Vec<String>,
     out: &mut Outputs,
 ) -> Result<(
@@ -415,9 +413,10 @@ fn gated_program(
     Option<String>,
     Option<gate::GateReport>,
 )> {
-    let stock = written.gate_stock.filter(|_| gated);
+    let stock = written.gate_stock;
+    let three_axis = written.machine.is_none() && moves.iter().all(|m| m.to.is_vertical());
     let first = match (&job.output.gcode, stock) {
-        (Some(_), Some(_)) => Some(three_axis_gcode(
+        (Some(_), Some(_)) if three_axis => Some(three_axis_gcode(
             job,
             written.post,
             moves,
@@ -428,7 +427,7 @@ fn gated_program(
     let scallop = planned_scallop(job, plan).unwrap_or(0.0);
     let simulated = (moves, first.as_deref(), read);
     let mut gate = gate::run(job, written.model, simulated, stock, scallop)?;
-    comments.push(gate::comment(gate.as_ref(), gated));
+    comments.push(gate::comment(gate.as_ref()));
     let (rotary, program) = write_program(job, plan, written, moves, comments, out)?;
     gate::conclude(job, gate.as_mut(), (moves, program.as_deref(), read))?;
     Ok((rotary, program, gate))

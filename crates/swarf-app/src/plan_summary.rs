@@ -32,8 +32,6 @@ pub(crate) struct SummaryParts<'a> {
     pub holder: Option<(&'a LibraryTool, &'a HolderCheck, Option<&'a Avoidance>)>,
     /// The verification gate's verdict (`None`: skipped).
     pub gate: Option<&'a GateReport>,
-    /// Whether the gate checks programs of this kind ([`crate::gate::is_gated`]).
-    pub gated: bool,
 }
 
 /// The JSON summary `swarf plan` prints and writes.
@@ -50,7 +48,6 @@ pub(crate) fn summary_json(parts: &SummaryParts<'_>) -> Result<serde_json::Value
         positioning,
         holder,
         gate,
-        gated,
     } = *parts;
     let numbers = [
         stats.cutting_length,
@@ -91,8 +88,7 @@ pub(crate) fn summary_json(parts: &SummaryParts<'_>) -> Result<serde_json::Value
     }
     summary["verification"] = match gate {
         Some(g) => serde_json::to_value(g)?,
-        None if gated => serde_json::json!({ "skipped": "--no-verify" }),
-        None => serde_json::json!({ "skipped": "five-axis" }),
+        None => serde_json::json!({ "skipped": "--no-verify" }),
     };
     Ok(summary)
 }

@@ -7,6 +7,9 @@
 //! tool's radius of the stock's XY box ([`Stock::footprint`]). A sequence cuts the
 //! stock as its in-process dexel stock.
 //!
+//! Without a `[stock]` table a job is cut from a box 1 mm above the part, a
+//! five-axis job from the design raised by 1 mm ([`Stock::near_net`]).
+//!
 //! ```toml
 //! [stock]
 //! kind = "box"          # "box" (top, margin), "offset" (allowance) or "mesh" (file)
@@ -78,6 +81,16 @@ pub enum StockKind {
 }
 
 impl Stock {
+    /// The default stock of a five-axis job: the design raised by the default
+    /// allowance. A five-axis program finishes (or drops and spins at an edge) what
+    /// roughing left near net; a tilted tool in a block is buried to its holder.
+    pub fn near_net() -> Stock {
+        Stock {
+            kind: StockKind::Offset,
+            ..Stock::default()
+        }
+    }
+
     /// Checks every field's domain.
     ///
     /// # Errors

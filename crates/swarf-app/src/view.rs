@@ -406,16 +406,7 @@ fn plan_job_input(
     let stem = path
         .file_stem()
         .map_or_else(|| "job".into(), |s| s.to_string_lossy().into_owned());
-    let five = job.positioning.is_some() || job.strategy.tilted();
-    let program_file = format!("{stem}.{}", if five { "cl" } else { "ngc" });
-    job.output.gcode = (!five || job.output.machine.is_some()).then(|| format!("{stem}.ngc"));
-    job.output.cl = five.then(|| program_file.clone());
-    job.output.summary = Some(format!("{stem}.plan.json"));
-    (
-        job.output.csv,
-        job.output.double_contacts,
-        job.output.contacts,
-    ) = (None, None, None);
+    let (program_file, five) = crate::compare::for_measurement(&mut job, &stem);
     let job_dir = path.parent().unwrap_or(Path::new("."));
     let part = crate::plan_job::part_arg(&job, job_dir);
     let model = crate::model::load_model_with(&part, &job.load_options())?;

@@ -28,8 +28,10 @@ pub const CHUNK_PRIMITIVES: usize = 1 << 18;
 /// A cutting motion whose swept box lies further than this many tool radii from
 /// the grid is reported as outside the stock (closer ones are approaches).
 pub const OUTSIDE_MARGIN: f64 = 2.0;
-/// A rapid that lowers material by more than this is reported, mm.
-pub const RAPID_CUT_EPS: f64 = 1e-9;
+/// A rapid that lowers material by more than this is reported, mm: a nanometre,
+/// above the rounding of a tilted tool retracting along its own axis from where
+/// it cut (a few 1e-9 mm).
+pub const RAPID_CUT_EPS: f64 = 1e-6;
 
 /// Simulation options.
 #[derive(Debug, Clone, Copy, PartialEq)]

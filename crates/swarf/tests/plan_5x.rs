@@ -62,10 +62,17 @@ summary = "die.json"
 }
 
 fn plan(dir: &Path, text: &str) -> Output {
+    plan_with(dir, text, &[])
+}
+
+/// [`plan`] with more arguments.
+fn plan_with(dir: &Path, text: &str, more: &[&str]) -> Output {
     std::fs::write(dir.join("trunnion.toml"), machine_text()).unwrap();
     let path = dir.join("job.toml");
     std::fs::write(&path, text).unwrap();
-    swarf(&["plan", path.to_str().unwrap()])
+    let mut args = vec!["plan", path.to_str().unwrap()];
+    args.extend_from_slice(more);
+    swarf(&args)
 }
 
 /// The feed `GOTO` poses of an APT CL file (those not after `RAPID`).
@@ -211,7 +218,16 @@ fn positioned(text: &str) -> Vec<swarf_toolpath::Pass> {
 fn inclined_die_job_writes_checked_five_axis_outputs() {
     let dir = temp_dir("inclined");
     let text = job(r#"{ method = "inclined", alpha = 6, sections = 2.0 }"#);
-    let o = plan(&dir, &text);
+    // The fixed lead gouges the die: the gate refuses it, naming the moves.
+    let refused = plan(&dir, &text);
+    assert!(!refused.status.success());
+    assert!(
+        stderr(&refused).contains("gouged beyond 0.01 mm"),
+        "{}",
+        stderr(&refused)
+    );
+    assert!(!dir.join("die.ngc").exists());
+    let o = plan_with(&dir, &text, &["--allow-unsafe"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("die.json")).unwrap()).unwrap();

@@ -61,9 +61,10 @@ pub struct JobFile {
     /// Linking between passes.
     #[serde(default)]
     pub linking: LinkingSpec,
-    /// The stock the job cuts (default: a box 1 mm above the part).
+    /// The stock the job cuts (default: a box 1 mm above the part; a five-axis
+    /// job's: the design raised by 1 mm, [`Stock::near_net`]).
     #[serde(default)]
-    pub stock: Stock,
+    pub stock: Option<Stock>,
     /// Output files.
     #[serde(default)]
     pub output: Output,
@@ -182,7 +183,15 @@ impl JobFile {
     /// The library, the tool it names, and every check of [`Job`]'s fields, as
     /// `field: message`.
     pub fn resolve(self, dir: &Path) -> Result<Job, String> {
-        self.stock.check()?;
+        let five_axis = self.positioning.is_some() || self.strategy.tilted();
+        let stock = self.stock.unwrap_or_else(|| {
+            if five_axis {
+                Stock::near_net()
+            } else {
+                Stock::default()
+            }
+        });
+        stock.check()?;
         let library = read_library(self.tools.as_deref(), dir)?;
         let (tool, library_tool) = self.tool.resolve(library.as_ref())?;
         let job = Job {
@@ -197,7 +206,7 @@ impl JobFile {
             strategy: self.strategy,
             positioning: self.positioning,
             linking: self.linking,
-            stock: self.stock,
+            stock,
             material_top: None,
             reach: None,
             gate: crate::gate::Gate::default(),

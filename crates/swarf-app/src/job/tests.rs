@@ -442,3 +442,21 @@ fn misplaced_fields_and_bad_choices_name_field_place_and_domain() {
         "{e}"
     );
 }
+
+#[test]
+fn a_five_axis_job_without_a_stock_is_cut_from_near_net() {
+    let five = GOOD
+        .replace(
+            "[strategy]",
+            "positioning = { method = \"inclined\", alpha = 3 }\n[strategy]",
+        )
+        .replace("gcode = \"a.ngc\"", "cl = \"a.cl\"");
+    let job = Job::parse(&five, "job.toml").unwrap();
+    assert_eq!(job.stock, crate::stock::Stock::near_net());
+    assert_eq!(job.stock.kind, crate::stock::StockKind::Offset);
+    assert_eq!(job.stock.allowance, 1.0);
+    let boxed = Job::parse(&format!("{five}[stock]\nkind = \"box\"\n"), "job.toml").unwrap();
+    assert_eq!(boxed.stock.kind, crate::stock::StockKind::Box);
+    let three = Job::parse(GOOD, "job.toml").unwrap();
+    assert_eq!(three.stock, crate::stock::Stock::default());
+}
