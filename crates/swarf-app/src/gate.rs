@@ -87,6 +87,10 @@ pub struct GateReport {
     pub excess_cells: usize,
     /// Whether the program is written although unsafe ([`Gate::AllowUnsafe`]).
     pub written_unsafe: bool,
+    /// Motions simulated when the gate stopped at the first rapid in material (it
+    /// refuses the program; [`Gate::Verify`] only); `None`: every motion.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stopped_after: Option<usize>,
     /// Time the gate took, s (not part of deterministic outputs).
     #[serde(skip)]
     pub seconds: f64,
@@ -133,11 +137,9 @@ impl GateReport {
                 .take(MAX_NAMED)
                 .map(|f| format!("{} ({:.3} mm deep)", at(f), f.depth))
                 .collect();
-            parts.push(format!(
-                "{} rapids cut material: {}",
-                self.rapid_cuts.len(),
-                named.join(", ")
-            ));
+            let n = self.rapid_cuts.len();
+            let what = if n == 1 { "rapid cuts" } else { "rapids cut" };
+            parts.push(format!("{n} {what} material: {}", named.join(", ")));
         }
         if self.gouge_cells > 0 {
             let named: Vec<String> = self
@@ -151,6 +153,12 @@ impl GateReport {
                 self.tol,
                 -self.worst_gouge_mm,
                 named.join(", ")
+            ));
+        }
+        if let Some(n) = self.stopped_after {
+            parts.push(format!(
+                "the simulation stopped there, after {n} motions (--allow-unsafe simulates \
+                 them all)"
             ));
         }
         format!(
@@ -239,6 +247,8 @@ pub fn check(
         stock,
         max_regions: MAX_NAMED,
         along_normals: true,
+        // A rapid in material refuses the program: the rest is not needed for that.
+        stop_at_rapid_cut: job.gate == Gate::Verify,
         ..VerifyOptions::default()
     };
     let stock_name = opts.stock.describe();
@@ -278,6 +288,7 @@ pub fn check(
             .collect(),
         excess_cells: s.excess.cells,
         written_unsafe: false,
+        stopped_after: v.sim.stopped_after,
         seconds: start.elapsed().as_secs_f64(),
     })
 }

@@ -12,7 +12,7 @@ use swarf_app::Job;
 use swarf_app::gate::Gate;
 use swarf_app::model::load_model_with;
 use swarf_app::plan_job::{Planned, part_arg, plan_model_toolpath};
-use swarf_app::stock::StockKind;
+use swarf_app::stock::{Stock, StockKind};
 use swarf_sim::Quiet;
 
 fn jobs() -> PathBuf {
@@ -21,15 +21,25 @@ fn jobs() -> PathBuf {
 
 /// The shipped job `name`, its step coarsened by `edit`, planned under `gate`.
 fn planned(name: &str, edit: (&str, &str), gate: Gate) -> swarf_app::Result<Planned> {
+    planned_on(name, edit, gate, None)
+}
+
+/// [`planned`], on `stock` where given (else the near-net default).
+fn planned_on(
+    name: &str,
+    edit: (&str, &str),
+    gate: Gate,
+    stock: Option<Stock>,
+) -> swarf_app::Result<Planned> {
     let text = std::fs::read_to_string(jobs().join(name)).unwrap();
     assert!(text.contains(edit.0), "{name}: {edit:?}");
     let text = text.replace(edit.0, edit.1);
     let mut job = Job::parse_in(&text, name, &jobs()).unwrap();
-    assert_eq!(
-        job.stock.kind,
-        StockKind::Offset,
-        "{name}: near-net default"
-    );
+    let near_net = job.stock.kind == StockKind::Offset;
+    assert!(near_net, "{name}: near-net by default");
+    if let Some(stock) = stock {
+        job.stock = stock;
+    }
     job.gate = gate;
     let model = load_model_with(&part_arg(&job, &jobs()), &job.load_options()).unwrap();
     let dir = std::env::temp_dir().join(format!("swarf-gate-5x-{name}"));
@@ -76,4 +86,29 @@ fn a_fixed_lead_that_gouges_the_die_is_refused_by_move_or_written_labelled() {
     // The sectioning check of positioning finds millimetres; so does the gate.
     assert!(v["worst_gouge_mm"].as_f64().unwrap() < -1.0, "{v}");
     assert_eq!(v["rapid_cuts"].as_array().unwrap().len(), 0, "{v}");
+}
+
+/// A tilted finishing tool in a block is buried to its holder: its first retract
+/// along the axis cuts the block above its 25.4 mm body. The gate refuses at that
+/// rapid without simulating the rest (the first-order sweep of a buried tool is the
+/// slow one).
+#[test]
+fn a_five_axis_finish_in_a_block_is_refused_at_its_first_rapid_in_material() {
+    let edit = ("stepover = 3.5", "stepover = 15");
+    let block = Stock {
+        kind: StockKind::Box,
+        ..Stock::default()
+    };
+    let Err(refused) = planned_on("die-gouge-free.toml", edit, Gate::Verify, Some(block)) else {
+        panic!("a buried tool's retract cuts the block");
+    };
+    let refused = refused.to_string();
+    assert!(
+        refused.contains("1 rapid cuts material: move "),
+        "{refused}"
+    );
+    assert!(
+        refused.contains("the simulation stopped there"),
+        "{refused}"
+    );
 }

@@ -45,6 +45,9 @@ pub struct SimOptions {
     /// Sample every tilted motion by the first-order bound, as the reference sweep
     /// the second-order sampling ([`crate::sweep_bound`]) is checked against.
     pub first_order: bool,
+    /// Stop at the first rapid that removes material (each rapid is then applied
+    /// as it comes): a check that refuses the program on it needs no more.
+    pub stop_at_rapid_cut: bool,
 }
 
 impl Default for SimOptions {
@@ -53,6 +56,7 @@ impl Default for SimOptions {
             sample_tol: 0.001,
             known_start: true,
             first_order: false,
+            stop_at_rapid_cut: false,
         }
     }
 }
@@ -92,6 +96,9 @@ pub struct SimReport {
     pub rapid_cuts: Vec<MotionNote>,
     /// Cutting motions whose swept box misses the stock grid entirely (clipped away).
     pub outside: Vec<MotionNote>,
+    /// Motions simulated when the run stopped at a rapid that cut
+    /// ([`SimOptions::stop_at_rapid_cut`]); `None`: every motion.
+    pub stopped_after: Option<usize>,
 }
 
 /// One band's findings.
@@ -115,6 +122,11 @@ impl SimReport {
         self.cells_lowered += later.cells_lowered;
         self.rapid_cuts.extend(later.rapid_cuts);
         self.outside.extend(later.outside);
+        if self.stopped_after.is_none() {
+            self.stopped_after = later
+                .stopped_after
+                .map(|n| n + self.motions - later.motions);
+        }
     }
 }
 
@@ -188,13 +200,18 @@ pub fn simulate_from(
         let index = u32::try_from(k).unwrap_or(u32::MAX - 1);
         chunk.extend(sw.primitives.into_iter().map(|p| (p, index)));
         pending += 1;
-        if chunk.len() >= CHUNK_PRIMITIVES || k + 1 == motions.len() {
+        let check_now = opts.stop_at_rapid_cut && matches!(m.kind, MotionKind::Rapid);
+        if chunk.len() >= CHUNK_PRIMITIVES || k + 1 == motions.len() || check_now {
             let numbering = Numbering { motions, first };
             run_chunk(dexel, tool, numbering, &chunk, &mut report, &mut rapid);
             report.primitives += chunk.len();
             chunk.clear();
             progress.advance(pending);
             pending = 0;
+            if opts.stop_at_rapid_cut && !rapid.is_empty() {
+                report.stopped_after = Some(k + 1);
+                break;
+            }
         }
     }
     progress.end();
@@ -377,6 +394,46 @@ mod tests {
         assert!((d.heights()[k] - (-1.0 + 2.0 - (4.0f64 - 0.0025).sqrt())).abs() < 1e-12);
         let (i, j) = g.cell_of(-9.95, 9.95).unwrap();
         assert_eq!(d.last_motion()[j * g.nx + i], NO_MOTION);
+    }
+
+    /// Stopping at the first rapid that cuts: the feeds before it are applied, the
+    /// moves after it are not (the second rapid cut, the last feed).
+    #[test]
+    fn a_run_can_stop_at_the_first_rapid_that_cuts() {
+        let tool = SimTool::new(&"ball:d=4".parse().unwrap()).unwrap();
+        let moves = [
+            line(MotionKind::Linear, [-5.0, 0.0, 10.0], [-5.0, 0.0, -1.0], 1),
+            line(MotionKind::Linear, [-5.0, 0.0, -1.0], [5.0, 0.0, -1.0], 2),
+            line(MotionKind::Rapid, [5.0, 0.0, -1.0], [5.0, 5.0, -0.5], 3),
+            line(MotionKind::Rapid, [5.0, 5.0, -0.5], [-5.0, 5.0, -0.5], 4),
+            line(MotionKind::Linear, [-5.0, 5.0, -0.5], [-5.0, -5.0, -2.0], 5),
+        ];
+        let run = |stop: bool| {
+            let mut d = stock(0.0);
+            let opts = SimOptions {
+                known_start: false,
+                stop_at_rapid_cut: stop,
+                ..SimOptions::default()
+            };
+            (simulate(&mut d, &tool, &moves, &opts, &Quiet), d)
+        };
+        let (all, _) = run(false);
+        assert_eq!(all.rapid_cuts.len(), 2);
+        assert_eq!(all.stopped_after, None);
+        let (stopped, d) = run(true);
+        assert_eq!(stopped.stopped_after, Some(3));
+        assert_eq!(stopped.rapid_cuts.len(), 1);
+        assert_eq!(stopped.rapid_cuts[0].line, 3);
+        assert_eq!(stopped.rapid_cuts[0].amount, all.rapid_cuts[0].amount);
+        let g = *d.grid();
+        let (i, j) = g.cell_of(-5.05, -4.95).unwrap();
+        assert_eq!(
+            d.heights()[j * g.nx + i],
+            0.0,
+            "the last feed is not applied"
+        );
+        let (i, j) = g.cell_of(0.05, 0.05).unwrap();
+        assert_eq!(d.last_motion()[j * g.nx + i], 1);
     }
 
     #[test]

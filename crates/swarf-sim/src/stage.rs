@@ -55,20 +55,20 @@ pub(crate) struct StagesRun {
 }
 
 /// Runs `stages` in order over `dexel`, stage `s` with `tools[s]` (see the module
-/// doc), sampled within `sampling.0` mm (by the first-order bound alone when
-/// `sampling.1`); machining time at `rapid_rate` mm/min for rapids.
+/// doc), simulated by `opts` (each stage's first motion only places the tool);
+/// machining time at `rapid_rate` mm/min for rapids. A stop at a rapid that cut
+/// ([`SimOptions::stop_at_rapid_cut`]) ends the run.
 pub(crate) fn run_stages(
     dexel: &mut Dexel,
     stages: &[Stage<'_>],
     tools: &[SimTool],
-    sampling: (f64, bool),
+    opts: SimOptions,
     rapid_rate: f64,
     progress: &dyn Progress,
 ) -> StagesRun {
     let opts = SimOptions {
-        sample_tol: sampling.0,
         known_start: false,
-        first_order: sampling.1,
+        ..opts
     };
     let mut run = StagesRun {
         sim: SimReport::default(),
@@ -87,6 +87,9 @@ pub(crate) fn run_stages(
             first_motion: first,
             stats: program_stats(stage.program, rapid_rate),
         });
+        if run.sim.stopped_after.is_some() {
+            break;
+        }
     }
     run
 }

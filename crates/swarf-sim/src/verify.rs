@@ -14,7 +14,7 @@ use crate::error::SimError;
 use crate::grid::{DEFAULT_MAX_BYTES, Grid};
 use crate::mow::normal_deviation;
 use crate::progress::Progress;
-use crate::simulate::SimReport;
+use crate::simulate::{SimOptions, SimReport};
 use crate::stage::{Stage, StageSummary, run_stages, stage_of};
 use crate::sweep::SimTool;
 use serde::Serialize;
@@ -94,6 +94,10 @@ pub struct VerifyOptions {
     /// Sample five-axis motions by the first-order bound alone: the slow reference
     /// sweep ([`crate::sweep_bound`]).
     pub first_order: bool,
+    /// Stop the simulation at the first rapid that removes material
+    /// ([`SimOptions::stop_at_rapid_cut`]): the deviation is then of the stock as
+    /// that rapid left it.
+    pub stop_at_rapid_cut: bool,
 }
 
 /// The sampling bound of arcs and five-axis motions for a verification tolerance
@@ -123,6 +127,7 @@ impl Default for VerifyOptions {
             along_normals: false,
             window: None,
             first_order: false,
+            stop_at_rapid_cut: false,
         }
     }
 }
@@ -314,7 +319,12 @@ pub fn verify_stages(
         &mut stock,
         stages,
         &tools,
-        (sample_tol, opts.first_order),
+        SimOptions {
+            sample_tol,
+            first_order: opts.first_order,
+            stop_at_rapid_cut: opts.stop_at_rapid_cut,
+            ..SimOptions::default()
+        },
         opts.rapid_rate,
         progress,
     );
