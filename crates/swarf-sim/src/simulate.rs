@@ -97,7 +97,8 @@ pub struct SimReport {
     /// Cutting motions whose swept box misses the stock grid entirely (clipped away).
     pub outside: Vec<MotionNote>,
     /// Motions simulated when the run stopped at a rapid that cut
-    /// ([`SimOptions::stop_at_rapid_cut`]); `None`: every motion.
+    /// ([`SimOptions::stop_at_rapid_cut`]); `None` (not written): every motion.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub stopped_after: Option<usize>,
 }
 
