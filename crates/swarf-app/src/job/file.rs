@@ -62,7 +62,7 @@ pub struct JobFile {
     #[serde(default)]
     pub linking: LinkingSpec,
     /// The stock the job cuts (default: a box 1 mm above the part; a five-axis
-    /// job's: the design raised by 1 mm, [`Stock::near_net`]).
+    /// job's: the design raised by 1 mm).
     #[serde(default)]
     pub stock: Option<Stock>,
     /// Output files.
