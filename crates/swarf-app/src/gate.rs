@@ -2,8 +2,9 @@
 //! on the job's stock ([`crate::stock`]), rapids included, by the one verifier
 //! ([`swarf_sim::verify_stages`], deviation along the design normals), before it is
 //! written. A program with a rapid that removes material (a crash on the machine)
-//! or a gouge beyond the job's tolerance is refused, naming its G-code lines (the
-//! tool path's move numbers where no three-axis G-code is written), unless the job
+//! or a gouge beyond the job's tolerance is refused, naming its G-code lines (of a
+//! five-axis program: the line where the move ends; the tool path's move numbers
+//! where no G-code is written), unless the job
 //! is planned with [`Gate::AllowUnsafe`]: then it is written, and its header
 //! comment and summary say what it does. [`Gate::Skip`] (`--no-verify`) writes
 //! without verifying, and the header says that too.
@@ -331,8 +332,9 @@ pub fn comment(gate: Option<&GateReport>) -> String {
 }
 
 /// After the program is written (`text`: its three-axis G-code, with the gate's
-/// line): refuses an unsafe one under [`Gate::Verify`], naming its lines, and marks
-/// it written otherwise.
+/// line; `move_lines`: a five-axis program's line where each move ends, empty
+/// without one): refuses an unsafe one under [`Gate::Verify`], naming its lines, and
+/// marks it written otherwise.
 ///
 /// # Errors
 /// The refusal ([`GateReport::refusal`]); written G-code that does not read back.
@@ -340,12 +342,18 @@ pub fn conclude(
     job: &Job,
     gate: Option<&mut GateReport>,
     (moves, text, read): Simulated<'_>,
+    move_lines: &[usize],
 ) -> Result<()> {
     let Some(g) = gate.filter(|g| !g.safe()) else {
         return Ok(());
     };
     if text.is_some() {
         locate(g, &program(moves, text, read)?);
+    } else if !move_lines.is_empty() {
+        // The gate simulated the moves themselves: motion k is move k.
+        for f in g.rapid_cuts.iter_mut().chain(g.gouges.iter_mut()) {
+            f.line = move_lines.get(f.motion).copied();
+        }
     }
     if job.gate == Gate::Verify {
         return Err(AppError::Message(g.refusal()));

@@ -428,9 +428,10 @@ fn gated_program(
     let simulated = (moves, first.as_deref(), read);
     let mut gate = gate::run(job, written.model, simulated, stock, scallop)?;
     comments.push(gate::comment(gate.as_ref()));
-    let (rotary, program) = write_program(job, plan, written, moves, comments, out)?;
-    gate::conclude(job, gate.as_mut(), (moves, program.as_deref(), read))?;
-    Ok((rotary, program, gate))
+    let program = write_program(job, plan, written, moves, comments, out)?;
+    let text = program.three_axis.as_deref();
+    gate::conclude(job, gate.as_mut(), (moves, text, read), &program.move_lines)?;
+    Ok((program.rotary, program.three_axis, gate))
 }
 
 /// The plan record of `job`'s program (`crate::plan_record`): its tool, what it was
@@ -505,9 +506,9 @@ fn write_program(
     moves: &[swarf_toolpath::Move],
     comments: Vec<String>,
     out: &mut Outputs,
-) -> Result<(Option<RotaryRanges>, Option<String>)> {
+) -> Result<WrittenProgram> {
     let Some(rel) = &job.output.gcode else {
-        return Ok((None, None));
+        return Ok(WrittenProgram::default());
     };
     if let Some(m) = written.machine {
         let post =
@@ -516,11 +517,29 @@ fn write_program(
                 AppError::Message(format!("output.machine = {spec:?} ({}): {e}", m.name))
             })?;
         out.write(rel, post.gcode.as_bytes())?;
-        return Ok((post.rotary_ranges, None));
+        return Ok(WrittenProgram {
+            rotary: post.rotary_ranges,
+            three_axis: None,
+            move_lines: post.move_lines,
+        });
     }
     let text = three_axis_gcode(job, written.post, moves, comments)?;
     out.write(rel, text.as_bytes())?;
-    Ok((None, Some(text)))
+    Ok(WrittenProgram {
+        three_axis: Some(text),
+        ..WrittenProgram::default()
+    })
+}
+
+/// The G-code [`write_program`] wrote.
+#[derive(Default)]
+struct WrittenProgram {
+    /// The rotary axes' ranges of a five-axis program.
+    rotary: Option<RotaryRanges>,
+    /// The three-axis program's text.
+    three_axis: Option<String>,
+    /// A five-axis program's line of the end of each move (empty otherwise).
+    move_lines: Vec<usize>,
 }
 
 /// Refuses a path whose shank or holder reaches into the part (module doc of

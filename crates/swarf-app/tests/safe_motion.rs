@@ -149,7 +149,7 @@ fn a_planted_gouge_and_a_rapid_in_the_stock_are_refused_by_line_or_labelled() {
     assert!(report.worst_gouge_mm < -0.9, "{report:?}");
     // Refused, naming the rapid into the stock and the feed that gouged by their
     // lines as written.
-    let refused = gate::conclude(&job, Some(&mut report), simulated).unwrap_err();
+    let refused = gate::conclude(&job, Some(&mut report), simulated, &[]).unwrap_err();
     let message = refused.to_string();
     let lines: Vec<&str> = gcode.lines().collect();
     let rapid_line = report.rapid_cuts[0].line.unwrap();
@@ -172,7 +172,7 @@ fn a_planted_gouge_and_a_rapid_in_the_stock_are_refused_by_line_or_labelled() {
         gate: Gate::AllowUnsafe,
         ..job
     };
-    gate::conclude(&allowed, Some(&mut report), simulated).unwrap();
+    gate::conclude(&allowed, Some(&mut report), simulated, &[]).unwrap();
     assert!(report.written_unsafe);
     assert!(
         report

@@ -113,6 +113,9 @@ pub struct Post5x {
     /// The range `[least, greatest]` each rotary axis (in the machine's order) takes
     /// over the program, radians; `None` for a program without moves.
     pub rotary_ranges: Option<[[f64; 2]; 2]>,
+    /// For each move of `toolpath.moves()`, the line of the G-code (from 1) where
+    /// it ends: its last block, or the block before it where it changes no word.
+    pub move_lines: Vec<usize>,
 }
 
 /// The machine axis positions at the end of every move of `moves =
@@ -244,6 +247,7 @@ pub fn post_5x(
     let mut w = BlockWriter::new(&opts.post, opts.units, &axes, blocks.len());
     header(&mut w, m, toolpath, opts)?;
     let mut prev: Option<&Joints> = None;
+    let mut move_lines = vec![0; moves.len()];
     for (index, b) in blocks.iter().enumerate() {
         let j = &b.joints;
         let position = [j.linear.x, j.linear.y, j.linear.z, j.rotary[0], j.rotary[1]];
@@ -256,6 +260,9 @@ pub fn post_5x(
             MoveKind::Rapid => Ok(None),
         };
         w.motion(index, code, &position, feed)?;
+        if let Some(line) = move_lines.get_mut(b.step) {
+            *line = w.lines();
+        }
         prev = Some(j);
     }
     let rotary_ranges = (!blocks.is_empty()).then(|| {
@@ -271,11 +278,14 @@ pub fn post_5x(
         gcode: w.finish(),
         report,
         rotary_ranges,
+        move_lines,
     })
 }
 
 /// One block to write: a move, or a piece of one.
 struct Written {
+    /// Index of its move.
+    step: usize,
     kind: MoveKind,
     /// The move's feed, mm/min.
     feed: f64,
@@ -301,12 +311,13 @@ fn blocks(
     let mut out = Vec::with_capacity(moves.len());
     let (mut pass, mut point) = (0, 0);
     let mut from: Option<(&Pose, &Joints)> = None;
-    for (mv, j) in moves.iter().zip(joints) {
+    for (step, (mv, j)) in moves.iter().zip(joints).enumerate() {
         if let Some(k) = mv.pass {
             point = if k == pass { point + 1 } else { 1 };
             pass = k;
         }
         let written = |joints: Joints, length: f64| Written {
+            step,
             kind: mv.kind,
             feed: mv.feed,
             joints,

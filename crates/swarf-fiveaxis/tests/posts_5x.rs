@@ -3,7 +3,8 @@
 //! `post_5x` for the table-table machine and read back by swarf's reader in the post's
 //! language through the machine's forward kinematics: every pose of the tool path
 //! (the oracle: the poses as given) comes back in order, the tip to the printed
-//! precision and the axis to 1e-4 rad. And the refusals: grbl has no rotary axes,
+//! precision and the axis to 1e-4 rad, each from the line the post says it ends
+//! on. And the refusals: grbl has no rotary axes,
 //! Heidenhain no inverse time; the errors name the post and the field.
 
 use swarf_fiveaxis::machine::Machine;
@@ -72,7 +73,8 @@ fn five_axis_posts_read_back_to_the_poses() {
             feed_mode: mode,
             ..PostOptions::default()
         };
-        let program = post_5x(&m, &tp, &opts).unwrap().gcode;
+        let posted = post_5x(&m, &tp, &opts).unwrap();
+        let program = posted.gcode;
         let read = GcodeReadOptions {
             language: post.reader(),
             kinematics: Some(&k),
@@ -92,6 +94,11 @@ fn five_axis_posts_read_back_to_the_poses() {
             let Some(found) = (from..ends.len()).find(|&j| close(&ends[j], &mv.to)) else {
                 panic!("{what}: move {i} {:?} not read back\n{program}", mv.to);
             };
+            // The line the post says the move ends on is the one it is read from.
+            assert_eq!(
+                p.motions[found].line, posted.move_lines[i],
+                "{what}: move {i}"
+            );
             at = found + 1;
         }
         assert_eq!(at, ends.len(), "{what}: motions past the last move");

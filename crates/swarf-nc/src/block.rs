@@ -83,6 +83,8 @@ pub struct BlockWriter<'p> {
     /// The program number given to [`BlockWriter::start`].
     program_number: u32,
     out: String,
+    /// Lines written so far.
+    lines: usize,
 }
 
 impl<'p> BlockWriter<'p> {
@@ -98,13 +100,20 @@ impl<'p> BlockWriter<'p> {
             block_number: post.numbers.as_ref().map(|n| n.start),
             program_number: 0,
             out: String::with_capacity(blocks * (12 * axes.len() + 12) + 512),
+            lines: 0,
         }
+    }
+
+    /// Lines written so far: the number of the last one (from 1).
+    pub fn lines(&self) -> usize {
+        self.lines
     }
 
     /// A line without a block number (`%`, `O1000`).
     fn line(&mut self, text: &str) {
         self.out.push_str(text);
         self.out.push('\n');
+        self.lines += 1 + text.matches('\n').count();
     }
 
     /// A block: the line with its block number when the post numbers blocks.
