@@ -208,7 +208,7 @@ pub fn compare_all_views(
 /// the program file to verify and whether the job is five-axis.
 pub(crate) fn for_measurement(job: &mut Job, stem: &str) -> (String, bool) {
     job.gate = Gate::AllowUnsafe;
-    let five = job.positioning.is_some() || job.strategy.tilted();
+    let five = job.tilted();
     let program_file = format!("{stem}.{}", if five { "cl" } else { "ngc" });
     job.output.gcode = (!five || job.output.machine.is_some()).then(|| format!("{stem}.ngc"));
     job.output.cl = five.then(|| program_file.clone());

@@ -414,9 +414,10 @@ fn gated_program(
     Option<gate::GateReport>,
 )> {
     let stock = written.gate_stock;
-    let three_axis = written.machine.is_none() && moves.iter().all(|m| m.to.is_vertical());
+    // Without a machine the program is three-axis G-code (a tilted path without one
+    // writes none: `output.machine`); with one, the gate simulates the poses.
     let first = match (&job.output.gcode, stock) {
-        (Some(_), Some(_)) if three_axis => Some(three_axis_gcode(
+        (Some(_), Some(_)) if written.machine.is_none() => Some(three_axis_gcode(
             job,
             written.post,
             moves,

@@ -94,10 +94,10 @@ fn plan_job_values(job: &Job, out: Option<&Path>, gate: Gate) -> PyResult<Planne
         Some(_) => job.job.clone(),
         None => {
             let mut j = job.job.clone();
-            let o = &mut j.output;
             // A tilted path is written as G-code only for a machine (the job schema's
             // rule, `output.machine`).
-            let tilted = j.positioning.is_some() || j.strategy.tilted();
+            let tilted = j.tilted();
+            let o = &mut j.output;
             o.gcode = (!tilted || o.machine.is_some()).then(|| "plan.ngc".to_string());
             o.cl = Some("plan.cl".to_string());
             (o.csv, o.summary, o.double_contacts, o.contacts) = (None, None, None, None);

@@ -183,18 +183,13 @@ impl JobFile {
     /// The library, the tool it names, and every check of [`Job`]'s fields, as
     /// `field: message`.
     pub fn resolve(self, dir: &Path) -> Result<Job, String> {
-        let five_axis = self.positioning.is_some() || self.strategy.tilted();
-        let stock = self.stock.unwrap_or_else(|| {
-            if five_axis {
-                Stock::near_net()
-            } else {
-                Stock::default()
-            }
-        });
-        stock.check()?;
+        if let Some(stock) = &self.stock {
+            stock.check()?;
+        }
+        let stock_given = self.stock.is_some();
         let library = read_library(self.tools.as_deref(), dir)?;
         let (tool, library_tool) = self.tool.resolve(library.as_ref())?;
-        let job = Job {
+        let mut job = Job {
             name: self.name,
             part: self.part,
             faces: self.faces,
@@ -206,13 +201,16 @@ impl JobFile {
             strategy: self.strategy,
             positioning: self.positioning,
             linking: self.linking,
-            stock,
+            stock: self.stock.unwrap_or_default(),
             material_top: None,
             reach: None,
             gate: crate::gate::Gate::default(),
             output: self.output,
             parent: self.parent,
         };
+        if !stock_given && job.tilted() {
+            job.stock = Stock::near_net();
+        }
         job.validate()?;
         Ok(job)
     }

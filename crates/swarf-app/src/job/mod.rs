@@ -180,6 +180,12 @@ pub enum UnsupportedChoice {
 }
 
 impl Job {
+    /// Whether the job's tool path is tilted: it has a five-axis positioning, or its
+    /// strategy places the tool itself (drop-and-spin).
+    pub fn tilted(&self) -> bool {
+        self.positioning.is_some() || self.strategy.tilted()
+    }
+
     /// How the job's part is read: its `[import]` table and `faces`.
     pub fn load_options(&self) -> LoadOptions {
         LoadOptions {

@@ -110,8 +110,7 @@ impl Job {
                 output_file(name, f)?;
             }
         }
-        let tilted = self.positioning.is_some() || self.strategy.tilted();
-        if tilted && o.gcode.is_some() && o.machine.is_none() {
+        if self.tilted() && o.gcode.is_some() && o.machine.is_none() {
             return Err(
                 "output.machine: a tilted tool path needs a machine file for G-code (e.g. machine = \"builtin:xyzac-trunnion\"); or drop output.gcode (output.cl and output.csv carry the tool axis)"
                     .into(),
