@@ -52,6 +52,9 @@ enum Command {
     /// Verify a program (or a job's) and write its 3D view: GLB files of the part,
     /// tool path, cutter and stock coloured by deviation, and the viewer page.
     View(Box<cmd::view::Args>),
+    /// Plan or compare the jobs of a sweep on Dask (the Python package's
+    /// `swarf.batch`): a table of rows (Parquet, CSV) and plots in the results folder.
+    Batch(cmd::batch::Args),
 }
 
 /// Ends the process quietly when standard output is a closed pipe (`swarf plan ... |
@@ -87,6 +90,7 @@ fn main() -> ExitCode {
         Command::Rest(a) => cmd::rest::run(&a),
         Command::Classify(a) => cmd::classify::run(&a),
         Command::View(a) => cmd::view::run(&a),
+        Command::Batch(a) => cmd::batch::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

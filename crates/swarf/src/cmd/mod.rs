@@ -1,5 +1,6 @@
 //! One file per subcommand.
 
+pub mod batch;
 pub mod classify;
 pub mod compare;
 pub mod demo;
