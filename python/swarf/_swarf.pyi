@@ -307,6 +307,7 @@ def verify(
     out: Optional[PathLike] = None,
     partial: bool = False,
     first_order_sweep: bool = False,
+    floor: Optional[float] = None,
 ) -> Verification:
     """Simulates programs on a dexel stock and measures them against the design, as
     ``swarf verify`` does (the keyword arguments are its flags)."""

@@ -246,6 +246,10 @@ fn check_one(
     let program = out.read_program(&program_file)?;
     let scallop = job.strategy.scallop().unwrap_or(0.0);
     let mut opts = sim.options(job.tolerance(), scallop, job.feeds.rapid, true)?;
+    if opts.floor.is_none() {
+        let [bottom, top] = model.z_range()?;
+        opts.floor = Some(job.stock.floor(bottom, top)?);
+    }
     if five {
         opts.cell = opts.cell.or(Some(FIVE_AXIS_CELL));
         opts.sample_tol = opts.sample_tol.or(Some(FIVE_AXIS_SAMPLE_TOL));

@@ -5,7 +5,11 @@
 //! 2. **Positioning** ([`swarf_fiveaxis::positioning`]): the inclined tool or the
 //!    gouge-free lead, with the sectioning gouge report. The positioned passes replace
 //!    the 3-axis ones, in the same order and directions (zigzag kept), relinked above
-//!    the tilted tool ([`swarf_fiveaxis::cc_paths::linking`]).
+//!    the tilted tool ([`swarf_fiveaxis::cc_paths::linking`]), after they are cut
+//!    where the tool's lowest point would go below the floor
+//!    ([`crate::plan::clip_plan`], the floor alone: a tilted tool reaches further
+//!    than its radius from its tip, so the stock's footprint does not bound its
+//!    tip); the sectioning check is then run again on what is left.
 //! 3. **Holder avoidance** ([`avoid_holder`]) for a library tool: poses whose shank
 //!    or holder meets the part are tilted clear.
 //! 4. **Post** ([`write_job_gcode`]): the machine named by `output.machine`
@@ -34,6 +38,7 @@ use swarf_nc::Post;
 use swarf_path::Plan;
 use swarf_tool::holder::tilted::TiltSearch;
 use swarf_toolpath::Toolpath;
+use swarf_toolpath::reach::Reach;
 
 #[cfg(doc)]
 use swarf_fiveaxis::machine::load_machine;
@@ -62,10 +67,22 @@ pub fn position_plan(
             "the strategy gave no pass with two or more contact points to position",
         ));
     }
-    let (passes, report) =
+    let (passes, mut report) =
         position_with_progress(&job.tool, part, &cc, positioning, job.tolerance(), progress)?;
-    plan.toolpath.linking = linking(&job.cutting(), part, &passes);
     plan.toolpath.passes = passes;
+    if let Some(reach) = &job.reach {
+        let floor = Reach {
+            floor: reach.floor,
+            footprint: None,
+        };
+        let clipped = crate::plan::clip_plan(job, &floor, plan)
+            .map_err(|e| FiveAxisError::parameter("stock.floor", e.to_string()))?;
+        if clipped {
+            report.poses = plan.toolpath.passes.iter().map(|p| p.points.len()).sum();
+            recheck(&job.tool, part, &plan.toolpath.passes, &mut report)?;
+        }
+    }
+    plan.toolpath.linking = linking(&job.cutting(), part, &plan.toolpath.passes);
     plan.report.lifted_points = 0;
     plan.report.max_lift = 0.0;
     plan.report.predicted_max_scallop = None;

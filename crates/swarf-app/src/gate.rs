@@ -1,8 +1,10 @@
 //! The verification gate of `swarf plan`: every program a job writes is simulated
 //! on the job's stock ([`crate::stock`]), rapids included, by the one verifier
 //! ([`swarf_sim::verify_stages`], deviation along the design normals), before it is
-//! written. A program with a rapid that removes material (a crash on the machine)
-//! or a gouge beyond the job's tolerance is refused, naming its G-code lines (of a
+//! written. A program with a rapid that removes material (a crash on the machine),
+//! a gouge beyond the job's tolerance or a motion whose tool goes below the job's
+//! floor ([`swarf_sim::floor`]; `stock.floor`, default the part's lowest point) is
+//! refused, naming its G-code lines (of a
 //! five-axis program: the line where the move ends; the tool path's move numbers
 //! where no G-code is written), unless the job
 //! is planned with [`Gate::AllowUnsafe`]: then it is written, and its header
@@ -78,6 +80,11 @@ pub struct GateReport {
     pub tol: f64,
     /// Rapids that removed material.
     pub rapid_cuts: Vec<Finding>,
+    /// The floor, mm (`None`: the job is not on its stock).
+    pub floor: Option<f64>,
+    /// Motions whose tool goes deeper than the tolerance below the floor, with
+    /// that depth.
+    pub below_floor: Vec<Finding>,
     /// Cells gouged beyond the tolerance.
     pub gouge_cells: usize,
     /// Deepest gouge, mm (0 without one).
@@ -98,19 +105,34 @@ pub struct GateReport {
 }
 
 impl GateReport {
-    /// Whether the program is safe to run: no rapid in material, no gouge.
+    /// Whether the program is safe to run: no rapid in material, no gouge, no
+    /// motion below the floor.
     pub fn safe(&self) -> bool {
-        self.rapid_cuts.is_empty() && self.gouge_cells == 0
+        self.rapid_cuts.is_empty() && self.gouge_cells == 0 && self.below_floor.is_empty()
+    }
+
+    /// Every finding, of every kind.
+    fn findings_mut(&mut self) -> impl Iterator<Item = &mut Finding> {
+        self.rapid_cuts
+            .iter_mut()
+            .chain(self.gouges.iter_mut())
+            .chain(self.below_floor.iter_mut())
     }
 
     /// The header comment of the program.
     pub fn comment(&self) -> String {
-        let found = format!(
+        let mut found = format!(
             "{} rapids in material, {} gouge cells beyond {} mm",
             self.rapid_cuts.len(),
             self.gouge_cells,
             self.tol
         );
+        if let Some(floor) = self.floor {
+            found += &format!(
+                ", {} motions below the floor at {floor:.3} mm",
+                self.below_floor.len()
+            );
+        }
         if self.safe() {
             format!(
                 "verified on {}, {} mm cells: {found}",
@@ -153,6 +175,21 @@ impl GateReport {
                 self.gouge_cells,
                 self.tol,
                 -self.worst_gouge_mm,
+                named.join(", ")
+            ));
+        }
+        if !self.below_floor.is_empty() {
+            let named: Vec<String> = self
+                .below_floor
+                .iter()
+                .take(MAX_NAMED)
+                .map(|f| format!("{} ({:.3} mm below)", at(f), f.depth))
+                .collect();
+            let n = self.below_floor.len();
+            let what = if n == 1 { "motion goes" } else { "motions go" };
+            parts.push(format!(
+                "{n} {what} below the floor at {:.3} mm (stock.floor): {}",
+                self.floor.unwrap_or_default(),
                 named.join(", ")
             ));
         }
@@ -250,6 +287,7 @@ pub fn check(
         along_normals: true,
         // A rapid in material refuses the program: the rest is not needed for that.
         stop_at_rapid_cut: job.gate == Gate::Verify,
+        floor: job.reach.map(|r| r.floor),
         ..VerifyOptions::default()
     };
     let stock_name = opts.stock.describe();
@@ -274,6 +312,17 @@ pub fn check(
                 depth: n.amount,
             })
             .collect(),
+        floor: v.floor.as_ref().map(|f| f.floor),
+        below_floor: v.floor.as_ref().map_or_else(Vec::new, |f| {
+            f.below
+                .iter()
+                .map(|n| Finding {
+                    motion: n.motion,
+                    line: None,
+                    depth: n.amount,
+                })
+                .collect()
+        }),
         gouge_cells: s.gouge.cells,
         worst_gouge_mm: s.gouge.worst,
         gouges: s
@@ -297,7 +346,7 @@ pub fn check(
 /// Sets each finding's line: the line of its motion in `program` (the program as
 /// written, which may differ from the one simulated by header lines only).
 pub fn locate(report: &mut GateReport, program: &Program) {
-    for f in report.rapid_cuts.iter_mut().chain(report.gouges.iter_mut()) {
+    for f in report.findings_mut() {
         f.line = program.motions.get(f.motion).map(|m| m.line);
     }
 }
@@ -351,7 +400,7 @@ pub fn conclude(
         locate(g, &program(moves, text, read)?);
     } else if !move_lines.is_empty() {
         // The gate simulated the moves themselves: motion k is move k.
-        for f in g.rapid_cuts.iter_mut().chain(g.gouges.iter_mut()) {
+        for f in g.findings_mut() {
             f.line = move_lines.get(f.motion).copied();
         }
     }

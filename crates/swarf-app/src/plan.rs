@@ -10,6 +10,7 @@ use crate::job::Job;
 use crate::strategy::place;
 use swarf_geom::{Part, TriMesh};
 use swarf_path::{PathError, Plan};
+use swarf_toolpath::reach::Reach;
 
 /// What a job plans on.
 #[derive(Debug, Clone, Copy)]
@@ -62,7 +63,9 @@ fn add_job_leads(job: &Job, input: PlanInput<'_>, plan: &mut Plan) -> Result<(),
 
 /// `plan`'s passes cut to where `job`'s tool may go ([`Job::reach`]), with what was
 /// cut in its report; nothing to do before the job is on its stock, nor for a
-/// five-axis job (its vertical tips are not where the positioned tool goes).
+/// five-axis job before it is positioned (its vertical tips are not where the
+/// positioned tool goes: [`crate::five_axis::position_plan`] cuts the positioned
+/// passes to the floor).
 ///
 /// # Errors
 /// [`PathError::NoPath`] when no pass is left.
@@ -70,11 +73,20 @@ pub fn clip_to_reach(job: &Job, plan: &mut Plan) -> Result<(), PathError> {
     let (Some(reach), None) = (&job.reach, &job.positioning) else {
         return Ok(());
     };
+    clip_plan(job, reach, plan).map(|_| ())
+}
+
+/// `plan`'s passes of `job`'s tool cut to `reach` ([`swarf_toolpath::reach`]), with
+/// what was cut added to its report; whether any pose was cut.
+///
+/// # Errors
+/// [`PathError::NoPath`] when no pass is left.
+pub fn clip_plan(job: &Job, reach: &Reach, plan: &mut Plan) -> Result<bool, PathError> {
     if plan.toolpath.passes.is_empty() {
-        return Ok(());
+        return Ok(false);
     }
     let passes = std::mem::take(&mut plan.toolpath.passes);
-    let (passes, clipped) = swarf_toolpath::reach::clip(passes, reach);
+    let (passes, clipped) = swarf_toolpath::reach::clip(passes, reach, &job.tool.profile());
     if passes.is_empty() {
         return Err(PathError::NoPath(format!(
             "every pass lies below stock.floor ({:.3} mm) or out of the tool's reach of the \
@@ -85,7 +97,7 @@ pub fn clip_to_reach(job: &Job, plan: &mut Plan) -> Result<(), PathError> {
     plan.toolpath.passes = passes;
     plan.report.clipped_points += clipped.points;
     plan.report.split_passes += clipped.splits;
-    Ok(())
+    Ok(clipped.points > 0)
 }
 
 /// Plans `job` on `input`.

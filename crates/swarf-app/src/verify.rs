@@ -49,6 +49,9 @@ pub struct SimSettings {
     /// Sample five-axis motions by the first-order bound alone: the slow reference
     /// sweep the default (second-order where it applies) is checked against.
     pub first_order_sweep: bool,
+    /// The lowest height the tool may reach, mm: motions that go lower are reported
+    /// ([`swarf_sim::floor`]; compare: default each job's floor).
+    pub floor: Option<f64>,
 }
 
 impl Default for SimSettings {
@@ -64,6 +67,7 @@ impl Default for SimSettings {
             max_memory: 4096,
             deviation: None,
             first_order_sweep: false,
+            floor: None,
         }
     }
 }
@@ -109,12 +113,13 @@ impl SimSettings {
         rapid: f64,
         along_normals: bool,
     ) -> Result<VerifyOptions> {
-        use swarf_geom::domain::{CELL, RATE, SAMPLE, SCALLOP, TOLERANCE};
+        use swarf_geom::domain::{CELL, COORDINATE, RATE, SAMPLE, SCALLOP, TOLERANCE};
         for (flag, v, domain) in [
             ("--cell", self.cell, CELL),
             ("--tol", self.tol, TOLERANCE),
             ("--sample-tol", self.sample_tol, SAMPLE),
             ("--rapid", self.rapid, RATE),
+            ("--floor", self.floor, COORDINATE),
         ] {
             if let Some(x) = v {
                 domain.check_named(flag, x).map_err(AppError::Message)?;
@@ -145,6 +150,7 @@ impl SimSettings {
                 .deviation
                 .map_or(along_normals, |d| d == Deviation::Normal),
             first_order: self.first_order_sweep,
+            floor: self.floor,
             ..VerifyOptions::default()
         })
     }

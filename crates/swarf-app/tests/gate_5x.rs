@@ -69,6 +69,9 @@ fn shipped_five_axis_jobs_that_do_not_gouge_pass_the_gate_from_their_poses() {
         assert!(v["cell"].as_f64().unwrap() >= 0.5, "{name}: {v}");
         assert_eq!(v["rapid_cuts"].as_array().unwrap().len(), 0, "{name}: {v}");
         assert_eq!(v["gouge_cells"], 0, "{name}: {v}");
+        // The tool's lowest point, tilted, stays on or above the floor.
+        assert!(v["floor"].is_number(), "{name}: {v}");
+        assert_eq!(v["below_floor"].as_array().unwrap().len(), 0, "{name}: {v}");
         assert_eq!(v["written_unsafe"], false, "{name}: {v}");
     }
 }

@@ -67,6 +67,8 @@ fn every_shipped_three_axis_job_is_safe_on_a_box_ten_mm_above_the_part() {
         assert_eq!(v["stock"], format!("box, top {top} mm"), "{name}");
         assert_eq!(v["rapid_cuts"].as_array().unwrap().len(), 0, "{name}: {v}");
         assert_eq!(v["gouge_cells"], 0, "{name}: {v}");
+        assert_eq!(v["floor"], floor, "{name}: {v}");
+        assert_eq!(v["below_floor"].as_array().unwrap().len(), 0, "{name}: {v}");
         // Roughing comes down to its cleared levels (`Pass::clear_from`): the
         // simulation alone checks it.
         let tp = &planned.toolpath;
@@ -178,6 +180,78 @@ fn a_planted_gouge_and_a_rapid_in_the_stock_are_refused_by_line_or_labelled() {
         report
             .comment()
             .starts_with("UNSAFE, written with --allow-unsafe")
+    );
+}
+
+/// A plunge 2 mm below the floor (the part's lowest point) beside the wave, and the
+/// retract from there: both go below the floor, and the gate refuses them by line.
+#[test]
+fn a_motion_below_the_floor_is_refused_by_line() {
+    let text = std::fs::read_to_string(jobs().join("wave-raster.toml")).unwrap();
+    let job = Job::parse_in(&text, "wave-raster.toml", &jobs()).unwrap();
+    let model = load_model_with(&part_arg(&job, &jobs()), &job.load_options()).unwrap();
+    let job = job.on_stock(&model, &jobs()).unwrap();
+    let floor = job.reach.unwrap().floor;
+    assert_eq!(floor, model.z_range().unwrap()[0]);
+    let b = model.bounds();
+    let (x, y, high) = (
+        b.min.x - 20.0,
+        b.min.y - 20.0,
+        job.material_top.unwrap() + 10.0,
+    );
+    let to = |kind, z: f64| Move {
+        kind,
+        to: Pose::vertical(swarf_geom::Point3::new(x, y, z)),
+        feed: if kind == MoveKind::Feed { 300.0 } else { 0.0 },
+        pass: None,
+    };
+    let moves = vec![
+        to(MoveKind::Rapid, high),
+        to(MoveKind::Feed, floor - 2.0),
+        to(MoveKind::Rapid, high),
+    ];
+    let gcode =
+        swarf_nc::write_gcode(&moves, &job.feeds, &swarf_nc::GcodeOptions::default()).unwrap();
+    let read = GcodeReadOptions::default();
+    let simulated = (&moves[..], Some(gcode.as_str()), &read);
+    let stock = StockSpec::Box {
+        top: job.material_top,
+    };
+    let mut report = gate::run(&job, &model, simulated, Some(&stock), 0.15)
+        .unwrap()
+        .unwrap();
+    assert_eq!(report.floor, Some(floor));
+    let depths: Vec<f64> = report.below_floor.iter().map(|f| f.depth).collect();
+    assert_eq!(depths.len(), 2, "{report:?}");
+    assert!(depths.iter().all(|d| (d - 2.0).abs() < 1e-3), "{depths:?}");
+    assert!(
+        report.rapid_cuts.is_empty() && report.gouge_cells == 0,
+        "{report:?}"
+    );
+    assert!(!report.safe());
+    let message = gate::conclude(&job, Some(&mut report), simulated, &[])
+        .unwrap_err()
+        .to_string();
+    let lines: Vec<&str> = gcode.lines().collect();
+    let plunge = report.below_floor[0].line.unwrap();
+    let block = lines[plunge - 1];
+    let z: f64 = block
+        .split_once('Z')
+        .unwrap()
+        .1
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(
+        block.starts_with("G1") && (z - (floor - 2.0)).abs() < 1e-3,
+        "{block}"
+    );
+    assert!(
+        message.contains("2 motions go below the floor")
+            && message.contains(&format!("line {plunge} (2.000 mm below)")),
+        "{message}"
     );
 }
 

@@ -64,7 +64,8 @@ fn cutter_spec(obj: &Bound<'_, PyAny>) -> PyResult<String> {
 /// keyword arguments are the command's flags: `stock` (`"box"`, `"box:TOP"`,
 /// `"offset:ALLOWANCE"` or a mesh file), `cell`, `tol`, `scallop`, `sample_tol` (mm),
 /// `rapid` (mm/min), `max_memory` (MiB), `deviation` (`"normal"` or `"vertical"`),
-/// `first_order_sweep` (the slow reference sampling of five-axis motions),
+/// `first_order_sweep` (the slow reference sampling of five-axis motions), `floor`
+/// (mm: motions whose tool goes lower are reported),
 /// `machine` and `tool_length` for five-axis G-code, `dialect`, `tool_table`,
 /// `params`, `sub_path`, `machine_units` for reading G-code. With `out`, the reports
 /// and pictures are written there as the command writes them.
@@ -77,7 +78,7 @@ fn cutter_spec(obj: &Bound<'_, PyAny>) -> PyResult<String> {
     stock = "offset:0.5".to_string(), cell = None, tol = None, scallop = None, rapid = None,
     sample_tol = None, max_memory = 4096, deviation = None, dialect = "linuxcnc".to_string(),
     tool_table = None, params = None, sub_path = Vec::new(), machine_units = "mm".to_string(),
-    out = None, partial = false, first_order_sweep = false))]
+    out = None, partial = false, first_order_sweep = false, floor = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn verify(
     py: Python<'_>,
@@ -102,6 +103,7 @@ pub fn verify(
     out: Option<PathBuf>,
     partial: bool,
     first_order_sweep: bool,
+    floor: Option<f64>,
 ) -> PyResult<Verification> {
     let part = path_text(part).ok_or_else(|| {
         pyo3::exceptions::PyTypeError::new_err(
@@ -123,6 +125,7 @@ pub fn verify(
             .transpose()
             .map_err(swarf_err)?,
         first_order_sweep,
+        floor,
     };
     if let Some(l) = tool_length {
         swarf_geom::domain::TOOL_LENGTH

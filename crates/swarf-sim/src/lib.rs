@@ -32,6 +32,7 @@ pub mod deviation;
 pub mod dexel;
 pub mod engagement;
 pub mod error;
+pub mod floor;
 pub mod grid;
 pub mod mow;
 pub mod progress;

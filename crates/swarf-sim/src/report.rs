@@ -22,6 +22,8 @@ pub fn flagged_rows(v: &Verification) -> (usize, usize) {
     let flagged = s.gouge.cells + s.excess.cells;
     (flagged, flagged.min(CSV_MAX_ROWS))
 }
+/// Motions below the floor named one by one in the text summary.
+const FLOOR_NAMED: usize = 10;
 /// Most warnings listed one by one in the JSON.
 pub const JSON_MAX_WARNINGS: usize = 100;
 
@@ -77,6 +79,9 @@ pub fn json_report(v: &Verification, ctx: &ReportContext) -> Value {
         },
         "timings_s": v.timings,
     });
+    if let Some(floor) = &v.floor {
+        report["floor"] = json!(floor);
+    }
     if v.stages.len() > 1 {
         name_programs(&mut report, v);
     }
@@ -91,6 +96,7 @@ fn name_programs(report: &mut Value, v: &Verification) {
         ("deviation", "excesses"),
         ("simulation", "rapid_cuts"),
         ("simulation", "outside"),
+        ("floor", "below"),
     ] {
         let Some(items) = report[section][list].as_array_mut() else {
             continue;
@@ -227,6 +233,30 @@ pub fn text_summary(v: &Verification, ctx: &ReportContext) -> String {
             at_line(v, Some(r.motion), r.line),
             r.amount
         );
+    }
+    if let Some(f) = &v.floor {
+        let _ = writeln!(
+            t,
+            "floor {:.4} mm: {} below it by more than {:.4} mm",
+            f.floor,
+            count(f.below.len(), "motion"),
+            v.deviation.summary.tol
+        );
+        for n in f.below.iter().take(FLOOR_NAMED) {
+            let _ = writeln!(
+                t,
+                "warning: motion at {} goes {:.4} mm below the floor",
+                at_line(v, Some(n.motion), n.line),
+                n.amount
+            );
+        }
+        if f.below.len() > FLOOR_NAMED {
+            let _ = writeln!(
+                t,
+                "warning: {} more motions below the floor (report.json lists them)",
+                f.below.len() - FLOOR_NAMED
+            );
+        }
     }
     for o in &v.sim.outside {
         let _ = writeln!(

@@ -11,6 +11,7 @@ use crate::design::{Design, DesignField, DesignSurface};
 use crate::deviation::{Deviation, DeviationOptions, analyse, vertical_deviation};
 use crate::dexel::{Dexel, StockInit};
 use crate::error::SimError;
+use crate::floor::FloorCheck;
 use crate::grid::{DEFAULT_MAX_BYTES, Grid};
 use crate::mow::normal_deviation;
 use crate::progress::Progress;
@@ -98,6 +99,9 @@ pub struct VerifyOptions {
     /// ([`SimOptions::stop_at_rapid_cut`]): the deviation is then of the stock as
     /// that rapid left it.
     pub stop_at_rapid_cut: bool,
+    /// The lowest height the tool may reach, mm: every motion is checked against it
+    /// ([`crate::floor`]); `None`: no floor check.
+    pub floor: Option<f64>,
 }
 
 /// The sampling bound of arcs and five-axis motions for a verification tolerance
@@ -128,6 +132,7 @@ impl Default for VerifyOptions {
             window: None,
             first_order: false,
             stop_at_rapid_cut: false,
+            floor: None,
         }
     }
 }
@@ -205,6 +210,8 @@ pub struct Verification {
     pub along_normals: bool,
     /// Cells whose normal deviation kept its first-order value (see [`crate::mow`]).
     pub normal_fallback: usize,
+    /// Motions below the floor, when one was given ([`VerifyOptions::floor`]).
+    pub floor: Option<FloorCheck>,
     /// Stage times.
     pub timings: Timings,
 }
@@ -259,6 +266,15 @@ fn check_settings(
     let tol = SimError::check_positive("tolerance", opts.tol)?;
     SimError::check_non_negative("allowed excess", opts.allowed_excess)?;
     SimError::check_positive("rapid rate", opts.rapid_rate)?;
+    if let Some(floor) = opts.floor
+        && !floor.is_finite()
+    {
+        return Err(SimError::InvalidParameter {
+            name: "floor".into(),
+            value: floor,
+            expected: "a finite height, mm".into(),
+        });
+    }
     let cell = SimError::check_positive("cell size", opts.cell.unwrap_or(CELL_PER_TOL * tol))?;
     let sample_tol = SimError::check_positive("sample tolerance", opts.sample_tol())?;
     let tools = stages
@@ -371,6 +387,7 @@ pub fn verify_stages(
         sample_tol,
         along_normals: opts.along_normals,
         normal_fallback,
+        floor: opts.floor.map(|f| crate::floor::check(stages, f, tol)),
         timings: Timings {
             design_s: (t1 - t0).as_secs_f64(),
             simulate_s: (t2 - t1).as_secs_f64(),

@@ -205,13 +205,16 @@ fn drop_spin_job_writes_checked_five_axis_outputs() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// The same job planned in-process: the positioned passes with their contacts.
-fn positioned(text: &str) -> Vec<swarf_toolpath::Pass> {
+/// The same job planned in-process on its stock: the positioned passes with their
+/// contacts (none where a pass is cut at the floor), and that floor.
+fn positioned(text: &str) -> (Vec<swarf_toolpath::Pass>, f64) {
     let job = swarf_app::Job::parse(text, "job.toml").unwrap();
     let part = swarf_io::builtin_part("die").unwrap();
+    let model = swarf_app::model::Model::Patches(part.clone());
+    let job = job.on_stock(&model, Path::new(".")).unwrap();
     let mut plan = swarf_app::plan(&job, swarf_app::PlanInput::Part(&part)).unwrap();
     swarf_app::five_axis::position_plan(&job, &part, &mut plan, &|_, _| {}).unwrap();
-    plan.toolpath.passes
+    (plan.toolpath.passes, job.reach.unwrap().floor)
 }
 
 #[test]
@@ -240,22 +243,43 @@ fn inclined_die_job_writes_checked_five_axis_outputs() {
     assert!(summary["machine"].as_str().unwrap().contains("trunnion"));
     // The CL carries the tilted axes: 6 degrees from the normal at each CC point.
     let cl = cl_feed_poses(&std::fs::read_to_string(dir.join("die.cl")).unwrap());
-    let passes = positioned(&text);
+    let (passes, floor) = positioned(&text);
     let points: Vec<_> = passes.iter().flat_map(|p| &p.points).collect();
     assert_eq!(cl.len(), poses);
     assert_eq!(points.len(), poses);
     let alpha = 6f64.to_radians();
     let mut tilted_from_z = 0.0f64;
+    // The tilted bull hangs over the die's edge, below its lowest point: the passes
+    // are cut where the tool's lowest point meets that floor.
+    let clipped = summary["report"]["clipped_points"].as_u64().unwrap_or(0);
+    assert!(clipped > 0, "{}", summary["report"]);
+    let tool = swarf_app::Job::parse(&text, "job.toml")
+        .unwrap()
+        .tool
+        .profile();
+    let mut cut_at_floor = 0;
     for ((cl_point, axis), p) in cl.iter().zip(&points) {
-        let normal = p.contact.unwrap().normal;
+        assert!((cl_point - p.pose.cl).norm() < 1e-5);
+        let lowest = p.pose.cl.z + tool.lowest_when_tilted(axis.z);
+        let Some(contact) = p.contact else {
+            cut_at_floor += 1;
+            // On the floor, or a little above where the axis turns along the cut
+            // segment (the depth is taken as linear between its ends).
+            assert!(
+                lowest > floor - 1e-4 && lowest < floor + 0.01,
+                "{lowest} {floor}"
+            );
+            continue;
+        };
+        let normal = contact.normal;
         assert!(
             (axis.angle(&normal) - alpha).abs() < 1e-6,
             "{axis:?} {normal:?}"
         );
-        assert!((cl_point - p.pose.cl).norm() < 1e-5);
         tilted_from_z = tilted_from_z.max(axis.angle(&Vec3::z()));
     }
     assert!(tilted_from_z > 20f64.to_radians(), "{tilted_from_z}");
+    assert!(cut_at_floor > 0 && cut_at_floor < 20, "{cut_at_floor}");
     // rs274 accepts the G-code; its feeds are the CL's poses, one per pose.
     let ngc = std::fs::read_to_string(dir.join("die.ngc")).unwrap();
     for want in [

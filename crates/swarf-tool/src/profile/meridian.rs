@@ -1,6 +1,6 @@
 //! Whole-profile queries along the meridian chain: arc-length position at a height,
-//! where the full radius is reached, the corner centre, convexity, and the chain as a
-//! polyline.
+//! where the full radius is reached, the corner centre, convexity, the lowest point of
+//! the tilted tool, and the chain as a polyline.
 //!
 //! Along the chain z never decreases ([`crate::profile`]), so the lowest point at a
 //! height is on the first segment that reaches it, and a polyline cut at a height stops
@@ -100,6 +100,42 @@ impl Profile {
         prev <= FRAC_PI_2 + CONVEX_EPS
     }
 
+    /// Height of the lowest point of the tool above its tip when its axis has the
+    /// vertical component `axis_z` (the cosine of its tilt `theta` from +z; clamped
+    /// to `[0, 1]`), mm (at most 0). A profile point `(rho, z)` revolved about the
+    /// tilted axis reaches down to `z cos(theta) - rho sin(theta)` below the tip; the
+    /// least of that linear form over the chain lies at a segment's end or, on an
+    /// arc, where its outward normal points straight down: at polar angle
+    /// `theta - pi/2` (a bull's `r cos(theta) - (R - r) sin(theta) - r`).
+    pub fn lowest_when_tilted(&self, axis_z: f64) -> f64 {
+        let c = if axis_z.is_nan() {
+            1.0
+        } else {
+            axis_z.clamp(0.0, 1.0)
+        };
+        let s = (1.0 - c * c).sqrt();
+        let below = |q: RhoZ| q.z * c - q.rho * s;
+        let down = c.acos() - FRAC_PI_2;
+        self.segments()
+            .iter()
+            .flat_map(|seg| {
+                let on_arc = match *seg {
+                    Segment::Arc {
+                        centre,
+                        radius,
+                        start_angle,
+                        end_angle,
+                        ..
+                    } if (start_angle..=end_angle).contains(&down) => Some(below(centre) - radius),
+                    _ => None,
+                };
+                [below(seg.start()), below(seg.end())]
+                    .into_iter()
+                    .chain(on_arc)
+            })
+            .fold(0.0, f64::min)
+    }
+
     /// The chain from the tip up to height `top` as a polyline: the tip, then the end
     /// of each chord, every line one chord and every arc `arc_pieces` chords of equal
     /// arc length; it stops before the first point higher than `top`.
@@ -158,5 +194,35 @@ mod tests {
         let low = bull.polyline(8, 1.0);
         assert!(low.iter().all(|q| q.z <= 1.0 + 1e-12));
         assert_eq!(low.len(), 2 + 5);
+    }
+
+    #[test]
+    fn the_lowest_point_of_a_tilted_tool_by_closed_forms() {
+        let (big_r, r, length) = (5.0, 2.0, 20.0);
+        let bull = Cutter::bull(2.0 * big_r, r, Some(length))
+            .unwrap()
+            .profile();
+        let ball = Cutter::ball(2.0 * big_r, Some(length)).unwrap().profile();
+        let flat = Cutter::flat(2.0 * big_r, Some(length)).unwrap().profile();
+        for deg in [0.0, 1.0, 15.0, 45.0, 80.0, 90.0] {
+            let t = f64::to_radians(deg);
+            let (s, c) = t.sin_cos();
+            let cases = [
+                (bull, r * c - (big_r - r) * s - r),
+                (ball, big_r * c - big_r),
+                (flat, -big_r * s),
+            ];
+            for (k, (p, want)) in cases.into_iter().enumerate() {
+                let got = p.lowest_when_tilted(c);
+                assert!(
+                    (got - want).abs() < 1e-12,
+                    "{deg} deg, tool {k}: {got} vs {want}"
+                );
+            }
+        }
+        // An axis pointing below the horizon is taken as horizontal.
+        let down = f64::to_radians(120.0).cos();
+        assert_eq!(flat.lowest_when_tilted(down), flat.lowest_when_tilted(0.0));
+        assert_eq!(bull.lowest_when_tilted(f64::NAN), 0.0);
     }
 }

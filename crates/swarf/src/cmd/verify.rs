@@ -150,6 +150,11 @@ pub struct SimArgs {
     /// their flat top stays clear of the stock)
     #[arg(long)]
     first_order_sweep: bool,
+    /// The lowest height the tool may reach, mm: every motion whose tool goes lower
+    /// by more than the tolerance is reported (verify: no floor check without it;
+    /// compare: default each job's floor).
+    #[arg(long, allow_hyphen_values = true)]
+    floor: Option<f64>,
 }
 
 impl SimArgs {
@@ -169,6 +174,7 @@ impl SimArgs {
             max_memory: self.max_memory,
             deviation: self.deviation.as_deref().map(str::parse).transpose()?,
             first_order_sweep: self.first_order_sweep,
+            floor: self.floor,
         })
     }
 }
@@ -292,6 +298,7 @@ mod tests {
             deviation: None,
             partial: false,
             first_order_sweep: false,
+            floor: None,
         }
     }
 
