@@ -39,20 +39,24 @@ def save_plots(df, res, log: Callable[[str], None]) -> None:
         log("swarf batch: no plots: matplotlib is not installed (pip install swarf[batch])")
         return
     ok = df[df["status"] == "ok"]
-    if len(ok) == 0:
-        return
+    timed = ok[ok["machining_time_s"].notna()]
+    if len(timed):
+        _time_plot(timed, res, plt)
+    _maps(ok, res, plt)
+
+
+def _time_plot(ok, res, plt) -> None:
     fig, ax = plt.subplots(figsize=(7, 4.5), dpi=100)
     scallop, measured = _scallop(ok)
     for strategy in sorted(set(ok["strategy"])):
         sel = (ok["strategy"] == strategy).to_numpy()
-        ax.scatter(scallop[sel], ok["machining_time_s"].to_numpy(dtype=float)[sel] / 60, label=strategy, s=14)
+        ax.scatter(scallop[sel], ok["machining_time_s"].to_numpy(dtype=float)[sel] / 60, label=strategy or "(none)", s=14)
     ax.set_xlabel("scallop, mm (" + ("largest measured" if measured else "planned") + ")")
     ax.set_ylabel("machining time, min")
     ax.set_title("machining time against scallop, per strategy")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     _save(fig, res, TIME_PLOT)
-    _maps(ok, res, plt)
 
 
 def _maps(ok, res, plt) -> None:

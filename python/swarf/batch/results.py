@@ -103,6 +103,7 @@ class Results:
         (staging / ROW).write_text(json.dumps(row, sort_keys=True, indent=1), encoding="utf-8")
         if self.local is not None:
             final = self.local / "tasks" / key
+            final.parent.mkdir(parents=True, exist_ok=True)
             try:
                 os.rename(staging, final)
             except OSError:
