@@ -42,8 +42,10 @@ pub struct Stock {
     pub allowance: f64,
     /// Mesh: the stock's file (STL or OBJ), relative to the job file.
     pub file: Option<String>,
-    /// The lowest height the tool tip may reach, mm (default: the part's lowest
-    /// point; not above the part's top): passes are cut where they would go below.
+    /// The lowest height the tool may reach, mm (its lowest point: a vertical tool's
+    /// tip, a tilted tool's point facing straight down; default: the part's lowest
+    /// point; not above the part's top): passes are cut where they would go below,
+    /// and the verification gate refuses a motion below it.
     pub floor: Option<f64>,
     /// Cell of a sequence's in-process stock, mm (0.01 to 10).
     pub cell: f64,
@@ -184,7 +186,7 @@ impl Stock {
         Ok(top)
     }
 
-    /// The lowest height the tool tip may reach over a part whose lowest and
+    /// The lowest height the tool may reach over a part whose lowest and
     /// highest points are `bottom` and `top`, mm: the job's `floor`, else `bottom`.
     ///
     /// # Errors

@@ -58,7 +58,18 @@ fn fillet_pocket_from_a_box_in_one_job() {
             op.max_rest_mm
         );
         assert_eq!(op.gouge_cells, 0, "{} gouges", op.name);
+        assert!(
+            op.below_floor_lines.is_empty(),
+            "{}: {:?}",
+            op.name,
+            op.below_floor_lines
+        );
     }
+    assert!(
+        program.contains("0 rapids in material, 0 gouge cells beyond")
+            && program.contains("mm, 0 motions below the floor at "),
+        "the gate's verdict in the header"
+    );
     // Both roughings (the second is rest roughing with a smaller tool) hold the
     // stated engagement on every clearing motion, to the measurement's 1 degree.
     for op in &report.operations[..2] {

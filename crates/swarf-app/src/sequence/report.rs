@@ -49,6 +49,10 @@ pub struct OperationReport {
     /// crash on the machine): their lines in the operation's own program (a
     /// roughing's: the numbers of its planned moves, which it is simulated from).
     pub rapid_cut_lines: Vec<usize>,
+    /// Motions of its program whose tool goes below the floor by more than the
+    /// stock's tolerance ([`swarf_sim::floor`]): their lines in its program.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub below_floor_lines: Vec<usize>,
     /// Cells below the design by more than the tolerance after it.
     pub gouge_cells: usize,
     /// Deepest of them, mm (0 for none).
@@ -159,6 +163,7 @@ pub(super) fn op_report(
         time_s,
         engagement,
         rapid_cut_lines: Vec::new(),
+        below_floor_lines: Vec::new(),
         gouge_cells: 0,
         worst_gouge_mm: 0.0,
         rest_cells: 0,

@@ -47,7 +47,7 @@ struct Shop<'a> {
     model: Model,
     mesh: TriMesh,
     design: Vec<f64>,
-    /// The lowest height of the tool tip ([`crate::stock::Stock::floor`]).
+    /// The lowest height of the tool's lowest point ([`crate::stock::Stock::floor`]).
     floor: f64,
     post: swarf_nc::Post,
     read: GcodeReadOptions<'static>,
@@ -81,7 +81,7 @@ pub fn plan_sequence(seq: &Sequence, job_dir: &Path, out: &mut Outputs) -> Resul
         report.programs.push(text);
         all_moves.push(moves);
     }
-    let verdict = gate_verdict(seq, &report.operations)?;
+    let verdict = gate_verdict(seq, shop.floor, &report.operations)?;
     report.program = whole_program(&shop, &all_moves, motions_before, verdict)?;
     if let Some(file) = &seq.output.gcode {
         out.write(file, report.program.as_bytes())?;
@@ -201,6 +201,15 @@ fn run_operation(
         None => simulate_operation(op, dexel, &program, first)?,
     };
     r.motions = program.motions.len();
+    let stage = swarf_sim::Stage {
+        program: &program,
+        cutter: &op.job.tool,
+    };
+    r.below_floor_lines = swarf_sim::floor::check(&[stage], shop.floor, seq.stock.tol)
+        .below
+        .iter()
+        .map(|n| n.line)
+        .collect();
     r.holder = holder;
     r.plan_s = plan_s;
     deviation(dexel, &shop.design, op, seq.stock.tol, &mut r);
@@ -355,19 +364,14 @@ fn section_comment(op: &Operation) -> String {
     )
 }
 
-/// The whole program: every operation's moves after its tool change; checked to
-/// read back whole, as `motions` motions.
-///
-/// # Errors
-/// A program the post refuses, or one that does not read back.
 /// The gate on a sequence ([`crate::gate`]): every operation is simulated on the
-/// in-process stock as it is planned; a rapid in material or a gouge beyond the
-/// stock's tolerance refuses the program (naming the operations), unless the
+/// in-process stock as it is planned; a rapid in material, a gouge beyond the
+/// stock's tolerance or a motion below the `floor` refuses the program (naming the operations), unless the
 /// sequence allows it. Returns the program's header line.
 ///
 /// # Errors
 /// An unsafe program under [`Gate::Verify`].
-fn gate_verdict(seq: &Sequence, ops: &[OperationReport]) -> Result<String> {
+fn gate_verdict(seq: &Sequence, floor: f64, ops: &[OperationReport]) -> Result<String> {
     let mut gouged = 0;
     let mut found = Vec::new();
     for op in ops {
@@ -377,6 +381,16 @@ fn gate_verdict(seq: &Sequence, ops: &[OperationReport]) -> Result<String> {
                 op.name,
                 op.rapid_cut_lines.len(),
                 op.rapid_cut_lines
+            ));
+        }
+        if !op.below_floor_lines.is_empty() {
+            found.push(format!(
+                "operation {}: {} motions go below the floor at {:.3} mm (its program's lines \
+                 {:?})",
+                op.name,
+                op.below_floor_lines.len(),
+                floor,
+                op.below_floor_lines
             ));
         }
         if op.gouge_cells > gouged {
@@ -392,7 +406,8 @@ fn gate_verdict(seq: &Sequence, ops: &[OperationReport]) -> Result<String> {
     }
     match (found.is_empty(), seq.gate) {
         (true, _) => Ok(format!(
-            "verified on the in-process stock: 0 rapids in material, 0 gouge cells beyond {} mm",
+            "verified on the in-process stock: 0 rapids in material, 0 gouge cells beyond {} \
+             mm, 0 motions below the floor at {floor:.3} mm",
             seq.stock.tol
         )),
         (false, Gate::Verify) => Err(AppError::Message(format!(
@@ -412,6 +427,11 @@ fn gate_verdict(seq: &Sequence, ops: &[OperationReport]) -> Result<String> {
     }
 }
 
+/// The whole program: every operation's moves after its tool change; checked to
+/// read back whole, as `motions` motions.
+///
+/// # Errors
+/// A program the post refuses, or one that does not read back.
 fn whole_program(
     shop: &Shop<'_>,
     moves: &[Vec<Move>],

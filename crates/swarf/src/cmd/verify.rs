@@ -353,6 +353,26 @@ mod tests {
         for f in ["flagged.csv", "deviation.png", "toolpath.png"] {
             assert!(dir.join("ok").join(f).exists(), "{f}");
         }
+        // Without --floor no floor check; with --floor 0 the move down to the gouge
+        // and the one out of it are named by line, 0.05 mm below.
+        assert!(report.get("floor").is_none(), "{}", report["floor"]);
+        let mut floored = args(&program, "floor");
+        floored.sim.floor = Some(0.0);
+        run(&floored).unwrap();
+        let floor = &read_report(&dir.join("floor/report.json"))["floor"];
+        let below: Vec<(u64, f64)> = floor["below"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| (n["line"].as_u64().unwrap(), n["amount"].as_f64().unwrap()))
+            .collect();
+        let at = gouge_line as u64;
+        assert_eq!(
+            below.iter().map(|b| b.0).collect::<Vec<_>>(),
+            [at, at + 1],
+            "{floor}"
+        );
+        assert!(below.iter().all(|b| (b.1 - 0.05).abs() < 1e-9), "{floor}");
         let stopped = dir.join("stopped.ngc");
         let cut: String = g.lines().take(30).map(|l| format!("{l}\n")).collect();
         std::fs::write(&stopped, cut + "G1 X4 Y\n").unwrap();
