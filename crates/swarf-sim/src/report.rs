@@ -88,6 +88,35 @@ pub fn json_report(v: &Verification, ctx: &ReportContext) -> Value {
     report
 }
 
+/// The floor check's lines of the text summary (none without a floor).
+fn floor_lines(t: &mut String, v: &Verification) {
+    let Some(f) = &v.floor else {
+        return;
+    };
+    let _ = writeln!(
+        t,
+        "floor {:.4} mm: {} below it by more than {:.4} mm",
+        f.floor,
+        count(f.below.len(), "motion"),
+        v.deviation.summary.tol
+    );
+    for n in f.below.iter().take(FLOOR_NAMED) {
+        let _ = writeln!(
+            t,
+            "warning: motion at {} goes {:.4} mm below the floor",
+            at_line(v, Some(n.motion), n.line),
+            n.amount
+        );
+    }
+    if f.below.len() > FLOOR_NAMED {
+        let _ = writeln!(
+            t,
+            "warning: {} more motions below the floor (report.json lists them)",
+            f.below.len() - FLOOR_NAMED
+        );
+    }
+}
+
 /// Adds the program list and the program of every cited motion to a report of
 /// several programs.
 fn name_programs(report: &mut Value, v: &Verification) {
@@ -234,30 +263,7 @@ pub fn text_summary(v: &Verification, ctx: &ReportContext) -> String {
             r.amount
         );
     }
-    if let Some(f) = &v.floor {
-        let _ = writeln!(
-            t,
-            "floor {:.4} mm: {} below it by more than {:.4} mm",
-            f.floor,
-            count(f.below.len(), "motion"),
-            v.deviation.summary.tol
-        );
-        for n in f.below.iter().take(FLOOR_NAMED) {
-            let _ = writeln!(
-                t,
-                "warning: motion at {} goes {:.4} mm below the floor",
-                at_line(v, Some(n.motion), n.line),
-                n.amount
-            );
-        }
-        if f.below.len() > FLOOR_NAMED {
-            let _ = writeln!(
-                t,
-                "warning: {} more motions below the floor (report.json lists them)",
-                f.below.len() - FLOOR_NAMED
-            );
-        }
-    }
+    floor_lines(&mut t, v);
     for o in &v.sim.outside {
         let _ = writeln!(
             t,

@@ -313,35 +313,11 @@ mod tests {
     #[test]
     fn verify_finds_the_gouge_and_fails_on_a_stopped_program() {
         let dir = std::env::temp_dir().join(format!("swarf-verify-test-{}", std::process::id()));
-        let part = plane_part(&dir);
-        let mut g = String::from("G21 G90 G17\nG0 Z5\n");
-        let mut gouge_line = 0;
-        for k in 0..8 {
-            let y = 0.625 + 1.25 * k as f64;
-            g += &format!("G0 X-3 Y{y}\nG1 Z0 F100\n");
-            for s in 0..=13 {
-                let x = -3.0 + 2.0 * s as f64;
-                let z = if k == 4 && s == 6 { -0.05 } else { 0.0 };
-                g += &format!("G1 X{x} Y{y} Z{z} F300\n");
-                if z < 0.0 {
-                    gouge_line = g.lines().count();
-                }
-            }
-            g += "G0 Z5\n";
-        }
+        plane_part(&dir);
+        let (g, gouge_line) = gouging_raster();
         let program = dir.join("raster.ngc");
         std::fs::write(&program, &g).unwrap();
-        let args = |program: &Path, out: &str| Args {
-            part: part.display().to_string(),
-            program: vec![program.to_path_buf()],
-            tool: vec!["ball:d=6".into()],
-            tool_library: None,
-            machine: None,
-            tool_length: None,
-            gcode: GcodeArgs::default(),
-            sim: sim_args(),
-            out: dir.join(out),
-        };
+        let args = |program: &Path, out: &str| ball_args(&dir, program, out);
         run(&args(&program, "ok")).unwrap();
         let report = read_report(&dir.join("ok/report.json"));
         let worst = &report["deviation"]["gouges"][0];
@@ -353,26 +329,6 @@ mod tests {
         for f in ["flagged.csv", "deviation.png", "toolpath.png"] {
             assert!(dir.join("ok").join(f).exists(), "{f}");
         }
-        // Without --floor no floor check; with --floor 0 the move down to the gouge
-        // and the one out of it are named by line, 0.05 mm below.
-        assert!(report.get("floor").is_none(), "{}", report["floor"]);
-        let mut floored = args(&program, "floor");
-        floored.sim.floor = Some(0.0);
-        run(&floored).unwrap();
-        let floor = &read_report(&dir.join("floor/report.json"))["floor"];
-        let below: Vec<(u64, f64)> = floor["below"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|n| (n["line"].as_u64().unwrap(), n["amount"].as_f64().unwrap()))
-            .collect();
-        let at = gouge_line as u64;
-        assert_eq!(
-            below.iter().map(|b| b.0).collect::<Vec<_>>(),
-            [at, at + 1],
-            "{floor}"
-        );
-        assert!(below.iter().all(|b| (b.1 - 0.05).abs() < 1e-9), "{floor}");
         let stopped = dir.join("stopped.ngc");
         let cut: String = g.lines().take(30).map(|l| format!("{l}\n")).collect();
         std::fs::write(&stopped, cut + "G1 X4 Y\n").unwrap();
@@ -400,6 +356,75 @@ mod tests {
         );
         let report = read_report(&dir.join("stop/report.json"));
         assert_eq!(report["complete"], serde_json::Value::Bool(false));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// A ball d=6 raster on the plane, its tip 0.05 mm below it at one point: the
+    /// program and the line of that move.
+    fn gouging_raster() -> (String, usize) {
+        let mut g = String::from("G21 G90 G17\nG0 Z5\n");
+        let mut gouge_line = 0;
+        for k in 0..8 {
+            let y = 0.625 + 1.25 * k as f64;
+            g += &format!("G0 X-3 Y{y}\nG1 Z0 F100\n");
+            for s in 0..=13 {
+                let x = -3.0 + 2.0 * s as f64;
+                let z = if k == 4 && s == 6 { -0.05 } else { 0.0 };
+                g += &format!("G1 X{x} Y{y} Z{z} F300\n");
+                if z < 0.0 {
+                    gouge_line = g.lines().count();
+                }
+            }
+            g += "G0 Z5\n";
+        }
+        (g, gouge_line)
+    }
+
+    /// `swarf verify` of `program` with a ball d=6 on the plane part in `dir`, its
+    /// reports in `dir/out`.
+    fn ball_args(dir: &Path, program: &Path, out: &str) -> Args {
+        Args {
+            part: dir.join("plane.toml").display().to_string(),
+            program: vec![program.to_path_buf()],
+            tool: vec!["ball:d=6".into()],
+            tool_library: None,
+            machine: None,
+            tool_length: None,
+            gcode: GcodeArgs::default(),
+            sim: sim_args(),
+            out: dir.join(out),
+        }
+    }
+
+    /// Without `--floor` no floor check; with `--floor 0` the move down to the
+    /// gouge and the one out of it are named by line, 0.05 mm below.
+    #[test]
+    fn verify_names_the_motions_below_the_floor() {
+        let dir = std::env::temp_dir().join(format!("swarf-verify-floor-{}", std::process::id()));
+        plane_part(&dir);
+        let (g, gouge_line) = gouging_raster();
+        let program = dir.join("raster.ngc");
+        std::fs::write(&program, &g).unwrap();
+        run(&ball_args(&dir, &program, "none")).unwrap();
+        let report = read_report(&dir.join("none/report.json"));
+        assert!(report.get("floor").is_none(), "{}", report["floor"]);
+        let mut floored = ball_args(&dir, &program, "floor");
+        floored.sim.floor = Some(0.0);
+        run(&floored).unwrap();
+        let floor = &read_report(&dir.join("floor/report.json"))["floor"];
+        let below: Vec<(u64, f64)> = floor["below"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| (n["line"].as_u64().unwrap(), n["amount"].as_f64().unwrap()))
+            .collect();
+        let at = gouge_line as u64;
+        assert_eq!(
+            below.iter().map(|b| b.0).collect::<Vec<_>>(),
+            [at, at + 1],
+            "{floor}"
+        );
+        assert!(below.iter().all(|b| (b.1 - 0.05).abs() < 1e-9), "{floor}");
         let _ = std::fs::remove_dir_all(&dir);
     }
 
