@@ -80,11 +80,14 @@ def test_two_programs_on_one_stock_and_a_gouge(cli, tmp_path):
     cleanup.write_text(raster(0.5, 1.0))
     out = tmp_path / "cli"
     cli.run("verify", "--part", part, "--program", finish, "--tool", "ball:d=6", "--program", cleanup,
-            "--tool", "ball:d=2", "--cell", 0.05, "-o", out)
-    v = swarf.verify(part, [finish, cleanup], ["ball:d=6", "ball:d=2"], cell=0.05)
+            "--tool", "ball:d=2", "--cell", 0.05, "--floor", 0, "-o", out)
+    v = swarf.verify(part, [finish, cleanup], ["ball:d=6", "ball:d=2"], cell=0.05, floor=0.0)
     theirs = json.loads((out / "report.json").read_text())
     assert untimed(v.report) == untimed(theirs)
     assert v.report["tool"] == "ball:d=6 + ball:d=2"
+    # The gouging move goes below the floor at the plane, named with its program.
+    below = v.report["floor"]["below"]
+    assert below and all(b["program"].endswith("finish.ngc") and b["amount"] > 0.01 for b in below)
     assert np.nanmin(v.deviation) < -0.04, "the gouge is in the grid"
     csv = (out / "flagged.csv").read_text().splitlines()[1:]
     assert flagged_rows(v) == [",".join(r.split(",")[:6]) for r in csv]
