@@ -170,6 +170,10 @@ class Job:
     def name(self) -> Optional[str]: ...
     @property
     def part(self) -> str: ...
+    def load_part(self) -> Union["Part", "Mesh"]:
+        """The job's part read as ``swarf.plan(job)`` reads it (its ``[import]``
+        options and ``faces``), to pass as ``plan(job, part=...)`` to the jobs on
+        it. ``SwarfError`` naming the job and the part for one that cannot be read."""
     @property
     def tool(self) -> Tool: ...
     @property
@@ -241,6 +245,7 @@ class SequencePlan:
 def plan(
     job: JobLike,
     *,
+    part: Optional[Union["Part", "Mesh"]] = None,
     out: Optional[PathLike] = None,
     allow_unsafe: bool = False,
     verify: bool = True,
@@ -250,7 +255,14 @@ def plan(
     job (``[[operation]]`` tables; a path, TOML text or a dict) gives a
     ``SequencePlan``; errors name ``operation[k]``. The program is verified on
     the job's stock first: an unsafe one raises ``SwarfError`` naming its lines;
-    ``allow_unsafe=True`` returns it labelled, ``verify=False`` skips the check."""
+    ``allow_unsafe=True`` returns it labelled, ``verify=False`` skips the check.
+
+    ``part``: the job's part already loaded (``Job.load_part()``, or
+    ``Part.load`` / ``Mesh.load`` of its file), planned on instead of reading it
+    again: the same plan, bit for bit. ``SwarfError`` naming ``part`` for a part
+    read with other ``[import]`` options or another face selection than the job's
+    (a part read whole gets the job's ``faces``), a mesh for a job with ``faces``,
+    or a sequence job; ``TypeError`` for anything but a ``Part`` or a ``Mesh``."""
 
 class Verification:
     """What a verification found, over the dexel grid (``ny`` rows, ``nx`` columns)."""

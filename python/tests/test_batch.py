@@ -15,8 +15,8 @@ from pathlib import Path
 
 import pytest
 
-from conftest import REQUIRE
-from batch_sweep import STRATEGIES, write_sweep
+from conftest import REPO, REQUIRE
+from batch_sweep import STRATEGIES, mold_part, write_sweep
 
 for module in ("dask.distributed", "pandas", "pyarrow", "matplotlib"):
     try:
@@ -31,6 +31,7 @@ import pandas as pd  # noqa: E402
 import swarf  # noqa: E402
 from swarf import batch  # noqa: E402
 from swarf.batch.row import RUN_COLUMNS, frame, plan_fields, verify_fields  # noqa: E402
+from swarf.batch.task import clear_part_cache, part_cache_stats  # noqa: E402
 
 N_SWEEP = 3 * 4 * 5 * 2 * 2 + 3 * 4
 
@@ -110,6 +111,58 @@ def test_rows_equal_the_command_line_job_by_job(swept, cli, tmp_path):
     theirs = frame([r for r, _, _ in got], [c[len("param."):] for c in df.columns if c.startswith("param.")])
     keep = [c for c in df.columns if c not in RUN_COLUMNS]
     pd.testing.assert_frame_equal(df[keep], theirs[keep], check_exact=True)
+
+
+MESH = REPO / "crates" / "swarf-tool" / "tests" / "data" / "ocl" / "die.stl"
+STEP = REPO / "parts" / "cad" / "plate-hole.step"
+
+
+def test_a_plan_on_a_loaded_part_is_the_plan_of_the_job(tmp_path):
+    (tmp_path / "mold.toml").write_text(mold_part())
+    raster = {"kind": "raster", "scallop": 0.5, "tolerance": 0.1}
+    cases = [
+        ("mold.toml", swarf.Part.load, {}),
+        (str(MESH), swarf.Mesh.load, {}),
+        ("builtin:wave", swarf.load, {}),
+        # A part read whole gets the job's faces; a CAD file read as the job reads it.
+        (str(STEP), swarf.Part.load, {"faces": [0]}),
+        (str(STEP), None, {"import": {"trim_chord": 0.001}}),
+    ]
+    for part, load, extra in cases:
+        job = swarf.Job.from_dict({"part": part, "tool": "ball:d=6", "strategy": raster, **extra}, base_dir=tmp_path)
+        alone = swarf.plan(job, verify=False)
+        source = part if part.startswith("builtin:") else tmp_path / part
+        loaded = job.load_part() if load is None else load(source)
+        given = swarf.plan(job, part=loaded, verify=False)
+        assert given.gcode == alone.gcode and given.cl == alone.cl, part
+        assert given.summary == alone.summary, part
+    # What the job would not read so is refused, naming `part`.
+    chord = swarf.Job.from_dict({"part": str(STEP), "tool": "ball:d=6", "import": {"trim_chord": 0.001}, "strategy": raster})
+    with pytest.raises(swarf.SwarfError, match=r"part: the Part was read .*trim_chord = 0\.0001 mm.*the job reads it with import\.trim_chord = 0\.001 mm"):
+        swarf.plan(chord, part=swarf.Part.load(STEP), verify=False)
+    faces = swarf.Job.from_dict({"part": str(MESH), "tool": "ball:d=6", "faces": [0], "strategy": raster})
+    with pytest.raises(swarf.SwarfError, match="part: a Mesh has no faces to select"):
+        swarf.plan(faces, part=swarf.Mesh.load(MESH), verify=False)
+    with pytest.raises(TypeError, match="part: expected a Part or a Mesh .* found str"):
+        swarf.plan(chord, part=str(STEP))
+
+
+def test_each_worker_reads_each_part_once(client, tmp_path):
+    (tmp_path / "mold.toml").write_text(mold_part())
+    sweep = {
+        "base": {"name": "cache", "part": "builtin:die", "tool": "ball:d=10", "strategy": {"kind": "raster", "scallop": 0.5, "tolerance": 0.1}},
+        "sweep": {"part": ["builtin:die", str(tmp_path / "mold.toml"), str(MESH)], "strategy.scallop": [0.4, 0.5, 0.6, 0.7]},
+    }
+    client.run(clear_part_cache)
+    df = batch.plan_many(sweep, tmp_path / "out", client, gate=False, progress=False, plots=False)
+    assert (df["status"] == "ok").all(), df["error"].tolist()
+    stats = client.run(part_cache_stats)
+    pids = client.run(os.getpid)
+    for addr, st in stats.items():
+        mine = df[df["worker_pid"] == pids[addr]]
+        assert st["loads"] == mine["part"].nunique() == st["parts"], (addr, st)
+        assert st["hits"] == len(mine) - st["loads"], (addr, st)
+    assert sum(st["loads"] + st["hits"] for st in stats.values()) == len(df) == 12
 
 
 def _kill_a_busy_worker(client, out, killed, min_done=6):

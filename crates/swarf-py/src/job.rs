@@ -153,6 +153,25 @@ impl Job {
         self.job.part.clone()
     }
 
+    /// The job's part read as `swarf.plan(job)` reads it (its `[import]` options and
+    /// `faces`): a `Part` or a `Mesh`, to pass as `plan(job, part=...)` to jobs on
+    /// the same part, which then do not read it again. Raises `SwarfError` naming
+    /// the job and the part for a part that cannot be read.
+    fn load_part(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        let arg = swarf_app::plan_job::part_arg(&self.job, &self.dir);
+        let opts = self.job.load_options();
+        let model = crate::errors::detached(py, || {
+            swarf_app::load_model_with(&arg, &opts).map_err(|e| {
+                swarf_msg(format!(
+                    "{}: reading the job's part: {}",
+                    self.source,
+                    crate::errors::chain(&e)
+                ))
+            })
+        })?;
+        crate::model::model_object(py, model, crate::loaded::ReadWith::of(&arg, &opts))
+    }
+
     /// The tool.
     #[getter]
     fn tool(&self) -> Tool {

@@ -16,6 +16,8 @@
 //! - [`mod@drop`]: drop-cutter heights on every core (`swarf drop`);
 //! - [`job`], [`plan`]: jobs from files, TOML text or dicts, planned as arrays plus
 //!   the summary, G-code and APT CL (`swarf plan`); waterline and raster passes;
+//! - [`loaded`]: a job's part passed in already loaded (`plan(job, part=...)`),
+//!   held to the job's reading options;
 //! - [`sequence`]: sequence jobs (stock to part, several tools) planned into their
 //!   report, program and rest cells (`swarf plan` of a sequence);
 //! - [`verify`]: the report and the deviation grid (`swarf verify`);
@@ -30,6 +32,7 @@ pub mod arrays;
 pub mod drop;
 pub mod errors;
 pub mod job;
+pub mod loaded;
 pub mod model;
 pub mod ocl;
 pub mod plan;

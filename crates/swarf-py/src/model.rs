@@ -5,6 +5,7 @@
 
 use crate::arrays::{coordinate_rows, float_rows, grid_out, index_rows, rows_out, vec_out};
 use crate::errors::{detached, swarf_err, swarf_msg, value_err};
+use crate::loaded::ReadWith;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::sync::Arc;
@@ -63,11 +64,12 @@ pub fn path_text(obj: &Bound<'_, PyAny>) -> Option<String> {
     p.extract::<String>().ok()
 }
 
-/// The Python object for a loaded model: a `Part` or a `Mesh`.
-pub fn model_object(py: Python<'_>, model: Model) -> PyResult<Py<PyAny>> {
+/// The Python object for a loaded model: a `Part` or a `Mesh`; `read` says how it
+/// was read.
+pub fn model_object(py: Python<'_>, model: Model, read: ReadWith) -> PyResult<Py<PyAny>> {
     let model = Arc::new(model);
     Ok(match *model {
-        Model::Patches(_) => Py::new(py, Part { model })?.into_any(),
+        Model::Patches(_) => Py::new(py, Part { model, read })?.into_any(),
         Model::Mesh { .. } => Py::new(py, Mesh { model })?.into_any(),
     })
 }
@@ -86,7 +88,11 @@ pub fn load(py: Python<'_>, source: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
         pyo3::exceptions::PyTypeError::new_err("source: expected a str or a path")
     })?;
     let model = detached(py, || swarf_app::load_model(&name).map_err(swarf_err))?;
-    model_object(py, model)
+    model_object(
+        py,
+        model,
+        ReadWith::of(&name, &swarf_app::LoadOptions::default()),
+    )
 }
 
 /// Parametric patches (Bezier, B-spline, NURBS) of a part, mm.
@@ -97,6 +103,8 @@ pub fn load(py: Python<'_>, source: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
 pub struct Part {
     /// Always [`Model::Patches`].
     pub model: Arc<Model>,
+    /// How it was read (a job's part must be read as the job reads it).
+    pub read: ReadWith,
 }
 
 impl Part {
@@ -132,6 +140,7 @@ impl Part {
         let part = detached(py, || swarf_app::load_part(&name).map_err(swarf_err))?;
         Ok(Part {
             model: Arc::new(Model::Patches(part)),
+            read: ReadWith::of(&name, &swarf_app::LoadOptions::default()),
         })
     }
 

@@ -7,6 +7,7 @@
 use crate::arrays::{grid_out, vec_out};
 use crate::errors::{detached, swarf_err, swarf_msg};
 use crate::job::{Job, job_arg, job_from_dict};
+use crate::loaded::Loaded;
 use crate::model::{ModelArg, path_text};
 use crate::sequence::{plan_sequence_values, sequence_arg};
 use crate::tool::cutter_arg;
@@ -14,6 +15,7 @@ use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use swarf_app::gate::Gate;
 use swarf_app::{Model, Outputs, PlanInput};
@@ -77,10 +79,16 @@ fn staged_texts(job: &swarf_app::Job, out: &Outputs) -> PyResult<(Option<String>
     Ok((read(&job.output.gcode)?, read(&job.output.cl)?))
 }
 
-/// Plans `job` (without the GIL): with `out`, writing the job's outputs there as
+/// Plans `job` (without the GIL) on its part, or on `part` when given (the same
+/// model, read once by the caller): with `out`, writing the job's outputs there as
 /// `swarf plan --out` does; without, staging only its G-code and CL in a scratch
 /// folder to read them back.
-fn plan_job_values(job: &Job, out: Option<&Path>, gate: Gate) -> PyResult<Planned> {
+fn plan_job_values(
+    job: &Job,
+    part: Option<&Loaded>,
+    out: Option<&Path>,
+    gate: Gate,
+) -> PyResult<Planned> {
     let context = |e: swarf_app::AppError| {
         swarf_msg(format!(
             "{}: planning the job: {}",
@@ -88,8 +96,13 @@ fn plan_job_values(job: &Job, out: Option<&Path>, gate: Gate) -> PyResult<Planne
             crate::errors::chain(&e)
         ))
     };
-    let part = swarf_app::plan_job::part_arg(&job.job, &job.dir);
-    let model = swarf_app::load_model_with(&part, &job.job.load_options()).map_err(context)?;
+    let arg = swarf_app::plan_job::part_arg(&job.job, &job.dir);
+    let model = match part {
+        Some(loaded) => loaded.for_job(&job.job, &arg)?,
+        None => {
+            Arc::new(swarf_app::load_model_with(&arg, &job.job.load_options()).map_err(context)?)
+        }
+    };
     let mut staged_job = match out {
         Some(_) => job.job.clone(),
         None => {
@@ -128,6 +141,14 @@ fn plan_job_values(job: &Job, out: Option<&Path>, gate: Gate) -> PyResult<Planne
 /// `out`, the job's outputs are written into that folder as `swarf plan JOB --out
 /// OUT` writes them; without, nothing is written.
 ///
+/// `part` is the job's part already loaded, a `Part` or a `Mesh`
+/// (`Job.load_part()`, or `Part.load` / `Mesh.load` of the job's part file), for
+/// many jobs on one part: the plan is the one the job gives reading its part
+/// itself, bit for bit. A part read with other `[import]` options or another face
+/// selection than the job's is refused (`SwarfError` naming `part`); a part read
+/// whole has the job's `faces` selected. Not for a sequence job, which reads its
+/// own part.
+///
 /// The program is verified on the job's stock first, as `swarf plan` does: an
 /// unsafe one raises `SwarfError` naming its lines; `allow_unsafe=True` returns it
 /// labelled, `verify=False` skips the check (`--allow-unsafe`, `--no-verify`).
@@ -137,10 +158,11 @@ fn plan_job_values(job: &Job, out: Option<&Path>, gate: Gate) -> PyResult<Planne
 /// with the job file (or `job dict`), the line or key and the field for a bad job
 /// (`operation[k]` for a sequence's operation), and the planning's errors.
 #[pyfunction]
-#[pyo3(signature = (job, *, out = None, allow_unsafe = false, verify = true))]
+#[pyo3(signature = (job, *, part = None, out = None, allow_unsafe = false, verify = true))]
 pub fn plan(
     py: Python<'_>,
     job: &Bound<'_, PyAny>,
+    part: Option<&Bound<'_, PyAny>>,
     out: Option<&Bound<'_, PyAny>>,
     allow_unsafe: bool,
     verify: bool,
@@ -157,13 +179,22 @@ pub fn plan(
             })
         })
         .transpose()?;
+    let part = part.map(Loaded::extract).transpose()?;
     if let Some(mut seq) = sequence_arg(job)? {
+        if part.is_some() {
+            return Err(swarf_msg(
+                "part: a sequence job reads its own part: expected no part= (it is for a \
+                 single job)",
+            ));
+        }
         seq.seq.gate = gate;
         let planned = detached(py, || plan_sequence_values(&seq, out.as_deref()))?;
         return Ok(Py::new(py, planned)?.into_any());
     }
     let job = job_arg(job)?;
-    let planned = detached(py, || plan_job_values(&job, out.as_deref(), gate))?;
+    let planned = detached(py, || {
+        plan_job_values(&job, part.as_ref(), out.as_deref(), gate)
+    })?;
     let plan = Plan {
         summary: planned.summary,
         toolpath: planned.toolpath,

@@ -13,6 +13,12 @@ first try finished, or a rerun). A job that fails gives an error row, stored as
 Input files are read where the task names them; a file named by an fsspec URL is
 fetched once per worker into a cache folder named by its content hash, and every
 input's hash is checked against the task's, so outputs always match their key.
+
+Parts and meshes are read once per worker: a planned job's part (a file, keyed by
+its content hash and path, or a ``builtin:`` part, by name) is read as the job reads
+it (``Job.load_part()``, keyed by the job's ``[import]`` and ``faces`` too) and kept
+for the worker's later tasks, which plan on it (``swarf.plan(job, part=...)``: the
+same plan, bit for bit). :func:`part_cache_stats` says how many were read.
 """
 
 from __future__ import annotations
@@ -41,6 +47,11 @@ VERIFY_DIR = "verify"
 
 # Per worker process: input path or URL -> (stat or None, hash, local path).
 _INPUTS: Dict[str, Tuple[Any, str, str]] = {}
+
+# Per worker process: (part, content hash or "", reading options) -> Part or Mesh.
+_PARTS: Dict[Tuple[str, str, str], Any] = {}
+# Per worker process: parts read, tasks that found theirs read, seconds reading.
+_PART_STATS: Dict[str, Any] = {"loads": 0, "hits": 0, "load_s": 0.0}
 
 
 def _stat_key(path: str):
@@ -90,6 +101,50 @@ def _localise(value: Any, inputs: Dict[str, str]) -> Any:
     return value
 
 
+def part_cache_stats() -> Dict[str, Any]:
+    """This worker's part cache: ``loads`` (parts read), ``hits`` (tasks that
+    planned on a part read before), ``load_s`` (seconds spent reading) and
+    ``parts`` (how many are held). Ask every worker with
+    ``client.run(part_cache_stats)``."""
+    return dict(_PART_STATS, parts=len(_PARTS))
+
+
+def clear_part_cache() -> None:
+    """Forgets this worker's parts and zeroes its counts."""
+    _PARTS.clear()
+    _PART_STATS.update(loads=0, hits=0, load_s=0.0)
+
+
+def _cached_part(task: Dict[str, Any], job: Dict[str, Any], j):
+    """The part of the planned job ``job`` (its paths local; ``j`` its
+    ``swarf.Job``) from this worker's cache, read on first use; None where it is not
+    cached (a sequence, a file the sweep did not hash, a part that cannot be read:
+    the job then reads it itself, with its own message)."""
+    import swarf
+
+    name = task["job"].get("part")
+    if "operation" in job or not isinstance(name, str):
+        return None
+    digest = task["inputs"].get(name)
+    if digest is None and not name.startswith("builtin:"):
+        return None
+    reading = json.dumps([job.get("import"), job.get("faces")], sort_keys=True, default=str)
+    key = (str(job["part"]), digest or "", reading)
+    hit = _PARTS.get(key)
+    if hit is not None:
+        _PART_STATS["hits"] += 1
+        return hit
+    t0 = time.perf_counter()
+    try:
+        hit = j.load_part()
+    except swarf.SwarfError:
+        return None
+    _PART_STATS["load_s"] += time.perf_counter() - t0
+    _PART_STATS["loads"] += 1
+    _PARTS[key] = hit
+    return hit
+
+
 def _plan(task: Dict[str, Any], out: Path) -> Dict[str, Any]:
     import swarf
 
@@ -101,7 +156,8 @@ def _plan(task: Dict[str, Any], out: Path) -> Dict[str, Any]:
     j = swarf.Job.from_dict(job, base_dir=str(out))
     (out / JOB_FILE).write_text(j.toml, encoding="utf-8")
     t0 = time.perf_counter()
-    p = swarf.plan(j, out=str(out), verify=opts.get("gate", True), allow_unsafe=opts.get("allow_unsafe", False))
+    part = _cached_part(task, job, j)
+    p = swarf.plan(j, part=part, out=str(out), verify=opts.get("gate", True), allow_unsafe=opts.get("allow_unsafe", False))
     fields: Dict[str, Any] = {"plan_s": time.perf_counter() - t0}
     if isinstance(p, swarf.SequencePlan):
         fields.update(sequence_fields(p.report))
