@@ -148,49 +148,41 @@ impl GateReport {
 
     /// The refusal message: what was found, and where.
     pub fn refusal(&self) -> String {
-        let at = |f: &Finding| match f.line {
-            Some(l) => format!("line {l}"),
-            None => format!("move {}", f.motion + 1),
+        let named = |list: &[Finding], what: &dyn Fn(&Finding) -> String| {
+            let at = |f: &Finding| match f.line {
+                Some(l) => format!("line {l}"),
+                None => format!("move {}", f.motion + 1),
+            };
+            let each: Vec<String> = list
+                .iter()
+                .take(MAX_NAMED)
+                .map(|f| format!("{} ({})", at(f), what(f)))
+                .collect();
+            each.join(", ")
         };
         let mut parts = Vec::new();
         if !self.rapid_cuts.is_empty() {
-            let named: Vec<String> = self
-                .rapid_cuts
-                .iter()
-                .take(MAX_NAMED)
-                .map(|f| format!("{} ({:.3} mm deep)", at(f), f.depth))
-                .collect();
             let n = self.rapid_cuts.len();
             let what = if n == 1 { "rapid cuts" } else { "rapids cut" };
-            parts.push(format!("{n} {what} material: {}", named.join(", ")));
+            let deep = named(&self.rapid_cuts, &|f| format!("{:.3} mm deep", f.depth));
+            parts.push(format!("{n} {what} material: {deep}"));
         }
         if self.gouge_cells > 0 {
-            let named: Vec<String> = self
-                .gouges
-                .iter()
-                .map(|f| format!("{} ({:.4} mm)", at(f), -f.depth))
-                .collect();
             parts.push(format!(
                 "{} cells gouged beyond {} mm, worst {:.4} mm, cut at {}",
                 self.gouge_cells,
                 self.tol,
                 -self.worst_gouge_mm,
-                named.join(", ")
+                named(&self.gouges, &|f| format!("{:.4} mm", -f.depth))
             ));
         }
         if !self.below_floor.is_empty() {
-            let named: Vec<String> = self
-                .below_floor
-                .iter()
-                .take(MAX_NAMED)
-                .map(|f| format!("{} ({:.3} mm below)", at(f), f.depth))
-                .collect();
             let n = self.below_floor.len();
             let what = if n == 1 { "motion goes" } else { "motions go" };
             parts.push(format!(
                 "{n} {what} below the floor at {:.3} mm (stock.floor): {}",
                 self.floor.unwrap_or_default(),
-                named.join(", ")
+                named(&self.below_floor, &|f| format!("{:.3} mm below", f.depth))
             ));
         }
         if let Some(n) = self.stopped_after {

@@ -232,21 +232,13 @@ fn a_motion_below_the_floor_is_refused_by_line() {
     let message = gate::conclude(&job, Some(&mut report), simulated, &[])
         .unwrap_err()
         .to_string();
-    let lines: Vec<&str> = gcode.lines().collect();
+    // The first is the plunge: the feed that ends 2 mm below the floor.
     let plunge = report.below_floor[0].line.unwrap();
-    let block = lines[plunge - 1];
-    let z: f64 = block
-        .split_once('Z')
-        .unwrap()
-        .1
-        .split(' ')
-        .next()
-        .unwrap()
-        .parse()
-        .unwrap();
+    let read = swarf_nc::read::parse_gcode(&gcode, "planted", &read).unwrap();
+    let m = read.motions.iter().find(|m| m.line == plunge).unwrap();
     assert!(
-        block.starts_with("G1") && (z - (floor - 2.0)).abs() < 1e-3,
-        "{block}"
+        m.feed > 0.0 && (m.end.cl.z - (floor - 2.0)).abs() < 1e-3,
+        "{m:?}"
     );
     assert!(
         message.contains("2 motions go below the floor")

@@ -312,11 +312,7 @@ mod tests {
     /// `--partial` writes the report of the motions before the stop.
     #[test]
     fn verify_finds_the_gouge_and_fails_on_a_stopped_program() {
-        let dir = std::env::temp_dir().join(format!("swarf-verify-test-{}", std::process::id()));
-        plane_part(&dir);
-        let (g, gouge_line) = gouging_raster();
-        let program = dir.join("raster.ngc");
-        std::fs::write(&program, &g).unwrap();
+        let (dir, program, g, gouge_line) = gouging_raster("test");
         let args = |program: &Path, out: &str| ball_args(&dir, program, out);
         run(&args(&program, "ok")).unwrap();
         let report = read_report(&dir.join("ok/report.json"));
@@ -359,9 +355,12 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
     }
 
-    /// A ball d=6 raster on the plane, its tip 0.05 mm below it at one point: the
-    /// program and the line of that move.
-    fn gouging_raster() -> (String, usize) {
+    /// A ball d=6 raster on the plane part in a temporary folder named by `name`, its
+    /// tip 0.05 mm below the plane at one point: the folder, the program's file and
+    /// text, and the line of that move.
+    fn gouging_raster(name: &str) -> (PathBuf, PathBuf, String, usize) {
+        let dir = std::env::temp_dir().join(format!("swarf-verify-{name}-{}", std::process::id()));
+        plane_part(&dir);
         let mut g = String::from("G21 G90 G17\nG0 Z5\n");
         let mut gouge_line = 0;
         for k in 0..8 {
@@ -377,7 +376,9 @@ mod tests {
             }
             g += "G0 Z5\n";
         }
-        (g, gouge_line)
+        let program = dir.join("raster.ngc");
+        std::fs::write(&program, &g).unwrap();
+        (dir, program, g, gouge_line)
     }
 
     /// `swarf verify` of `program` with a ball d=6 on the plane part in `dir`, its
@@ -400,11 +401,7 @@ mod tests {
     /// gouge and the one out of it are named by line, 0.05 mm below.
     #[test]
     fn verify_names_the_motions_below_the_floor() {
-        let dir = std::env::temp_dir().join(format!("swarf-verify-floor-{}", std::process::id()));
-        plane_part(&dir);
-        let (g, gouge_line) = gouging_raster();
-        let program = dir.join("raster.ngc");
-        std::fs::write(&program, &g).unwrap();
+        let (dir, program, _, gouge_line) = gouging_raster("floor");
         run(&ball_args(&dir, &program, "none")).unwrap();
         let report = read_report(&dir.join("none/report.json"));
         assert!(report.get("floor").is_none(), "{}", report["floor"]);
