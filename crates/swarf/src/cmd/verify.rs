@@ -313,7 +313,7 @@ mod tests {
     #[test]
     fn verify_finds_the_gouge_and_fails_on_a_stopped_program() {
         let (dir, program, g, gouge_line) = gouging_raster("test");
-        let args = |program: &Path, out: &str| ball_args(&dir, program, out);
+        let args = |program: &Path, out: &str| plane_args(&dir, &[program], &["ball:d=6"], out);
         run(&args(&program, "ok")).unwrap();
         let report = read_report(&dir.join("ok/report.json"));
         let worst = &report["deviation"]["gouges"][0];
@@ -381,13 +381,13 @@ mod tests {
         (dir, program, g, gouge_line)
     }
 
-    /// `swarf verify` of `program` with a ball d=6 on the plane part in `dir`, its
+    /// `swarf verify` of `programs` cut with `tools` on the plane part in `dir`, its
     /// reports in `dir/out`.
-    fn ball_args(dir: &Path, program: &Path, out: &str) -> Args {
+    fn plane_args(dir: &Path, programs: &[&Path], tools: &[&str], out: &str) -> Args {
         Args {
             part: dir.join("plane.toml").display().to_string(),
-            program: vec![program.to_path_buf()],
-            tool: vec!["ball:d=6".into()],
+            program: programs.iter().map(|p| p.to_path_buf()).collect(),
+            tool: tools.iter().map(|t| (*t).to_string()).collect(),
             tool_library: None,
             machine: None,
             tool_length: None,
@@ -402,10 +402,10 @@ mod tests {
     #[test]
     fn verify_names_the_motions_below_the_floor() {
         let (dir, program, _, gouge_line) = gouging_raster("floor");
-        run(&ball_args(&dir, &program, "none")).unwrap();
+        run(&plane_args(&dir, &[&program], &["ball:d=6"], "none")).unwrap();
         let report = read_report(&dir.join("none/report.json"));
         assert!(report.get("floor").is_none(), "{}", report["floor"]);
-        let mut floored = ball_args(&dir, &program, "floor");
+        let mut floored = plane_args(&dir, &[&program], &["ball:d=6"], "floor");
         floored.sim.floor = Some(0.0);
         run(&floored).unwrap();
         let floor = &read_report(&dir.join("floor/report.json"))["floor"];
@@ -444,20 +444,13 @@ mod tests {
     #[test]
     fn verify_runs_a_finish_then_its_cleanup_on_one_stock() {
         let dir = std::env::temp_dir().join(format!("swarf-verify-two-{}", std::process::id()));
-        let part = plane_part(&dir);
+        plane_part(&dir);
         let (finish, cleanup) = (dir.join("finish.ngc"), dir.join("cleanup.ngc"));
         std::fs::write(&finish, raster(2.5, 3.0)).unwrap();
         std::fs::write(&cleanup, raster(0.2, 1.0)).unwrap();
-        let args = |programs: &[&PathBuf], tools: &[&str], out: &str| Args {
-            part: part.display().to_string(),
-            program: programs.iter().map(|p| p.to_path_buf()).collect(),
-            tool: tools.iter().map(|t| (*t).to_string()).collect(),
-            tool_library: None,
-            machine: None,
-            tool_length: None,
-            gcode: GcodeArgs::default(),
-            sim: sim_args(),
-            out: dir.join(out),
+        let args = |programs: &[&PathBuf], tools: &[&str], out: &str| {
+            let programs: Vec<&Path> = programs.iter().map(|p| p.as_path()).collect();
+            plane_args(&dir, &programs, tools, out)
         };
         run(&args(&[&finish], &["ball:d=6"], "finish")).unwrap();
         let alone = read_report(&dir.join("finish/report.json"));
