@@ -20,7 +20,7 @@
 use crate::simulate::MotionNote;
 use crate::stage::Stage;
 use serde::Serialize;
-use swarf_tool::{Pose, Profile};
+use swarf_tool::Profile;
 use swarf_toolpath::{Motion, MotionKind};
 
 /// Angle of arc or of axis turn between samples, radians (1 degree).
@@ -39,16 +39,9 @@ pub struct FloorCheck {
     pub below: Vec<MotionNote>,
 }
 
-/// Height of the lowest point of the tool of profile `tool` at `pose`, mm.
-pub fn lowest_at(pose: &Pose, tool: &Profile) -> f64 {
-    let norm = pose.axis.norm();
-    let axis_z = if norm > 0.0 { pose.axis.z / norm } else { 1.0 };
-    pose.cl.z + tool.lowest_when_tilted(axis_z)
-}
-
 /// Height of the lowest point of the tool of profile `tool` over `motion`, mm.
 pub fn lowest_over(motion: &Motion, tool: &Profile) -> f64 {
-    let low = |t: f64| lowest_at(&motion.point_at(t), tool);
+    let low = |t: f64| tool.lowest_at(&motion.point_at(t));
     let turn = motion.start.axis.angle(&motion.end.axis);
     let sweep = match motion.kind {
         MotionKind::Arc { .. } => motion.sweep().unwrap_or(0.0),
@@ -74,7 +67,7 @@ pub fn check(stages: &[Stage<'_>], floor: f64, tol: f64) -> FloorCheck {
         let tool = stage.cutter.profile();
         for (k, m) in stage.program.motions.iter().enumerate() {
             let lowest = if k == 0 {
-                lowest_at(&m.end, &tool)
+                tool.lowest_at(&m.end)
             } else {
                 lowest_over(m, &tool)
             };
@@ -96,7 +89,7 @@ pub fn check(stages: &[Stage<'_>], floor: f64, tol: f64) -> FloorCheck {
 mod tests {
     use super::*;
     use swarf_geom::{Point3, Vec3};
-    use swarf_tool::Cutter;
+    use swarf_tool::{Cutter, Pose};
     use swarf_toolpath::program::Program;
 
     fn motion(kind: MotionKind, start: Pose, end: Pose) -> Motion {

@@ -62,7 +62,7 @@ const MIN_PIECE: f64 = 1e-6;
 
 /// The depth of the tool's lowest point below its tip at `p`, mm (>= 0).
 fn depth(p: &PathPoint, tool: &Profile) -> f64 {
-    -tool.lowest_when_tilted(p.pose.axis.z)
+    p.pose.cl.z - tool.lowest_at(&p.pose)
 }
 
 /// The part of the segment `a`→`b` inside `reach`, as `[t0, t1]` in `[0, 1]`;

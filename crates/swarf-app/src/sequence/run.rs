@@ -366,8 +366,8 @@ fn section_comment(op: &Operation) -> String {
 
 /// The gate on a sequence ([`crate::gate`]): every operation is simulated on the
 /// in-process stock as it is planned; a rapid in material, a gouge beyond the
-/// stock's tolerance or a motion below the `floor` refuses the program (naming the operations), unless the
-/// sequence allows it. Returns the program's header line.
+/// stock's tolerance or a motion below the `floor` refuses the program (naming the
+/// operations), unless the sequence allows it. Returns the program's header line.
 ///
 /// # Errors
 /// An unsafe program under [`Gate::Verify`].

@@ -8,6 +8,7 @@
 //! when its outward normal angle never decreases along the chain (the outline turns one
 //! way only) and stays within `[-pi/2, pi/2]`.
 
+use crate::pose::Pose;
 use crate::profile::Profile;
 use crate::segment::{RhoZ, Segment};
 use std::f64::consts::FRAC_PI_2;
@@ -134,6 +135,14 @@ impl Profile {
                     .chain(on_arc)
             })
             .fold(0.0, f64::min)
+    }
+
+    /// Height of the lowest point of the tool at `pose` (its axis of any length), mm:
+    /// the tip's height plus [`Profile::lowest_when_tilted`] of the unit axis.
+    pub fn lowest_at(&self, pose: &Pose) -> f64 {
+        let norm = pose.axis.norm();
+        let axis_z = if norm > 0.0 { pose.axis.z / norm } else { 1.0 };
+        pose.cl.z + self.lowest_when_tilted(axis_z)
     }
 
     /// The chain from the tip up to height `top` as a polyline: the tip, then the end
