@@ -1,9 +1,37 @@
 //! A small RGB raster for report pictures: rectangles, lines (solid or dashed, any
-//! width), rings, and text in the public-domain 8x8 bitmap font (`font8x8`, from
-//! Daniel Hepper's font8x8_basic), encoded as PNG with the `png` crate. No TrueType
-//! stack, no colour management: the pictures are diagrams.
+//! width), rings, and anti-aliased text, encoded as PNG with the `png` crate. No
+//! colour management: the pictures are diagrams.
+//!
+//! Text is DejaVu Sans, embedded (`fonts/`: a subset of under 10 KB holding ASCII and
+//! the few signs the pictures print, with its licence), outlined and rasterised by
+//! `ab_glyph`: each glyph's coverage of a pixel blends the text colour over what is
+//! there, so labels read at small sizes and over the heat map, which a bitmap font
+//! scaled up in whole pixels does not. A character the subset lacks prints as `?`.
+//! Glyphs sit on the pen position rounded to whole pixels only at the start of a
+//! label, so the advance widths add up as the font defines them.
 
 use crate::error::ReportError;
+use ab_glyph::{Font, FontRef, GlyphId, PxScale, ScaleFont, point};
+use std::sync::OnceLock;
+
+/// The embedded font (module doc).
+const FONT: &[u8] = include_bytes!("../fonts/DejaVuSans-subset.ttf");
+
+/// The parsed embedded font (`None` would draw no text; a test checks it parses).
+fn font() -> Option<&'static FontRef<'static>> {
+    static PARSED: OnceLock<Option<FontRef<'static>>> = OnceLock::new();
+    PARSED
+        .get_or_init(|| FontRef::try_from_slice(FONT).ok())
+        .as_ref()
+}
+
+/// The glyph of `ch`, `?` where the font has none.
+fn glyph_id(f: &FontRef<'static>, ch: char) -> GlyphId {
+    match f.glyph_id(ch) {
+        GlyphId(0) => f.glyph_id('?'),
+        id => id,
+    }
+}
 
 /// An RGB colour.
 pub type Rgb = [u8; 3];
@@ -109,31 +137,50 @@ impl Canvas {
         }
     }
 
-    /// Text with its top-left corner at `(x, y)`, each font pixel `scale` pixels.
-    /// Characters outside ASCII print as `?`.
-    pub fn text(&mut self, x: i64, y: i64, s: &str, scale: i64, c: Rgb) {
-        for (n, ch) in s.chars().enumerate() {
-            let code = if ch.is_ascii() {
-                ch as usize
-            } else {
-                '?' as usize
+    /// Text `size` px tall (ascent to descent) with the top-left corner of its line
+    /// box at `(x, y)`, anti-aliased over what is drawn (module doc).
+    pub fn text(&mut self, x: i64, y: i64, s: &str, size: f64, c: Rgb) {
+        let Some(f) = font() else { return };
+        let scale = PxScale::from(size as f32);
+        let scaled = f.as_scaled(scale);
+        let baseline = y as f32 + scaled.ascent();
+        let mut caret = x as f32;
+        for ch in s.chars() {
+            let id = glyph_id(f, ch);
+            let glyph = id.with_scale_and_position(scale, point(caret, baseline));
+            caret += scaled.h_advance(id);
+            let Some(outline) = f.outline_glyph(glyph) else {
+                continue;
             };
-            let glyph = font8x8::legacy::BASIC_LEGACY[code];
-            let gx = x + n as i64 * 8 * scale;
-            for (row, bits) in glyph.iter().enumerate() {
-                for col in 0..8 {
-                    if bits >> col & 1 == 1 {
-                        let (px, py) = (gx + col * scale, y + row as i64 * scale);
-                        self.fill(px, py, px + scale, py + scale, c);
-                    }
-                }
-            }
+            let b = outline.px_bounds();
+            let (x0, y0) = (b.min.x as i64, b.min.y as i64);
+            outline.draw(|gx, gy, cover| {
+                self.blend(x0 + i64::from(gx), y0 + i64::from(gy), c, f64::from(cover));
+            });
         }
     }
 
-    /// Width of `s` in pixels at `scale`.
-    pub fn text_width(s: &str, scale: i64) -> i64 {
-        s.chars().count() as i64 * 8 * scale
+    /// Mixes `c` into `(x, y)` with weight `alpha` in `[0, 1]` (ignored off the canvas).
+    fn blend(&mut self, x: i64, y: i64, c: Rgb, alpha: f64) {
+        let Some(old) = (x >= 0 && y >= 0)
+            .then(|| self.get(x as usize, y as usize))
+            .flatten()
+        else {
+            return;
+        };
+        let a = alpha.clamp(0.0, 1.0);
+        let mix = |k: usize| {
+            (f64::from(old[k]) + (f64::from(c[k]) - f64::from(old[k])) * a).round() as u8
+        };
+        self.set(x, y, [mix(0), mix(1), mix(2)]);
+    }
+
+    /// Width of `s` in whole pixels at `size` (as [`Canvas::text`] draws it).
+    pub fn text_width(s: &str, size: f64) -> i64 {
+        let Some(f) = font() else { return 0 };
+        let scaled = f.as_scaled(PxScale::from(size as f32));
+        let w: f32 = s.chars().map(|ch| scaled.h_advance(glyph_id(f, ch))).sum();
+        w.ceil() as i64
     }
 
     /// The PNG file bytes.
@@ -179,16 +226,36 @@ mod tests {
         );
         assert_eq!(c.get(2, 10), Some([255, 0, 0]));
         assert_eq!(c.get(6, 10), Some([255; 3]));
-        c.text(10, 0, "A", 1, [0, 0, 255]);
-        let blue = (0..8).flat_map(|y| (10..18).map(move |x| (x, y)));
-        assert!(
-            blue.filter(|&(x, y)| c.get(x, y) == Some([0, 0, 255]))
-                .count()
-                > 10
-        );
         let png = c.to_png().unwrap();
         assert_eq!(&png[1..4], b"PNG");
         assert!(Canvas::new(0, 0, [0; 3]).to_png().is_err());
-        assert_eq!(Canvas::text_width("abc", 2), 48);
+    }
+
+    #[test]
+    fn text_is_anti_aliased() {
+        assert!(font().is_some(), "the embedded font parses");
+        let mut c = Canvas::new(120, 24, [255; 3]);
+        c.text(2, 2, "Ag 0.05 mm", 16.0, [0, 0, 0]);
+        let greys: Vec<u8> = (0..24)
+            .flat_map(|y| (0..120).map(move |x| (x, y)))
+            .filter_map(|(x, y)| c.get(x, y).map(|p| p[0]))
+            .collect();
+        let full = greys.iter().filter(|&&g| g < 40).count();
+        let partial = greys.iter().filter(|&&g| (40..215).contains(&g)).count();
+        assert!(full > 20, "{full} dark pixels");
+        assert!(partial > 20, "{partial} intermediate pixels");
+        for row in [0, 1] {
+            assert!(
+                (0..120).all(|x| c.get(x, row) == Some([255; 3])),
+                "row {row}"
+            );
+        }
+        let w = Canvas::text_width("Ag 0.05 mm", 16.0);
+        assert!((60..110).contains(&w), "{w}");
+        assert!(Canvas::text_width("WWW", 16.0) > Canvas::text_width("iii", 16.0));
+        assert_eq!(
+            Canvas::text_width("\u{4e00}", 16.0),
+            Canvas::text_width("?", 16.0)
+        );
     }
 }

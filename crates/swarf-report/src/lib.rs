@@ -1,15 +1,15 @@
 //! swarf-report: what the machinist reads: pictures (PNG) and 3D scenes (glTF).
 //!
 //! Drawing primitives, independent of the simulator:
-//! - [`canvas`]: a small RGB raster (rectangles, lines, rings, 8x8 bitmap text) and
-//!   its PNG encoding.
+//! - [`canvas`]: a small RGB raster (rectangles, lines, rings, anti-aliased text in
+//!   an embedded DejaVu Sans subset) and its PNG encoding.
 //! - [`page`]: the layout of a report picture: map at one scale, axes with tick
 //!   labels, legend, wrapped title and footer, every text box placed clear of the
 //!   others ([`page::Cells`]: the cell lattice a map shows).
 //!
 //! Pictures of results:
-//! - [`picture`]: the deviation heat map and the tool-path picture of a dexel
-//!   verification (swarf-sim).
+//! - [`picture`]: the deviation heat map (a percentile colour scale, the tolerance
+//!   band neutral) and the tool-path picture of a dexel verification (swarf-sim).
 //! - [`rest_picture`]: rest regions over the part.
 //! - [`classify_picture`]: steep, horizontal and other areas over the part.
 //!

@@ -19,7 +19,7 @@ pub(crate) mod text;
 use crate::canvas::{Canvas, Rgb};
 pub use map::Cells;
 use map::Map;
-use text::{GLYPH, LEAD, Label, Rect, SCALE, TICK_GAP, overlap, ticks, tw, within, wrap};
+use text::{GLYPH, LEAD, Label, Rect, SIZE, TICK_GAP, overlap, ticks, tw, within, wrap};
 
 /// Margin kept at the canvas edges and between blocks, px.
 const PAD: i64 = 8;
@@ -192,8 +192,8 @@ impl Page {
         let width = (map.left + map.w + MIN_RIGHT)
             .max(legend_right + PAD)
             .max(MIN_WIDTH);
-        let chars = ((width - map.left - PAD) / GLYPH).max(1) as usize;
-        let title = wrap(title, chars);
+        let room = (width - map.left - PAD).max(1);
+        let title = wrap(title, room);
         map.top = LEAD * title.len().max(1) as i64 + 38;
         let mut labels: Vec<Label> = (0..)
             .zip(title)
@@ -208,7 +208,7 @@ impl Page {
             .chain(keys.iter().map(|r| r[3]))
             .fold(map.top + row + 1, i64::max)
             + 12;
-        let lines = footer.iter().flat_map(|f| wrap(f, chars));
+        let lines = footer.iter().flat_map(|f| wrap(f, room));
         labels.extend(
             (0..)
                 .zip(lines)
@@ -285,7 +285,7 @@ impl Page {
             c.fill(m.left - 6, y, m.left, y + 1, BLACK);
         }
         for l in &self.labels {
-            c.text(l.at[0], l.at[1], &l.text, SCALE, BLACK);
+            c.text(l.at[0], l.at[1], &l.text, SIZE, BLACK);
         }
     }
 }
@@ -364,7 +364,8 @@ mod tests {
     #[test]
     fn the_die_picture_wraps_its_title_and_keeps_the_footer_off_the_legend() {
         let rect = [-99.75, -103.2, -4.25, 0.3];
-        let page = Page::new(&grid(rect, 0.5), rect, DIE_TITLE, &die_footer(), &BAR);
+        let title = format!("{DIE_TITLE}, {DIE_TITLE}");
+        let page = Page::new(&grid(rect, 0.5), rect, &title, &die_footer(), &BAR);
         assert_clear(&page, &[]);
         let titles = page.labels.iter().filter(|l| l.at[1] < page.map.top - 28);
         assert!(titles.count() >= 2);
@@ -425,7 +426,7 @@ mod tests {
         let right = [x + 20.0, y];
         let marks = [([x, y], "L1".to_string())];
         let placed = page.marks(&marks, &[[x, y], right], 10.0);
-        assert_eq!(placed[0].at, [x as i64 - 12 - 32, y as i64 - 8]);
+        assert_eq!(placed[0].at, [x as i64 - 12 - tw("L1"), y as i64 - 8]);
         let boxed = [[x, y], right, [x - 30.0, y], [x, y - 30.0], [x, y + 30.0]];
         let placed = page.marks(&marks, &boxed, 10.0);
         assert_eq!(placed[0].at, [x as i64 + 12, y as i64 - 8]);

@@ -66,7 +66,7 @@ pub fn rest_png(
             .map(&px)
             .min_by(|a, b| a[1].total_cmp(&b[1]).then(a[0].total_cmp(&b[0])));
         if let Some([x, y]) = top {
-            c.text(x as i64 + 4, y as i64 - 14, &r.label, 1, LABEL);
+            c.text(x as i64 + 4, y as i64 - 14, &r.label, 12.0, LABEL);
         }
     }
     page.draw(&mut c);

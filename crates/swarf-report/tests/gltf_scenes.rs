@@ -7,7 +7,7 @@ mod common;
 
 use swarf_geom::{Part, Patch, Point3, Vec3};
 use swarf_report::gltf::{StockMeshOptions, cutter_glb, part_glb, stock_glb, toolpath_glb};
-use swarf_report::picture::{deviation_colour, limits};
+use swarf_report::picture::limits;
 use swarf_sim::{Design, Quiet, StockSpec, Verification, VerifyOptions, verify};
 use swarf_tool::{Cutter, Pose};
 use swarf_toolpath::{MotionKind, Program};
@@ -133,14 +133,14 @@ fn stock_colours_are_the_heat_map_s() {
     );
     assert_eq!(pos.len() / 3, mesh.vertices);
     assert_eq!(indices(&g, &p).len() / 3, mesh.triangles);
-    let (below, above) = limits(&v);
+    let scale = limits(&v);
     let mut gouged = 0;
     for k in 0..mesh.vertices {
         let (i, j) = (cell[2 * k] as usize, cell[2 * k + 1] as usize);
         let c = j * v.grid.nx + i;
         assert_eq!(pos[3 * k + 2], v.stock.heights()[c] as f32);
         let d = v.deviation.values[c];
-        let want = deviation_colour(d, v.design.heights[c].is_finite(), below, above);
+        let want = scale.colour(d, v.design.heights[c].is_finite());
         let got = [0, 1, 2].map(|n| swarf_report::gltf::glb::srgb(colour[3 * k + n]));
         assert_eq!(got, want, "vertex {k}, cell {i},{j}, deviation {d}");
         if d.is_finite() {

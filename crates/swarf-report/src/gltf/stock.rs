@@ -1,8 +1,7 @@
 //! The simulated dexel stock as a mesh: one vertex per kept cell centre at the
 //! machined height, two triangles per lattice quad whose corners all hold material,
 //! coloured per vertex on the deviation scale of the PNG heat map
-//! ([`crate::picture::deviation_colour`], converted to linear light as glTF
-//! requires).
+//! ([`crate::picture::Scale::colour`], converted to linear light as glTF requires).
 //!
 //! Large grids are decimated: every `stride`-th cell in x and y is kept (and the
 //! last), the least stride whose lattice has at most
@@ -19,7 +18,7 @@
 //! without material are not covered by any triangle and are counted apart.
 
 use super::glb::{Glb, TRIANGLES, linear};
-use crate::picture::{deviation_colour, limits};
+use crate::picture::{Scale, limits};
 use serde_json::json;
 use swarf_sim::Verification;
 use swarf_sim::dexel::NO_MOTION;
@@ -109,7 +108,7 @@ struct Vertices {
 
 /// The vertices of the lattice `(xs, ys)`: positions, colours and cell attributes
 /// (module doc); `index` maps lattice points to vertices (`u32::MAX`: no material).
-fn vertices(v: &Verification, xs: &[usize], ys: &[usize], scale: (f64, f64)) -> Vertices {
+fn vertices(v: &Verification, xs: &[usize], ys: &[usize], scale: &Scale) -> Vertices {
     let (g, z) = (&v.grid, v.stock.heights());
     let (dev, design) = (&v.deviation.values, &v.design.heights);
     let mut out = Vertices::default();
@@ -134,7 +133,7 @@ fn vertices(v: &Verification, xs: &[usize], ys: &[usize], scale: (f64, f64)) -> 
                     }
                 }
             }
-            let rgb = deviation_colour(pick, any_design, scale.0, scale.1);
+            let rgb = scale.colour(pick, any_design);
             out.colour.extend(rgb.map(linear));
             out.deviation
                 .push(if pick.is_finite() { pick as f32 } else { 0.0 });
@@ -261,8 +260,9 @@ pub fn add_stock(glb: &mut Glb, v: &Verification, opts: &StockMeshOptions) -> St
     let g = &v.grid;
     let stride = stride_for(g.nx, g.ny, opts.max_vertices);
     let (xs, ys) = (lattice(g.nx, stride), lattice(g.ny, stride));
-    let (below, above) = limits(v);
-    let vx = vertices(v, &xs, &ys, (below, above));
+    let scale = limits(v);
+    let (below, above) = (scale.below, scale.above);
+    let vx = vertices(v, &xs, &ys, &scale);
     let nrm = normals(&vx.pos, &vx.index, xs.len());
     let tri = triangles(&vx.index, xs.len());
     let (height_error, uncovered_cells) = height_error(v, &xs, &ys);

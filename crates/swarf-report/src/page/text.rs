@@ -1,19 +1,20 @@
 //! Text on report pictures: label boxes, line wrapping, and axis tick labels.
 //!
-//! Text is the 8x8 bitmap font at scale 2: 16 px a character, 22 px a line. A label
-//! is one line of text and the rectangle of character cells it covers, so a layout
-//! can be checked for overlaps before anything is drawn. Long text wraps after spaces
-//! and commas, and inside a word only where the word alone is longer than a line.
+//! Text is the embedded font ([`crate::canvas`]) 16 px tall, 22 px a line. A label is
+//! one line of text and the rectangle its line box covers (the font's advance widths
+//! across, ascent to descent down), so a layout can be checked for overlaps before
+//! anything is drawn. Long text wraps after spaces and commas, and inside a word only
+//! where the word alone is wider than a line.
 //! Axis ticks step by 1, 2 or 5 times a power of ten (the usual "nice numbers"), the
 //! least such step from a sixth of the range up whose labels clear one another by
 //! [`TICK_GAP`] at the map's scale.
 
 use crate::canvas::Canvas;
 
-/// Font scale of all text (picture pixels per font pixel).
-pub(crate) const SCALE: i64 = 2;
-/// Height (and advance) of one character, px.
-pub(crate) const GLYPH: i64 = 8 * SCALE;
+/// Height of a line of text (ascent to descent), px.
+pub(crate) const GLYPH: i64 = 16;
+/// [`GLYPH`] as the canvas takes it.
+pub(crate) const SIZE: f64 = GLYPH as f64;
 /// Line pitch of wrapped text, px.
 pub(crate) const LEAD: i64 = 22;
 /// Least clear gap between neighbouring tick labels, px.
@@ -36,7 +37,7 @@ pub(crate) fn within(a: &Rect, b: &Rect) -> bool {
 
 /// Width of `s` in pixels.
 pub(crate) fn tw(s: &str) -> i64 {
-    Canvas::text_width(s, SCALE)
+    Canvas::text_width(s, SIZE)
 }
 
 /// One line of text: its top-left corner and its characters.
@@ -116,11 +117,10 @@ pub(crate) fn ticks(
     Vec::new()
 }
 
-/// `text` in lines of at most `max` characters (at least 1): broken after spaces and
-/// commas, and inside a word only where the word alone is longer than a line; spaces
-/// at either end of a line are dropped, and so are empty lines.
-pub(crate) fn wrap(text: &str, max: usize) -> Vec<String> {
-    let max = max.max(1);
+/// `text` in lines at most `max` px wide: broken after spaces and commas, and inside
+/// a word only where the word alone is wider than a line (a line holds at least one
+/// character); spaces at either end of a line are dropped, and so are empty lines.
+pub(crate) fn wrap(text: &str, max: i64) -> Vec<String> {
     let mut lines = Vec::new();
     let mut line = String::new();
     let mut push = |line: &str| {
@@ -131,15 +131,19 @@ pub(crate) fn wrap(text: &str, max: usize) -> Vec<String> {
     };
     for piece in text.split_inclusive([' ', ',']) {
         let joined = format!("{line}{piece}");
-        if joined.trim().chars().count() <= max {
+        if tw(joined.trim()) <= max {
             line = joined;
             continue;
         }
         push(&line);
         let mut rest: Vec<char> = piece.trim().chars().collect();
-        while rest.len() > max {
-            push(&rest[..max].iter().collect::<String>());
-            rest.drain(..max);
+        while tw(&rest.iter().collect::<String>()) > max && rest.len() > 1 {
+            let fits = (1..rest.len())
+                .rev()
+                .find(|&n| tw(&rest[..n].iter().collect::<String>()) <= max)
+                .unwrap_or(1);
+            push(&rest[..fits].iter().collect::<String>());
+            rest.drain(..fits);
         }
         line = rest.into_iter().collect::<String>() + &piece[piece.trim_end().len()..];
     }
@@ -155,7 +159,7 @@ mod tests {
     #[test]
     fn ticks_widen_until_their_labels_clear() {
         let t: Vec<f64> = ticks(0.0, 100.0, 1.0, tw).iter().map(|t| t.0).collect();
-        assert_eq!(t, [0.0, 100.0]);
+        assert_eq!(t, [0.0, 50.0, 100.0]);
         let t: Vec<String> = ticks(-100.0, -4.0, 7.0, tw)
             .into_iter()
             .map(|t| t.1)
@@ -167,16 +171,16 @@ mod tests {
     #[test]
     fn wrap_breaks_after_spaces_and_commas_and_inside_long_words() {
         assert_eq!(
-            wrap("gouge: 37707 cells in 1 region", 12),
+            wrap("gouge: 37707 cells in 1 region", tw("gouge: 37707")),
             ["gouge: 37707", "cells in 1", "region"]
         );
         assert_eq!(
-            wrap("apt:d=38.1,r=6.35,e=12.7", 12),
+            wrap("apt:d=38.1,r=6.35,e=12.7", tw("apt:d=38.1,")),
             ["apt:d=38.1,", "r=6.35,", "e=12.7"]
         );
-        assert_eq!(wrap("abcdefghij", 4), ["abcd", "efgh", "ij"]);
-        assert_eq!(wrap("ab cdefghij", 4), ["ab", "cdef", "ghij"]);
-        assert!(wrap("   ", 3).is_empty());
+        assert_eq!(wrap("0000000000", tw("0000")), ["0000", "0000", "00"]);
+        assert_eq!(wrap("00 0000000", tw("0000")), ["00", "0000", "000"]);
+        assert!(wrap("   ", 30).is_empty());
         assert_eq!(wrap("short", 0), ["s", "h", "o", "r", "t"]);
     }
 
@@ -195,11 +199,11 @@ mod tests {
         #[test]
         fn wrapped_lines_fit_and_keep_every_character(
             text in "[a-z ,=.]{0,200}",
-            max in 1usize..40,
+            max in 1i64..600,
         ) {
             let lines = wrap(&text, max);
             for l in &lines {
-                prop_assert!(!l.is_empty() && l.chars().count() <= max, "{l:?}");
+                prop_assert!(!l.is_empty() && (tw(l) <= max || l.chars().count() == 1), "{l:?}");
                 prop_assert_eq!(l.trim(), l.as_str());
             }
             let squeeze = |s: &str| s.chars().filter(|c| *c != ' ').collect::<String>();
