@@ -1,18 +1,25 @@
 // Browser test of the viewer page in headless Chromium (Debian's /usr/bin/chromium,
 // driven by playwright-core; no browser is downloaded).
-// Usage: node test/browser.mjs VIEW_DIR [SCREENSHOT.png]
+// Usage: node test/browser.mjs VIEW_DIR [--sequence SEQUENCE_VIEW_DIR] [--shot SCREENSHOT.png]
 // VIEW_DIR is a view of the iso-scallop program of wave, written by
 //   swarf view --job jobs/wave-iso-scallop.toml --cell 0.2 --scallop 0 --max-vertices 600000 -o VIEW_DIR
-// (every cell a vertex, every scallop crest above the tolerance flagged as excess).
+// (every cell a vertex, every scallop crest above the tolerance flagged as excess);
+// SEQUENCE_VIEW_DIR a view of a sequence job (jobs/fillet-pocket-sequence.toml).
 import { readFileSync, readdirSync } from 'node:fs';
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
 import { openView } from './page.mjs';
+import { keyChecks, legendChecks, measureChecks, operationChecks, pixels as canvasPixels, scaleChecks, triadChecks } from './checks.mjs';
 
-const dir = process.argv[2];
-const shot = process.argv[3];
+const [dir, ...rest] = process.argv.slice(2);
+const flag = (name) => {
+  const k = rest.indexOf(name);
+  return k >= 0 ? rest[k + 1] : undefined;
+};
+const shot = flag('--shot');
+const sequence = flag('--sequence');
 if (!dir) {
-  console.error('usage: node test/browser.mjs VIEW_DIR [SCREENSHOT.png]');
+  console.error('usage: node test/browser.mjs VIEW_DIR [--sequence SEQUENCE_VIEW_DIR] [--shot SCREENSHOT.png]');
   process.exit(2);
 }
 
@@ -45,22 +52,7 @@ try {
   const error = await page.evaluate(() => window.swarfView.error);
   ok(!error, `the page loads the view (${error ?? 'no error'})`);
 
-  // Pixels of the canvas that are not the background, and a checksum of them.
-  const pixels = () => page.evaluate(() => {
-    const c = document.getElementById('view');
-    const copy = document.createElement('canvas');
-    [copy.width, copy.height] = [c.width, c.height];
-    const g = copy.getContext('2d');
-    g.drawImage(c, 0, 0);
-    const d = g.getImageData(0, 0, copy.width, copy.height).data;
-    let drawn = 0;
-    let sum = 0;
-    for (let k = 0; k < d.length; k += 4) {
-      if (Math.abs(d[k] - 244) + Math.abs(d[k + 1] - 245) + Math.abs(d[k + 2] - 247) > 12) drawn += 1;
-      sum = (sum * 31 + d[k] + 7 * d[k + 1] + 13 * d[k + 2]) % 1000000007;
-    }
-    return { drawn, sum, total: d.length / 4 };
-  });
+  const pixels = () => canvasPixels(page);
   const first = await pixels();
   ok(first.drawn > first.total * 0.05, `the canvas is not blank (${first.drawn} of ${first.total} pixels drawn)`);
   if (shot) await page.screenshot({ path: shot });
@@ -120,7 +112,30 @@ try {
   const panel = await page.textContent('#pick');
   ok(panel.includes(`line ${region.line}`), `the panel shows it: ${panel.split('\n')[0]}`);
   ok(view.motions.count > 0, `${view.motions.count} motions in view.json`);
-  console.log(`${checks} checks passed`);
+  ok((await page.evaluate(() => window.swarfView.operations.length)) === 1, 'one program is one operation');
+
+  await legendChecks(page, ok);
+  await triadChecks(page, ok);
+  await scaleChecks(page, ok, view);
+  await measureChecks(page, ok);
+  await keyChecks(page, ok);
 } finally {
   await close();
 }
+
+if (sequence) {
+  const seq = await openView(sequence);
+  try {
+    const error = await seq.page.evaluate(() => window.swarfView.error);
+    ok(!error, `the page loads the sequence's view (${error ?? 'no error'})`);
+    await operationChecks(seq.page, ok);
+    const pick = await seq.page.evaluate(() => {
+      const r = document.getElementById('view').getBoundingClientRect();
+      return window.swarfView.pick(r.left + r.width * 0.6, r.top + r.height * 0.5);
+    });
+    ok(pick && pick.state, `picking the final stock reads a cell (${pick && pick.state}, line ${pick && pick.line})`);
+  } finally {
+    await seq.close();
+  }
+}
+console.log(`${checks} checks passed`);

@@ -1,9 +1,14 @@
 //! The 3D view of a verified program (`swarf view`, and `swarf demo` for every
 //! program it verifies): a self-contained folder with the design, the tool path, the
 //! cutter and the simulated stock as glTF (GLB) files ([`swarf_report::gltf`]),
-//! `view.json` (the program's motions, poses and source lines, the stock mesh and the
-//! deviation scale) and, where the viewer page has been built
-//! ([`VIEWER_BUILD`]), the page itself (`index.html` and its script).
+//! `view.json` (the program's motions, poses and source lines, its operations, the
+//! stock mesh and the deviation scale) and the viewer page ([`page`], embedded in
+//! the binary).
+//!
+//! A program of several operations (a sequence job, a program that changes tools)
+//! is shown per operation: `view.json` lists each operation's motions, tool, cutter
+//! file and the stock after it (`stock-K.glb` for operation K but the last, whose
+//! stock is `stock.glb`), verified on the same stock as the whole program.
 //!
 //! Everything is staged in the command's [`Outputs`] and committed as one set: a
 //! failure leaves no half-written folder. The inputs are checked before the
@@ -11,43 +16,39 @@
 //! not come near the part (their XY extents, widened by the cutter's radius, do not
 //! overlap), are refused with their extents named.
 
-use crate::error::{AppError, Result, bail};
+pub mod page;
+mod request;
+
+use crate::error::{Result, bail};
 use crate::model::Model;
 use crate::outputs::Outputs;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
-use swarf_nc::read::Program;
+use swarf_nc::read::{Motion, Program};
 use swarf_report::gltf::{self, StockMesh, StockMeshOptions, toolpath::classify};
-use swarf_sim::Verification;
+use swarf_sim::{Stage, Verification};
 use swarf_tool::Cutter;
 
-/// The command that builds the viewer page (from the repository root).
-pub const VIEWER_BUILD: &str = "cd viewer && npm ci && npm run build";
+pub use request::{ViewRequest, ViewSource, Viewed, view_request};
 
-/// Environment variable naming the built page's folder (default: `viewer/dist` of
-/// the source tree swarf was built from).
-pub const VIEWER_ENV: &str = "SWARF_VIEWER_DIST";
+/// How the viewer page is had: it is embedded in the binary ([`page`]), so there is
+/// nothing to build.
+pub const VIEWER_BUILD: &str = "nothing: the page is embedded in swarf";
+
+/// The folder of the viewer page's sources (`viewer/` of the source tree swarf was
+/// built from). The page every view gets is the copy embedded at build time
+/// ([`page::FILES`]), so this is always `Some`.
+pub fn viewer_dist() -> Option<PathBuf> {
+    Some(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../viewer"))
+}
+
+/// The note for a view written without its page: none is, the page being embedded.
+pub fn missing_viewer_note() -> String {
+    String::new()
+}
 
 /// Lines of program source copied into `view.json` at most.
 const MAX_SOURCE_LINES: usize = 2_000_000;
-
-/// The folder of the built viewer page, if it has been built (it holds
-/// `index.html`).
-pub fn viewer_dist() -> Option<PathBuf> {
-    let dir = std::env::var_os(VIEWER_ENV).map_or_else(
-        || Path::new(env!("CARGO_MANIFEST_DIR")).join("../../viewer/dist"),
-        PathBuf::from,
-    );
-    dir.join("index.html").is_file().then_some(dir)
-}
-
-/// The note for a view written without its page.
-pub fn missing_viewer_note() -> String {
-    format!(
-        "note: the viewer page is not built, so the view has its GLB files and view.json but no \
-         index.html: build it with `{VIEWER_BUILD}` (or set {VIEWER_ENV} to a built page)"
-    )
-}
 
 /// What a view needs: the design, the program with its cutter, and the
 /// verification of the program.
@@ -70,7 +71,7 @@ pub struct ViewInput<'a> {
 pub struct ViewWritten {
     /// The stock mesh (stride, counts, stated height error).
     pub stock: StockMesh,
-    /// Whether the page was copied in.
+    /// Whether the page was written (always: it is embedded).
     pub page: bool,
 }
 
@@ -119,79 +120,126 @@ pub fn check_view_inputs(model: &Model, program: &Program, cutter: &Cutter) -> R
     Ok(())
 }
 
-/// The motions for the page: their source lines, classes and end poses.
-fn motions_json(program: &Program) -> Value {
+/// The motions for the page: their source lines, classes and end poses (the motions
+/// of every stage, in order).
+fn motions_json(motions: &[Motion]) -> Value {
     let r = |x: f64| (x * 1e5).round() / 1e5;
-    let mut pose = Vec::with_capacity(6 * (program.motions.len() + 1));
-    if let Some(first) = program.motions.first() {
+    let mut pose = Vec::with_capacity(6 * (motions.len() + 1));
+    if let Some(first) = motions.first() {
         let (c, a) = (first.start.cl, first.start.axis);
         pose.extend([c.x, c.y, c.z, a.x, a.y, a.z].map(r));
     }
-    for m in &program.motions {
+    for m in motions {
         let (c, a) = (m.end.cl, m.end.axis);
         pose.extend([c.x, c.y, c.z, a.x, a.y, a.z].map(r));
     }
     json!({
-        "count": program.motions.len(),
-        "line": program.motions.iter().map(|m| m.line).collect::<Vec<_>>(),
-        "kind": program.motions.iter().map(|m| classify(m).letter()).collect::<String>(),
+        "count": motions.len(),
+        "line": motions.iter().map(|m| m.line).collect::<Vec<_>>(),
+        "kind": motions.iter().map(|m| classify(m).letter()).collect::<String>(),
         "pose": pose,
     })
+}
+
+/// What a view of programs run in order on one stock needs (module doc): the
+/// design, the stages, the verification of them all, and the verification after
+/// each stage but the last.
+#[derive(Clone, Copy)]
+pub struct StagedView<'a> {
+    /// The design.
+    pub model: &'a Model,
+    /// Chordal tolerance for tessellating a patch design, mm.
+    pub tol: f64,
+    /// The programs with their cutters, in order (at least one).
+    pub stages: &'a [Stage<'a>],
+    /// The operations' names, one per stage (missing ones are named by their tool).
+    pub names: &'a [String],
+    /// The program's file and source text, which the stages' lines index (when
+    /// `None`: the first stage's file, read).
+    pub source: Option<(&'a str, &'a str)>,
+    /// The verification of all the stages.
+    pub verification: &'a Verification,
+    /// The verification after stage k, for each k before the last (empty: the
+    /// operations are shown on the final stock).
+    pub after: &'a [Verification],
 }
 
 /// Stages the view of `input` under `dir` (relative to `out`'s directory; "" for it)
 /// (module doc).
 ///
 /// # Errors
-/// A design that does not tessellate; a GLB beyond 4 GiB; the page's files that
-/// cannot be read; an output that cannot be staged.
+/// A design that does not tessellate; a GLB beyond 4 GiB; an output that cannot be
+/// staged.
 pub fn write_view(
     out: &mut Outputs,
     dir: &str,
     input: &ViewInput<'_>,
     opts: &StockMeshOptions,
 ) -> Result<ViewWritten> {
-    let ViewInput {
-        model,
-        program,
-        cutter,
-        verification: v,
-        ..
-    } = *input;
+    let stages = [Stage {
+        program: input.program,
+        cutter: input.cutter,
+    }];
+    let staged = StagedView {
+        model: input.model,
+        tol: input.tol,
+        stages: &stages,
+        names: &[],
+        source: None,
+        verification: input.verification,
+        after: &[],
+    };
+    write_staged_view(out, dir, &staged, opts)
+}
+
+/// Stages the view of programs run in order on one stock (module doc), as
+/// [`write_view`] does for one.
+///
+/// # Errors
+/// As [`write_view`]; no stage.
+pub fn write_staged_view(
+    out: &mut Outputs,
+    dir: &str,
+    input: &StagedView<'_>,
+    opts: &StockMeshOptions,
+) -> Result<ViewWritten> {
+    let Some(first) = input.stages.first() else {
+        bail!("a view needs at least one program");
+    };
+    let v = input.verification;
     let file = |name: &str| Path::new(dir).join(name);
-    let mesh = model.triangles(input.tol)?;
+    let mesh = input.model.triangles(input.tol)?;
     out.write(file("part.glb"), &gltf::part_glb(&mesh)?)?;
+    let motions: Vec<Motion> = input
+        .stages
+        .iter()
+        .flat_map(|s| s.program.motions.iter().copied())
+        .collect();
     out.write(
         file("toolpath.glb"),
-        &gltf::toolpath_glb(&program.motions, cutter)?,
+        &gltf::toolpath_glb(&motions, first.cutter)?,
     )?;
-    let first = program.motions.first().map(|m| m.start);
-    let home = first.unwrap_or(swarf_tool::Pose {
-        cl: swarf_geom::Point3::origin(),
-        axis: swarf_geom::Vec3::z(),
-    });
-    out.write(file("cutter.glb"), &gltf::cutter_glb(cutter, &home)?)?;
     let (stock_bytes, stock) = gltf::stock_glb(v, opts)?;
     out.write(file("stock.glb"), &stock_bytes)?;
-    let text = out
-        .read_text(Path::new(&program.source))
-        .unwrap_or_default();
+    let operations = write_operations(out, dir, input, opts)?;
+    let (program, text) = match input.source {
+        Some((file, text)) => (file.to_string(), text.to_string()),
+        None => (
+            first.program.source.clone(),
+            out.read_text(Path::new(&first.program.source))
+                .unwrap_or_default(),
+        ),
+    };
     let source: Vec<&str> = text.lines().take(MAX_SOURCE_LINES).collect();
     let s = &v.deviation.summary;
-    let ramp: Vec<Value> = (-10..=10)
-        .map(|k| {
-            json!([
-                f64::from(k) / 10.0,
-                swarf_report::picture::diverging(f64::from(k) / 10.0)
-            ])
-        })
-        .collect();
+    let tools: Vec<String> = input.stages.iter().map(|s| s.cutter.to_string()).collect();
     let view = json!({
         "swarf": env!("CARGO_PKG_VERSION"),
-        "program": program.source,
-        "tool": cutter.to_string(),
+        "program": program,
+        "tool": tools.join(" + "),
         "files": { "part": "part.glb", "toolpath": "toolpath.glb", "cutter": "cutter.glb", "stock": "stock.glb" },
-        "motions": motions_json(program),
+        "operations": operations,
+        "motions": motions_json(&motions),
         "source": source,
         "grid": { "origin_mm": v.grid.origin, "cell_mm": v.grid.cell, "nx": v.grid.nx, "ny": v.grid.ny },
         "stock": stock,
@@ -201,228 +249,62 @@ pub fn write_view(
             "allowed_excess_mm": s.allowed_excess,
             "min_mm": s.min,
             "max_mm": s.max,
-            "ramp": ramp,
         },
     });
     out.write_json(file("view.json"), &view)?;
-    let page = match viewer_dist() {
-        Some(dist) => {
-            copy_page(out, &dist, &file(""))?;
-            true
-        }
-        None => false,
-    };
-    Ok(ViewWritten { stock, page })
+    page::write_page(out, Path::new(dir))?;
+    Ok(ViewWritten { stock, page: true })
 }
 
-/// Stages the built page's files (the folder `dist`, one level of subfolders) under
-/// `to`.
-fn copy_page(out: &mut Outputs, dist: &Path, to: &Path) -> Result<()> {
-    let read = |p: &Path| {
-        std::fs::read_dir(p)
-            .map_err(|e| AppError::Message(format!("{}: {e} (the viewer page)", p.display())))
-    };
-    for entry in read(dist)? {
-        let path = entry
-            .map_err(|e| AppError::Message(format!("{}: {e}", dist.display())))?
-            .path();
-        let name = path.file_name().map(PathBuf::from).unwrap_or_default();
-        if path.is_dir() {
-            for inner in read(&path)? {
-                let p = inner
-                    .map_err(|e| AppError::Message(format!("{}: {e}", path.display())))?
-                    .path();
-                if p.is_file() {
-                    copy_file(
-                        out,
-                        &p,
-                        &to.join(&name).join(p.file_name().unwrap_or_default()),
-                    )?;
-                }
-            }
-        } else if path.is_file() {
-            copy_file(out, &path, &to.join(name))?;
-        }
-    }
-    Ok(())
-}
-
-fn copy_file(out: &mut Outputs, from: &Path, to: &Path) -> Result<()> {
-    let bytes = std::fs::read(from)
-        .map_err(|e| AppError::Message(format!("{}: {e} (the viewer page)", from.display())))?;
-    out.write(to, &bytes)
-}
-
-/// A view as `swarf view` asks for it: a part and a program, or a job.
-#[derive(Debug, Clone, Copy)]
-pub struct ViewRequest<'a> {
-    /// What to show.
-    pub source: ViewSource<'a>,
-    /// Verification settings (cell size, tolerance, stock, ...).
-    pub sim: &'a crate::verify::SimSettings,
-    /// The stock mesh's vertex budget.
-    pub stock: StockMeshOptions,
-    /// The view folder.
-    pub out: &'a Path,
-}
-
-/// What `swarf view` shows.
-#[derive(Debug, Clone, Copy)]
-pub enum ViewSource<'a> {
-    /// A program on a part.
-    Program {
-        /// The design: a part file, a mesh or a built-in part.
-        part: &'a str,
-        /// The NC program (G-code, APT CL or pose CSV).
-        program: &'a Path,
-        /// Tool spec (default: the program's CUTTER record).
-        tool: Option<&'a str>,
-        /// Machine for five-axis G-code.
-        machine: Option<&'a str>,
-    },
-    /// A job file, planned first.
-    Job(&'a Path),
-}
-
-/// What `swarf view` did: the view and the notes for the user.
-#[derive(Debug)]
-pub struct Viewed {
-    /// The view.
-    pub written: ViewWritten,
-    /// Deviation range and cells, for the console.
-    pub summary: String,
-    /// Notes for the user.
-    pub notes: Vec<String>,
-}
-
-/// Verifies what `req` names and writes its view folder (with the verification's
-/// report, flagged cells and pictures beside the view's files) as one set.
-///
-/// # Errors
-/// Inputs that cannot be read; a program with no moves or away from the part
-/// ([`check_view_inputs`]); a program that stops before its end; the verification's
-/// and [`write_view`]'s errors.
-pub fn view_request(
-    req: &ViewRequest<'_>,
-    progress: &dyn crate::report::Reporter,
-) -> Result<Viewed> {
-    let mut out = Outputs::new(req.out);
-    let (model, program, cutter, opts, part, mut notes) = match req.source {
-        ViewSource::Program {
-            part,
-            program,
-            tool,
-            machine,
-        } => {
-            let (model, program, cutter, opts, notes) =
-                read_program_input(req, part, program, tool, machine)?;
-            (model, program, cutter, opts, part.to_string(), notes)
-        }
-        ViewSource::Job(path) => {
-            let (model, program, cutter, opts, part) =
-                plan_job_input(req, path, &mut out, progress)?;
-            (model, program, cutter, opts, part, Vec::new())
-        }
-    };
-    check_view_inputs(&model, &program, &cutter)?;
-    let stages = [swarf_sim::Stage {
-        program: &program,
-        cutter: &cutter,
-    }];
-    let ctx = crate::verify::context(&part, &stages, &opts);
-    if let Some(stop) = &ctx.stopped {
-        bail!(
-            "{}: the program stops before its end ({stop}): nothing written",
-            program.source
-        );
-    }
-    let v =
-        crate::verify::verify_and_write(&model, &stages, &opts, (&mut out, ""), &ctx, progress)?;
-    let input = ViewInput {
-        model: &model,
-        tol: opts.tol,
-        program: &program,
-        cutter: &cutter,
-        verification: &v,
-    };
-    let written = write_view(&mut out, "", &input, &req.stock)?;
-    if !written.page {
-        notes.push(missing_viewer_note());
-    }
-    out.commit()?;
-    let summary = swarf_sim::report::text_summary(&v, &ctx);
-    Ok(Viewed {
-        written,
-        summary,
-        notes,
-    })
-}
-
-/// Inputs of a view of a program on a part.
-type Inputs = (
-    Model,
-    Program,
-    Cutter,
-    swarf_sim::VerifyOptions,
-    Vec<String>,
-);
-
-fn read_program_input(
-    req: &ViewRequest<'_>,
-    part: &str,
-    program: &Path,
-    tool: Option<&str>,
-    machine: Option<&str>,
-) -> Result<Inputs> {
-    let model = crate::model::load_model(part)?;
-    model.check_covers_xy(part)?;
-    let paths = [program.to_path_buf()];
-    let planned = crate::programs::planned(&paths)?;
-    let tools: Vec<String> = match tool {
-        Some(t) => vec![t.to_string()],
-        None => planned.tools.iter().take(1).cloned().collect(),
-    };
-    let tools = crate::programs::parse_tools(&tools, 1)?;
-    let opts = req.sim.program_options(&planned)?;
-    let gcode = crate::programs::GcodeSetup::default();
-    let (mut programs, notes) =
-        crate::programs::read_programs(&paths, &gcode, machine, None, opts.sample_tol())?;
-    let cutter = crate::programs::stage_cutters(&tools, &programs)?[0];
-    let program = programs.remove(0);
-    Ok((model, program, cutter, opts, notes))
-}
-
-/// Inputs of a view of a job.
-type JobInputs = (Model, Program, Cutter, swarf_sim::VerifyOptions, String);
-
-fn plan_job_input(
-    req: &ViewRequest<'_>,
-    path: &Path,
+/// Stages each operation's cutter (at the program's start) and the stock after it;
+/// the operations' entries for `view.json`.
+fn write_operations(
     out: &mut Outputs,
-    reporter: &dyn crate::report::Reporter,
-) -> Result<JobInputs> {
-    let text = swarf_io::read_input_text(path)?;
-    let mut job = crate::Job::parse(&text, &path.display().to_string())?;
-    let stem = path
-        .file_stem()
-        .map_or_else(|| "job".into(), |s| s.to_string_lossy().into_owned());
-    let (program_file, five) = crate::compare::for_measurement(&mut job, &stem);
-    let job_dir = path.parent().unwrap_or(Path::new("."));
-    let part = crate::plan_job::part_arg(&job, job_dir);
-    let model = crate::model::load_model_with(&part, &job.load_options())?;
-    crate::plan_job::plan_model(&job, &model, job_dir, out, reporter)?;
-    let program = out.read_program(&program_file)?;
-    let scallop = job.strategy.scallop().unwrap_or(0.0);
-    let mut opts = req
-        .sim
-        .options(job.tolerance(), scallop, job.feeds.rapid, true)?;
-    if five {
-        opts.cell = opts.cell.or(Some(crate::compare::FIVE_AXIS_CELL));
-        opts.sample_tol = opts
-            .sample_tol
-            .or(Some(crate::compare::FIVE_AXIS_SAMPLE_TOL));
+    dir: &str,
+    input: &StagedView<'_>,
+    opts: &StockMeshOptions,
+) -> Result<Vec<Value>> {
+    let file = |name: &str| Path::new(dir).join(name);
+    let home = input.stages[0].program.motions.first().map_or_else(
+        || swarf_tool::Pose::vertical(swarf_geom::Point3::origin()),
+        |m| m.start,
+    );
+    let (mut ops, mut first_motion) = (Vec::with_capacity(input.stages.len()), 0);
+    let mut cutters: Vec<(Cutter, String)> = Vec::new();
+    for (k, stage) in input.stages.iter().enumerate() {
+        let cutter = match cutters.iter().find(|c| c.0 == *stage.cutter) {
+            Some(c) => c.1.clone(),
+            None => {
+                let name = if cutters.is_empty() {
+                    "cutter.glb".to_string()
+                } else {
+                    format!("cutter-{}.glb", k + 1)
+                };
+                out.write(file(&name), &gltf::cutter_glb(stage.cutter, &home)?)?;
+                cutters.push((*stage.cutter, name.clone()));
+                name
+            }
+        };
+        let stock = match input.after.get(k) {
+            Some(after) if k + 1 < input.stages.len() => {
+                let name = format!("stock-{}.glb", k + 1);
+                out.write(file(&name), &gltf::stock_glb(after, opts)?.0)?;
+                name
+            }
+            _ => "stock.glb".to_string(),
+        };
+        let n = stage.program.motions.len();
+        ops.push(json!({
+            "name": input.names.get(k).cloned().unwrap_or_else(|| stage.cutter.to_string()),
+            "tool": stage.cutter.to_string(),
+            "first_motion": first_motion,
+            "motions": n,
+            "cutter": cutter,
+            "stock": stock,
+        }));
+        first_motion += n;
     }
-    Ok((model, program, job.tool, opts, part))
+    Ok(ops)
 }
 
 #[cfg(test)]
@@ -482,7 +364,7 @@ mod tests {
     #[test]
     fn motions_hold_the_start_then_each_end_pose() {
         let p = program(&[[1.0, 2.0, 30.0], [1.0, 2.0, 3.0], [9.0, 2.0, 3.0]]);
-        let m = motions_json(&p);
+        let m = motions_json(&p.motions);
         assert_eq!(m["count"], 3);
         assert_eq!(m["line"], json!([2, 3, 4]));
         assert_eq!(m["kind"], "rlc");

@@ -1,18 +1,17 @@
-//! `swarf view` (issue 17): the view folder of a job and of a part with a program
-//! (GLB files, view.json, the verification's report, the page where it is built),
-//! written as one set and byte for byte the same on a repeat; bad input refused with
-//! a clear message and no folder (a program with no moves, a program away from the
-//! part, `--serve` without the built page); `--serve` answering on 127.0.0.1.
+//! `swarf view`: the view folder of a job, of a part with a program and of a
+//! sequence job (GLB files, view.json, the verification's report, the page embedded
+//! in swarf), written as one set and byte for byte the same on a repeat; a sequence
+//! shown per operation; bad input refused with a clear message and no folder (a
+//! program with no moves, a program away from the part); `--serve` answering on
+//! 127.0.0.1.
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
-/// Runs swarf with `SWARF_VIEWER_DIST` set to `dist`.
-fn swarf(args: &[&str], dist: &Path) -> Output {
+fn swarf(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_swarf"))
         .args(args)
-        .env("SWARF_VIEWER_DIST", dist)
         .output()
         .expect("the swarf binary runs")
 }
@@ -29,17 +28,21 @@ fn job(name: &str) -> String {
     p.to_str().unwrap().to_string()
 }
 
-/// A stand-in for the built page.
-fn fake_dist(dir: &Path) -> PathBuf {
-    let dist = dir.join("dist");
-    std::fs::create_dir_all(&dist).unwrap();
-    std::fs::write(
-        dist.join("index.html"),
-        "<!doctype html><title>view</title>",
-    )
-    .unwrap();
-    std::fs::write(dist.join("viewer.js"), "export {};").unwrap();
-    dist
+/// Asserts that the view folder `out` holds the viewer page as its sources are.
+fn has_the_page(out: &Path) {
+    let viewer = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../viewer");
+    for f in [
+        "index.html",
+        "page/main.js",
+        "page/glb.js",
+        "page/viewer.css",
+    ] {
+        assert_eq!(
+            std::fs::read(out.join(f)).unwrap(),
+            std::fs::read(viewer.join(f)).unwrap(),
+            "{f}"
+        );
+    }
 }
 
 fn stderr(o: &Output) -> String {
@@ -59,14 +62,9 @@ fn job_view_folder_is_whole_and_repeats() {
         "-o",
         out.to_str().unwrap(),
     ];
-    let o = swarf(&args, &dir.join("no-page"));
+    let o = swarf(&args);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("npm ci && npm run build"),
-        "{}",
-        stderr(&o)
-    );
-    assert!(!out.join("index.html").exists());
+    has_the_page(&out);
     let files = ["part.glb", "toolpath.glb", "cutter.glb", "stock.glb"];
     let first: Vec<Vec<u8>> = files
         .iter()
@@ -91,10 +89,10 @@ fn job_view_folder_is_whole_and_repeats() {
     let source = view["source"][line - 1].as_str().unwrap();
     assert!(source.contains(['X', 'Y', 'Z']), "line {line}: {source}");
     assert!(out.join("report.json").is_file() && out.join("deviation.png").is_file());
-    let page = fake_dist(&dir);
-    let o = swarf(&args, &page);
+    assert_eq!(view["operations"].as_array().unwrap().len(), 1);
+    assert_eq!(view["operations"][0]["motions"], count);
+    let o = swarf(&args);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(out.join("index.html").is_file() && out.join("viewer.js").is_file());
     for (f, bytes) in files.iter().zip(&first) {
         assert_eq!(
             &std::fs::read(out.join(f)).unwrap(),
@@ -105,22 +103,19 @@ fn job_view_folder_is_whole_and_repeats() {
     // The planned program on its part gives the same stock.
     let ngc = out.join("wave-iso-scallop.ngc");
     let out2 = dir.join("program");
-    let o = swarf(
-        &[
-            "view",
-            "--part",
-            "builtin:wave",
-            "--program",
-            ngc.to_str().unwrap(),
-            "--tool",
-            "ball:d=8",
-            "--cell",
-            "0.5",
-            "-o",
-            out2.to_str().unwrap(),
-        ],
-        &page,
-    );
+    let o = swarf(&[
+        "view",
+        "--part",
+        "builtin:wave",
+        "--program",
+        ngc.to_str().unwrap(),
+        "--tool",
+        "ball:d=8",
+        "--cell",
+        "0.5",
+        "-o",
+        out2.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(std::fs::read(out2.join("stock.glb")).unwrap(), first[3]);
     let _ = std::fs::remove_dir_all(&dir);
@@ -144,7 +139,7 @@ fn refused(name: &str, program: &str, extra: &[&str], message: &str) {
         out.to_str().unwrap(),
     ];
     args.extend(extra);
-    let o = swarf(&args, &dir.join("no-page"));
+    let o = swarf(&args);
     assert!(!o.status.success());
     let err = stderr(&o);
     assert!(err.contains(message), "{err}");
@@ -169,19 +164,54 @@ fn a_program_away_from_the_part_is_refused() {
 }
 
 #[test]
-fn serving_without_the_page_names_the_build_command() {
-    refused(
-        "serve",
-        "G21 G90\nG0 X10 Y10 Z50\nG1 X20 Y10 Z10 F300\nM30\n",
-        &["--serve"],
-        "npm ci && npm run build",
-    );
+fn a_sequence_is_shown_per_operation() {
+    let dir = scratch("sequence");
+    let out = dir.join("view");
+    let args = [
+        "view",
+        "--job",
+        &job("fillet-pocket-sequence"),
+        "--cell",
+        "1",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let o = swarf(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    has_the_page(&out);
+    let view: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("view.json")).unwrap()).unwrap();
+    let ops = view["operations"].as_array().unwrap();
+    let names: Vec<&str> = ops.iter().map(|o| o["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["rough", "rest-rough", "finish", "cleanup"]);
+    let mut first = 0;
+    for (k, op) in ops.iter().enumerate() {
+        assert_eq!(op["first_motion"], first, "operation {k}");
+        first += op["motions"].as_u64().unwrap();
+        let stock = op["stock"].as_str().unwrap();
+        let cutter = op["cutter"].as_str().unwrap();
+        assert_eq!(
+            stock,
+            if k == 3 {
+                "stock.glb".into()
+            } else {
+                format!("stock-{}.glb", k + 1)
+            }
+        );
+        for f in [stock, cutter] {
+            assert_eq!(&std::fs::read(out.join(f)).unwrap()[..4], b"glTF", "{f}");
+        }
+    }
+    assert_eq!(view["motions"]["count"], first);
+    // The stock after the roughing is not the final stock.
+    let bytes = |f: &str| std::fs::read(out.join(f)).unwrap();
+    assert_ne!(bytes("stock-1.glb"), bytes("stock.glb"));
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn serve_answers_on_localhost_and_refuses_paths_outside() {
     let dir = scratch("serve");
-    let page = fake_dist(&dir);
     let out = dir.join("view");
     let mut child = Command::new(env!("CARGO_BIN_EXE_swarf"))
         .args([
@@ -194,7 +224,6 @@ fn serve_answers_on_localhost_and_refuses_paths_outside() {
             out.to_str().unwrap(),
         ])
         .args(["--serve", "--port", "0", "--serve-for", "20"])
-        .env("SWARF_VIEWER_DIST", &page)
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
