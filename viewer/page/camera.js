@@ -60,7 +60,7 @@ export class OrbitCamera {
     this.azimuth = -Math.PI / 2 - 0.35;
     this.elevation = 0.65;
     const free = Math.max(width - left, width / 2);
-    this.distance = (0.55 * this.size) / Math.tan(this.fov / 2) / Math.min(1, free / Math.max(height, 1));
+    this.distance = (0.48 * this.size) / Math.tan(this.fov / 2) / Math.min(1, free / Math.max(height, 1));
     this.pan((width - free) / 2, 0, height);
   }
 

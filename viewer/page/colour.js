@@ -91,25 +91,31 @@ export function robustRange(dev, state, tol) {
   };
 }
 
+// Share of the legend's bar given to the neutral band, and the least share of
+// each side: the bar is a key, linear on each side, so that a tolerance far
+// smaller than the range still shows.
+const BAND = 0.16;
+const SIDE = 0.14;
+
+// Where the legend's bar puts -tol and +tol (fractions of its width).
+export function barLayout({ lo, hi, tol }) {
+  const below = Math.max(-tol - lo, 0);
+  const above = Math.max(hi - tol, 0);
+  const share = (1 - BAND) * (below / Math.max(below + above, 1e-12));
+  const left = Math.min(Math.max(share, SIDE), 1 - BAND - SIDE);
+  return { band: [left, left + BAND] };
+}
+
 // The legend's gradient (CSS) over [lo, hi]: red side, neutral band, blue side.
 export function gradient(scale) {
-  const { lo, hi, tol } = scale;
-  const at = (d) => `${(((d - lo) / (hi - lo)) * 100).toFixed(2)}%`;
+  const [a, b] = barLayout(scale).band.map((x) => `${(100 * x).toFixed(2)}%`);
   const stops = [
     `${css(COLOURS.gougeDeep)} 0%`,
-    `${css(COLOURS.gougePale)} ${at(-tol)}`,
-    `${css(COLOURS.neutral)} ${at(-tol)}`,
-    `${css(COLOURS.neutral)} ${at(tol)}`,
-    `${css(COLOURS.excessPale)} ${at(tol)}`,
+    `${css(COLOURS.gougePale)} ${a}`,
+    `${css(COLOURS.neutral)} ${a}`,
+    `${css(COLOURS.neutral)} ${b}`,
+    `${css(COLOURS.excessPale)} ${b}`,
     `${css(COLOURS.excessDeep)} 100%`,
   ];
   return `linear-gradient(to right, ${stops.join(', ')})`;
-}
-
-// Linear-light floats of an sRGB colour (for the shader).
-export function linear(rgb) {
-  return rgb.map((c) => {
-    const s = c / 255;
-    return s <= 0.04045 ? s / 12.92 : ((s + 0.055) / 1.055) ** 2.4;
-  });
 }

@@ -119,6 +119,7 @@ function makeApi(view, scene, renderer, camera, overlay) {
     operations: ops,
     layers: () => Object.keys(layers),
     layerColour: (name) => layers[name]?.colour ?? null,
+    layerCount: (name) => layers[name]?.count ?? 0,
     visible: (name) => Boolean(shown[name]),
     setVisible(name, on) {
       if (name in shown) shown[name] = on;

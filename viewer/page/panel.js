@@ -3,7 +3,7 @@
 // (neutral band, range inputs, out-of-range and unmeasured colours), the picked
 // cell, the measurement and the keyboard shortcuts.
 
-import { COLOURS, css, gradient } from './colour.js';
+import { COLOURS, barLayout, css, gradient } from './colour.js';
 import { SHORTCUTS } from './keys.js';
 
 const $ = (id) => document.getElementById(id);
@@ -17,13 +17,13 @@ export const layerId = (name) => `layer-${name.replace(/ /g, '-')}`;
 
 const LAYER_TEXT = {
   part: 'part (design)',
-  stock: 'stock (deviation below)',
+  stock: 'stock, by deviation (scale below)',
   cuts: 'cuts',
-  links: 'links (plunges, retracts)',
+  links: 'links',
   rapids: 'rapids',
   'tool axes': 'tool axes',
   cutter: 'cutter',
-  origin: 'origin (x y z)',
+  origin: 'origin',
 };
 
 function swatch(name, api) {
@@ -41,7 +41,8 @@ function buildLegend(view, api) {
     const box = el('input', { type: 'checkbox', id: layerId(name), checked: api.visible(name) });
     box.dataset.layer = name;
     box.addEventListener('change', () => api.setVisible(name, box.checked));
-    const row = el('label', { className: 'layer' }, box, swatch(name, api), ` ${LAYER_TEXT[name] ?? name}`);
+    const row = el('label', { className: name === 'stock' ? 'layer wide' : 'layer' }, box, swatch(name, api), ` ${LAYER_TEXT[name] ?? name}`);
+    row.title = `${name}: ${api.layerCount(name)}`;
     row.dataset.layer = name;
     legend.append(row);
   }
@@ -79,19 +80,25 @@ function buildMotion(view, api) {
   });
 }
 
-// Places tick `id` at deviation `d` on the bar of `scale`.
-function tick(id, d, scale, text) {
+// Places tick `id` at `x` (a fraction of the bar's width).
+function tick(id, x, text) {
   const t = $(id);
-  t.style.left = `${((d - scale.lo) / (scale.hi - scale.lo)) * 100}%`;
+  t.style.left = `${100 * x}%`;
   t.textContent = text;
 }
 
 function showScale(view, scale) {
   $('ramp').style.background = gradient(scale);
   const n = (x) => String(Number(x.toPrecision(3)));
-  tick('tick-lo', scale.lo, scale, n(scale.lo));
-  tick('tick-band', 0, scale, `\u00b1${n(scale.tol)}`);
-  tick('tick-hi', scale.hi, scale, `+${n(scale.hi)}`);
+  const [a, b] = barLayout(scale).band;
+  tick('tick-lo', 0, n(scale.lo));
+  tick('tick-neg', a, '');
+  tick('tick-pos', b, '');
+  tick('tick-hi', 1, `+${n(scale.hi)}`);
+  const band = $('tick-band');
+  band.style.left = `${100 * a}%`;
+  band.style.width = `${100 * (b - a)}%`;
+  band.textContent = `\u00b1${n(scale.tol)}`;
   $('range-lo').value = n(scale.lo);
   $('range-hi').value = n(scale.hi);
   const swatch = document.querySelector('.layer[data-layer="stock"] .swatch');
@@ -109,8 +116,9 @@ function buildScale(view, api) {
   for (const [c, text] of key) {
     $('scale-key').append(el('span', { className: 'key' }, el('span', { className: 'swatch', style: `background: ${css(COLOURS[c])}` }), ` ${text}`));
   }
-  $('scale-note').textContent = `${d.mode} deviation, mm: red below the design (gouge), blue material left; ` +
-    `grey within the tolerance (|d| \u2264 ${d.tolerance_mm} mm); range by the 98th percentile each side`;
+  $('scale-note').textContent = `${d.mode} deviation, mm: red below the design (gouge), blue material left, ` +
+    `grey within the tolerance \u00b1${d.tolerance_mm} mm (its band drawn wider than to scale); ` +
+    'the range ends at the 98th percentile of each side unless set';
   const apply = () => api.setRange(Number($('range-lo').value), Number($('range-hi').value));
   $('range-lo').addEventListener('change', apply);
   $('range-hi').addEventListener('change', apply);
