@@ -97,7 +97,7 @@ fn flush_prose(prose: &mut Vec<(usize, String)>, out: &mut Vec<Named>) {
     let text: Vec<String> = prose.drain(..).map(|(_, l)| l).collect();
     let text = text.join(" ");
     let pieces: Vec<&str> = text.split('`').collect();
-    if pieces.len() % 2 == 0 {
+    if pieces.len().is_multiple_of(2) {
         return; // unbalanced backticks: no spans to trust
     }
     for span in pieces.iter().skip(1).step_by(2) {
@@ -130,11 +130,15 @@ fn segments(line: &str, shell: bool) -> impl Iterator<Item = &str> {
 /// The command a segment names, if it calls swarf.
 fn parse(line: usize, segment: &str) -> Option<Named> {
     let words: Vec<&str> = segment.split_whitespace().collect();
-    let mut at = words.iter().position(|w| !w.contains('=') || w.starts_with('-'))?;
+    let mut at = words
+        .iter()
+        .position(|w| !w.contains('=') || w.starts_with('-'))?;
     let args: &[&str] = if words[at] == "swarf" {
         &words[at + 1..]
     } else if words[at] == "cargo" && words.get(at + 1) == Some(&"run") {
-        let swarf = words.windows(2).any(|w| w == ["-p", "swarf"] || w == ["--bin", "swarf"]);
+        let swarf = words
+            .windows(2)
+            .any(|w| w == ["-p", "swarf"] || w == ["--bin", "swarf"]);
         let dashes = words.iter().position(|w| *w == "--")?;
         if !swarf {
             return None;
@@ -164,7 +168,8 @@ fn flag(word: &str) -> Option<String> {
     let word = word.trim_end_matches(|c: char| "[](){},;:.".contains(c));
     let long = word.strip_prefix("--").is_some_and(|n| {
         n.starts_with(|c: char| c.is_ascii_lowercase())
-            && n.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-')
+            && n.chars()
+                .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-')
     });
     let short = word.len() == 2
         && word.starts_with('-')
@@ -218,7 +223,10 @@ fn problems(
         let flags = known
             .entry(n.sub.clone())
             .or_insert_with(|| help(n.sub.as_deref()).map(|h| help_flags(&h)));
-        let shown = n.sub.as_deref().map_or("swarf".to_string(), |s| format!("swarf {s}"));
+        let shown = n
+            .sub
+            .as_deref()
+            .map_or("swarf".to_string(), |s| format!("swarf {s}"));
         match flags {
             None => found.push(format!("{name}:{}: `{shown}`: no such subcommand", n.line)),
             Some(flags) => {
@@ -311,7 +319,13 @@ swarf = \"--not-read\"
     let named = commands(doc);
     let got: Vec<(usize, Option<&str>, Vec<&str>)> = named
         .iter()
-        .map(|n| (n.line, n.sub.as_deref(), n.flags.iter().map(String::as_str).collect()))
+        .map(|n| {
+            (
+                n.line,
+                n.sub.as_deref(),
+                n.flags.iter().map(String::as_str).collect(),
+            )
+        })
         .collect();
     assert_eq!(
         got,
@@ -321,7 +335,11 @@ swarf = \"--not-read\"
             (5, Some("verify"), vec!["--part", "--program", "--tool"]),
             (7, Some("demo"), vec!["--out"]),
             (8, None, vec!["--help"]),
-            (12, Some("rest"), vec!["--reference", "--job", "--part", "-o", "--source"]),
+            (
+                12,
+                Some("rest"),
+                vec!["--reference", "--job", "--part", "-o", "--source"]
+            ),
         ]
     );
 }
@@ -332,5 +350,8 @@ fn help_flags_read_clap_option_lines() {
                 --allow-unsafe   Write it\n      --tool <SPEC>...  Tools, one\n          \
                 --per-tool-not-a-flag\n  -h, --help  Print help\n";
     let flags: Vec<String> = help_flags(help).into_iter().collect();
-    assert_eq!(flags, ["--allow-unsafe", "--help", "--out", "--tool", "-h", "-o"]);
+    assert_eq!(
+        flags,
+        ["--allow-unsafe", "--help", "--out", "--tool", "-h", "-o"]
+    );
 }
