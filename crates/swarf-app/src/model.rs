@@ -4,7 +4,7 @@
 use crate::error::{Result, bail};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-use swarf_geom::{Part, TriMesh};
+use swarf_geom::{Part, Patch, TriMesh};
 use swarf_io::{CadOptions, Source};
 
 /// A face as a job names it: its index (as `swarf inspect` lists it) or its name in
@@ -140,15 +140,19 @@ impl Model {
     }
 }
 
-/// Names of the built-in parts (patches, then meshes), for messages.
+/// Names of the built-in parts (patches, then meshes), for messages and help texts.
 pub fn builtin_names() -> Vec<&'static str> {
+    let mut names = builtin_part_names();
+    names.extend(swarf_io::builtin_mesh_names());
+    names
+}
+
+/// Names of the built-in parametric parts (patches: the shared parts, then the
+/// project's own), for commands that need patches.
+pub fn builtin_part_names() -> Vec<&'static str> {
     let parts = swarf_io::builtin_parts().map(|(n, _)| n);
     let own = swarf_io::project_parts().map(|(n, _)| n);
-    parts
-        .into_iter()
-        .chain(own)
-        .chain(swarf_io::builtin_mesh_names())
-        .collect()
+    parts.into_iter().chain(own).collect()
 }
 
 /// Loads `arg`: `builtin:NAME`, a `.toml` part file, a STEP (`.step`, `.stp`) or
@@ -233,6 +237,34 @@ fn read_model(arg: &str, cad: &CadOptions) -> Result<Model> {
             Ok(Model::Patches(cad.part))
         }
     }
+}
+
+/// The patch at `index` of `part` (0-based, in file order), for a command's or a
+/// binding's patch argument.
+///
+/// # Errors
+/// An index past the last patch, saying how many patches there are and their
+/// indices (callers put the argument's name in front).
+///
+/// ```
+/// let wave = swarf_io::builtin_part("wave").unwrap();
+/// assert!(swarf_app::model::patch_at(&wave, 0).is_ok());
+/// let e = swarf_app::model::patch_at(&wave, 3).unwrap_err();
+/// assert_eq!(e, "index 3 is out of range: part wave has 1 patch (index 0)");
+/// ```
+pub fn patch_at(part: &Part, index: usize) -> std::result::Result<&Patch, String> {
+    part.patches.get(index).ok_or_else(|| {
+        let n = part.patches.len();
+        let has = match n {
+            0 => "no patch".to_string(),
+            1 => "1 patch (index 0)".to_string(),
+            _ => format!("{n} patches (indices 0 to {})", n - 1),
+        };
+        format!(
+            "index {index} is out of range: part {} has {has}",
+            part.name
+        )
+    })
 }
 
 /// Loads a parametric part (refuses meshes with a clear message).

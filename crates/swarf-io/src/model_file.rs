@@ -23,6 +23,43 @@ pub enum ModelFormat {
 }
 
 impl ModelFormat {
+    /// Every format, in the order help texts and messages name them.
+    pub const ALL: [ModelFormat; 5] = [
+        ModelFormat::Part,
+        ModelFormat::Step,
+        ModelFormat::Iges,
+        ModelFormat::Stl,
+        ModelFormat::Obj,
+    ];
+
+    /// The file extensions that name the format, lower case, without the dot
+    /// ([`ModelFormat::Part`] is also read from any extension no other format names).
+    ///
+    /// ```
+    /// use swarf_io::ModelFormat;
+    /// assert_eq!(ModelFormat::Step.extensions(), ["step", "stp"]);
+    /// ```
+    pub fn extensions(self) -> &'static [&'static str] {
+        match self {
+            ModelFormat::Part => &["toml"],
+            ModelFormat::Stl => &["stl"],
+            ModelFormat::Obj => &["obj"],
+            ModelFormat::Step => &["step", "stp"],
+            ModelFormat::Iges => &["igs", "iges"],
+        }
+    }
+
+    /// The format's name in help texts and messages (`part file`, `STEP`, `STL`).
+    pub fn name(self) -> &'static str {
+        match self {
+            ModelFormat::Part => "part file",
+            ModelFormat::Stl => "STL",
+            ModelFormat::Obj => "OBJ",
+            ModelFormat::Step => "STEP",
+            ModelFormat::Iges => "IGES",
+        }
+    }
+
     /// The format `path`'s extension names (any case); [`ModelFormat::Part`] for
     /// any other extension or none.
     ///
@@ -37,13 +74,10 @@ impl ModelFormat {
         let ext = path
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
-        match ext.as_deref() {
-            Some("stl") => ModelFormat::Stl,
-            Some("obj") => ModelFormat::Obj,
-            Some("step" | "stp") => ModelFormat::Step,
-            Some("igs" | "iges") => ModelFormat::Iges,
-            _ => ModelFormat::Part,
-        }
+        ModelFormat::ALL
+            .into_iter()
+            .find(|f| ext.as_deref().is_some_and(|e| f.extensions().contains(&e)))
+            .unwrap_or(ModelFormat::Part)
     }
 
     /// Whether the format is a triangle mesh.

@@ -9,9 +9,18 @@ mod progress;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+/// The version `swarf --version` prints: the package's, and the git commit it was
+/// built from (`unknown` when built without git, as from a source tarball).
+const VERSION: &str = concat!(
+    env!("CARGO_PKG_VERSION"),
+    " (commit ",
+    env!("SWARF_COMMIT"),
+    ")"
+);
+
 /// swarf: tool paths for sculptured surfaces, checked before a part is ever cut.
 #[derive(Parser)]
-#[command(name = "swarf", version, about, long_about = None)]
+#[command(name = "swarf", version = VERSION, about, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -36,15 +45,16 @@ enum Command {
     /// Find the rest material a finishing tool or job leaves: regions as JSON, their
     /// boundaries as CSV, and a picture over the part.
     Rest(cmd::rest::Args),
-    /// Classify a part's surface into steep, horizontal and other areas (thesis 002
+    /// Classify a part's surface into steep, horizontal and other areas (Zhu 1998,
     /// §6.1): areas as JSON and a picture over the part.
     Classify(cmd::classify::Args),
-    /// Plan jobs, verify their programs and print paper 004's Table 1 for them.
+    /// Plan jobs, verify their programs and print a table of machining time, scallop,
+    /// remaining material and gouges for them (Shokrollahi & Shojaei's Table 1).
     Compare(cmd::compare::Args),
     /// Drop a cutter onto a triangle mesh at many XY points (CSV in, CSV out).
     Drop(cmd::drop::Args),
-    /// Drop-and-spin five-axis positioning at the common edge of two faces (paper
-    /// 003): the edge, the spin zone and both spins at a footprint or across a
+    /// Drop-and-spin five-axis positioning at the common edge of two faces (Sharma et
+    /// al. 2019): the edge, the spin zone and both spins at a footprint or across a
     /// reference line, as JSON.
     Dsm(cmd::dsm::Args),
     /// Run the main job on the built-in shared parts and write the results.

@@ -10,7 +10,7 @@ use swarf_path::classify::{ClassifyParams, SurfaceClass};
 /// Arguments of `swarf classify`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// The part: a part file (.toml), a mesh (.stl, .obj) or a built-in part name.
+    #[arg(help = super::help::part("The part", super::help::Reads::Model))]
     part: String,
     /// Facets sloping more than this from horizontal are steep, degrees.
     #[arg(long, default_value_t = ClassifyParams::default().steep_angle.to_degrees().round())]

@@ -10,12 +10,23 @@ use swarf_app::compare::{compare_all, five_axis_markdown, markdown};
 
 /// Arguments of `swarf compare`.
 #[derive(clap::Args)]
+#[command(
+    mut_arg("tol", |a| super::help::note(a, "(default: each job's tolerance)")),
+    mut_arg("scallop", |a| super::help::note(a, "(default: each job's scallop)")),
+    mut_arg("rapid", |a| super::help::note(a, "(default: each job's rapid rate)")),
+    mut_arg("floor", |a| super::help::note(a, "(default: each job's floor)")),
+)]
 pub struct Args {
     /// Job files (TOML) to plan and compare.
     #[arg(required = true)]
     jobs: Vec<PathBuf>,
     #[command(flatten)]
     sim: SimArgs,
+    /// When a program stops before its end, still write the results (covering the
+    /// motions before the stop); without it nothing is written and the previous
+    /// results stay whole.
+    #[arg(long)]
+    partial: bool,
     /// Output directory.
     #[arg(short = 'o', long = "out", default_value = "swarf-compare")]
     out: PathBuf,
@@ -36,7 +47,7 @@ pub fn run(args: &Args) -> Result<()> {
         .map(|r| r.job.as_str())
         .collect();
     let incomplete = !stopped.is_empty();
-    if !incomplete || args.sim.partial {
+    if !incomplete || args.partial {
         out.commit()?;
     }
     print!("{}", markdown(&rows));
@@ -44,7 +55,7 @@ pub fn run(args: &Args) -> Result<()> {
         println!();
         print!("{}", five_axis_markdown(&five));
     }
-    if incomplete && !args.sim.partial {
+    if incomplete && !args.partial {
         bail!(
             "the program of {} stopped early: nothing was written and \
              the previous results in {} are unchanged (--partial writes them, covering the \

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 #[derive(clap::Args)]
 pub struct Args {
     /// Output directory.
-    #[arg(long, default_value = "swarf-demo")]
+    #[arg(short = 'o', long = "out", default_value = "swarf-demo")]
     out: PathBuf,
 }
 

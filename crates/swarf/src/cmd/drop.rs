@@ -28,7 +28,12 @@ pub struct Args {
     #[arg(long)]
     points: PathBuf,
     /// Output CSV (default: standard output).
-    #[arg(short, long)]
+    #[arg(
+        short = 'o',
+        long = "out",
+        visible_alias = "output",
+        value_name = "FILE"
+    )]
     output: Option<PathBuf>,
     /// Add the touched triangle, feature and CC point to each line.
     #[arg(long)]

@@ -10,7 +10,7 @@ use swarf_tool::Cutter;
 /// Arguments of `swarf dsm`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// The part: a part file (.toml) or a built-in part name (edge-convex, ...).
+    #[arg(help = super::help::part("The part", super::help::Reads::Patches))]
     part: String,
     /// The cutter: a bull (`bull:d=12,r=2,length=30`) or a ball.
     #[arg(long)]

@@ -7,7 +7,7 @@ use swarf_app::load_part;
 /// Arguments of `swarf eval`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Part file (.toml, .step, .stp, .igs, .iges) or built-in part name.
+    #[arg(help = super::help::part("The part", super::help::Reads::Patches))]
     part: String,
     /// Patch index (0-based, in file order).
     #[arg(long, default_value_t = 0)]
@@ -20,14 +20,8 @@ pub struct Args {
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
     let part = load_part(&args.part)?;
-    let Some(patch) = part.patches.get(args.patch) else {
-        bail!(
-            "--patch: part {} has {} patch(es); expected an index in 0..{}",
-            part.name,
-            part.patches.len(),
-            part.patches.len()
-        );
-    };
+    let patch = swarf_app::model::patch_at(&part, args.patch)
+        .map_err(|m| anyhow::anyhow!("--patch: {m}"))?;
     let [u, v] = parse_pair(&args.uv, "--uv")?;
     let [[u0, u1], [v0, v1]] = patch.domain();
     if !(u0..=u1).contains(&u) || !(v0..=v1).contains(&v) {

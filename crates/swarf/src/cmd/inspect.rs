@@ -6,7 +6,7 @@ use swarf_app::load_model;
 /// Arguments of `swarf inspect`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Part file (.toml, .step, .stp, .igs, .iges), mesh (.stl, .obj) or built-in part name (die, wave, edge-convex, edge-concave).
+    #[arg(help = super::help::part("The part", super::help::Reads::Model))]
     part: String,
     /// Print JSON instead of text.
     #[arg(long)]

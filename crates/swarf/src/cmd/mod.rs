@@ -7,6 +7,7 @@ pub mod demo;
 pub mod drop;
 pub mod dsm;
 pub mod eval;
+pub mod help;
 pub mod inspect;
 pub mod plan;
 pub mod rest;

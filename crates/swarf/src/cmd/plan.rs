@@ -11,7 +11,8 @@ use swarf_app::sequence::{Sequence, plan_sequence};
 /// Arguments of `swarf plan`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Job file (TOML): part, tool, strategy, feeds, linking, outputs.
+    /// Job file (TOML): one job (part, tool, strategy, feeds, linking, outputs) or a
+    /// sequence of operations on one stock (`[[operation]]` tables).
     job: PathBuf,
     /// Directory for the outputs (default: beside the job file).
     #[arg(long, short = 'o')]

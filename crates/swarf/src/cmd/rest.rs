@@ -11,9 +11,10 @@ use swarf_rest::RestSource;
 /// Arguments of `swarf rest`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Design part: a part file (.toml), a mesh (.stl, .obj) or a built-in part name
-    /// (default: the parent job's part).
-    #[arg(long)]
+    #[arg(long, help = format!(
+        "{} (default: the parent job's part)",
+        super::help::part("Design part", super::help::Reads::Model)
+    ))]
     part: Option<String>,
     /// The tool that finished (a reference tool), e.g. ball:d=12.
     #[arg(long, conflicts_with = "job")]

@@ -7,14 +7,21 @@ use swarf_app::load_part;
 /// Arguments of `swarf tessellate`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Part file (.toml, .step, .stp, .igs, .iges) or built-in part name; trimmed
-    /// faces are meshed inside their loops.
+    #[arg(help = format!(
+        "{}; trimmed faces are meshed inside their loops",
+        super::help::part("The part", super::help::Reads::Patches)
+    ))]
     part: String,
     /// Chordal tolerance, mm: every point of the mesh is within this of the surface.
     #[arg(long, default_value_t = 0.01)]
     tol: f64,
     /// Output binary STL.
-    #[arg(short, long)]
+    #[arg(
+        short = 'o',
+        long = "out",
+        visible_alias = "output",
+        value_name = "FILE"
+    )]
     output: PathBuf,
 }
 

@@ -5,6 +5,7 @@
 //! `toolpath.png`. A program that stops mid-way still gets its partial report, then
 //! the command fails.
 
+use super::help::note;
 use crate::progress::Bars;
 use anyhow::{Result, bail};
 use std::path::{Path, PathBuf};
@@ -14,9 +15,13 @@ use swarf_sim::report::text_summary;
 
 /// Arguments of `swarf verify`.
 #[derive(clap::Args)]
+#[command(
+    mut_arg("tol", |a| note(a, "(default: the tolerance the program states it was planned for by swarf, else 0.01)")),
+    mut_arg("scallop", |a| note(a, "(default: the scallop the program states it was planned for by swarf, else 0)")),
+    mut_arg("floor", |a| note(a, "(no floor check without it)")),
+)]
 pub struct Args {
-    /// Design part: a part file (.toml), a mesh (.stl, .obj) or a built-in part name.
-    #[arg(long)]
+    #[arg(long, help = super::help::part("Design part", super::help::Reads::Model))]
     part: String,
     /// NC program: G-code (.ngc, .nc, .tap, .gcode), APT CL (.cl, .apt, .cls) or pose
     /// CSV. Give it several times to run programs one after the other on the same
@@ -48,6 +53,11 @@ pub struct Args {
     gcode: GcodeArgs,
     #[command(flatten)]
     sim: SimArgs,
+    /// When a program stops before its end, still write the reports (covering the
+    /// motions before the stop); without it nothing is written and the previous
+    /// reports stay whole.
+    #[arg(long)]
+    partial: bool,
     /// Output directory.
     #[arg(short = 'o', long = "out")]
     out: PathBuf,
@@ -110,7 +120,8 @@ impl GcodeArgs {
     }
 }
 
-/// Options shared by `verify` and `compare`.
+/// Options shared by `verify`, `compare` and `view`; each command adds its defaults
+/// to the help ([`super::help::note`]).
 #[derive(clap::Args, Clone)]
 pub struct SimArgs {
     /// Stock: box, box:TOP, offset:ALLOWANCE (mm above the design) or a mesh file.
@@ -119,15 +130,14 @@ pub struct SimArgs {
     /// Cell size, mm (default: 5 x the tolerance).
     #[arg(long)]
     cell: Option<f64>,
-    /// Gouge / excess tolerance, mm (compare: default from each job).
+    /// Gouge / excess tolerance, mm.
     #[arg(long)]
     tol: Option<f64>,
     /// Material allowed above the design before it counts as excess (the scallop
-    /// limit), mm (verify: default the scallop the program states it was planned for
-    /// by swarf, else 0; compare: default from each job).
+    /// limit), mm.
     #[arg(long)]
     scallop: Option<f64>,
-    /// Machine rapid rate for the time estimate, mm/min (compare: default from each job).
+    /// Machine rapid rate for the time estimate, mm/min.
     #[arg(long)]
     rapid: Option<f64>,
     /// Distance bound for sampled motions (arcs, five-axis), mm (default: tol / 4).
@@ -136,13 +146,8 @@ pub struct SimArgs {
     /// Memory limit for the grid, MiB.
     #[arg(long, default_value_t = 4096)]
     max_memory: u64,
-    /// When a program stops before its end, still write the reports (covering the
-    /// motions before the stop); without it nothing is written and the previous
-    /// reports stay whole.
-    #[arg(long)]
-    pub partial: bool,
     /// How deviation is measured: `vertical` (along z) or `normal` (along the design
-    /// normals, "mow the grass"; the scallop height of paper 004; the default).
+    /// normals, "mow the grass": the scallop height; the default).
     #[arg(long)]
     deviation: Option<String>,
     /// Sample five-axis motions by the first-order bound alone (the slow reference
@@ -151,8 +156,7 @@ pub struct SimArgs {
     #[arg(long)]
     first_order_sweep: bool,
     /// The lowest height the tool may reach, mm: every motion whose tool goes lower
-    /// by more than the tolerance is reported (verify: no floor check without it;
-    /// compare: default each job's floor).
+    /// by more than the tolerance is reported.
     #[arg(long, allow_hyphen_values = true)]
     floor: Option<f64>,
 }
@@ -199,7 +203,7 @@ pub fn run(args: &Args) -> Result<()> {
         tool_length: args.tool_length,
         sim: &sim,
         out: &args.out,
-        partial: args.sim.partial,
+        partial: args.partial,
     };
     // The holder check is staged with the reports: holder.json is written with them
     // or not at all.

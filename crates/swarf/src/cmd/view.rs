@@ -15,12 +15,20 @@ use swarf_report::gltf::StockMeshOptions;
 
 /// Arguments of `swarf view`.
 #[derive(clap::Args)]
+#[command(
+    mut_arg("tol", |a| super::help::note(a, "(default: the job's tolerance with --job, else the one the program states, else 0.01)")),
+    mut_arg("scallop", |a| super::help::note(a, "(default: the job's scallop with --job, else the one the program states, else 0)")),
+    mut_arg("rapid", |a| super::help::note(a, "(default: the job's rapid rate with --job)")),
+    mut_arg("floor", |a| super::help::note(a, "(no floor check without it)")),
+)]
 pub struct Args {
     /// Job file: plan it, verify its program and show both.
     #[arg(long, conflicts_with_all = ["part", "program", "tool", "machine"], required_unless_present = "program")]
     job: Option<PathBuf>,
-    /// Design part (part file, STL/OBJ mesh or built-in name), with --program.
-    #[arg(long, requires = "program")]
+    #[arg(long, requires = "program", help = format!(
+        "{}; with --program",
+        super::help::part("Design part", super::help::Reads::Model)
+    ))]
     part: Option<String>,
     /// NC program (G-code, APT CL or pose CSV), with --part.
     #[arg(long, requires = "part")]
@@ -63,9 +71,6 @@ pub fn run(args: &Args) -> Result<()> {
             "--max-vertices: expected 1000 to 50000000 vertices, found {}",
             args.max_vertices
         );
-    }
-    if args.sim.partial {
-        bail!("--partial: swarf view shows programs that run to their end");
     }
     let sim = args.sim.settings()?;
     let source = match (&args.job, &args.part, &args.program) {

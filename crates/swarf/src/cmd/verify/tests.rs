@@ -27,7 +27,6 @@ fn sim_args() -> SimArgs {
         sample_tol: None,
         max_memory: 4096,
         deviation: None,
-        partial: false,
         first_order_sweep: false,
         floor: None,
     }
@@ -75,7 +74,7 @@ fn verify_finds_the_gouge_and_fails_on_a_stopped_program() {
         .collect();
     assert!(before == after, "the previous reports were replaced");
     let mut partial = args(&stopped, "stop");
-    partial.sim.partial = true;
+    partial.partial = true;
     let err = run(&partial).unwrap_err().to_string();
     assert!(
         err.contains("the report covers the motions before it"),
@@ -124,6 +123,7 @@ fn plane_args(dir: &Path, programs: &[&Path], tools: &[&str], out: &str) -> Args
         tool_length: None,
         gcode: GcodeArgs::default(),
         sim: sim_args(),
+        partial: false,
         out: dir.join(out),
     }
 }
@@ -230,7 +230,7 @@ fn verify_runs_a_finish_then_its_cleanup_on_one_stock() {
     std::fs::write(&stopped, cut + "G1 X4 Y\n").unwrap();
     let two = [&stopped, &cleanup];
     let mut partial = args(&two, &["ball:d=6", "ball:d=2"], "stop");
-    partial.sim.partial = true;
+    partial.partial = true;
     let err = run(&partial).unwrap_err().to_string();
     assert!(err.contains("stopped.ngc:11"), "{err}");
     let report = read_report(&dir.join("stop/report.json"));
@@ -266,6 +266,7 @@ fn verify_with_a_tool_library_reports_the_holder() {
         tool_length: None,
         gcode: GcodeArgs::default(),
         sim: sim_args(),
+        partial: false,
         out: dir.join("out"),
     };
     run(&args("ball6-long")).unwrap();
