@@ -52,7 +52,7 @@ def test_eval_bad_input():
     part = swarf.Part.load("builtin:wave")
     with pytest.raises(ValueError, match=r"uv\[1\]: \(0.5, 1.5\) is outside the patch's domain"):
         part.eval(0, np.array([[0.5, 0.5], [0.5, 1.5]]))
-    with pytest.raises(ValueError, match=r"patch: part wave has 1 patch\(es\)"):
+    with pytest.raises(ValueError, match=r"patch: index 3 is out of range: part wave has 1 patch \(index 0\)"):
         part.eval(3, np.array([[0.5, 0.5]]))
     with pytest.raises(ValueError, match=r"uv: expected a float64 array of shape \(N, 2\), found an array of dtype float64 and shape \(3,\)"):
         part.eval(0, np.array([0.5, 0.5, 0.5]))

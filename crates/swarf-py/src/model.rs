@@ -116,15 +116,7 @@ impl Part {
     }
 
     fn patch(&self, index: usize) -> PyResult<&swarf_geom::Patch> {
-        let part = self.part();
-        part.patches.get(index).ok_or_else(|| {
-            value_err(format!(
-                "patch: part {} has {} patch(es); expected an index in 0..{}",
-                part.name,
-                part.patches.len(),
-                part.patches.len()
-            ))
-        })
+        swarf_app::model::patch_at(self.part(), index).map_err(|m| value_err(format!("patch: {m}")))
     }
 }
 

@@ -85,14 +85,24 @@ pub fn cutter_arg(arg: &str, obj: &Bound<'_, PyAny>) -> PyResult<Cutter> {
 }
 
 /// A cutter from keyword arguments, as a job file's table `{ shape = .., d = .. }`.
+///
+/// # Errors
+/// `SwarfError` naming the call as written (`Tool(shape='bull', d=10): bull tool:
+/// missing ...`).
 fn cutter_from_table(kwargs: &Bound<'_, PyDict>) -> PyResult<Cutter> {
     let table = to_toml("tool", kwargs.as_any())?;
-    let text = table.to_string();
     table.try_into::<Cutter>().map_err(|e| {
-        swarf_msg(format!(
-            "tool {{ {} }}: {}",
-            excerpt(&text, 80),
-            e.message()
-        ))
+        let call = kwargs
+            .iter()
+            .map(|(k, v)| Ok(format!("{k}={}", v.repr()?)))
+            .collect::<PyResult<Vec<String>>>();
+        match call {
+            Ok(args) => swarf_msg(format!(
+                "Tool({}): {}",
+                excerpt(&args.join(", "), 80),
+                e.message()
+            )),
+            Err(err) => err,
+        }
     })
 }
