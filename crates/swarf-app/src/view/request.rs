@@ -149,8 +149,9 @@ fn stages_of(program: Program, tools: &[String]) -> Result<(Vec<Program>, Vec<Cu
     let tools = crate::programs::parse_tools(tools, programs.len())?;
     if programs.len() > 1 && tools.len() < programs.len() {
         bail!(
-            "{}: the program changes tools {} times but names {} tool(s) (no plan record?): \
-             view it with `swarf verify --tool` for each, or plan it with swarf",
+            "{}: the program changes tools {} times but {} tool(s) are known for it (no plan \
+             record?): plan it with swarf (its plan record names each tool), or verify it with a \
+             `swarf verify --tool` for each tool",
             programs[0].source,
             programs.len() - 1,
             tools.len()
