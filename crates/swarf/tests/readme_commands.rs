@@ -89,19 +89,25 @@ fn flush_block(lang: &str, logical: &mut Vec<(usize, String)>, out: &mut Vec<Nam
     }
 }
 
-/// Reads the commands of a paragraph's inline code spans.
+/// Reads the commands of a paragraph's inline code spans (a span may run over a
+/// line break; it is placed at the line where it starts).
 fn flush_prose(prose: &mut Vec<(usize, String)>, out: &mut Vec<Named>) {
-    let Some(&(line, _)) = prose.first() else {
+    let Some(&(first, _)) = prose.first() else {
         return;
     };
     let text: Vec<String> = prose.drain(..).map(|(_, l)| l).collect();
-    let text = text.join(" ");
+    let text = text.join("\n");
     let pieces: Vec<&str> = text.split('`').collect();
     if pieces.len().is_multiple_of(2) {
         return; // unbalanced backticks: no spans to trust
     }
-    for span in pieces.iter().skip(1).step_by(2) {
-        out.extend(segments(span, true).filter_map(|s| parse(line, s)));
+    let mut line = first;
+    for (k, piece) in pieces.iter().enumerate() {
+        if k % 2 == 1 {
+            let span = piece.replace('\n', " ");
+            out.extend(segments(&span, true).filter_map(|s| parse(line, s)));
+        }
+        line += piece.matches('\n').count();
     }
 }
 
@@ -287,10 +293,10 @@ fn a_made_up_flag_and_subcommand_are_reported() {
     assert_eq!(found.len(), 2, "{found:?}");
     assert!(found[0].contains("doc.md:2") && found[0].contains("--no-such-flag"));
     assert!(found[1].contains("doc.md:3") && found[1].contains("frobnicate"));
-    let inline = "Run `swarf verify --part wave --bogus 1` and\n`swarf demo --out\nd`.\n";
+    let inline = "Run `swarf demo --out\nd` and\n`swarf verify --part wave --bogus 1`.\n";
     let found = problems("doc.md", &commands(inline), binary_help);
     assert_eq!(found.len(), 1, "{found:?}");
-    assert!(found[0].contains("--bogus"));
+    assert!(found[0].contains("doc.md:3") && found[0].contains("--bogus"));
 }
 
 #[test]
