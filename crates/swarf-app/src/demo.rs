@@ -28,10 +28,15 @@
 //! Every program verified in steps 3 and 4 also gets its 3D view (`*.view/`: GLB
 //! files, `view.json`, and the viewer page where it has been built; [`crate::view`]).
 //!
-//! Each section ends with the wall time it took. The jobs are embedded so that the
-//! demo needs no files; their parts and machine are built-in.
+//! Each section ends with the wall time it took. The edge comparison and the
+//! sequence also get bar charts (`edges/*.left.png`, `sequence/stock.png`). The
+//! whole run is written again as one page, `index.html` (every table, picture,
+//! verification summary, 3D view link and section time; `demo_page.rs`), staged
+//! with the rest and committed with it. The jobs are embedded so that the demo needs
+//! no files; their parts and machine are built-in.
 
 use crate::compare::{compare_all_views, five_axis_markdown, markdown};
+use crate::demo_page::{Sections, program_blocks, row_summary};
 use crate::error::{Context, Result};
 use crate::inspect::{patch_text, summarise_patches};
 use crate::job::Job;
@@ -41,6 +46,8 @@ use crate::report::Reporter;
 use crate::verify::SimSettings;
 use std::io::Write;
 use std::path::Path;
+use swarf_report::chart::{Chart, Series};
+use swarf_report::html::{Block, Figure};
 
 /// Chordal tolerance of the demo tessellations, mm.
 const DEMO_TOL: f64 = 0.01;
@@ -95,25 +102,86 @@ const SEQUENCE_JOB: &str = include_str!("../../../jobs/fillet-pocket-sequence.to
 /// The demo's sections (for the progress of [`demo`]).
 const DEMO_SECTIONS: usize = 7;
 
-/// Runs the demo into the directory `dir`, writing what it does to `text`. Every
-/// file is staged and the whole set is renamed into place at the end.
+/// Runs the demo into the directory `dir`, writing what it does to `text`, and its
+/// page (`index.html`: its tables, pictures, summaries, 3D view links and section
+/// times, [`swarf_report::html`]). Every file is staged and the whole set
+/// is renamed into place at the end.
 ///
 /// # Errors
 /// An output that cannot be written; any failure of a job (none is expected: the
 /// jobs and parts are built in).
 pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<()> {
     let start = std::time::Instant::now();
-    let mut section = start;
     let mut outputs = Outputs::new(dir);
     let out = &mut outputs;
+    let mut s = Sections {
+        text,
+        done: Vec::new(),
+    };
     reporter.job(0, DEMO_SECTIONS, "demo: parts");
-    writeln!(text, "== parts")?;
-    tessellate_parts(out, text)?;
-    section_took(text, &mut section)?;
+    s.run("parts", |t| tessellate_parts(out, t))?;
     reporter.job(1, DEMO_SECTIONS, "demo: tool paths");
-    writeln!(text, "\n== tool paths (paper 004 on wave.toml)")?;
-    let jobs_dir = out.path("jobs");
     let mut paths = Vec::new();
+    s.run("tool paths (paper 004 on wave.toml)", |t| {
+        tool_paths(out, t, reporter, &mut paths)
+    })?;
+    reporter.job(2, DEMO_SECTIONS, "demo: verification");
+    s.run(
+        "verification (dexel simulation against the design; paper 004, Table 1)",
+        |t| verification(out, t, reporter, &paths),
+    )?;
+    reporter.job(3, DEMO_SECTIONS, "demo: five-axis");
+    s.run(
+        "five-axis (thesis 000 ch. 8 on die.toml), verified by dexel through the APT CL",
+        |t| die(out, t, reporter),
+    )?;
+    reporter.job(4, DEMO_SECTIONS, "demo: rest and cleanup");
+    s.run(
+        "rest material and cleanup (thesis 002 on the built-in fillet pocket)",
+        |t| {
+            let done = out.in_dir("rest", |out| {
+                crate::demo_rest::cleanup_section(out, t, reporter)
+            })?;
+            Ok(done
+                .iter()
+                .flat_map(|(stem, summary)| program_blocks(out, "rest", stem, summary))
+                .collect())
+        },
+    )?;
+    reporter.job(5, DEMO_SECTIONS, "demo: drop and spin");
+    s.run(
+        "drop and spin at the common edge (paper 003 on the edge parts)",
+        |t| edges(out, t, reporter),
+    )?;
+    reporter.job(6, DEMO_SECTIONS, "demo: stock to part");
+    s.run(
+        "from stock to part (thesis 002 §4.1 on the fillet pocket: rough, rest-rough, finish, clean up)",
+        |t| sequence(out, t),
+    )?;
+    reporter.jobs_done();
+    let views = views_line(out, dir);
+    writeln!(s.text, "\n{views}")?;
+    let total = start.elapsed().as_secs_f64();
+    crate::demo_page::stage_page(out, s.done, total)?;
+    outputs.commit()?;
+    writeln!(
+        s.text,
+        "\nall results in {} ({total:.1} s); open {}",
+        dir.display(),
+        dir.join("index.html").display()
+    )?;
+    Ok(())
+}
+
+/// Plans the shipped example jobs (staged under `jobs/`, their paths pushed to
+/// `paths`) and prints their figures.
+fn tool_paths(
+    out: &mut Outputs,
+    text: &mut dyn Write,
+    reporter: &dyn Reporter,
+    paths: &mut Vec<std::path::PathBuf>,
+) -> Result<Vec<Block>> {
+    let mut links = Vec::new();
     for (name, job_text) in JOBS {
         let job = Job::parse(job_text, name)?;
         let summary = plan_job(&job, Path::new("."), out, reporter)?;
@@ -127,85 +195,84 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
                 .as_f64()
                 .unwrap_or(f64::NAN),
         )?;
-        let path = jobs_dir.join(name);
-        out.write(&path, job_text.as_bytes())?;
-        paths.push(path);
+        let rel = format!("jobs/{name}");
+        out.write(&rel, job_text.as_bytes())?;
+        paths.push(out.path(&rel));
+        links.push((rel, name.to_string()));
+        for file in [&job.output.gcode, &job.output.cl, &job.output.summary]
+            .into_iter()
+            .flatten()
+        {
+            if out.is_staged(file) {
+                links.push((file.clone(), file.clone()));
+            }
+        }
     }
-    section_took(text, &mut section)?;
-    reporter.job(2, DEMO_SECTIONS, "demo: verification");
-    writeln!(
-        text,
-        "\n== verification (dexel simulation against the design; paper 004, Table 1)"
-    )?;
-    let (rows, _) = out.in_dir("compare", |out| {
-        compare_all_views(&paths, &SimSettings::default(), out, reporter, true)
-    })?;
-    write!(text, "{}", markdown(&rows))?;
-    section_took(text, &mut section)?;
-    reporter.job(3, DEMO_SECTIONS, "demo: five-axis");
-    writeln!(
-        text,
-        "\n== five-axis (thesis 000 ch. 8 on die.toml), verified by dexel through the APT CL"
-    )?;
-    die(out, &jobs_dir, text, reporter)?;
-    section_took(text, &mut section)?;
-    reporter.job(4, DEMO_SECTIONS, "demo: rest and cleanup");
-    writeln!(
-        text,
-        "\n== rest material and cleanup (thesis 002 on the built-in fillet pocket)"
-    )?;
-    out.in_dir("rest", |out| {
-        crate::demo_rest::cleanup_section(out, text, reporter)
-    })?;
-    section_took(text, &mut section)?;
-    reporter.job(5, DEMO_SECTIONS, "demo: drop and spin");
-    writeln!(
-        text,
-        "\n== drop and spin at the common edge (paper 003 on the edge parts)"
-    )?;
-    edges(out, text, reporter)?;
-    section_took(text, &mut section)?;
-    reporter.job(6, DEMO_SECTIONS, "demo: stock to part");
-    writeln!(
-        text,
-        "\n== from stock to part (thesis 002 §4.1 on the fillet pocket: rough, rest-rough, finish, clean up)"
-    )?;
-    sequence(out, text)?;
-    section_took(text, &mut section)?;
-    reporter.jobs_done();
-    outputs.commit()?;
-    match crate::view::viewer_dist() {
-        Some(_) => writeln!(
-            text,
-            "\n3D views: {}/compare/*.view/index.html, die/*.view/",
-            dir.display()
-        )?,
-        None => writeln!(
-            text,
-            "\n3D views (GLB): {}/compare/*.view/, die/*.view/\n{}",
-            dir.display(),
-            crate::view::missing_viewer_note()
-        )?,
-    }
-    writeln!(
-        text,
-        "\nall results in {} ({:.1} s)",
-        dir.display(),
-        start.elapsed().as_secs_f64()
-    )?;
-    Ok(())
+    Ok(vec![Block::Links(links)])
 }
 
-/// Prints the wall time since `mark` as the cost of the section just done, and
-/// starts the next one.
-fn section_took(text: &mut dyn Write, mark: &mut std::time::Instant) -> Result<()> {
-    writeln!(text, "(section: {:.1} s)", mark.elapsed().as_secs_f64())?;
-    *mark = std::time::Instant::now();
-    Ok(())
+/// Verifies the planned wave programs (`compare/`), prints Table 1 and says where
+/// strategies coincide.
+fn verification(
+    out: &mut Outputs,
+    text: &mut dyn Write,
+    reporter: &dyn Reporter,
+    paths: &[std::path::PathBuf],
+) -> Result<Vec<Block>> {
+    let (rows, _) = out.in_dir("compare", |out| {
+        compare_all_views(paths, &SimSettings::default(), out, reporter, true)
+    })?;
+    write!(text, "{}", markdown(&rows))?;
+    let mut blocks = Vec::new();
+    for note in crate::demo_page::coinciding(&rows, "wave") {
+        writeln!(text, "{note}")?;
+        blocks.push(Block::Note(note));
+    }
+    for (path, row) in paths.iter().zip(&rows) {
+        let stem = stem_of(path);
+        blocks.extend(program_blocks(out, "compare", &stem, &row_summary(row)));
+    }
+    blocks.push(Block::Links(
+        ["compare.md", "compare.json"]
+            .map(|f| (format!("compare/{f}"), f.to_string()))
+            .to_vec(),
+    ));
+    Ok(blocks)
+}
+
+/// The file stem of `path`.
+fn stem_of(path: &Path) -> String {
+    path.file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned())
+}
+
+/// Where the 3D views are (the ones the page links).
+fn views_line(out: &Outputs, dir: &Path) -> String {
+    let staged = JOBS
+        .iter()
+        .map(|(n, _)| format!("compare/{}.view/index.html", n.trim_end_matches(".toml")))
+        .chain(
+            DIE_JOBS
+                .iter()
+                .map(|(n, _)| format!("die/{}.view/index.html", n.trim_end_matches(".toml"))),
+        )
+        .any(|p| out.is_staged(p));
+    if staged {
+        format!(
+            "3D views: {}/compare/*.view/index.html, die/*.view/index.html",
+            dir.display()
+        )
+    } else {
+        format!(
+            "3D views (GLB): {}/compare/*.view/, die/*.view/\n{}",
+            dir.display(),
+            crate::view::missing_viewer_note()
+        )
+    }
 }
 
 /// Plans the shipped sequence job into `out/sequence` and prints its operations.
-fn sequence(out: &mut Outputs, text: &mut dyn Write) -> Result<()> {
+fn sequence(out: &mut Outputs, text: &mut dyn Write) -> Result<Vec<Block>> {
     let name = "fillet-pocket-sequence.toml";
     let seq = crate::sequence::Sequence::parse(SEQUENCE_JOB, name, Path::new("."))?;
     let dir = out.path("sequence");
@@ -221,16 +288,29 @@ fn sequence(out: &mut Outputs, text: &mut dyn Write) -> Result<()> {
         "program and summary: {}/fillet-pocket-sequence.*",
         dir.display()
     )?;
-    Ok(())
+    let chart = "sequence/stock.png";
+    out.write(
+        chart,
+        &swarf_report::chart::chart_png(&sequence_chart(&report))?,
+    )?;
+    let figure = Figure {
+        src: chart.into(),
+        caption: "the stock after each operation".into(),
+    };
+    let links = [name.to_string()]
+        .into_iter()
+        .chain(seq.output.gcode.clone())
+        .chain(seq.output.summary.clone())
+        .map(|f| format!("sequence/{f}"))
+        .filter(|f| out.is_staged(f))
+        .map(|f| (f.clone(), f))
+        .collect();
+    Ok(vec![Block::Figures(vec![figure]), Block::Links(links)])
 }
 
 /// Plans and verifies the die jobs into `out/die` and prints their table.
-fn die(
-    out: &mut Outputs,
-    jobs_dir: &Path,
-    text: &mut dyn Write,
-    reporter: &dyn Reporter,
-) -> Result<()> {
+fn die(out: &mut Outputs, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<Vec<Block>> {
+    let jobs_dir = out.path("jobs");
     let mut paths = Vec::new();
     for (name, job_text) in DIE_JOBS {
         let path = jobs_dir.join(name);
@@ -256,12 +336,18 @@ fn die(
         "pictures: {}/die-*.deviation.png, die-*.toolpath.png",
         dir.display()
     )?;
-    Ok(())
+    let mut blocks = Vec::new();
+    for (path, row) in paths.iter().zip(&rows) {
+        let summary = crate::demo_page::five_axis_summary(row);
+        blocks.extend(program_blocks(out, "die", &stem_of(path), &summary));
+    }
+    blocks.push(Block::Links(vec![("die/die.md".into(), "die.md".into())]));
+    Ok(blocks)
 }
 
 /// Plans the shipped drop-spin job into `out/edges` and prints the comparison of
 /// the methods on both edge parts.
-fn edges(out: &mut Outputs, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<()> {
+fn edges(out: &mut Outputs, text: &mut dyn Write, reporter: &dyn Reporter) -> Result<Vec<Block>> {
     let dir = out.path("edges");
     let job = Job::parse(DROP_SPIN_JOB, "edge-concave-drop-spin.toml")?;
     let start = std::time::Instant::now();
@@ -298,10 +384,92 @@ fn edges(out: &mut Outputs, text: &mut dyn Write, reporter: &dyn Reporter) -> Re
     out.write(dir.join("edges.md"), table.as_bytes())?;
     out.write_json(dir.join("edges.json"), &all)?;
     write!(text, "{table}")?;
-    Ok(())
+    let mut figures = Vec::new();
+    for cmp in &all {
+        let file = format!("edges/{}.left.png", cmp.part);
+        out.write(&file, &swarf_report::chart::chart_png(&edge_chart(cmp))?)?;
+        figures.push(Figure {
+            src: file,
+            caption: format!("{}: material left at the edge, by method", cmp.part),
+        });
+    }
+    let links = ["edges.md", "edges.json"]
+        .map(|f| (format!("edges/{f}"), f.to_string()))
+        .to_vec();
+    Ok(vec![Block::Figures(figures), Block::Links(links)])
 }
 
-fn tessellate_parts(out: &mut Outputs, text: &mut dyn Write) -> Result<()> {
+/// The material each method leaves at the stations of `cmp`, with the ball bound.
+fn edge_chart(cmp: &crate::edge_compare::EdgeComparison) -> Chart {
+    Chart {
+        title: format!(
+            "{}: material left at the edge, tool {} (the dashes: the ball bound r (sec b - 1), \
+             the least a spun tool can leave)",
+            cmp.part, cmp.tool
+        ),
+        unit: "mm left".into(),
+        categories: cmp
+            .stations
+            .iter()
+            .map(|s| format!("station {s:.1} mm"))
+            .collect(),
+        series: cmp
+            .rows
+            .iter()
+            .map(|r| Series {
+                name: format!("{} ({} passes)", r.method, r.passes),
+                values: r.left_mm.clone(),
+            })
+            .collect(),
+        marks: Some(("ball bound".into(), cmp.ball_bound_mm.clone())),
+        footer: Vec::new(),
+    }
+}
+
+/// The stock after each operation of a sequence: the highest material left above
+/// the design and the deepest gouge, against the operation's limit.
+fn sequence_chart(report: &crate::sequence::SequenceReport) -> Chart {
+    let ops = &report.operations;
+    Chart {
+        title: format!(
+            "{}: the stock after each operation (the dashes: what the operation was to \
+             leave plus the tolerance)",
+            report.name.as_deref().unwrap_or("sequence")
+        ),
+        unit: "mm".into(),
+        categories: ops
+            .iter()
+            .map(|o| format!("T{} {}", o.number, o.name))
+            .collect(),
+        series: vec![
+            Series {
+                name: "highest material above the design".into(),
+                values: ops.iter().map(|o| o.max_rest_mm).collect(),
+            },
+            Series {
+                name: "deepest gouge below it".into(),
+                values: ops.iter().map(|o| o.worst_gouge_mm.abs()).collect(),
+            },
+        ],
+        marks: Some((
+            "limit".into(),
+            ops.iter().map(|o| o.rest_limit_mm).collect(),
+        )),
+        footer: ops
+            .iter()
+            .map(|o| {
+                format!(
+                    "T{} {}: {} cells above its limit, {} gouge cells",
+                    o.number, o.name, o.rest_cells, o.gouge_cells
+                )
+            })
+            .collect(),
+    }
+}
+
+/// Inspects and tessellates every built-in part, linking the STL files.
+fn tessellate_parts(out: &mut Outputs, text: &mut dyn Write) -> Result<Vec<Block>> {
+    let mut links = Vec::new();
     for (name, _) in swarf_io::builtin_parts() {
         let part = swarf_io::builtin_part(name)
             .with_context(|| "built-in part does not load".to_string())?;
@@ -310,6 +478,7 @@ fn tessellate_parts(out: &mut Outputs, text: &mut dyn Write) -> Result<()> {
         let mesh = part.tessellate(DEMO_TOL)?;
         let path = out.path(format!("{name}.stl"));
         out.write_stl(&path, &mesh, name)?;
+        links.push((format!("{name}.stl"), format!("{name}.stl")));
         writeln!(
             text,
             "  tessellated within {DEMO_TOL} mm: {} triangles -> {}",
@@ -317,5 +486,5 @@ fn tessellate_parts(out: &mut Outputs, text: &mut dyn Write) -> Result<()> {
             path.display()
         )?;
     }
-    Ok(())
+    Ok(vec![Block::Links(links)])
 }

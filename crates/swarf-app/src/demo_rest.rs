@@ -33,7 +33,8 @@ const JOBS: [(&str, &str); 2] = [
 const CELL: f64 = 0.1;
 
 /// Runs the section into `out` (the demo's `rest` directory), printing its table
-/// to `text`.
+/// to `text`; the verification summary of each of its checks, by the stem of its
+/// files (`finish`, `finish+cleanup`).
 ///
 /// # Errors
 /// A job that fails; an output that cannot be written.
@@ -41,7 +42,7 @@ pub fn cleanup_section(
     out: &mut Outputs,
     text: &mut dyn Write,
     reporter: &dyn Reporter,
-) -> Result<()> {
+) -> Result<Vec<(String, String)>> {
     let dir = out.dir().to_path_buf();
     for (name, job_text) in JOBS {
         out.write(name, job_text.as_bytes())?;
@@ -78,6 +79,7 @@ pub fn cleanup_section(
         text,
         "\n| programs | excess cells | worst excess mm | gouge cells | rest regions on the stock | verify s |\n|---|---|---|---|---|---|"
     )?;
+    let mut summaries = Vec::new();
     for (n, prefix) in [(1, "finish."), (2, "finish+cleanup.")] {
         let stages: Vec<Stage<'_>> = programs[..n]
             .iter()
@@ -99,13 +101,24 @@ pub fn cleanup_section(
             d.gouge.cells,
             start.elapsed().as_secs_f64()
         )?;
+        summaries.push((
+            prefix.trim_end_matches('.').to_string(),
+            format!(
+                "{}: {} cells of excess (worst {:.3} mm), {} gouge cells, {regions} rest \
+                 regions found again on the stock",
+                names.join(" + "),
+                d.excess.cells,
+                d.excess.worst,
+                d.gouge.cells
+            ),
+        ));
     }
     writeln!(
         text,
         "pictures: {}/*.deviation.png, *.toolpath.png",
         dir.display()
     )?;
-    Ok(())
+    Ok(summaries)
 }
 
 /// The rest regions found on the in-process stock of `v` (threshold: the

@@ -10,6 +10,7 @@ pub mod classify;
 pub mod cleanup;
 pub mod compare;
 pub mod demo;
+mod demo_page;
 mod demo_rest;
 pub mod drop_spin;
 pub mod dsm;

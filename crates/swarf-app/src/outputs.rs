@@ -101,6 +101,11 @@ impl Outputs {
         r
     }
 
+    /// Whether `rel` (relative to [`Outputs::dir`], or absolute) is staged in this set.
+    pub fn is_staged(&self, rel: impl AsRef<Path>) -> bool {
+        self.set.staged(&self.path(rel)).is_some()
+    }
+
     /// The NC program `rel` as staged in this set (or, when it is not, as it is on
     /// disk), named by its final path.
     ///

@@ -12,6 +12,12 @@
 //!   band neutral) and the tool-path picture of a dexel verification (swarf-sim).
 //! - [`rest_picture`]: rest regions over the part.
 //! - [`classify_picture`]: steep, horizontal and other areas over the part.
+//! - [`chart`]: bar charts of figures without a map (material left at an edge's
+//!   stations, the stock after each operation of a sequence).
+//!
+//! Pages:
+//! - [`html`]: a self-contained report page (inline CSS, no script) of console text,
+//!   tables, pictures and links, and the relative links it holds.
 //!
 //! 3D scenes:
 //! - [`gltf`]: GLB files of the design, the tool path, the cutter and the simulated
@@ -20,9 +26,11 @@
 //! Units: millimetres in the world, pixels on the canvas.
 
 pub mod canvas;
+pub mod chart;
 pub mod classify_picture;
 pub mod error;
 pub mod gltf;
+pub mod html;
 pub mod page;
 pub mod picture;
 pub mod rest_picture;

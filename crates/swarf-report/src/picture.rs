@@ -6,10 +6,11 @@
 //!
 //! The colour scale ([`Scale`]) is set by robust percentiles: its ends are the 1st
 //! and 99th percentiles of the measured deviations (at least twice the tolerance
-//! either side), so one spot far off (a 0.73 mm gouge, a false 19.8 mm excess on a
-//! STEP part's seam) does not wash the rest of the map out to white; the cells past
-//! either end are drawn in colours of their own (magenta below, cyan above) and
-//! counted in the footer. Cells within the tolerance, `|dev| <= tol`, are drawn
+//! either side, and above at least the allowed excess plus the tolerance, so that
+//! the scallop crests a job allows are on the ramp), so one spot far off (a 0.73 mm
+//! gouge, a false 19.8 mm excess on a STEP part's seam) does not wash the rest of the
+//! map out to white; the cells past either end are drawn in colours of their own
+//! (magenta below, cyan above) and counted in the footer. Cells within the tolerance, `|dev| <= tol`, are drawn
 //! neutral grey: they are on the design as far as the check can tell, and a ramp
 //! shade there would read as a small gouge or a thin skin. The ramp starts just past
 //! the tolerance at a light tint, so "just out of tolerance" is never white.
@@ -90,7 +91,8 @@ pub struct Scale {
 
 impl Scale {
     /// The scale of `values` (NaN: not measured): the 1st and 99th percentiles of the
-    /// finite ones, at least `2 tol` either side of zero.
+    /// finite ones, at least `2 tol` either side of zero and at least `allowed + tol`
+    /// above it (`allowed`: the excess the job allows, its scallop limit; 0 for none).
     ///
     /// # Units
     /// mm.
@@ -100,10 +102,11 @@ impl Scale {
     /// use swarf_report::picture::Scale;
     /// let mut dev: Vec<f64> = (0..1000).map(|k| 0.05 * f64::from(k) / 1000.0).collect();
     /// dev[500] = 0.73;
-    /// let s = Scale::of_values(&dev, 0.01);
+    /// let s = Scale::of_values(&dev, 0.01, 0.0);
     /// assert!(s.above < 0.051 && s.below == 0.02);
+    /// assert!((Scale::of_values(&dev, 0.01, 0.15).above - 0.16).abs() < 1e-12);
     /// ```
-    pub fn of_values(values: &[f64], tol: f64) -> Scale {
+    pub fn of_values(values: &[f64], tol: f64, allowed: f64) -> Scale {
         let mut v: Vec<f64> = values.iter().copied().filter(|d| d.is_finite()).collect();
         let floor = (2.0 * tol).max(MIN_RANGE);
         let [lo, hi] = PERCENTILES.map(|p| {
@@ -115,7 +118,7 @@ impl Scale {
         });
         Scale {
             below: (-lo).max(floor),
-            above: hi.max(floor),
+            above: hi.max(floor).max(allowed.max(0.0) + tol),
             tol: tol.max(0.0),
         }
     }
@@ -155,9 +158,10 @@ impl Scale {
 }
 
 /// The colour scale of the verification `v` ([`Scale::of_values`] over its
-/// deviations, at its tolerance).
+/// deviations, at its tolerance and allowed excess).
 pub fn limits(v: &Verification) -> Scale {
-    Scale::of_values(&v.deviation.values, v.deviation.summary.tol)
+    let s = &v.deviation.summary;
+    Scale::of_values(&v.deviation.values, s.tol, s.allowed_excess)
 }
 
 /// The deviation heat map as PNG bytes.
@@ -445,7 +449,7 @@ mod tests {
     #[test]
     fn one_outlier_does_not_stretch_the_scale() {
         let dev = scalloped();
-        let s = Scale::of_values(&dev, 0.01);
+        let s = Scale::of_values(&dev, 0.01, 0.0);
         assert!((0.045..=0.05).contains(&s.above), "{s:?}");
         assert_eq!(s.below, 0.02);
         assert_eq!(s.beyond(&dev), [1, 25]);
@@ -455,7 +459,7 @@ mod tests {
         let c = s.colour(0.04, true);
         assert!(c[0] < 120 && c[2] > 150, "{c:?}");
         // All-NaN and zero tolerance still give a usable scale.
-        let s = Scale::of_values(&[f64::NAN], 0.0);
+        let s = Scale::of_values(&[f64::NAN], 0.0, 0.0);
         assert!(s.below > 0.0 && s.above > 0.0);
         assert_eq!(s.colour(f64::NAN, false), OFF_PART);
         assert_eq!(s.colour(f64::NAN, true), NO_MATERIAL);
