@@ -106,6 +106,17 @@ export function barLayout({ lo, hi, tol }) {
   return { band: [left, left + BAND] };
 }
 
+// How many measured vertices lie below `lo` and above `hi`.
+export function countBeyond(dev, state, lo, hi) {
+  let [below, above] = [0, 0];
+  for (let k = 0; k < dev.length; k += 1) {
+    if (state[k] !== 0) continue;
+    if (dev[k] < lo) below += 1;
+    else if (dev[k] > hi) above += 1;
+  }
+  return { below, above };
+}
+
 // The legend's gradient (CSS) over [lo, hi]: red side, neutral band, blue side.
 export function gradient(scale) {
   const [a, b] = barLayout(scale).band.map((x) => `${(100 * x).toFixed(2)}%`);

@@ -4,7 +4,7 @@
 // these files are the page, embedded in the swarf binary as they are.
 
 import { OrbitCamera, attachControls } from './camera.js';
-import { cellColour, robustRange } from './colour.js';
+import { cellColour, countBeyond, robustRange } from './colour.js';
 import { Renderer } from './gl.js';
 import { poseMatrix, transform } from './mat.js';
 import { cutterPose, motionOfLine } from './motions.js';
@@ -160,7 +160,10 @@ function makeApi(view, scene, renderer, camera, overlay) {
     setRange(lo, hi) {
       const s = stock();
       if (lo == null || hi == null) state.scale = s ? robustRange(s.dev, s.state, tol) : state.scale;
-      else state.scale = { lo: Math.min(lo, -tol * 1.001), hi: Math.max(hi, tol * 1.001), tol };
+      else {
+        const [l, h] = [Math.min(lo, -tol * 1.001), Math.max(hi, tol * 1.001)];
+        state.scale = { lo: l, hi: h, tol, beyond: s ? countBeyond(s.dev, s.state, l, h) : null };
+      }
       document.dispatchEvent(new CustomEvent('swarf-scale', { detail: state.scale }));
       api.render();
     },

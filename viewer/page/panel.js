@@ -101,6 +101,10 @@ function showScale(view, scale) {
   band.textContent = `\u00b1${n(scale.tol)}`;
   $('range-lo').value = n(scale.lo);
   $('range-hi').value = n(scale.hi);
+  for (const [id, count] of [['gougeBeyond', scale.beyond?.below], ['excessBeyond', scale.beyond?.above]]) {
+    const label = $(`key-${id}`);
+    if (label) label.textContent = ` ${label.dataset.text}${count ? ` (${count})` : ''}`;
+  }
   const swatch = document.querySelector('.layer[data-layer="stock"] .swatch');
   if (swatch) swatch.style.background = gradient(scale);
 }
@@ -114,7 +118,9 @@ function buildScale(view, api) {
     ['offPart', 'off the part'],
   ];
   for (const [c, text] of key) {
-    $('scale-key').append(el('span', { className: 'key' }, el('span', { className: 'swatch', style: `background: ${css(COLOURS[c])}` }), ` ${text}`));
+    const label = el('span', { id: `key-${c}` }, ` ${text}`);
+    label.dataset.text = text;
+    $('scale-key').append(el('span', { className: 'key' }, el('span', { className: 'swatch', style: `background: ${css(COLOURS[c])}` }), label));
   }
   $('scale-note').textContent = `${d.mode} deviation, mm: red below the design (gouge), blue material left, ` +
     `grey within the tolerance \u00b1${d.tolerance_mm} mm (its band drawn wider than to scale); ` +
