@@ -426,41 +426,46 @@ fn edge_chart(cmp: &crate::edge_compare::EdgeComparison) -> Chart {
     }
 }
 
-/// The stock after each operation of a sequence: the highest material left above
-/// the design and the deepest gouge, against the operation's limit.
+/// The stock after each operation of a sequence: the share of its cells still above
+/// the operation's limit and below the design.
 fn sequence_chart(report: &crate::sequence::SequenceReport) -> Chart {
     let ops = &report.operations;
+    let (nx, ny, _) = report.grid;
+    let share = |n: usize| 100.0 * n as f64 / (nx * ny).max(1) as f64;
     Chart {
         title: format!(
-            "{}: the stock after each operation (the dashes: what the operation was to \
-             leave plus the tolerance)",
+            "{}: the stock after each operation, share of its cells above what the \
+             operation was to leave (plus the tolerance) and below the design",
             report.name.as_deref().unwrap_or("sequence")
         ),
-        unit: "mm".into(),
+        unit: "% of the stock's cells".into(),
         categories: ops
             .iter()
             .map(|o| format!("T{} {}", o.number, o.name))
             .collect(),
         series: vec![
             Series {
-                name: "highest material above the design".into(),
-                values: ops.iter().map(|o| o.max_rest_mm).collect(),
+                name: "above the operation's limit".into(),
+                values: ops.iter().map(|o| share(o.rest_cells)).collect(),
             },
             Series {
-                name: "deepest gouge below it".into(),
-                values: ops.iter().map(|o| o.worst_gouge_mm.abs()).collect(),
+                name: "gouged".into(),
+                values: ops.iter().map(|o| share(o.gouge_cells)).collect(),
             },
         ],
-        marks: Some((
-            "limit".into(),
-            ops.iter().map(|o| o.rest_limit_mm).collect(),
-        )),
+        marks: None,
         footer: ops
             .iter()
             .map(|o| {
                 format!(
-                    "T{} {}: {} cells above its limit, {} gouge cells",
-                    o.number, o.name, o.rest_cells, o.gouge_cells
+                    "T{} {} ({}): {} cells above {:.3} mm, highest {:.3} mm; {} gouge cells",
+                    o.number,
+                    o.name,
+                    o.strategy,
+                    o.rest_cells,
+                    o.rest_limit_mm,
+                    o.max_rest_mm,
+                    o.gouge_cells
                 )
             })
             .collect(),
