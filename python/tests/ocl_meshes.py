@@ -18,8 +18,6 @@ import struct
 
 import numpy as np
 
-import swarf
-
 
 def grid_surface(xs, ys, f):
     """The triangles of ``z = f(x, y)`` over the grid ``xs`` x ``ys`` (two per cell)."""
@@ -47,6 +45,8 @@ def mold(step=1.0):
 
 def die(tol=0.05):
     """swarf's built-in die tessellated within ``tol`` mm."""
+    import swarf  # the built module; the other meshes need only numpy
+
     m = swarf.Part.load("builtin:die").tessellate(tol)
     return m.vertices[m.faces]
 

@@ -3,9 +3,10 @@
 //! - `mesh/*`: one thread, drops over a 0.5 mm grid of points in input order (as a
 //!   raster or `swarf drop` runs them): ball d=8 on die.toml tessellated to ~78,000
 //!   triangles, bull d=10 r=2 on wave.toml tessellated to ~180,000 triangles. The
-//!   `xyindex_peer` variant runs the same algorithm over `swarf_geom::XyIndex` (the
-//!   shared index, a separate array of triangle tops, corners through the mesh's
-//!   vertex list), to measure what the drop grid's layout buys (see `drop/grid.rs`).
+//!   `xyindex_peer` variant runs the flat scan over `swarf_geom::XyIndex` (every
+//!   triangle in the cutter's disc bounded by its top, the candidates from a heap),
+//!   to measure what the drop tree's bounds buy (`drop/tree`). The growth with the
+//!   mesh's density is `tools/ocl/bench_dense.py`.
 //! - `kernel/*`: `triangle_drop` alone over (point, triangle) pairs within reach taken
 //!   from the same meshes: the time of one triangle-cutter test, the floor a drop
 //!   approaches.
@@ -120,7 +121,7 @@ fn mesh_case(c: &mut Criterion, name: &str, mesh: &TriMesh, spec: &str) {
     let mut group = c.benchmark_group(format!("mesh/{name}"));
     group.throughput(Throughput::Elements(pts.len() as u64));
     group.sample_size(20);
-    group.bench_function("drop_grid", |b| {
+    group.bench_function("drop_tree", |b| {
         let mut s = DropScratch::default();
         b.iter(|| {
             for p in &pts {

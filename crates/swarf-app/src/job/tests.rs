@@ -100,6 +100,33 @@ fn raster_max_slope_is_degrees_in_the_file() {
     }
 }
 
+/// Roughing's `adaptive` and `corner_radius` reach the kernel: plain offset rings
+/// step over `R (1 - cos 60)` = 2.5 mm everywhere; adaptive ones step less, by the
+/// rounding of their corners, and a larger corner radius steps over more.
+#[test]
+fn roughing_adaptive_and_corner_radius_reach_the_rings() {
+    let shipped = include_str!("../../../../jobs/fillet-pocket-roughing.toml");
+    let mesh = swarf_io::builtin_mesh("fillet-pocket").unwrap();
+    let steps = |extra: &str| {
+        let text = shipped.replace("tolerance = 0.01", &format!("tolerance = 0.01\n{extra}"));
+        let job = Job::parse(&text, "job.toml").unwrap();
+        let plan = crate::plan::plan(&job, crate::plan::PlanInput::Mesh(&mesh)).unwrap();
+        plan.report.side_step_range.unwrap()
+    };
+    let plain = steps("adaptive = false");
+    assert!(
+        (plain[0] - 2.5).abs() < 1e-9 && (plain[1] - 2.5).abs() < 1e-9,
+        "{plain:?}"
+    );
+    let adaptive = steps("");
+    assert!(
+        adaptive[1] < 2.5 && adaptive[0] < adaptive[1],
+        "{adaptive:?}"
+    );
+    let rounder = steps("corner_radius = 20");
+    assert!(rounder[1] > adaptive[1], "{rounder:?} against {adaptive:?}");
+}
+
 mod five_axis {
     use super::*;
     use swarf_fiveaxis::positioning::Positioning;

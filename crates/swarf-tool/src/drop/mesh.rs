@@ -4,17 +4,16 @@
 //! ([`super::kernel`]). Most of them cannot win, and proving that is cheaper than
 //! dropping onto them: the cutter's lower surface is `tip + h(rho)` with `h`
 //! increasing, so a triangle whose XY box is `rho_min` from the axis and whose top is
-//! `z_max` puts the tip at most at `ub = z_max - h(rho_min)`. The scan of the grid
-//! ([`super::grid`]) computes `ub` for the triangles in the disc, keeps those above the
-//! best height found so far, and visits them in descending `ub` from a binary heap,
-//! stopping at the first whose bound is below the best. Each visit is
-//! [`super::kernel::triangle_drop_above`] with the best height as floor, which settles
-//! most triangles with their plane's drop alone. The search starts from the triangle
-//! that won the previous drop of the same scratch (neighbouring points of a raster or
-//! grid row touch the same or a nearby triangle), so the best height is near the
-//! answer from the start. On die.toml at 78k triangles (about 460 triangles within
-//! reach of a ball d=8 at each point, 34 of them with `ub` above the answer) a drop
-//! costs a few microseconds.
+//! `z_max` puts the tip at most at `ub = z_max - h(rho_min)`. The same bound holds
+//! for a box of triangles with the top of the highest, so the search runs best first
+//! down the drop tree (`super::tree`): boxes and triangles in descending `ub` from
+//! one heap, stopping at the first whose bound is below the best height found so
+//! far, and whole boxes of triangles that cannot win are dismissed at once. Each
+//! visit is [`super::kernel::triangle_drop_above`] with the best height as floor,
+//! which settles most triangles with their plane's drop alone. The search starts from
+//! the triangle that won the previous drop of the same scratch (neighbouring points
+//! of a raster or grid row touch the same or a nearby triangle), so the best height
+//! is near the answer from the start.
 //!
 //! Ties: the highest contact wins; equal heights go to the lowest triangle index, so
 //! the result does not depend on the visiting order or on threads. Nothing is
@@ -25,11 +24,10 @@
 //! tolerance).
 
 use super::facet::barycentric_xy;
-use super::grid::DropGrid;
 use super::kernel::triangle_drop_above;
+use super::tree::{DropTree, Flat, Item, Search};
 use super::{DropCutter, Feature};
 use crate::cutter::Cutter;
-use std::collections::BinaryHeap;
 use swarf_geom::{Point3, TriMesh};
 
 /// The result of a drop: tip height and the winning contact.
@@ -52,12 +50,12 @@ pub struct DropResult {
 /// depend on it (module doc).
 #[derive(Debug, Default, Clone)]
 pub struct DropScratch {
-    heap: Vec<(u64, u32)>,
+    heap: Vec<Item>,
     near: Vec<DropResult>,
     hint: Option<u32>,
 }
 
-/// The best contact so far and the grid entry it came from.
+/// The best contact so far and the tree position it came from.
 type Best = Option<(DropResult, usize)>;
 
 /// The contacts of one drop within a tolerance of its height.
@@ -79,17 +77,7 @@ pub type TopContacts = Vec<DropResult>;
 #[derive(Debug, Clone)]
 pub struct MeshDropper {
     tool: DropCutter,
-    grid: DropGrid,
-}
-
-/// `f64` to a `u64` with the same order (for finite and infinite values).
-fn order_key(v: f64) -> u64 {
-    let b = v.to_bits();
-    if b >> 63 == 1 { !b } else { b | (1 << 63) }
-}
-
-fn from_order_key(k: u64) -> f64 {
-    f64::from_bits(if k >> 63 == 1 { k & !(1 << 63) } else { !k })
+    tree: DropTree,
 }
 
 impl MeshDropper {
@@ -102,7 +90,7 @@ impl MeshDropper {
     pub fn new(mesh: &TriMesh, cutter: &Cutter) -> MeshDropper {
         MeshDropper {
             tool: DropCutter::new(cutter),
-            grid: DropGrid::build(mesh),
+            tree: DropTree::build(mesh),
         }
     }
 
@@ -113,17 +101,25 @@ impl MeshDropper {
 
     /// Number of triangles that drops can touch (the finite ones).
     pub fn len(&self) -> usize {
-        self.grid.len()
+        self.tree.len()
     }
 
     /// True when no triangle can be touched.
     pub fn is_empty(&self) -> bool {
-        self.grid.len() == 0
+        self.tree.len() == 0
     }
 
-    /// Heap bytes held (grid, triangle copies), for memory reports.
+    /// Heap bytes [`MeshDropper::new`] will hold for `mesh`, estimated before
+    /// anything is built (an upper bound of [`MeshDropper::memory_bytes`]), for
+    /// memory caps checked before allocation.
+    pub fn estimate_bytes(mesh: &TriMesh) -> usize {
+        DropTree::estimate_bytes(mesh)
+    }
+
+    /// Heap bytes held (the tree: vertices, triangle indices, nodes), for memory
+    /// reports.
     pub fn memory_bytes(&self) -> usize {
-        self.grid.memory_bytes()
+        self.tree.memory_bytes()
     }
 
     /// Drops the cutter at `(x, y)`: the tip height and contact, or `None` where no
@@ -135,8 +131,8 @@ impl MeshDropper {
         self.run(&self.tool, x, y, 0.0, scratch, false)
     }
 
-    /// As [`MeshDropper::drop`] for another cutter `tool` over the same mesh and grid
-    /// (the pieces of a shank and holder, [`crate::holder`], share one grid).
+    /// As [`MeshDropper::drop`] for another cutter `tool` over the same mesh and tree
+    /// (the pieces of a shank and holder, [`crate::holder`], share one tree).
     ///
     /// # Units
     /// mm.
@@ -174,21 +170,14 @@ impl MeshDropper {
     /// # Units
     /// mm.
     pub fn surface_z(&self, x: f64, y: f64) -> Option<f64> {
-        let mut best: Option<f64> = None;
-        self.grid
-            .for_each_in_disc([x, y], 0.0, f64::NEG_INFINITY, |e, entry, _| {
-                if best.is_some_and(|b| f64::from(entry.zmax) < b) {
-                    return;
-                }
-                let t = &self.grid.corners[e];
-                if let Some(l) = barycentric_xy(t, [x, y]) {
-                    let z = l[0] * t[0].z + l[1] * t[1].z + l[2] * t[2].z;
-                    if best.is_none_or(|b| z > b) {
-                        best = Some(z);
-                    }
-                }
-            });
-        best
+        let mut needle = Point {
+            tree: &self.tree,
+            xy: [x, y],
+            best: None,
+        };
+        self.tree
+            .search([x, y], 0.0, &Flat(0.0), &mut Vec::new(), &mut needle);
+        needle.best
     }
 
     fn run(
@@ -200,81 +189,109 @@ impl MeshDropper {
         scratch: &mut DropScratch,
         keep: bool,
     ) -> Option<DropResult> {
-        let xy = [x, y];
         scratch.near.clear();
-        let near = &mut scratch.near;
-        let mut best: Best = None;
-        let floor = |b: &Best| b.map_or(f64::NEG_INFINITY, |b| b.0.z - slack);
         let hint = scratch
             .hint
             .take()
             .map(|e| e as usize)
-            .filter(|&e| e < self.grid.len());
+            .filter(|&e| e < self.tree.len());
+        let mut s = Descent {
+            tree: &self.tree,
+            tool,
+            xy: [x, y],
+            slack,
+            best: None,
+            near: keep.then_some(&mut scratch.near),
+            hint,
+        };
         if let Some(e) = hint {
-            self.consider(
-                tool,
-                xy,
-                e,
-                f64::NEG_INFINITY,
-                &mut best,
-                keep.then_some(&mut *near),
-            );
+            s.consider(e, f64::NEG_INFINITY);
         }
-        let seed = floor(&best);
-        let env = tool.envelope();
-        let mut heap = BinaryHeap::from(std::mem::take(&mut scratch.heap));
-        heap.clear();
-        self.grid
-            .for_each_in_disc(xy, tool.radius(), seed, |e, entry, d2| {
-                let ub = f64::from(entry.zmax) - env.height(d2.sqrt());
-                if ub >= seed && Some(e) != hint {
-                    heap.push((order_key(ub), e as u32));
-                }
-            });
-        while let Some((key, e)) = heap.pop() {
-            let f = floor(&best);
-            if from_order_key(key) < f {
-                break;
-            }
-            self.consider(
-                tool,
-                xy,
-                e as usize,
-                f,
-                &mut best,
-                keep.then_some(&mut *near),
-            );
-        }
-        scratch.heap = heap.into_vec();
-        scratch.hint = best.map(|b| b.1 as u32);
-        best.map(|b| b.0)
+        self.tree.search(
+            [x, y],
+            tool.radius(),
+            tool.envelope(),
+            &mut scratch.heap,
+            &mut s,
+        );
+        scratch.hint = s.best.map(|b| b.1 as u32);
+        s.best.map(|b| b.0)
+    }
+}
+
+/// One drop's search: the best contact so far and the contacts near the top.
+struct Descent<'a> {
+    tree: &'a DropTree,
+    tool: &'a DropCutter,
+    xy: [f64; 2],
+    slack: f64,
+    best: Best,
+    near: Option<&'a mut Vec<DropResult>>,
+    hint: Option<usize>,
+}
+
+impl Descent<'_> {
+    /// The height below which nothing is wanted.
+    fn floor(&self) -> f64 {
+        self.best.map_or(f64::NEG_INFINITY, |b| b.0.z - self.slack)
     }
 
-    /// Drops onto the triangle of grid entry `e` at or above `floor`; keeps the better
-    /// of it and `best` (ties to the lower triangle index) and records it in `near`.
-    fn consider(
-        &self,
-        tool: &DropCutter,
-        xy: [f64; 2],
-        e: usize,
-        floor: f64,
-        best: &mut Best,
-        near: Option<&mut Vec<DropResult>>,
-    ) {
-        let Some(c) = triangle_drop_above(tool, xy, &self.grid.corners[e], floor) else {
+    /// Drops onto the triangle at tree position `e` at or above `floor`; keeps the
+    /// better of it and the best (ties to the lower triangle index) and records it in
+    /// the near contacts.
+    fn consider(&mut self, e: usize, floor: f64) {
+        let Some(c) = triangle_drop_above(self.tool, self.xy, &self.tree.corners(e), floor) else {
             return;
         };
         let r = DropResult {
             z: c.z,
-            tri: self.grid.ids[e],
+            tri: self.tree.ids[e],
             feature: c.feature,
             cc: c.cc,
         };
-        if let Some(near) = near {
+        if let Some(near) = self.near.as_deref_mut() {
             near.push(r);
         }
-        if best.is_none_or(|(b, _)| r.z > b.z || (r.z == b.z && r.tri < b.tri)) {
-            *best = Some((r, e));
+        if self
+            .best
+            .is_none_or(|(b, _)| r.z > b.z || (r.z == b.z && r.tri < b.tri))
+        {
+            self.best = Some((r, e));
+        }
+    }
+}
+
+impl Search for Descent<'_> {
+    fn wants(&self, ub: f64, _: u32) -> bool {
+        ub >= self.floor()
+    }
+
+    fn visit(&mut self, pos: usize) {
+        if Some(pos) != self.hint {
+            self.consider(pos, self.floor());
+        }
+    }
+}
+
+/// The search of [`MeshDropper::surface_z`]: the highest triangle holding a point.
+struct Point<'a> {
+    tree: &'a DropTree,
+    xy: [f64; 2],
+    best: Option<f64>,
+}
+
+impl Search for Point<'_> {
+    fn wants(&self, ub: f64, _: u32) -> bool {
+        self.best.is_none_or(|b| ub >= b)
+    }
+
+    fn visit(&mut self, pos: usize) {
+        let t = self.tree.corners(pos);
+        if let Some(l) = barycentric_xy(&t, self.xy) {
+            let z = l[0] * t[0].z + l[1] * t[1].z + l[2] * t[2].z;
+            if self.best.is_none_or(|b| z > b) {
+                self.best = Some(z);
+            }
         }
     }
 }
@@ -282,26 +299,6 @@ impl MeshDropper {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn order_keys_sort_like_floats() {
-        let v = [
-            f64::NEG_INFINITY,
-            -1e300,
-            -2.5,
-            -0.0,
-            0.0,
-            1e-300,
-            3.0,
-            f64::INFINITY,
-        ];
-        for w in v.windows(2) {
-            assert!(order_key(w[0]) <= order_key(w[1]), "{w:?}");
-        }
-        for x in v {
-            assert_eq!(from_order_key(order_key(x)).to_bits(), x.to_bits());
-        }
-    }
 
     #[test]
     fn ties_go_to_the_lowest_triangle_and_contacts_are_collected() {

@@ -14,9 +14,10 @@
 //! - [`facet`]: the facet case and the plane bound that settles most triangles.
 //! - [`edge`]: the edge case, a 1-D concave maximisation: closed forms for flat, ball
 //!   and cone pieces, a bracketed Newton solve ([`bracket`]) for torus pieces.
-//! - [`grid`], [`mesh`]: [`MeshDropper`], the mesh in a cache-friendly layout with
-//!   its own XY grid, pruning by height; [`batch`]: many points in parallel,
-//!   deterministic.
+//! - `tree`, [`mesh`]: [`MeshDropper`], the mesh in a hierarchy of XY boxes and
+//!   tops searched best first, so a drop's cost grows with the depth of the
+//!   hierarchy rather than with the triangles under the cutter; [`batch`]: many
+//!   points in parallel, deterministic.
 //!
 //! The cutter is treated as its cutting surface extended upward (the shank and
 //! holder are not checked), as in OpenCAMLib. Units: mm.
@@ -26,9 +27,9 @@ pub mod bracket;
 pub mod edge;
 pub mod envelope;
 pub mod facet;
-pub mod grid;
 pub mod kernel;
 pub mod mesh;
+mod tree;
 
 pub use batch::{drop_points, drop_points_threads, with_threads};
 pub use envelope::Envelope;

@@ -1,6 +1,5 @@
-//! The anchor-grid layout, shared by [`super::XyIndex`] and swarf-tool's drop grid
-//! (which stores other data per entry, but lays out and scans its grid the same way):
-//! levels of square cells, the anchor cell of a box, the anchor cells a query scans,
+//! The anchor-grid layout of [`super::XyIndex`] (its outward rounding of boxes to
+//! `f32` is also swarf-tool's drop tree's): levels of square cells, the anchor cell of a box, the anchor cells a query scans,
 //! the row narrowing of disc queries, outward rounding of boxes to `f32`, the base
 //! cell size and the counting sort into CSR order. The correctness argument (on cell
 //! indices, so exact under rounding) is in the parent module's doc.
