@@ -23,9 +23,6 @@ const LIGHT = (() => {
 })();
 
 async function main() {
-  if (location.protocol === 'file:') {
-    throw new Error('the page reads its files over HTTP: serve the folder (`swarf view ... --serve`, or `python3 -m http.server` in it) and open http://127.0.0.1:PORT/');
-  }
   const res = await fetch('view.json');
   if (!res.ok) throw new Error(`view.json: ${res.status} ${res.statusText}`);
   const view = await res.json();
