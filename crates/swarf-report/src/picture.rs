@@ -289,8 +289,8 @@ fn footer(v: &Verification, scale: &Scale) -> Vec<String> {
     );
     let [lo, hi] = scale.beyond(&v.deviation.values);
     let range = format!(
-        "colour scale \u{2212}{:.3} to +{:.3} mm (the 1st and 99th percentiles, at least \
-         twice the tolerance and up to the allowed excess): {} below it (magenta), {} \
+        "colour scale \u{2212}{:.3} to +{:.3} mm (the 1st and 99th percentiles, widened to \
+         twice the tolerance and to the allowed excess): {} below it (magenta), {} \
          above it (cyan); grey within \u{00b1}{} mm",
         scale.below,
         scale.above,
