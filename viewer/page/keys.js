@@ -8,6 +8,7 @@ export const SHORTCUTS = [
   ['Esc', 'clear the measurement', (api) => api.setMeasuring(false)],
   ['\u2190 / \u2192', 'previous / next motion (shift: 100)', null],
   ['Home / End', 'start / end of the program', null],
+  ['u', 'path up to the cutter / whole', (api) => api.setUpTo(!api.upTo())],
   ['[ / ]', 'previous / next operation', null],
   ['s p c l r a k o', 'toggle stock, part, cuts, links, rapids, tool axes, cutter, origin', null],
 ];

@@ -77,6 +77,7 @@ function makeApi(view, scene, renderer, camera, overlay) {
     scale: last ? robustRange(last.dev, last.state, tol) : { lo: -2 * tol, hi: 2 * tol, tol },
     measuring: false,
     points: [],
+    upTo: false,
   };
   const opIndex = () => (state.operation >= 0 ? state.operation : ops.length - 1);
   const opOfMotion = (k) => {
@@ -84,10 +85,12 @@ function makeApi(view, scene, renderer, camera, overlay) {
     return i >= 0 ? i : k === 0 ? 0 : ops.length - 1;
   };
   const stock = () => stocks[opIndex()] ?? null;
+  // The motions whose path is drawn: the operation's (all without one), up to the
+  // cutter's when asked.
   const motionRange = () => {
-    if (state.operation < 0) return [-Infinity, Infinity];
     const o = ops[state.operation];
-    return [o.first_motion, o.first_motion + o.motions - 1];
+    const [a, b] = o ? [o.first_motion, o.first_motion + o.motions - 1] : [-Infinity, Infinity];
+    return [a, state.upTo ? Math.min(b, state.motion - 1) : b];
   };
   const items = () => {
     const out = [];
@@ -142,6 +145,13 @@ function makeApi(view, scene, renderer, camera, overlay) {
     motionOfLine: (line) => motionOfLine(view.motions, line),
     cutter: () => ({ position: api.cutterPose.position, axis: api.cutterPose.axis }),
     operation: () => state.operation,
+    upTo: () => state.upTo,
+    // Draws the path only up to the cutter (true) or whole.
+    setUpTo(on) {
+      state.upTo = on;
+      document.dispatchEvent(new CustomEvent('swarf-upto', { detail: on }));
+      api.render();
+    },
     // Shows operation k's path and the stock after it (-1: the whole program).
     setOperation(k) {
       state.operation = Math.max(-1, Math.min(ops.length - 1, k));

@@ -71,6 +71,11 @@ function buildMotion(view, api) {
   slider.max = String(view.motions.count);
   $('motion-count').textContent = String(view.motions.count);
   slider.addEventListener('input', () => api.setMotion(Number(slider.value)));
+  const upTo = $('upto');
+  upTo.addEventListener('change', () => api.setUpTo(upTo.checked));
+  document.addEventListener('swarf-upto', (e) => {
+    upTo.checked = e.detail;
+  });
   document.addEventListener('swarf-motion', (e) => {
     const pose = e.detail;
     slider.value = String(pose.index);

@@ -171,6 +171,14 @@ export async function keyChecks(page, ok) {
   const box = await page.isChecked('#layer-cuts');
   ok(now === !was && box === now, 'the c key toggles the cuts and their box');
   await page.keyboard.press('c');
+  const whole = await pixels(page);
+  await page.evaluate(() => window.swarfView.setMotion(Math.floor(window.swarfView.view.motions.count / 3)));
+  const before = await pixels(page);
+  await page.keyboard.press('u');
+  const part = await pixels(page);
+  ok(await page.isChecked('#upto') && part.sum !== before.sum && part.drawn < before.drawn, `the u key draws the path up to the cutter only (${before.drawn} -> ${part.drawn} pixels drawn)`);
+  await page.keyboard.press('u');
+  ok((await pixels(page)).sum === before.sum && whole.drawn > 0, 'u again draws it whole');
 }
 
 // A view of several operations: each shows its own path, stock and cutter.
