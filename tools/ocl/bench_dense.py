@@ -3,8 +3,8 @@
 swarf against OpenCAMLib's BatchDropCutter on the 180k-triangle mold, in one run.
 
 Usage: python3 tools/ocl/bench_dense.py --swarf target/release/swarf
-           [--work /tmp/swarf-dense] [--sizes 10k,100k,1m,4m] [--ocl-points 3000]
-           [--no-ocl]
+           [--peer OTHER_SWARF] [--work /tmp/swarf-dense] [--sizes 10k,100k,1m,4m]
+           [--ocl-points 3000] [--no-ocl]
 
 The meshes are the mold of `python/tests/ocl_meshes.py` (a 40 x 30 mm height field:
 a pocket with a boss, a gentle wave outside) on square grids fine enough for about
@@ -14,7 +14,9 @@ is dropped on the same fixed grid of 481 x 321 = 154,401 points over the mold, b
 the CPU time of the whole grid less that of a one-point run (reading the STL and
 building the index), divided by the points; the peak resident memory of the
 whole-grid run, and of the one-point run, are printed too. The growth exponent is
-the slope of log(cost) against log(triangles) between neighbouring sizes.
+the slope of log(cost) against log(triangles) between neighbouring sizes. With
+`--peer`, another build of swarf (say, of main) runs the same drops in the same run,
+and the table gives its cost and the ratio.
 
 OpenCAMLib: BatchDropCutter with `setThreads(2)` on `--ocl-points` points of the same
 grid (every k-th) on the 180k mold (its rate over the whole grid would take an
@@ -129,6 +131,7 @@ def main():
     ap.add_argument("--sizes", default="10k,100k,1m,4m")
     ap.add_argument("--ocl-points", type=int, default=3000)
     ap.add_argument("--no-ocl", action="store_true")
+    ap.add_argument("--peer", help="another swarf binary to run the same drops")
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
     pts = points()
@@ -137,8 +140,8 @@ def main():
     write_points(grid_csv, pts)
     write_points(one_csv, pts[len(pts) // 2: len(pts) // 2 + 1])
     print(f"{len(pts)} points, {THREADS} threads")
-    print("| triangles | tool | us/point | exponent | one-point run s | peak MiB (grid, one point) |")
-    print("|---|---|---|---|---|---|")
+    print("| triangles | tool | us/point | exponent | one-point run s | peak MiB (grid, one point) | peer us/point, MiB | peer / this |")
+    print("|---|---|---|---|---|---|---|---|")
     last = {}
     for size in args.sizes.split(","):
         stl, n = mesh(args.work, size)
@@ -151,7 +154,14 @@ def main():
                 n0, us0 = last[spec]
                 exp = f"{np.log(us / us0) / np.log(n / n0):.2f}"
             last[spec] = (n, us)
-            print(f"| {n:,} | {spec} | {us:.2f} | {exp} | {cpu1:.2f} | {mem:.0f}, {mem1:.0f} |", flush=True)
+            peer = " | "
+            if args.peer:
+                p1, _, _ = swarf_drop(args.peer, stl, spec, one_csv, one_csv + ".peer")
+                p, pmem, _ = swarf_drop(args.peer, stl, spec, grid_csv, grid_csv + ".peer")
+                pus = 1e6 * max(p - p1, 0.0) / len(pts)
+                same = read_z(grid_csv + ".peer") == read_z(grid_csv + ".out")
+                peer = f"{pus:.2f}, {pmem:.0f} | {pus / us:.1f}{'' if same else ' (heights differ)'}"
+            print(f"| {n:,} | {spec} | {us:.2f} | {exp} | {cpu1:.2f} | {mem:.0f}, {mem1:.0f} | {peer} |", flush=True)
     if args.no_ocl:
         return
     stl, n = mesh(args.work, "180k")

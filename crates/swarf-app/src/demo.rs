@@ -159,7 +159,7 @@ pub fn demo(dir: &Path, text: &mut dyn Write, reporter: &dyn Reporter) -> Result
         |t| sequence(out, t),
     )?;
     reporter.jobs_done();
-    let views = views_line(out, dir);
+    let views = views_line(dir);
     writeln!(s.text, "\n{views}")?;
     let total = start.elapsed().as_secs_f64();
     crate::demo_page::stage_page(out, s.done, total)?;
@@ -246,29 +246,13 @@ fn stem_of(path: &Path) -> String {
         .map_or_else(String::new, |s| s.to_string_lossy().into_owned())
 }
 
-/// Where the 3D views are (the ones the page links).
-fn views_line(out: &Outputs, dir: &Path) -> String {
-    let staged = JOBS
-        .iter()
-        .map(|(n, _)| format!("compare/{}.view/index.html", n.trim_end_matches(".toml")))
-        .chain(
-            DIE_JOBS
-                .iter()
-                .map(|(n, _)| format!("die/{}.view/index.html", n.trim_end_matches(".toml"))),
-        )
-        .any(|p| out.is_staged(p));
-    if staged {
-        format!(
-            "3D views: {}/compare/*.view/index.html, die/*.view/index.html",
-            dir.display()
-        )
-    } else {
-        format!(
-            "3D views (GLB): {}/compare/*.view/, die/*.view/\n{}",
-            dir.display(),
-            crate::view::missing_viewer_note()
-        )
-    }
+/// Where the 3D views are (the page of each is embedded in swarf).
+fn views_line(dir: &Path) -> String {
+    format!(
+        "3D views: {}/compare/*.view/index.html, die/*.view/index.html (open through a web server on \
+         127.0.0.1, as `swarf view --serve` does; browsers do not run them from file://)",
+        dir.display()
+    )
 }
 
 /// Plans the shipped sequence job into `out/sequence` and prints its operations.

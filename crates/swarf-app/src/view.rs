@@ -23,29 +23,13 @@ use crate::error::{Result, bail};
 use crate::model::Model;
 use crate::outputs::Outputs;
 use serde_json::{Value, json};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use swarf_nc::read::{Motion, Program};
 use swarf_report::gltf::{self, StockMesh, StockMeshOptions, toolpath::classify};
 use swarf_sim::{Stage, Verification};
 use swarf_tool::Cutter;
 
 pub use request::{ViewRequest, ViewSource, Viewed, view_request};
-
-/// How the viewer page is had: it is embedded in the binary ([`page`]), so there is
-/// nothing to build.
-pub const VIEWER_BUILD: &str = "nothing: the page is embedded in swarf";
-
-/// The folder of the viewer page's sources (`viewer/` of the source tree swarf was
-/// built from). The page every view gets is the copy embedded at build time
-/// ([`page::FILES`]), so this is always `Some`.
-pub fn viewer_dist() -> Option<PathBuf> {
-    Some(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../viewer"))
-}
-
-/// The note for a view written without its page: none is, the page being embedded.
-pub fn missing_viewer_note() -> String {
-    String::new()
-}
 
 /// Lines of program source copied into `view.json` at most.
 const MAX_SOURCE_LINES: usize = 2_000_000;
@@ -71,8 +55,6 @@ pub struct ViewInput<'a> {
 pub struct ViewWritten {
     /// The stock mesh (stride, counts, stated height error).
     pub stock: StockMesh,
-    /// Whether the page was written (always: it is embedded).
-    pub page: bool,
 }
 
 /// Refuses a program that cannot be shown against `model` (module doc).
@@ -253,7 +235,7 @@ pub fn write_staged_view(
     });
     out.write_json(file("view.json"), &view)?;
     page::write_page(out, Path::new(dir))?;
-    Ok(ViewWritten { stock, page: true })
+    Ok(ViewWritten { stock })
 }
 
 /// Stages each operation's cutter (at the program's start) and the stock after it;

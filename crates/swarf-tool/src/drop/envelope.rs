@@ -101,6 +101,19 @@ impl Piece {
         }
     }
 
+    /// Height and slope `dh/drho` at `rho` together (one square root for an arc).
+    #[inline]
+    pub fn height_slope(&self, rho: f64) -> (f64, f64) {
+        match *self {
+            Piece::Line { rho0, h0, k, .. } => (h0 + k * (rho - rho0), k),
+            Piece::Arc { ce, cz, r, .. } => {
+                let q = rho - ce;
+                let s = (r * r - q * q).max(0.0).sqrt();
+                (cz - s, q / s)
+            }
+        }
+    }
+
     /// Slope `dh/drho` and second derivative `d2h/drho2` at `rho` (both infinite at
     /// an arc's equator; an arc's offset from its centre is taken as at least 0), for
     /// Newton steps on functions of `h` (the swept minimum of swarf-sim).
@@ -220,6 +233,16 @@ impl Envelope {
             }
         }
         (self.radius, self.top)
+    }
+
+    /// `h(rho)` and `h'(rho)` from the piece holding `rho` (at a joint, the inner
+    /// piece's); beyond the reach, `h(R)` and an infinite slope.
+    #[inline]
+    pub fn height_slope(&self, rho: f64) -> (f64, f64) {
+        self.pieces()
+            .iter()
+            .find(|p| rho <= p.rho1())
+            .map_or((self.top, f64::INFINITY), |p| p.height_slope(rho))
     }
 
     /// Slope `h'(rho)` from the piece holding `rho` (at a joint, the inner piece's).
@@ -377,5 +400,15 @@ mod tests {
         );
         assert_eq!(flat.slope(1.0), 0.0);
         assert!(ball.slope(4.0).is_infinite());
+        for env in [ball, bull, flat] {
+            for k in 0..=40 {
+                let rho = env.radius() * f64::from(k) / 40.0;
+                let (h, s) = env.height_slope(rho);
+                assert_eq!(h, env.height(rho), "{rho}");
+                let t = env.slope(rho);
+                assert!(s == t || (s - t).abs() <= 1e-12 * (1.0 + t.abs()), "{rho}");
+            }
+            assert_eq!(env.height_slope(env.radius() + 1.0).1, f64::INFINITY);
+        }
     }
 }

@@ -1,7 +1,7 @@
 //! `swarf view (--job JOB.toml | --part P --program PROG [--tool SPEC]) -o DIR
 //! [--serve]`: the 3D view of a verified program ([`swarf_app::view`]): GLB files of
 //! the design, tool path, cutter and simulated stock, `view.json`, the verification's
-//! report and pictures, and the viewer page where it has been built. `--serve`
+//! report and pictures, and the viewer page (embedded in swarf). `--serve`
 //! serves the folder on 127.0.0.1 until Ctrl-C (or `--serve-for` seconds).
 
 use crate::progress::Bars;
@@ -10,7 +10,7 @@ use std::io::{Read, Write};
 use std::net::{TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
-use swarf_app::view::{VIEWER_BUILD, ViewRequest, ViewSource, view_request, viewer_dist};
+use swarf_app::view::{ViewRequest, ViewSource, view_request};
 use swarf_report::gltf::StockMeshOptions;
 
 /// Arguments of `swarf view`.
@@ -61,11 +61,6 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: &Args) -> Result<()> {
-    if args.serve && viewer_dist().is_none() {
-        bail!(
-            "--serve: the viewer page is not built: build it with `{VIEWER_BUILD}` from the repository root"
-        );
-    }
     if !(1000..=50_000_000).contains(&args.max_vertices) {
         bail!(
             "--max-vertices: expected 1000 to 50000000 vertices, found {}",

@@ -89,8 +89,9 @@ impl Node {
 pub(crate) trait Lower {
     /// `h(rho)`, mm: convex and non-decreasing within the reach.
     fn height(&self, rho: f64) -> f64;
-    /// `h'(rho)` (a subgradient at a joint; infinite beyond the reach).
-    fn slope(&self, rho: f64) -> f64;
+    /// `h(rho)` and `h'(rho)` (a subgradient at a joint; infinite beyond the
+    /// reach).
+    fn height_slope(&self, rho: f64) -> (f64, f64);
 }
 
 impl Lower for Envelope {
@@ -100,8 +101,8 @@ impl Lower for Envelope {
     }
 
     #[inline]
-    fn slope(&self, rho: f64) -> f64 {
-        Envelope::slope(self, rho)
+    fn height_slope(&self, rho: f64) -> (f64, f64) {
+        Envelope::height_slope(self, rho)
     }
 }
 
@@ -113,8 +114,8 @@ impl Lower for Flat {
         0.0
     }
 
-    fn slope(&self, rho: f64) -> f64 {
-        if rho <= self.0 { 0.0 } else { f64::INFINITY }
+    fn height_slope(&self, rho: f64) -> (f64, f64) {
+        (0.0, if rho <= self.0 { 0.0 } else { f64::INFINITY })
     }
 }
 
@@ -217,11 +218,12 @@ impl DropTree {
         if !(c[0].is_finite() && c[1].is_finite()) || radius.is_nan() || radius < 0.0 {
             return;
         }
-        let bound = |n: &Node| node_bound(n, c, radius, lower);
+        let bound =
+            |n: &Node, search: &S| node_bound(n, c, radius, lower, |ub| search.wants(ub, n.min_id));
         let mut heap = BinaryHeap::from(std::mem::take(scratch));
         heap.clear();
         let offer = |heap: &mut BinaryHeap<Item>, search: &S, n: &Node, what: u64| {
-            if let Some(ub) = bound(n)
+            if let Some(ub) = bound(n, search)
                 && search.wants(ub, n.min_id)
             {
                 heap.push((order_key(ub), !n.min_id, what));
@@ -265,8 +267,15 @@ impl DropTree {
 }
 
 /// The lesser of a node's two bounds (module doc) for a cutter `lower` of reach
-/// `radius` at `c` (relative to the origin); `None` when its box is out of reach.
-fn node_bound(n: &Node, c: [f64; 2], radius: f64, lower: &impl Lower) -> Option<f64> {
+/// `radius` at `c` (relative to the origin); `None` when its box is out of reach or
+/// its first bound is already not `wanted`.
+fn node_bound(
+    n: &Node,
+    c: [f64; 2],
+    radius: f64,
+    lower: &impl Lower,
+    wanted: impl Fn(f64) -> bool,
+) -> Option<f64> {
     let r2 = radius * radius;
     let dx = (f64::from(n.bbox[0]) - c[0])
         .max(c[0] - f64::from(n.bbox[2]))
@@ -279,19 +288,16 @@ fn node_bound(n: &Node, c: [f64; 2], radius: f64, lower: &impl Lower) -> Option<
         return None;
     }
     let top = f64::from(n.zmax) - lower.height(d2.sqrt());
-    if n.slope[0].is_nan() {
+    if n.slope[0].is_nan() || !wanted(top) {
         return Some(top);
     }
     // f(q) = lid(q) - h(|q - c|) is concave: below its tangent plane at the
     // box centre, whose largest value over the box is at a corner.
     let o = n.centre();
     let v = [o[0] - c[0], o[1] - c[1]];
-    let rho = v[0].hypot(v[1]);
-    let k = if rho > 0.0 {
-        lower.slope(rho) / rho
-    } else {
-        0.0
-    };
+    let rho = (v[0] * v[0] + v[1] * v[1]).sqrt();
+    let (h, slope) = lower.height_slope(rho);
+    let k = if rho > 0.0 { slope / rho } else { 0.0 };
     let g = [
         f64::from(n.slope[0]) - k * v[0],
         f64::from(n.slope[1]) - k * v[1],
@@ -301,7 +307,7 @@ fn node_bound(n: &Node, c: [f64; 2], radius: f64, lower: &impl Lower) -> Option<
         0.5 * (f64::from(n.bbox[3]) - f64::from(n.bbox[1])),
     ];
     let rise = g[0].abs() * half[0] + g[1].abs() * half[1];
-    let f0 = n.lid - lower.height(rho);
+    let f0 = n.lid - h;
     let scale = 1.0 + n.lid.abs() + f0.abs() + rise + rho;
     let tangent = f0 + rise + BOUND_MARGIN_REL * scale;
     Some(if tangent.is_nan() {
