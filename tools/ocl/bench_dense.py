@@ -35,6 +35,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python", "tests"))
+import ocl_common  # noqa: E402
 import ocl_meshes  # noqa: E402
 
 THREADS = 2
@@ -70,13 +71,6 @@ def points():
     return [(float(x), float(y)) for y in ys for x in xs]
 
 
-def write_points(path, pts):
-    with open(path, "w") as f:
-        f.write("x,y\n")
-        for x, y in pts:
-            f.write(f"{x!r},{y!r}\n")
-
-
 def run(cmd):
     """CPU seconds and peak resident MiB of one child process."""
     t0 = time.perf_counter()
@@ -93,19 +87,7 @@ def swarf_drop(swarf, stl, spec, pts_csv, out_csv):
                 "-o", out_csv, "--threads", str(THREADS)])
 
 
-def read_z(path):
-    out = []
-    with open(path) as f:
-        next(f)
-        for line in f:
-            z = line.rstrip("\n").split(",")[2]
-            out.append(float(z) if z else None)
-    return out
-
-
 def ocl_compare(stl, spec, sub, ours):
-    import ocl_common
-
     tris = ocl_common.read_stl(stl)
     surf = ocl_common.surface(tris)
     cut = ocl_common.cutter(spec)
@@ -137,8 +119,8 @@ def main():
     pts = points()
     grid_csv = os.path.join(args.work, "grid.csv")
     one_csv = os.path.join(args.work, "one.csv")
-    write_points(grid_csv, pts)
-    write_points(one_csv, pts[len(pts) // 2: len(pts) // 2 + 1])
+    ocl_common.write_points(grid_csv, pts)
+    ocl_common.write_points(one_csv, pts[len(pts) // 2: len(pts) // 2 + 1])
     print(f"{len(pts)} points, {THREADS} threads")
     print("| triangles | tool | us/point | exponent | one-point run s | peak MiB (grid, one point) | peer us/point, MiB | peer / this |")
     print("|---|---|---|---|---|---|---|---|")
@@ -159,7 +141,7 @@ def main():
                 p1, _, _ = swarf_drop(args.peer, stl, spec, one_csv, one_csv + ".peer")
                 p, pmem, _ = swarf_drop(args.peer, stl, spec, grid_csv, grid_csv + ".peer")
                 pus = 1e6 * max(p - p1, 0.0) / len(pts)
-                same = read_z(grid_csv + ".peer") == read_z(grid_csv + ".out")
+                same = ocl_common.read_z(grid_csv + ".peer") == ocl_common.read_z(grid_csv + ".out")
                 peer = f"{pus:.2f}, {pmem:.0f} | {pus / us:.1f}{'' if same else ' (heights differ)'}"
             print(f"| {n:,} | {spec} | {us:.2f} | {exp} | {cpu1:.2f} | {mem:.0f}, {mem1:.0f} | {peer} |", flush=True)
     if args.no_ocl:
@@ -168,13 +150,13 @@ def main():
     k = max(1, len(pts) // args.ocl_points)
     sub = pts[::k]
     sub_csv = os.path.join(args.work, "sub.csv")
-    write_points(sub_csv, sub)
+    ocl_common.write_points(sub_csv, sub)
     for spec in SPECS:
         cpu1, _, _ = swarf_drop(args.swarf, stl, spec, one_csv, one_csv + ".out")
         cpu, _, _ = swarf_drop(args.swarf, stl, spec, grid_csv, grid_csv + ".out")
         ours_us = 1e6 * max(cpu - cpu1, 1e-9) / len(pts)
         swarf_drop(args.swarf, stl, spec, sub_csv, sub_csv + ".out")
-        ocl_s, diff, both = ocl_compare(stl, spec, sub, read_z(sub_csv + ".out"))
+        ocl_s, diff, both = ocl_compare(stl, spec, sub, ocl_common.read_z(sub_csv + ".out"))
         print(f"\n{spec} on the mold ({n:,} triangles): swarf {ours_us:.2f} us/point (whole grid), "
               f"OpenCAMLib {1e6 * ocl_s:,.0f} us/point on {len(sub)} points: "
               f"{1e6 * ocl_s / ours_us:,.0f}x; max |dz| {diff:.3g} mm over {both} points", flush=True)

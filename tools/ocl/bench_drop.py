@@ -45,13 +45,6 @@ def grid(tris):
     return [(x0 + i * STEP, y0 + j * STEP) for j in range(ny) for i in range(nx)]
 
 
-def write_points(path, pts):
-    with open(path, "w") as f:
-        f.write("x,y\n")
-        for x, y in pts:
-            f.write(f"{x!r},{y!r}\n")
-
-
 def child_cpu():
     r = resource.getrusage(resource.RUSAGE_CHILDREN)
     return r.ru_utime + r.ru_stime
@@ -67,16 +60,6 @@ def run_swarf(swarf, stl, spec, pts_csv, out_csv):
     cpu = child_cpu() - before
     rate = float(re.search(r"([0-9.]+) points/s", err).group(1))
     return rate, cpu, err.strip()
-
-
-def read_z(path):
-    out = []
-    with open(path) as f:
-        next(f)
-        for line in f:
-            z = line.rstrip("\n").split(",")[2]
-            out.append(float(z) if z else None)
-    return out
 
 
 def main():
@@ -97,10 +80,10 @@ def main():
         sub = pts[::k]
         full_csv = os.path.join(args.work, f"{part}-grid.csv")
         sub_csv = os.path.join(args.work, f"{part}-sub.csv")
-        write_points(full_csv, pts)
-        write_points(sub_csv, sub)
+        ocl_common.write_points(full_csv, pts)
+        ocl_common.write_points(sub_csv, sub)
         none_csv = os.path.join(args.work, "no-points.csv")
-        write_points(none_csv, [])
+        ocl_common.write_points(none_csv, [])
         _, cpu_fixed, _ = run_swarf(args.swarf, stl, spec, none_csv, none_csv + ".out")
         rate_full, cpu_full, log = run_swarf(args.swarf, stl, spec, full_csv, full_csv + ".out")
         rate_sub, cpu_sub, _ = run_swarf(args.swarf, stl, spec, sub_csv, sub_csv + ".out")
@@ -122,7 +105,7 @@ def main():
         t3 = time.perf_counter()
         ocl_cpu = time.process_time() - c2
         theirs = [None if str(p.getCC().type) == "NONE" else p.z for p in bdc.getCLPoints()]
-        ours = read_z(sub_csv + ".out")
+        ours = ocl_common.read_z(sub_csv + ".out")
         diffs = [abs(a - b) for a, b in zip(ours, theirs) if a is not None and b is not None]
         contact_mismatch = sum(1 for a, b in zip(ours, theirs) if (a is None) != (b is None))
         ocl_rate = len(sub) / (t3 - t2)

@@ -10,6 +10,8 @@ Only OpenCAMLib's public Python API is used; no OpenCAMLib code is copied.
   CL point is the tool tip (as swarf's); `BullCutter(d, r, L)` takes the corner
   radius r; `ConeCutter(d, a, L)` takes the half-angle a from the axis in radians,
   while swarf's `angle=` is the included angle in degrees, so a = radians(angle) / 2.
+- `write_points(path, points)`, `read_z(path)`: the points CSV `swarf drop` reads and
+  the heights of the CSV it writes.
 - `batch_drop(triangles, spec, points, threads)`: BatchDropCutter heights, `None`
   where OpenCAMLib reports no contact (CC type NONE).
 """
@@ -126,3 +128,22 @@ def waterline(triangles, spec, z, sampling, adaptive=False, threads=2, surf=None
     loops = [[(p.x, p.y) for p in lp] for lp in wl.getLoops()]
     del wl, cut
     return loops, elapsed
+
+
+def write_points(path, pts):
+    """Writes points as `swarf drop --points` reads them (`x,y` per line)."""
+    with open(path, "w") as f:
+        f.write("x,y\n")
+        for x, y in pts:
+            f.write(f"{x!r},{y!r}\n")
+
+
+def read_z(path):
+    """The heights of a `swarf drop` output CSV, `None` where there is no contact."""
+    out = []
+    with open(path) as f:
+        next(f)
+        for line in f:
+            z = line.rstrip("\n").split(",")[2]
+            out.append(float(z) if z else None)
+    return out

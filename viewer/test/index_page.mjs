@@ -10,6 +10,7 @@ import { existsSync, statSync, writeFileSync } from 'node:fs';
 import { resolve, join, sep } from 'node:path';
 import { pathToFileURL, fileURLToPath } from 'node:url';
 import assert from 'node:assert/strict';
+import { pngStats } from './png_stats.mjs';
 
 const [dir, ...rest] = process.argv.slice(2);
 const k = rest.indexOf('--shot');
@@ -79,20 +80,8 @@ try {
   ok(views.length >= 1, `${views.length} links to 3D views`);
 
   const png = await page.screenshot({ fullPage: false });
-  const drawn = await page.evaluate(async (b64) => {
-    const img = new Image();
-    img.src = `data:image/png;base64,${b64}`;
-    await img.decode();
-    const c = document.createElement('canvas');
-    [c.width, c.height] = [img.width, img.height];
-    const g = c.getContext('2d');
-    g.drawImage(img, 0, 0);
-    const d = g.getImageData(0, 0, c.width, c.height).data;
-    let n = 0;
-    for (let q = 0; q < d.length; q += 4) if (d[q] < 235 || d[q + 1] < 235 || d[q + 2] < 235) n += 1;
-    return { n, total: c.width * c.height };
-  }, png.toString('base64'));
-  ok(drawn.n > drawn.total * 0.03, `the screenshot is not blank (${drawn.n} of ${drawn.total} pixels drawn)`);
+  const stats = await pngStats(page, `data:image/png;base64,${png.toString('base64')}`);
+  ok(stats.notWhite > 0.03, `the screenshot is not blank (${(100 * stats.notWhite).toFixed(1)} % of its pixels drawn)`);
   if (shot) {
     writeFileSync(shot, png);
     console.log(`screenshot: ${shot} (${png.length} bytes)`);

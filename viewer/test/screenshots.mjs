@@ -7,6 +7,7 @@
 import { chromium } from 'playwright-core';
 import { readFileSync, statSync } from 'node:fs';
 import assert from 'node:assert/strict';
+import { pngStats } from './png_stats.mjs';
 
 const MAX_BYTES = 400 * 1024;
 const files = process.argv.slice(2);
@@ -24,26 +25,7 @@ try {
     const bytes = statSync(file).size;
     assert.ok(bytes < MAX_BYTES, `${file}: ${bytes} bytes, over ${MAX_BYTES}`);
     const url = `data:image/png;base64,${readFileSync(file).toString('base64')}`;
-    const s = await page.evaluate(async (src) => {
-      const img = new Image();
-      img.src = src;
-      await img.decode();
-      const c = document.createElement('canvas');
-      [c.width, c.height] = [img.width, img.height];
-      const g = c.getContext('2d');
-      g.drawImage(img, 0, 0);
-      const d = g.getImageData(0, 0, c.width, c.height).data;
-      let [sum, sq, drawn, hues] = [0, 0, 0, 0];
-      for (let k = 0; k < d.length; k += 4) {
-        const y = 0.299 * d[k] + 0.587 * d[k + 1] + 0.114 * d[k + 2];
-        sum += y;
-        sq += y * y;
-        if (Math.abs(d[k] - 244) + Math.abs(d[k + 1] - 245) + Math.abs(d[k + 2] - 247) > 24 && y < 250) drawn += 1;
-        if (Math.max(d[k], d[k + 1], d[k + 2]) - Math.min(d[k], d[k + 1], d[k + 2]) > 60) hues += 1;
-      }
-      const n = d.length / 4;
-      return { width: c.width, height: c.height, sd: Math.sqrt(sq / n - (sum / n) ** 2), drawn: drawn / n, coloured: hues / n };
-    }, url);
+    const s = await pngStats(page, url);
     assert.ok(s.width >= 600 && s.height >= 400, `${file}: ${s.width} x ${s.height} px`);
     assert.ok(s.sd > 15, `${file}: grey levels vary by ${s.sd.toFixed(1)} only (blank?)`);
     assert.ok(s.drawn > 0.15, `${file}: ${(100 * s.drawn).toFixed(1)} % of the pixels drawn`);
