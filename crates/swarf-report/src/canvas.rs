@@ -207,6 +207,18 @@ impl Canvas {
     }
 }
 
+/// The pixels of a PNG as written (tests of the pictures read their colours back).
+#[cfg(test)]
+pub(crate) fn decoded(png: &[u8]) -> Vec<u8> {
+    let mut reader = png::Decoder::new(std::io::Cursor::new(png))
+        .read_info()
+        .unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    buf.truncate(info.buffer_size());
+    buf
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -190,11 +190,8 @@ mod tests {
             footer: vec!["tool bull d=12 r=2".into()],
         };
         let png = chart_png(&chart).unwrap();
-        let decoder = png::Decoder::new(std::io::Cursor::new(&png));
-        let mut reader = decoder.read_info().unwrap();
-        let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-        let info = reader.next_frame(&mut buf).unwrap();
-        let px = &buf[..info.buffer_size()];
+        let buf = crate::canvas::decoded(&png);
+        let px = &buf[..];
         let count = |c: Rgb| px.chunks(3).filter(|p| *p == c).count();
         assert!(
             count(SERIES[1]) > 5 * count(SERIES[0]),

@@ -131,11 +131,8 @@ mod tests {
             ClassRings::default(),
         ];
         let png = classify_png(&grid, &design, &classes, "classes", &["footer".into()]).unwrap();
-        let decoder = png::Decoder::new(std::io::Cursor::new(&png));
-        let mut reader = decoder.read_info().unwrap();
-        let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-        let info = reader.next_frame(&mut buf).unwrap();
-        let px = &buf[..info.buffer_size()];
+        let buf = crate::canvas::decoded(&png);
+        let px = &buf[..];
         let count = |f: &dyn Fn([i32; 3]) -> bool| {
             px.chunks(3)
                 .filter(|p| f([0, 1, 2].map(|k| i32::from(p[k]))))

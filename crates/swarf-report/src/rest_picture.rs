@@ -105,11 +105,8 @@ mod tests {
             label: "1".into(),
         }];
         let png = rest_png(&grid, &design, &regions, "rest", &["one region".into()]).unwrap();
-        let decoder = png::Decoder::new(std::io::Cursor::new(&png));
-        let mut reader = decoder.read_info().unwrap();
-        let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-        let info = reader.next_frame(&mut buf).unwrap();
-        let px = &buf[..info.buffer_size()];
+        let buf = crate::canvas::decoded(&png);
+        let px = &buf[..];
         let count = |c: Rgb| px.chunks(3).filter(|p| *p == c).count();
         assert!(
             count(BOUNDARY) > 100 && count(RAW) > 50,

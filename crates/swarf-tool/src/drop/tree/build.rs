@@ -161,34 +161,39 @@ fn tile(items: &mut [Centre], cap: usize) {
 /// lowest mesh index `min_id`: box, top, and a lid with the slope of their mean
 /// upward normal (weighted by area) through their highest corner above it.
 pub(super) fn leaf(tris: &[[Point3; 3]], origin: [f64; 2], min_id: u32) -> Node {
-    let corners = || tris.iter().flatten();
-    let lo = |a: usize| corners().map(|p| p[a]).fold(f64::INFINITY, f64::min);
-    let hi = |a: usize| corners().map(|p| p[a]).fold(f64::NEG_INFINITY, f64::max);
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    let mut n = Point3::origin().coords;
+    for [p0, p1, p2] in tris {
+        for p in [p0, p1, p2] {
+            for a in 0..3 {
+                lo[a] = lo[a].min(p[a]);
+                hi[a] = hi[a].max(p[a]);
+            }
+        }
+        let m = (p1 - p0).cross(&(p2 - p0));
+        n = if m.z < 0.0 { n - m } else { n + m };
+    }
     let mut node = Node {
         bbox: [
-            round_down(lo(0) - origin[0]),
-            round_down(lo(1) - origin[1]),
-            round_up(hi(0) - origin[0]),
-            round_up(hi(1) - origin[1]),
+            round_down(lo[0] - origin[0]),
+            round_down(lo[1] - origin[1]),
+            round_up(hi[0] - origin[0]),
+            round_up(hi[1] - origin[1]),
         ],
-        zmax: round_up(hi(2)),
+        zmax: round_up(hi[2]),
         min_id,
         slope: [f32::NAN; 2],
         lid: f64::INFINITY,
     };
-    let n = tris
-        .iter()
-        .fold(Point3::origin().coords, |acc, [p0, p1, p2]| {
-            let n = (p1 - p0).cross(&(p2 - p0));
-            if n.z < 0.0 { acc - n } else { acc + n }
-        });
     if n.z >= BOUND_MIN_NZ * n.norm() && n.z > 0.0 {
         node.slope = [(-n.x / n.z) as f32, (-n.y / n.z) as f32];
         let o = node.centre();
         let (a, b) = (f64::from(node.slope[0]), f64::from(node.slope[1]));
-        node.lid = corners()
-            .map(|p| p.z - a * (p.x - origin[0] - o[0]) - b * (p.y - origin[1] - o[1]))
-            .fold(f64::NEG_INFINITY, f64::max);
+        let mut lid = f64::NEG_INFINITY;
+        for p in tris.iter().flatten() {
+            lid = lid.max(p.z - a * (p.x - origin[0] - o[0]) - b * (p.y - origin[1] - o[1]));
+        }
+        node.lid = lid;
     }
     node
 }
