@@ -262,7 +262,7 @@ impl Descent<'_> {
 }
 
 impl Search for Descent<'_> {
-    fn wants(&self, ub: f64, _: u32) -> bool {
+    fn wants(&self, ub: f64) -> bool {
         ub >= self.floor()
     }
 
@@ -281,7 +281,7 @@ struct Point<'a> {
 }
 
 impl Search for Point<'_> {
-    fn wants(&self, ub: f64, _: u32) -> bool {
+    fn wants(&self, ub: f64) -> bool {
         self.best.is_none_or(|b| ub >= b)
     }
 

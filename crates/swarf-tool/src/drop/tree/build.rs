@@ -71,9 +71,8 @@ impl DropTree {
             .with_min_len(PAR_CHUNK / FANOUT)
             .map(|i| {
                 let range = i * FANOUT..((i + 1) * FANOUT).min(tree.len());
-                let min_id = tree.ids[range.clone()].iter().copied().min().unwrap_or(0);
                 let corners: Vec<[Point3; 3]> = range.map(|p| tree.corners(p)).collect();
-                leaf(&corners, tree.origin, min_id)
+                leaf(&corners, tree.origin)
             })
             .collect();
         tree.levels.push(leaves);
@@ -157,10 +156,10 @@ fn tile(items: &mut [Centre], cap: usize) {
     }
 }
 
-/// The node of triangles' corners (relative heights and XY to `origin`), their
-/// lowest mesh index `min_id`: box, top, and a lid with the slope of their mean
-/// upward normal (weighted by area) through their highest corner above it.
-pub(super) fn leaf(tris: &[[Point3; 3]], origin: [f64; 2], min_id: u32) -> Node {
+/// The node of triangles' corners (XY relative to `origin`): box, top, and a lid
+/// with the slope of their mean upward normal (weighted by area) through their
+/// highest corner above it.
+pub(super) fn leaf(tris: &[[Point3; 3]], origin: [f64; 2]) -> Node {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     let mut n = Point3::origin().coords;
     for [p0, p1, p2] in tris {
@@ -181,7 +180,6 @@ pub(super) fn leaf(tris: &[[Point3; 3]], origin: [f64; 2], min_id: u32) -> Node 
             round_up(hi[1] - origin[1]),
         ],
         zmax: round_up(hi[2]),
-        min_id,
         slope: [f32::NAN; 2],
         lid: f64::INFINITY,
     };
@@ -210,7 +208,6 @@ fn merge(nodes: &[Node]) -> Node {
             a.bbox[3].max(b.bbox[3]),
         ],
         zmax: a.zmax.max(b.zmax),
-        min_id: a.min_id.min(b.min_id),
         slope: [f32::NAN; 2],
         lid: f64::INFINITY,
     });

@@ -9,7 +9,7 @@
 //! groups [`FANOUT`] consecutive triangles into a node, level `k + 1` groups
 //! [`FANOUT`] consecutive nodes of level `k`, up to one root, so children are found
 //! by position and no pointers are stored. A node holds the XY box of what is under
-//! it and its highest z (`f32`, rounded outward), its lowest mesh index, and a lid: a
+//! it and its highest z (`f32`, rounded outward), and a lid: a
 //! plane that everything under it lies below (for a leaf, the slope of its triangles'
 //! mean normal through their highest corner above it; for a node above, the mean of
 //! its children's slopes through the highest of their lids' box corners, as a lid is
@@ -27,7 +27,7 @@
 //! order near the contact (where `g` vanishes), which is what keeps the nodes a
 //! query opens about the same at any density. Both are taken with the margin of
 //! [`super::facet::BOUND_MARGIN_REL`] on the lid's. Nodes and triangles wait in one
-//! binary heap in descending bound (equal bounds: lower mesh index first); the search
+//! binary heap in descending bound (equal bounds in a fixed order); the search
 //! expands a node into its children, hands a triangle to the caller, and stops at the
 //! first item the caller no longer wants ([`Search::wants`]). Every bound is at least
 //! the drop of anything under its node, so nothing that could win or tie is skipped:
@@ -55,15 +55,14 @@ use swarf_geom::{Point3, TriMesh};
 pub(crate) const FANOUT: usize = 4;
 
 /// A node: the XY box `[x0, y0, x1, y1]` of what it holds relative to the tree's
-/// origin and its highest z, rounded outward, its lowest mesh index, and a plane
-/// above everything it holds: `z <= lid[2] + lid[0] (x - xc) + lid[1] (y - yc)`
-/// about the box centre `(xc, yc)` (slopes `NaN` where it holds a face steeper than
-/// the plane bound allows).
+/// origin and its highest z, rounded outward, and a lid above everything it holds:
+/// `z <= lid + slope[0] (x - xc) + slope[1] (y - yc)` about the box centre
+/// `(xc, yc)` (slopes `NaN` where it holds a face steeper than the plane bound
+/// allows).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Node {
     bbox: [f32; 4],
     zmax: f32,
-    min_id: u32,
     slope: [f32; 2],
     lid: f64,
 }
@@ -119,10 +118,9 @@ impl Lower for Flat {
     }
 }
 
-/// A heap item: the bound's order key, the complement of the lowest mesh index (so
-/// lower indices pop first among equal bounds), and what it is: `level << 40 | index`,
-/// level 0 a triangle position, level `k` a node of `levels[k - 1]`.
-pub(crate) type Item = (u64, u32, u64);
+/// A heap item: the bound's order key and what it is: `level << 40 | index`, level 0
+/// a triangle position, level `k` a node of `levels[k - 1]`.
+pub(crate) type Item = (u64, u64);
 
 /// Where an item's level starts in its last field.
 const LEVEL_SHIFT: u32 = 40;
@@ -132,9 +130,9 @@ const INDEX_MASK: u64 = (1 << LEVEL_SHIFT) - 1;
 
 /// What a search asks of its caller.
 pub(crate) trait Search {
-    /// True while an item whose bound is `ub` (mm) and whose lowest mesh index is
-    /// `min_id` may still change the result; the first `false` ends the search.
-    fn wants(&self, ub: f64, min_id: u32) -> bool;
+    /// True while an item whose bound is `ub` (mm) may still change the result;
+    /// the first `false` ends the search.
+    fn wants(&self, ub: f64) -> bool;
     /// Visits the triangle at tree position `pos`.
     fn visit(&mut self, pos: usize);
 }
@@ -196,7 +194,7 @@ impl DropTree {
 
     /// The node of the triangle at tree position `pos`: its box, top and plane.
     fn tri_node(&self, pos: usize) -> Node {
-        leaf(&[self.corners(pos)], self.origin, self.ids[pos])
+        leaf(&[self.corners(pos)], self.origin)
     }
 
     /// Best-first search (module doc) about `(x, y)` within `radius`: items whose
@@ -218,23 +216,22 @@ impl DropTree {
         if !(c[0].is_finite() && c[1].is_finite()) || radius.is_nan() || radius < 0.0 {
             return;
         }
-        let bound =
-            |n: &Node, search: &S| node_bound(n, c, radius, lower, |ub| search.wants(ub, n.min_id));
+        let bound = |n: &Node, search: &S| node_bound(n, c, radius, lower, |ub| search.wants(ub));
         let mut heap = BinaryHeap::from(std::mem::take(scratch));
         heap.clear();
         let offer = |heap: &mut BinaryHeap<Item>, search: &S, n: &Node, what: u64| {
             if let Some(ub) = bound(n, search)
-                && search.wants(ub, n.min_id)
+                && search.wants(ub)
             {
-                heap.push((order_key(ub), !n.min_id, what));
+                heap.push((order_key(ub), what));
             }
         };
         let depth = self.levels.len() as u64;
         for (i, n) in top.iter().enumerate() {
             offer(&mut heap, search, n, depth << LEVEL_SHIFT | i as u64);
         }
-        while let Some((key, not_id, what)) = heap.pop() {
-            if !search.wants(from_order_key(key), !not_id) {
+        while let Some((key, what)) = heap.pop() {
+            if !search.wants(from_order_key(key)) {
                 break;
             }
             let (level, i) = ((what >> LEVEL_SHIFT) as usize, (what & INDEX_MASK) as usize);

@@ -31,7 +31,7 @@ struct All<'a> {
 }
 
 impl Search for All<'_> {
-    fn wants(&self, ub: f64, _: u32) -> bool {
+    fn wants(&self, ub: f64) -> bool {
         ub >= self.floor
     }
 
