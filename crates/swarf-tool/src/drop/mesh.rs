@@ -165,18 +165,24 @@ impl MeshDropper {
     }
 
     /// Height of the mesh itself at `(x, y)`: the highest triangle whose XY projection
-    /// holds the point (a drop of a needle); `None` off the mesh.
+    /// holds the point (a drop of a needle); `None` off the mesh. Its working memory
+    /// is one heap per thread, kept between calls (callers probe single points
+    /// without a scratch of their own).
     ///
     /// # Units
     /// mm.
     pub fn surface_z(&self, x: f64, y: f64) -> Option<f64> {
+        thread_local! {
+            static HEAP: std::cell::RefCell<Vec<Item>> = const { std::cell::RefCell::new(Vec::new()) };
+        }
         let mut needle = Point {
             tree: &self.tree,
             xy: [x, y],
             best: None,
         };
-        self.tree
-            .search([x, y], 0.0, &Flat(0.0), &mut Vec::new(), &mut needle);
+        HEAP.with_borrow_mut(|heap| {
+            self.tree.search([x, y], 0.0, &Flat(0.0), heap, &mut needle);
+        });
         needle.best
     }
 
